@@ -1,1 +1,141 @@
-fn main() {}
+//! The `impact` command line.
+
+use clap::{Args, Parser, Subcommand};
+use impact::output::Artifacts;
+use impact::run::{run, BeamModel, Results};
+use impact::scene::{Analysis, Scene, DEFAULT_SCENE};
+use impact::table::Table;
+use impact::views::{response_tables, slug, yield_tables};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "impact",
+    version,
+    about = "Rock-sphere impact on supported steel plates: the paper's beam model and its checks"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Args, Clone)]
+struct Common {
+    /// Scene file (TOML); the embedded default is the paper's Table 1.
+    #[arg(long, value_name = "FILE")]
+    scene: Option<PathBuf>,
+    /// Print JSON instead of tables.
+    #[arg(long)]
+    json: bool,
+    /// Also write CSV and JSON files into DIR.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Responses (and yield velocities, if the scene asks) at the scene's points.
+    Solve(Common),
+    /// Responses and yield velocities along the plate, evenly spaced.
+    Sweep {
+        #[command(flatten)]
+        common: Common,
+        /// Number of points on [0, L] (the paper uses 101).
+        #[arg(long, default_value_t = 101)]
+        count: usize,
+    },
+    /// Yield velocities at the scene's points (eqs. 51-54).
+    Yield(Common),
+    /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
+    Paper {
+        #[arg(long, value_name = "DIR", default_value = "reports/paper")]
+        out: PathBuf,
+    },
+    /// The main job on the default scene: every report into DIR.
+    Report {
+        #[arg(long, value_name = "DIR", default_value = "reports")]
+        out: PathBuf,
+    },
+    /// Print the embedded default scene (a template for your own).
+    DefaultScene,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match execute(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+type Failure = Box<dyn std::error::Error>;
+
+fn load(common: &Common) -> Result<Scene, Failure> {
+    Ok(match &common.scene {
+        Some(p) => Scene::load(p)?,
+        None => Scene::default_scene(),
+    })
+}
+
+fn execute(command: Command) -> Result<(), Failure> {
+    match command {
+        Command::Solve(c) => {
+            let scene = load(&c)?;
+            emit(&c, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
+        }
+        Command::Sweep { common, count } => {
+            let scene = load(&common)?.with_sweep(count)?;
+            emit(&common, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
+        }
+        Command::Yield(c) => {
+            let mut scene = load(&c)?;
+            scene.analyses = vec![Analysis::YieldVelocity];
+            emit(&c, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
+        }
+        Command::Paper { out } => write(&out, &impact::paper::reproduce()?),
+        Command::Report { out } => {
+            let mut all = Artifacts::new();
+            all.nest("paper", impact::paper::reproduce()?);
+            write(&out, &all)
+        }
+        Command::DefaultScene => {
+            print!("{DEFAULT_SCENE}");
+            Ok(())
+        }
+    }
+}
+
+fn write(dir: &Path, artifacts: &Artifacts) -> Result<(), Failure> {
+    let written = artifacts.write_all(dir).map_err(|e| format!("writing into {}: {e}", dir.display()))?;
+    eprintln!("wrote {} files under {}", written.len(), dir.display());
+    Ok(())
+}
+
+fn emit(c: &Common, scene: &Scene, results: Results) -> Result<(), Failure> {
+    let tables: Vec<Table> = response_tables(&results).into_iter().chain(yield_tables(&results)).collect();
+    let json = serde_json::to_string_pretty(&results)?;
+    if let Some(dir) = &c.out {
+        let mut a = Artifacts::new();
+        for t in &tables {
+            let kind = if t.title.contains("yield") { "yield" } else { "responses" };
+            let cond = t.title.split(" (").next().unwrap_or("condition");
+            a.add(format!("{}-{}-{}.csv", slug(&scene.name), kind, slug(cond)), t.to_csv());
+        }
+        a.add(format!("{}.json", slug(&scene.name)), json.clone());
+        write(dir, &a)?;
+    }
+    if c.json {
+        println!("{json}");
+    } else {
+        println!("scene: {} ({})", scene.name, scene.description);
+        for t in &tables {
+            println!();
+            print!("{}", t.to_text());
+        }
+    }
+    Ok(())
+}

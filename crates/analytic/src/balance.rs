@@ -37,20 +37,14 @@ pub enum Method {
 
 impl Default for Method {
     fn default() -> Self {
-        Self::Bracketed {
-            tolerance: 1e-14,
-            max_iterations: 100,
-        }
+        Self::Bracketed { tolerance: 1e-14, max_iterations: 100 }
     }
 }
 
 impl Method {
     /// The paper's recursion with the stopping residual ğ = 1e-12.
     pub fn paper() -> Self {
-        Self::Recursion {
-            tolerance: 1e-12,
-            max_iterations: 200,
-        }
+        Self::Recursion { tolerance: 1e-12, max_iterations: 200 }
     }
 }
 
@@ -76,11 +70,7 @@ impl EnergyBalance {
     /// The balance for contact stiffness `k`, restitution `e`, total compliance `c`, sphere
     /// mass `m` and impact velocity `v`.
     pub fn new(k: f64, e: f64, c: f64, m: f64, v: f64) -> Self {
-        Self {
-            a: 2.0 * k / (5.0 * e),
-            b: 0.5 * c * k * k,
-            e0: 0.5 * m * v * v,
-        }
+        Self { a: 2.0 * k / (5.0 * e), b: 0.5 * c * k * k, e0: 0.5 * m * v * v }
     }
 
     /// Energy needed to reach compression δ: f(δ) = aδ^{5/2} + bδ³ (right side of eq. 14).
@@ -100,18 +90,17 @@ impl EnergyBalance {
         (self.e0 / (self.a + self.b * delta.sqrt())).powf(0.4)
     }
 
+    /// Runs `method` and returns its last iterate, converged or not.
+    pub fn attempt(&self, method: Method) -> Solution {
+        match method {
+            Method::Recursion { tolerance, max_iterations } => self.recursion(tolerance, max_iterations),
+            Method::Bracketed { tolerance, max_iterations } => self.bracketed(tolerance, max_iterations),
+        }
+    }
+
     /// Solves by `method`; a result that missed its tolerance is an error carrying it.
     pub fn solve(&self, method: Method) -> Result<Solution, NotConverged> {
-        let s = match method {
-            Method::Recursion {
-                tolerance,
-                max_iterations,
-            } => self.recursion(tolerance, max_iterations),
-            Method::Bracketed {
-                tolerance,
-                max_iterations,
-            } => self.bracketed(tolerance, max_iterations),
-        };
+        let s = self.attempt(method);
         if s.converged {
             Ok(s)
         } else {
@@ -139,12 +128,7 @@ impl EnergyBalance {
                 break;
             }
         }
-        Solution {
-            delta,
-            iterations: n,
-            residual,
-            converged: residual <= tolerance,
-        }
+        Solution { delta, iterations: n, residual, converged: residual <= tolerance }
     }
 
     /// Newton's method on F(u) = a u⁵ + b u⁶ - E₀ with u = √δ, kept inside a bracket.
@@ -156,19 +140,12 @@ impl EnergyBalance {
     /// against rounding. Convergence is quadratic.
     pub fn bracketed(&self, tolerance: f64, max_iterations: u32) -> Solution {
         let ua = (self.e0 / self.a).powf(0.2);
-        let ub = if self.b > 0.0 {
-            (self.e0 / self.b).powf(1.0 / 6.0)
-        } else {
-            f64::INFINITY
-        };
+        let ub = if self.b > 0.0 { (self.e0 / self.b).powf(1.0 / 6.0) } else { f64::INFINITY };
         let mut hi = ua.min(ub);
         let mut lo = (ua * 2f64.powf(-0.2)).min(ub * 2f64.powf(-1.0 / 6.0));
         let f = |u: f64| {
             let u4 = u * u * u * u;
-            (
-                u4 * u * (self.a + self.b * u) - self.e0,
-                u4 * (5.0 * self.a + 6.0 * self.b * u),
-            )
+            (u4 * u * (self.a + self.b * u) - self.e0, u4 * (5.0 * self.a + 6.0 * self.b * u))
         };
         let mut u = hi;
         let mut n = 0;
@@ -182,23 +159,14 @@ impl EnergyBalance {
                 lo = u;
             }
             let newton = u - fu / dfu;
-            let next = if newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
+            let next = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
             if next == u {
                 break;
             }
             u = next;
             residual = (f(u).0 / self.e0).abs();
         }
-        Solution {
-            delta: u * u,
-            iterations: n,
-            residual,
-            converged: residual <= tolerance,
-        }
+        Solution { delta: u * u, iterations: n, residual, converged: residual <= tolerance }
     }
 }
 
@@ -210,11 +178,7 @@ mod tests {
     /// b = 0 (rigid support) has the closed form δ = (E₀/a)^{2/5}.
     #[test]
     fn rigid_support_closed_form() {
-        let bal = EnergyBalance {
-            a: 3.0e8,
-            b: 0.0,
-            e0: 2.9e-6,
-        };
+        let bal = EnergyBalance { a: 3.0e8, b: 0.0, e0: 2.9e-6 };
         let exact = (bal.e0 / bal.a).powf(0.4);
         for m in [Method::paper(), Method::default()] {
             assert_relative_eq!(bal.solve(m).unwrap().delta, exact, max_relative = 1e-14);
@@ -224,22 +188,10 @@ mod tests {
     /// a → 0 (negligible rock) has the closed form δ = (E₀/b)^{1/3}.
     #[test]
     fn compliance_dominated_closed_form() {
-        let bal = EnergyBalance {
-            a: 1e-30,
-            b: 1e10,
-            e0: 1.0,
-        };
+        let bal = EnergyBalance { a: 1e-30, b: 1e10, e0: 1.0 };
         let exact = (bal.e0 / bal.b).powf(1.0 / 3.0);
-        assert_relative_eq!(
-            bal.solve(Method::default()).unwrap().delta,
-            exact,
-            max_relative = 1e-12
-        );
-        assert_relative_eq!(
-            bal.solve(Method::paper()).unwrap().delta,
-            exact,
-            max_relative = 1e-12
-        );
+        assert_relative_eq!(bal.solve(Method::default()).unwrap().delta, exact, max_relative = 1e-12);
+        assert_relative_eq!(bal.solve(Method::paper()).unwrap().delta, exact, max_relative = 1e-12);
     }
 
     /// The recursion gains at least log10(5) = 0.7 digits per step: ğ = 1e-12 in <= 25
@@ -247,17 +199,9 @@ mod tests {
     #[test]
     fn recursion_contracts_at_least_fivefold() {
         for ratio in [1e-12, 1e-6, 1.0, 1e6, 1e12] {
-            let bal = EnergyBalance {
-                a: 1.0,
-                b: ratio,
-                e0: 1.0,
-            };
+            let bal = EnergyBalance { a: 1.0, b: ratio, e0: 1.0 };
             let s = bal.solve(Method::paper()).unwrap();
-            assert!(
-                s.iterations <= 25,
-                "ratio {ratio}: {} iterations",
-                s.iterations
-            );
+            assert!(s.iterations <= 25, "ratio {ratio}: {} iterations", s.iterations);
         }
     }
 }

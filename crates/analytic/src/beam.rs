@@ -22,15 +22,11 @@ pub enum Condition {
 impl Condition {
     /// Con 2 with a validated spring stiffness.
     pub fn both_springs(k_t: f64) -> Result<Self, InvalidParameter> {
-        Ok(Self::BothSprings {
-            k_t: check("spring_stiffness", k_t, POSITIVE, "N/m")?,
-        })
+        Ok(Self::BothSprings { k_t: check("spring_stiffness", k_t, POSITIVE, "N/m")? })
     }
     /// Con 3 with a validated spring stiffness.
     pub fn fixed_and_springs(k_t: f64) -> Result<Self, InvalidParameter> {
-        Ok(Self::FixedAndSprings {
-            k_t: check("spring_stiffness", k_t, POSITIVE, "N/m")?,
-        })
+        Ok(Self::FixedAndSprings { k_t: check("spring_stiffness", k_t, POSITIVE, "N/m")? })
     }
     /// The paper's label.
     pub fn label(&self) -> &'static str {
@@ -84,11 +80,7 @@ impl Con3 {
         let s = 2.0 * k_t * length.powi(3);
         let t = 3.0 * ei;
         let d = s + t;
-        Self {
-            spring_share: s / d,
-            cantilever_share: t / d,
-            d,
-        }
+        Self { spring_share: s / d, cantilever_share: t / d, d }
     }
     /// Spring store W_T = ½ [2k_T L⁴x²/d²] P² (eq. 43).
     fn springs(&self, length: f64, x: f64) -> f64 {
@@ -109,11 +101,7 @@ impl Con3 {
 }
 
 /// Compliance and stores of the beam model at impact position x (m from the left end).
-pub fn beam_compliance(
-    plate: &Plate,
-    condition: Condition,
-    x: f64,
-) -> Result<PointCompliance, OutsideBeam> {
+pub fn beam_compliance(plate: &Plate, condition: Condition, x: f64) -> Result<PointCompliance, OutsideBeam> {
     let length = plate.length();
     if !(x.is_finite() && (0.0..=length).contains(&x)) {
         return Err(OutsideBeam { x, length });
@@ -121,35 +109,17 @@ pub fn beam_compliance(
     let ei = plate.beam_bending_stiffness();
     let y = length - x;
     let bending = simply_supported_compliance(ei, length, x);
-    let store = |name: &str, kind, compliance| Store {
-        name: name.into(),
-        kind,
-        compliance,
-    };
-    let spring = |name: &str, per_unit_load| SpringReaction {
-        name: name.into(),
-        per_unit_load,
-    };
+    let store = |name: &str, kind, compliance| Store { name: name.into(), kind, compliance };
+    let spring = |name: &str, per_unit_load| SpringReaction { name: name.into(), per_unit_load };
     let (stores, springs, deflection) = match condition {
-        Condition::BothFixed => (
-            vec![store("bending", StoreKind::Plate, bending)],
-            vec![],
-            bending,
-        ),
+        Condition::BothFixed => (vec![store("bending", StoreKind::Plate, bending)], vec![], bending),
         Condition::BothSprings { k_t } => (
             vec![
                 store("bending", StoreKind::Plate, bending),
-                store(
-                    "springs",
-                    StoreKind::Spring,
-                    spring_pairs_compliance(k_t, length, x),
-                ),
+                store("springs", StoreKind::Spring, spring_pairs_compliance(k_t, length, x)),
             ],
             // eq. 21: each of the two springs at an end carries half that end's reaction (eq. 8).
-            vec![
-                spring("left spring", y / (2.0 * length)),
-                spring("right spring", x / (2.0 * length)),
-            ],
+            vec![spring("left spring", y / (2.0 * length)), spring("right spring", x / (2.0 * length))],
             bending,
         ),
         Condition::FixedAndSprings { k_t } => {
@@ -158,11 +128,7 @@ pub fn beam_compliance(
                 vec![
                     store("simply supported bending", StoreKind::Plate, bending),
                     store("springs", StoreKind::Spring, c3.springs(length, x)),
-                    store(
-                        "cantilever bending",
-                        StoreKind::Plate,
-                        c3.cantilever(length, x),
-                    ),
+                    store("cantilever bending", StoreKind::Plate, c3.cantilever(length, x)),
                 ],
                 vec![spring("right spring", c3.spring_force(length, x))],
                 bending + c3.cantilever_deflection(length, x),
@@ -180,26 +146,14 @@ mod tests {
     use approx::assert_relative_eq;
 
     fn plate() -> Plate {
-        Plate::new(
-            0.4584,
-            0.36,
-            0.008,
-            7850.0,
-            Elastic::new(210e9, 0.3).unwrap(),
-        )
-        .unwrap()
+        Plate::new(0.4584, 0.36, 0.008, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap()
     }
 
     #[test]
     fn ends_of_a_fixed_beam_take_no_energy() {
         let p = plate();
         for x in [0.0, p.length()] {
-            assert_eq!(
-                beam_compliance(&p, Condition::BothFixed, x)
-                    .unwrap()
-                    .total(),
-                0.0
-            );
+            assert_eq!(beam_compliance(&p, Condition::BothFixed, x).unwrap().total(), 0.0);
         }
     }
 
@@ -222,17 +176,9 @@ mod tests {
         let (k, l, ei) = (5.11545e8, p.length(), p.beam_bending_stiffness());
         let c = beam_compliance(&p, Condition::fixed_and_springs(k).unwrap(), l).unwrap();
         let d = 2.0 * k * l.powi(3) + 3.0 * ei;
-        assert_relative_eq!(
-            c.total(),
-            l.powi(3) * (2.0 * k * l.powi(3) + 6.0 * ei) / (d * d),
-            max_relative = 1e-14
-        );
+        assert_relative_eq!(c.total(), l.powi(3) * (2.0 * k * l.powi(3) + 6.0 * ei) / (d * d), max_relative = 1e-14);
         // eq. 41 at x = L: L³/d for the cantilever tip.
-        assert_relative_eq!(
-            c.deflection_per_unit_load(),
-            l.powi(3) / d,
-            max_relative = 1e-14
-        );
+        assert_relative_eq!(c.deflection_per_unit_load(), l.powi(3) / d, max_relative = 1e-14);
     }
 
     /// k_T → ∞ turns Con 2 and Con 3 into Con 1, with the spring parts falling as 1/k_T.
@@ -240,14 +186,9 @@ mod tests {
     fn stiff_springs_tend_to_fixed_ends() {
         let p = plate();
         let x = 0.3 * p.length();
-        let c1 = beam_compliance(&p, Condition::BothFixed, x)
-            .unwrap()
-            .total();
+        let c1 = beam_compliance(&p, Condition::BothFixed, x).unwrap().total();
         for k in [1e12, 1e15, 1e18, 1e300] {
-            for cond in [
-                Condition::both_springs(k).unwrap(),
-                Condition::fixed_and_springs(k).unwrap(),
-            ] {
+            for cond in [Condition::both_springs(k).unwrap(), Condition::fixed_and_springs(k).unwrap()] {
                 let c = beam_compliance(&p, cond, x).unwrap().total();
                 assert!(c.is_finite());
                 // Spring parts are O(L²/(k_T L²)) = O(1/k_T) against c1 ~ 1e-7 m/N.

@@ -63,31 +63,18 @@ impl PointCompliance {
     ) -> Result<Self, InvalidCompliance> {
         for s in &stores {
             if !(s.compliance.is_finite() && s.compliance >= 0.0) {
-                return Err(InvalidCompliance {
-                    name: s.name.clone(),
-                    value: s.compliance,
-                });
+                return Err(InvalidCompliance { name: s.name.clone(), value: s.compliance });
             }
         }
         for s in &springs {
             if !s.per_unit_load.is_finite() {
-                return Err(InvalidCompliance {
-                    name: s.name.clone(),
-                    value: s.per_unit_load,
-                });
+                return Err(InvalidCompliance { name: s.name.clone(), value: s.per_unit_load });
             }
         }
         if !deflection_per_unit_load.is_finite() {
-            return Err(InvalidCompliance {
-                name: "deflection".into(),
-                value: deflection_per_unit_load,
-            });
+            return Err(InvalidCompliance { name: "deflection".into(), value: deflection_per_unit_load });
         }
-        Ok(Self {
-            stores,
-            springs,
-            deflection_per_unit_load,
-        })
+        Ok(Self { stores, springs, deflection_per_unit_load })
     }
 
     /// C = Σ_s C_s (m/N).
@@ -97,11 +84,7 @@ impl PointCompliance {
 
     /// Σ of the compliances of one kind of store.
     pub fn of_kind(&self, kind: StoreKind) -> f64 {
-        self.stores
-            .iter()
-            .filter(|s| s.kind == kind)
-            .map(|s| s.compliance)
-            .sum()
+        self.stores.iter().filter(|s| s.kind == kind).map(|s| s.compliance).sum()
     }
 
     pub fn stores(&self) -> &[Store] {
@@ -123,13 +106,7 @@ mod tests {
 
     #[test]
     fn negative_or_nan_store_is_rejected() {
-        let bad = |c| {
-            vec![Store {
-                name: "b".into(),
-                kind: StoreKind::Plate,
-                compliance: c,
-            }]
-        };
+        let bad = |c| vec![Store { name: "b".into(), kind: StoreKind::Plate, compliance: c }];
         assert!(PointCompliance::new(bad(-1e-9), vec![], 0.0).is_err());
         assert!(PointCompliance::new(bad(f64::NAN), vec![], 0.0).is_err());
         assert!(PointCompliance::new(bad(f64::INFINITY), vec![], 0.0).is_err());
@@ -140,21 +117,9 @@ mod tests {
     fn totals_sum_the_stores() {
         let c = PointCompliance::new(
             vec![
-                Store {
-                    name: "a".into(),
-                    kind: StoreKind::Plate,
-                    compliance: 1.0,
-                },
-                Store {
-                    name: "b".into(),
-                    kind: StoreKind::Spring,
-                    compliance: 2.0,
-                },
-                Store {
-                    name: "c".into(),
-                    kind: StoreKind::Plate,
-                    compliance: 4.0,
-                },
+                Store { name: "a".into(), kind: StoreKind::Plate, compliance: 1.0 },
+                Store { name: "b".into(), kind: StoreKind::Spring, compliance: 2.0 },
+                Store { name: "c".into(), kind: StoreKind::Plate, compliance: 4.0 },
             ],
             vec![],
             0.0,

@@ -43,35 +43,16 @@ mod tests {
     }
 
     fn sphere(e: f64, r: f64) -> Sphere {
-        Sphere::new(
-            "s",
-            1380.0,
-            r,
-            Elastic::new(e, 0.28).unwrap(),
-            RockStrength::new(8.39e6, 25.0).unwrap(),
-        )
-        .unwrap()
+        Sphere::new("s", 1380.0, r, Elastic::new(e, 0.28).unwrap(), RockStrength::new(8.39e6, 25.0).unwrap()).unwrap()
     }
 
     /// Section IV prints K_coal = 5.11545e8, K_gangue1 = 3.10405e9, K_gangue2 = 3.40396e9
     /// (six significant digits, so rounding allows 1e-5 relative).
     #[test]
     fn contact_stiffness_matches_section_iv() {
-        assert_relative_eq!(
-            contact_stiffness(&sphere(2.26e9, 0.025), steel()),
-            5.11545e8,
-            max_relative = 1e-5
-        );
-        assert_relative_eq!(
-            contact_stiffness(&sphere(16e9, 0.0207888), steel()),
-            3.10405e9,
-            max_relative = 1e-5
-        );
-        assert_relative_eq!(
-            contact_stiffness(&sphere(16e9, 0.025), steel()),
-            3.40396e9,
-            max_relative = 1e-5
-        );
+        assert_relative_eq!(contact_stiffness(&sphere(2.26e9, 0.025), steel()), 5.11545e8, max_relative = 1e-5);
+        assert_relative_eq!(contact_stiffness(&sphere(16e9, 0.0207888), steel()), 3.10405e9, max_relative = 1e-5);
+        assert_relative_eq!(contact_stiffness(&sphere(16e9, 0.025), steel()), 3.40396e9, max_relative = 1e-5);
     }
 
     /// The Flores damping work is not exactly the closed form of eq. 7. With the velocity
@@ -90,17 +71,12 @@ mod tests {
             w += flores_force(k, e, d, rate, v0) * dm / n as f64;
         }
         // Γ values to 16 digits (Abramowitz & Stegun tables).
-        let two_beta =
-            2.0 * 0.906_402_477_055_477_3 * 0.886_226_925_452_758 / 1.608_359_421_985_546;
+        let two_beta = 2.0 * 0.906_402_477_055_477_3 * 0.886_226_925_452_758 / 1.608_359_421_985_546;
         let exact = rock_energy_stored(k, dm) * (1.0 + (1.0 - e) / e * two_beta);
         // Midpoint rule on the end singularity √(1-t): error ~ n^{-3/2} ≈ 4e-9.
         assert_relative_eq!(w, exact, max_relative = 1e-7);
         let damping_eq7 = rock_energy_total(k, e, dm) - rock_energy_stored(k, dm);
         let damping_exact = exact - rock_energy_stored(k, dm);
-        assert_relative_eq!(
-            damping_exact / damping_eq7,
-            0.998_879_068,
-            max_relative = 1e-8
-        );
+        assert_relative_eq!(damping_exact / damping_eq7, 0.998_879_068, max_relative = 1e-8);
     }
 }

@@ -41,12 +41,7 @@ impl RockStrength {
     pub fn new(cohesion: f64, friction_angle_deg: f64) -> Result<Self, InvalidParameter> {
         Ok(Self {
             cohesion: check("cohesion", cohesion, POSITIVE, "Pa")?,
-            friction_angle_deg: check(
-                "friction_angle",
-                friction_angle_deg,
-                FRICTION_ANGLE_DEG,
-                "deg",
-            )?,
+            friction_angle_deg: check("friction_angle", friction_angle_deg, FRICTION_ANGLE_DEG, "deg")?,
         })
     }
     pub fn cohesion(&self) -> f64 {
@@ -155,13 +150,7 @@ impl Plate {
     }
     /// Copy with another length (the plate-length study of Figs. 14-16).
     pub fn with_length(&self, length: f64) -> Result<Self, InvalidParameter> {
-        Self::new(
-            length,
-            self.width,
-            self.thickness,
-            self.density,
-            self.material,
-        )
+        Self::new(length, self.width, self.thickness, self.density, self.material)
     }
 }
 
@@ -172,19 +161,9 @@ mod tests {
 
     #[test]
     fn sphere_mass_is_that_of_a_ball() {
-        let s = Sphere::new(
-            "s",
-            1000.0,
-            0.1,
-            Elastic::new(1e9, 0.3).unwrap(),
-            RockStrength::new(1e6, 30.0).unwrap(),
-        )
-        .unwrap();
-        assert_relative_eq!(
-            s.mass(),
-            4.0 / 3.0 * std::f64::consts::PI,
-            max_relative = 1e-15
-        );
+        let s = Sphere::new("s", 1000.0, 0.1, Elastic::new(1e9, 0.3).unwrap(), RockStrength::new(1e6, 30.0).unwrap())
+            .unwrap();
+        assert_relative_eq!(s.mass(), 4.0 / 3.0 * std::f64::consts::PI, max_relative = 1e-15);
     }
 
     #[test]

@@ -17,30 +17,15 @@ pub struct Range {
 impl Range {
     /// `(lo, hi)`.
     pub const fn open(lo: f64, hi: f64) -> Self {
-        Self {
-            lo,
-            hi,
-            lo_closed: false,
-            hi_closed: false,
-        }
+        Self { lo, hi, lo_closed: false, hi_closed: false }
     }
     /// `(lo, hi]`.
     pub const fn open_closed(lo: f64, hi: f64) -> Self {
-        Self {
-            lo,
-            hi,
-            lo_closed: false,
-            hi_closed: true,
-        }
+        Self { lo, hi, lo_closed: false, hi_closed: true }
     }
     /// `[lo, hi]`.
     pub const fn closed(lo: f64, hi: f64) -> Self {
-        Self {
-            lo,
-            hi,
-            lo_closed: true,
-            hi_closed: true,
-        }
+        Self { lo, hi, lo_closed: true, hi_closed: true }
     }
 
     /// Whether `v` lies in the range; NaN never does.
@@ -48,16 +33,8 @@ impl Range {
         if !v.is_finite() {
             return false;
         }
-        let above = if self.lo_closed {
-            v >= self.lo
-        } else {
-            v > self.lo
-        };
-        let below = if self.hi_closed {
-            v <= self.hi
-        } else {
-            v < self.hi
-        };
+        let above = if self.lo_closed { v >= self.lo } else { v > self.lo };
+        let below = if self.hi_closed { v <= self.hi } else { v < self.hi };
         above && below
     }
 }
@@ -109,21 +86,11 @@ fn unit_suffix(unit: &str) -> String {
 }
 
 /// Returns `value` if it lies in `allowed`, else an error naming the parameter.
-pub fn check(
-    name: &str,
-    value: f64,
-    allowed: Range,
-    unit: &'static str,
-) -> Result<f64, InvalidParameter> {
+pub fn check(name: &str, value: f64, allowed: Range, unit: &'static str) -> Result<f64, InvalidParameter> {
     if allowed.contains(value) {
         Ok(value)
     } else {
-        Err(InvalidParameter {
-            name: name.to_string(),
-            value,
-            allowed,
-            unit,
-        })
+        Err(InvalidParameter { name: name.to_string(), value, allowed, unit })
     }
 }
 
@@ -152,14 +119,8 @@ mod tests {
     #[test]
     fn message_names_field_and_range() {
         let e = check("bodies[0].poisson_ratio", 0.7, POISSON_RATIO, "").unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "bodies[0].poisson_ratio = 0.7 is outside the allowed range (0, 0.5)"
-        );
+        assert_eq!(e.to_string(), "bodies[0].poisson_ratio = 0.7 is outside the allowed range (0, 0.5)");
         let e = check("velocity", -1.0, POSITIVE, "m/s").unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "velocity = -1 is outside the allowed range (0, inf) m/s"
-        );
+        assert_eq!(e.to_string(), "velocity = -1 is outside the allowed range (0, inf) m/s");
     }
 }

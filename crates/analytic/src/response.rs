@@ -26,13 +26,7 @@ impl Impact {
     }
     /// The balance of eq. 14/25/46 for a plate of total compliance `c`.
     pub fn balance(&self, c: f64) -> EnergyBalance {
-        EnergyBalance::new(
-            self.contact_stiffness,
-            self.restitution,
-            c,
-            self.mass,
-            self.velocity,
-        )
+        EnergyBalance::new(self.contact_stiffness, self.restitution, c, self.mass, self.velocity)
     }
 }
 
@@ -68,11 +62,7 @@ pub struct Response {
 }
 
 /// Solves the balance for `impact` on a plate of compliance `c` and evaluates the responses.
-pub fn respond(
-    impact: &Impact,
-    c: &PointCompliance,
-    method: Method,
-) -> Result<Response, NotConverged> {
+pub fn respond(impact: &Impact, c: &PointCompliance, method: Method) -> Result<Response, NotConverged> {
     let solution = impact.balance(c.total()).solve(method)?;
     Ok(evaluate(impact, c, solution))
 }
@@ -91,10 +81,7 @@ pub fn evaluate(impact: &Impact, c: &PointCompliance, solution: Solution) -> Res
         spring_forces: c
             .springs()
             .iter()
-            .map(|s| SpringForce {
-                name: s.name.clone(),
-                force: s.per_unit_load * p,
-            })
+            .map(|s| SpringForce { name: s.name.clone(), force: s.per_unit_load * p })
             .collect(),
         rock_total_ratio: rock_energy_total(k, impact.restitution, delta) / e0,
         rock_stored_ratio: rock_energy_stored(k, delta) / e0,

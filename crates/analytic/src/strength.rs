@@ -31,21 +31,13 @@ impl DruckerPrager {
         let sqrt3 = 3f64.sqrt();
         let k = 6.0 * zeta * c / (sqrt3 * (3.0 - s));
         let a = 2.0 * s / (sqrt3 * (3.0 - s));
-        let epsilon0 = 0.3824 - 1.181 * a + 0.3307 * mu + 0.4646 * a * a
-            - 1.083 * a * mu
-            - 0.007665 * mu * mu
-            - 3.35 * a.powi(3)
-            + 0.2447 * a * a * mu
-            - 0.05763 * a * mu * mu
-            + 0.0101 * mu.powi(3);
+        let epsilon0 =
+            0.3824 - 1.181 * a + 0.3307 * mu + 0.4646 * a * a - 1.083 * a * mu - 0.007665 * mu * mu - 3.35 * a.powi(3)
+                + 0.2447 * a * a * mu
+                - 0.05763 * a * mu * mu
+                + 0.0101 * mu.powi(3);
         let g = (1.0 + mu) * (1.0 - epsilon0 * (1.0 / epsilon0).atan());
-        Self {
-            k,
-            alpha: a,
-            epsilon0,
-            theta1: a * g,
-            theta2: -g + 1.5 / (1.0 + epsilon0 * epsilon0),
-        }
+        Self { k, alpha: a, epsilon0, theta1: a * g, theta2: -g + 1.5 / (1.0 + epsilon0 * epsilon0) }
     }
 
     /// Critical compression at first yield, δ_my = [2πRk / (K(6Θ₁ + √3Θ₂))]² (eq. 51).

@@ -5,44 +5,19 @@ use proptest::prelude::*;
 
 /// Random plate within the extreme ranges: h/L from 1e-3 to 0.2, B/L 0.05 to 20.
 fn plate() -> impl Strategy<Value = Plate> {
-    (
-        0.05f64..5.0,
-        -3.0f64..(0.2f64).log10(),
-        (0.05f64).log10()..(20f64).log10(),
-        1e9f64..1e12,
-        0.05f64..0.49,
+    (0.05f64..5.0, -3.0f64..(0.2f64).log10(), (0.05f64).log10()..(20f64).log10(), 1e9f64..1e12, 0.05f64..0.49).prop_map(
+        |(l, lh, lb, e, nu)| {
+            Plate::new(l, l * 10f64.powf(lb), l * 10f64.powf(lh), 7850.0, Elastic::new(e, nu).unwrap()).unwrap()
+        },
     )
-        .prop_map(|(l, lh, lb, e, nu)| {
-            Plate::new(
-                l,
-                l * 10f64.powf(lb),
-                l * 10f64.powf(lh),
-                7850.0,
-                Elastic::new(e, nu).unwrap(),
-            )
-            .unwrap()
-        })
 }
 
 fn sphere() -> impl Strategy<Value = Sphere> {
-    (
-        500.0f64..5000.0,
-        1e-3f64..0.2,
-        1e8f64..1e12,
-        0.05f64..0.49,
-        1e5f64..1e8,
-        5.0f64..60.0,
+    (500.0f64..5000.0, 1e-3f64..0.2, 1e8f64..1e12, 0.05f64..0.49, 1e5f64..1e8, 5.0f64..60.0).prop_map(
+        |(rho, r, e, nu, c, phi)| {
+            Sphere::new("s", rho, r, Elastic::new(e, nu).unwrap(), RockStrength::new(c, phi).unwrap()).unwrap()
+        },
     )
-        .prop_map(|(rho, r, e, nu, c, phi)| {
-            Sphere::new(
-                "s",
-                rho,
-                r,
-                Elastic::new(e, nu).unwrap(),
-                RockStrength::new(c, phi).unwrap(),
-            )
-            .unwrap()
-        })
 }
 
 fn condition() -> impl Strategy<Value = Condition> {
@@ -54,12 +29,7 @@ fn condition() -> impl Strategy<Value = Condition> {
 }
 
 fn impact(s: &Sphere, p: &Plate, e: f64, v: f64) -> Impact {
-    Impact {
-        contact_stiffness: contact_stiffness(s, p.material()),
-        mass: s.mass(),
-        restitution: e,
-        velocity: v,
-    }
+    Impact { contact_stiffness: contact_stiffness(s, p.material()), mass: s.mass(), restitution: e, velocity: v }
 }
 
 proptest! {

@@ -1,0 +1,10 @@
+//! `impact`: the scene files, the plan and the reports around the paper's model
+//! (`analytic`) and the plate finite elements (`plate_fem`).
+
+pub mod output;
+pub mod paper;
+pub mod plot;
+pub mod run;
+pub mod scene;
+pub mod table;
+pub mod views;
