@@ -914,7 +914,7 @@ pub fn solver_study(paper: &Paper) -> Table {
             "recursion residual",
             "bracketed iterations",
             "bracketed residual",
-            "|Δδ|/δ",
+            "rel. diff. in δ",
             "both converged",
         ],
     );

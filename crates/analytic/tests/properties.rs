@@ -42,10 +42,12 @@ proptest! {
                        e in 0.01f64..=1.0, lv in -6.0f64..1.0) {
         let imp = impact(&s, &p, e, 10f64.powf(lv));
         let comp = beam_compliance(&p, c, xf * p.length()).unwrap();
-        for method in [Method::default(), Method::paper()] {
+        // Each solver stops at its own residual (1e-14 bracketed, ğ = 1e-12 recursion); the
+        // recomputed sum may differ from the solver's residual by a few ulps of rounding.
+        for (method, tol) in [(Method::default(), 1e-14), (Method::paper(), 1e-12)] {
             let r = respond(&imp, &comp, method).unwrap();
             let sum = r.rock_total_ratio + r.plate_ratio + r.spring_ratio;
-            prop_assert!((sum - 1.0).abs() < 1e-12, "energy ratios sum to {sum}");
+            prop_assert!((sum - 1.0).abs() <= tol + 1e-14, "energy ratios sum to {sum}");
             // Rock stored is e times rock total (eq. 7).
             prop_assert!((r.rock_stored_ratio - e * r.rock_total_ratio).abs() < 1e-13);
         }

@@ -1,0 +1,190 @@
+//! Scene validation: every bad input is a clear error naming the field and its allowed
+//! range, never a panic; and the command line writes nothing when the scene is bad.
+
+use impact::scene::{Scene, DEFAULT_SCENE};
+use std::process::Command;
+
+fn with(from: &str, to: &str) -> String {
+    assert!(DEFAULT_SCENE.contains(from), "test setup: '{from}' is in the default scene");
+    DEFAULT_SCENE.replacen(from, to, 1)
+}
+
+fn error(text: &str) -> String {
+    match Scene::parse(text, "test.toml") {
+        Ok(_) => panic!("scene was accepted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn expect(text: &str, needles: &[&str]) {
+    let e = error(text);
+    for n in needles {
+        assert!(e.contains(n), "error '{e}' does not mention '{n}'");
+    }
+}
+
+#[test]
+fn default_scene_is_valid() {
+    let s = Scene::default_scene();
+    assert_eq!(s.bodies.len(), 3);
+    assert_eq!(s.conditions.len(), 3);
+    assert!((s.plate.length() - 0.4584).abs() < 1e-15);
+}
+
+#[test]
+fn every_shipped_scene_is_valid() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut n = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let p = entry.unwrap().path();
+        if p.extension().is_some_and(|e| e == "toml") {
+            Scene::load(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            n += 1;
+        }
+    }
+    assert!(n >= 2);
+}
+
+#[test]
+fn missing_key() {
+    expect(&with("width_mm = 360.0\n", ""), &["width_mm", "missing"]);
+}
+
+#[test]
+fn unknown_key() {
+    expect(&with("width_mm = 360.0", "width_mm = 360.0\nwidht_mm = 1.0"), &["widht_mm", "unknown field"]);
+}
+
+#[test]
+fn wrong_type() {
+    expect(&with("thickness_mm = 8.0", "thickness_mm = \"eight\""), &["thickness_mm", "invalid type"]);
+}
+
+#[test]
+fn nan_and_infinity() {
+    expect(&with("length_mm = 458.4", "length_mm = nan"), &["plate.length_mm", "(0, inf) mm"]);
+    expect(&with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = inf"), &["plate.youngs_modulus_gpa", "(0, inf)"]);
+}
+
+#[test]
+fn zero_or_negative_sizes() {
+    expect(&with("thickness_mm = 8.0", "thickness_mm = 0.0"), &["plate.thickness_mm = 0", "(0, inf) mm"]);
+    expect(&with("width_mm = 360.0", "width_mm = -1.0"), &["plate.width_mm = -1", "(0, inf) mm"]);
+    expect(&with("radius_mm = 25.0", "radius_mm = 0.0"), &["bodies[0].radius_mm = 0", "(0, inf) mm"]);
+    expect(&with("density_kg_m3 = 1380.0", "density_kg_m3 = -5.0"), &["bodies[0].density_kg_m3", "(0, inf)"]);
+}
+
+#[test]
+fn poisson_ratio_outside_open_interval() {
+    expect(&with("poisson_ratio = 0.3", "poisson_ratio = 0.5"), &["plate.poisson_ratio = 0.5", "(0, 0.5)"]);
+    expect(&with("poisson_ratio = 0.28", "poisson_ratio = -0.1"), &["bodies[0].poisson_ratio = -0.1", "(0, 0.5)"]);
+}
+
+#[test]
+fn restitution_outside_half_open_interval() {
+    expect(&with("restitution = 0.65", "restitution = 0.0"), &["restitution = 0", "(0, 1]"]);
+    expect(&with("restitution = 0.65", "restitution = 1.2"), &["restitution = 1.2", "(0, 1]"]);
+    assert!(Scene::parse(&with("restitution = 0.65", "restitution = 1.0"), "t").is_ok(), "e = 1 is allowed");
+}
+
+#[test]
+fn impact_point_outside_plate() {
+    expect(&with("x_mm = [0.0,", "x_mm = [-1.0,"), &["points.x_mm[0] = -1", "[0, 458.4] mm"]);
+    expect(&with("458.4]", "458.5]"), &["points.x_mm[8] = 458.5", "[0, 458.4] mm"]);
+    expect(&with("[points]\n", "[points]\nz_mm = [400.0]\n"), &["points.z_mm[0] = 400", "[0, 360] mm"]);
+}
+
+#[test]
+fn non_positive_velocity() {
+    expect(&with("m_per_s = [0.008,", "m_per_s = [0.0,"), &["velocities.m_per_s[0] = 0", "(0, inf) m/s"]);
+    expect(&with("m_per_s = [0.008,", "m_per_s = [-0.008,"), &["velocities.m_per_s[0] = -0.008"]);
+}
+
+#[test]
+fn friction_angle_outside_open_interval() {
+    expect(
+        &with("friction_angle_deg = 25.0", "friction_angle_deg = 90.0"),
+        &["bodies[0].friction_angle_deg = 90", "(0, 90) deg"],
+    );
+    expect(&with("friction_angle_deg = 37.0", "friction_angle_deg = 0.0"), &["bodies[1].friction_angle_deg = 0"]);
+}
+
+#[test]
+fn spring_stiffness_rules() {
+    expect(
+        &with("spring_stiffness_n_per_m = 5.11545e8", "spring_stiffness_n_per_m = 0.0"),
+        &["conditions[1].spring_stiffness_n_per_m = 0", "(0, inf) N/m"],
+    );
+    expect(
+        &with("spring_stiffness_n_per_m = 5.11545e8\n", ""),
+        &["conditions[1].spring_stiffness_n_per_m", "required"],
+    );
+    expect(
+        &with("supports = \"both-fixed\"", "supports = \"both-fixed\"\nspring_stiffness_n_per_m = 1.0"),
+        &["conditions[0].spring_stiffness_n_per_m", "does not apply"],
+    );
+    expect(&with("supports = \"both-fixed\"", "supports = \"glued\""), &["supports", "unknown variant"]);
+}
+
+#[test]
+fn points_need_exactly_one_of_list_or_count() {
+    expect(&with("[points]\n", "[points]\ncount = 5\n"), &["points", "not both"]);
+    expect(&with("[points]\n", "[points]\nz_mm = []\n"), &["points.z_mm", "empty"]);
+}
+
+#[test]
+fn empty_lists_are_rejected() {
+    expect(&with("m_per_s = [0.008, 0.0025]", "m_per_s = []"), &["velocities.m_per_s", "empty"]);
+    expect(&with("analyses = [\"responses\", \"yield-velocity\"]", "analyses = []"), &["analyses", "empty"]);
+}
+
+#[test]
+fn not_toml_at_all() {
+    expect("this is not = = toml", &["test.toml"]);
+    expect("", &["missing field"]);
+}
+
+/// The binary reports a bad scene on stderr with exit code 1, does not panic, and writes
+/// nothing into --out.
+#[test]
+fn command_line_rejects_bad_scene_without_writing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("bad.toml");
+    std::fs::write(&scene, with("restitution = 0.65", "restitution = 7.0")).unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["solve", "--scene"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("restitution = 7") && err.contains("(0, 1]"), "{err}");
+    assert!(!err.contains("panicked"));
+    assert!(!out.exists());
+}
+
+#[test]
+fn command_line_missing_file() {
+    let o =
+        Command::new(env!("CARGO_BIN_EXE_impact")).args(["yield", "--scene", "/nonexistent/x.toml"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/x.toml"));
+}
+
+/// A good run writes CSV and JSON, and the JSON parses.
+#[test]
+fn command_line_writes_csv_and_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_impact")).args(["solve", "--out"]).arg(dir.path()).output().unwrap();
+    assert!(o.status.success());
+    let json = std::fs::read_to_string(dir.path().join("paper-table-1.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["responses"].as_array().unwrap().len(), 9 * 3 * 3 * 2);
+    assert!(dir.path().join("paper-table-1-responses-con-2.csv").exists());
+    // Con 1 has no springs: its table has no spring column.
+    let con1 = std::fs::read_to_string(dir.path().join("paper-table-1-responses-con-1.csv")).unwrap();
+    assert!(!con1.lines().next().unwrap().contains("spring"));
+}
