@@ -12,7 +12,8 @@ fn main() {
         density: 1.0,
     };
     let d = p.rigidity();
-    let navier = levy_converged(1.0, 1.0, d, 0.3, YEdge::Simple, (0.5, 0.0), (0.5, 0.0), 1e-12);
+    let navier =
+        levy_converged(LevyPlate { a: 1.0, b: 1.0, d, nu: 0.3, y_edges: YEdge::Simple }, (0.5, 0.0), (0.5, 0.0), 1e-12);
     println!("navier centre {navier:e} coef {}", navier * d);
     let mut prev = vec![];
     for n in [4, 8, 16, 32, 64, 128] {

@@ -92,61 +92,59 @@ fn harmonic(alpha: f64, b: f64, nu: f64, kind: YEdge, eta: f64, y: f64) -> f64 {
     strip(alpha, y - eta)[0] + (0..4).map(|k| c[k] * h[k][0]).sum::<f64>()
 }
 
-/// Deflection at (x, y) under a unit load at (ξ, η) of a plate a x b, simply supported at
-/// x = 0, a, with edges `kind` at y = ±b/2 (y measured from the centreline), summed over
-/// `terms` harmonics. The omitted tail is O(terms⁻²) at the load point.
-pub fn levy_deflection(
-    a: f64,
-    b: f64,
-    d: f64,
-    nu: f64,
-    kind: YEdge,
-    load: (f64, f64),
-    at: (f64, f64),
-    terms: usize,
-) -> f64 {
-    let (xi, eta) = load;
-    let (x, y) = at;
-    let mut w = 0.0;
-    for m in 1..=terms {
-        let alpha = m as f64 * std::f64::consts::PI / a;
-        let qm = 2.0 / a * (alpha * xi).sin();
-        let sx = (alpha * x).sin();
-        if qm == 0.0 || sx == 0.0 {
-            continue;
-        }
-        w += qm / (4.0 * d * alpha.powi(3)) * harmonic(alpha, b, nu, kind, eta, y) * sx;
-    }
-    w
+/// A plate a x b, simply supported at x = 0 and x = a, with edges `y_edges` at y = ±b/2
+/// (y measured from the centreline), of flexural rigidity `d` and Poisson ratio `nu`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevyPlate {
+    pub a: f64,
+    pub b: f64,
+    pub d: f64,
+    pub nu: f64,
+    pub y_edges: YEdge,
 }
 
-/// The series summed to convergence: partial sums at M and 2M harmonics extrapolated with
-/// the known M⁻² tail, doubling M until two extrapolations agree to `rtol`.
-pub fn levy_converged(
-    a: f64,
-    b: f64,
-    d: f64,
-    nu: f64,
-    kind: YEdge,
-    load: (f64, f64),
-    at: (f64, f64),
-    rtol: f64,
-) -> f64 {
-    let mut m = 200;
-    let extrap = |m: usize| {
-        let (w1, w2) =
-            (levy_deflection(a, b, d, nu, kind, load, at, m), levy_deflection(a, b, d, nu, kind, load, at, 2 * m));
-        (4.0 * w2 - w1) / 3.0
-    };
-    let mut prev = extrap(m);
-    loop {
-        m *= 2;
-        let next = extrap(m);
-        if (next - prev).abs() <= rtol * next.abs() || m > 200_000 {
-            return next;
+impl LevyPlate {
+    /// Deflection at `at` = (x, y) under a unit load at `load` = (ξ, η), summed over
+    /// `terms` harmonics. The omitted tail is O(terms⁻²) at the load point.
+    pub fn deflection(&self, load: (f64, f64), at: (f64, f64), terms: usize) -> f64 {
+        let (xi, eta) = load;
+        let (x, y) = at;
+        let mut w = 0.0;
+        for m in 1..=terms {
+            let alpha = m as f64 * std::f64::consts::PI / self.a;
+            let qm = 2.0 / self.a * (alpha * xi).sin();
+            let sx = (alpha * x).sin();
+            if qm == 0.0 || sx == 0.0 {
+                continue;
+            }
+            w += qm / (4.0 * self.d * alpha.powi(3)) * harmonic(alpha, self.b, self.nu, self.y_edges, eta, y) * sx;
         }
-        prev = next;
+        w
     }
+
+    /// The series summed to convergence: partial sums at M and 2M harmonics extrapolated
+    /// with the M⁻² tail, doubling M until two extrapolations agree to `rtol`.
+    pub fn converged(&self, load: (f64, f64), at: (f64, f64), rtol: f64) -> f64 {
+        let mut m = 200;
+        let extrap = |m: usize| {
+            let (w1, w2) = (self.deflection(load, at, m), self.deflection(load, at, 2 * m));
+            (4.0 * w2 - w1) / 3.0
+        };
+        let mut prev = extrap(m);
+        loop {
+            m *= 2;
+            let next = extrap(m);
+            if (next - prev).abs() <= rtol * next.abs() || m > 200_000 {
+                return next;
+            }
+            prev = next;
+        }
+    }
+}
+
+/// Shorthand for [`LevyPlate::converged`].
+pub fn levy_converged(plate: LevyPlate, load: (f64, f64), at: (f64, f64), rtol: f64) -> f64 {
+    plate.converged(load, at, rtol)
 }
 
 #[cfg(test)]
@@ -158,7 +156,12 @@ mod tests {
     /// w = 0.01160 P a²/D (four digits).
     #[test]
     fn navier_square_centre_coefficient() {
-        let w = levy_converged(1.0, 1.0, 1.0, 0.3, YEdge::Simple, (0.5, 0.0), (0.5, 0.0), 1e-10);
+        let w = levy_converged(
+            LevyPlate { a: 1.0, b: 1.0, d: 1.0, nu: 0.3, y_edges: YEdge::Simple },
+            (0.5, 0.0),
+            (0.5, 0.0),
+            1e-10,
+        );
         assert_relative_eq!(w, 0.01160, max_relative = 5e-5 / 0.0116);
     }
 
@@ -181,7 +184,12 @@ mod tests {
             }
         }
         w *= 4.0 / (pi.powi(4) * a * b);
-        let levy = levy_converged(a, b, 1.0, 0.3, YEdge::Simple, (xi, eta - b / 2.0), (x, y - b / 2.0), 1e-10);
+        let levy = levy_converged(
+            LevyPlate { a, b, d: 1.0, nu: 0.3, y_edges: YEdge::Simple },
+            (xi, eta - b / 2.0),
+            (x, y - b / 2.0),
+            1e-10,
+        );
         assert_relative_eq!(levy, w, max_relative = 1e-6);
     }
 
@@ -192,7 +200,12 @@ mod tests {
         let zeta3 = 1.202_056_903_159_594_2;
         let exact = 1.0 / (2.0 * std::f64::consts::PI.powi(3)) * 7.0 * zeta3 / 8.0;
         for kind in [YEdge::Simple, YEdge::Free, YEdge::Clamped] {
-            let w = levy_converged(1.0, 20.0, 1.0, 0.3, kind, (0.5, 0.0), (0.5, 0.0), 1e-11);
+            let w = levy_converged(
+                LevyPlate { a: 1.0, b: 20.0, d: 1.0, nu: 0.3, y_edges: kind },
+                (0.5, 0.0),
+                (0.5, 0.0),
+                1e-11,
+            );
             assert_relative_eq!(w, exact, max_relative = 1e-8);
         }
     }

@@ -7,7 +7,7 @@
 //! values and state the expected raw error for the finest mesh.
 
 use approx::assert_relative_eq;
-use plate_fem::classical::{levy_converged, YEdge};
+use plate_fem::classical::{levy_converged, LevyPlate, YEdge};
 use plate_fem::convergence::richardson;
 use plate_fem::*;
 
@@ -31,7 +31,12 @@ fn fe_pair(p: PlateProperties, supports: Supports, n: usize, m: usize, x: f64, z
 #[test]
 fn navier_square_centre() {
     let p = plate(1.0, 1.0);
-    let series = levy_converged(1.0, 1.0, p.rigidity(), 0.3, YEdge::Simple, (0.5, 0.0), (0.5, 0.0), 1e-12);
+    let series = levy_converged(
+        LevyPlate { a: 1.0, b: 1.0, d: p.rigidity(), nu: 0.3, y_edges: YEdge::Simple },
+        (0.5, 0.0),
+        (0.5, 0.0),
+        1e-12,
+    );
     assert_relative_eq!(series * p.rigidity(), 0.01160, max_relative = 1e-4);
     let (c16, c32, ext) = fe_pair(p, Supports::all_edges_simple(), 16, 16, 0.5, 0.5);
     let c8 = fe_pair(p, Supports::all_edges_simple(), 8, 8, 0.5, 0.5).0;
@@ -49,7 +54,12 @@ fn navier_square_centre() {
 fn navier_rectangle_off_centre() {
     let p = plate(1.0, 0.7);
     let d = p.rigidity();
-    let series = levy_converged(1.0, 0.7, d, 0.3, YEdge::Simple, (0.3, 0.2 - 0.35), (0.3, 0.2 - 0.35), 1e-11);
+    let series = levy_converged(
+        LevyPlate { a: 1.0, b: 0.7, d, nu: 0.3, y_edges: YEdge::Simple },
+        (0.3, 0.2 - 0.35),
+        (0.3, 0.2 - 0.35),
+        1e-11,
+    );
     // 10 x 7 and 20 x 14 elements put the load on a node line.
     let (_, _, ext) = fe_pair(p, Supports::all_edges_simple(), 10, 7, 0.3, 0.2);
     assert_relative_eq!(ext, series, max_relative = 1e-5);
@@ -58,7 +68,12 @@ fn navier_rectangle_off_centre() {
     let f = model.factorize(&Supports::all_edges_simple()).unwrap();
     let w = f.deflection_field(0.3, 0.2).unwrap();
     let fe = model.evaluate(&w, 0.6, 0.45).unwrap();
-    let exact = levy_converged(1.0, 0.7, d, 0.3, YEdge::Simple, (0.3, 0.2 - 0.35), (0.6, 0.45 - 0.35), 1e-11);
+    let exact = levy_converged(
+        LevyPlate { a: 1.0, b: 0.7, d, nu: 0.3, y_edges: YEdge::Simple },
+        (0.3, 0.2 - 0.35),
+        (0.6, 0.45 - 0.35),
+        1e-11,
+    );
     assert_relative_eq!(fe, exact, max_relative = 1e-4);
 }
 
@@ -68,7 +83,12 @@ fn levy_simple_free() {
     let p = plate(1.0, 0.6);
     let d = p.rigidity();
     for (x, z) in [(0.5, 0.3), (0.25, 0.3), (0.5, 0.15), (0.5, 0.6)] {
-        let series = levy_converged(1.0, 0.6, d, 0.3, YEdge::Free, (x, z - 0.3), (x, z - 0.3), 1e-11);
+        let series = levy_converged(
+            LevyPlate { a: 1.0, b: 0.6, d, nu: 0.3, y_edges: YEdge::Free },
+            (x, z - 0.3),
+            (x, z - 0.3),
+            1e-11,
+        );
         let (_, c2, ext) = fe_pair(p, Supports::simple_free(), 12, 8, x, z);
         assert!(c2 < series, "conforming: from below at ({x}, {z})");
         assert_relative_eq!(ext, series, max_relative = 1e-5);
