@@ -1,6 +1,7 @@
 //! `impact`: the scene files, the plan and the reports around the paper's model
 //! (`analytic`) and the plate finite elements (`plate_fem`).
 
+pub mod fem;
 pub mod output;
 pub mod paper;
 pub mod plot;

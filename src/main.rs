@@ -57,6 +57,21 @@ enum Command {
         #[arg(long, value_name = "DIR", default_value = "reports")]
         out: PathBuf,
     },
+    /// Time the plate FE compliance map (101 x 21 points, Con 1-3) on the mesh that
+    /// reaches the tolerance at the centre.
+    FemBench {
+        #[command(flatten)]
+        common: Common,
+        /// Relative error allowed at the plate centre, from the mesh convergence study.
+        #[arg(long, default_value_t = 1e-4)]
+        tolerance: f64,
+        /// Impact points along the length.
+        #[arg(long, default_value_t = 101)]
+        nx: usize,
+        /// Impact points across the width.
+        #[arg(long, default_value_t = 21)]
+        nz: usize,
+    },
     /// Print the embedded default scene (a template for your own).
     DefaultScene,
 }
@@ -101,6 +116,25 @@ fn execute(command: Command) -> Result<(), Failure> {
             let mut all = Artifacts::new();
             all.nest("paper", impact::paper::reproduce()?);
             write(&out, &all)
+        }
+        Command::FemBench { common, tolerance, nx, nz } => {
+            let scene = load(&common)?;
+            if !(tolerance > 0.0 && tolerance < 1.0) {
+                return Err(format!("--tolerance {tolerance} is outside the allowed range (0, 1)").into());
+            }
+            if nx < 2 || nz < 2 {
+                return Err(format!("--nx {nx} and --nz {nz} must each be at least 2").into());
+            }
+            let r = impact::fem::bench(&scene, tolerance, nx, nz)?;
+            if common.json {
+                println!("{}", serde_json::to_string_pretty(&r)?);
+            } else {
+                for t in impact::fem::bench_tables(&r) {
+                    println!();
+                    print!("{}", t.to_text());
+                }
+            }
+            Ok(())
         }
         Command::DefaultScene => {
             print!("{DEFAULT_SCENE}");

@@ -54,7 +54,10 @@ impl<'m> CornerFamily<'m> {
 
     /// Factorizes the base (edges as given, corners on springs `k_base`).
     pub fn new(model: &'m Model, edges: [EdgeSupport; 4], k_base: f64) -> Result<Self, FemError> {
-        let base = model.factorize(&Supports { corners: [CornerSupport::Spring(k_base); 4], edges })?;
+        // The base is well conditioned (stiff springs at all corners); its residuals are
+        // reported with every probe, and refinement is left to the caller.
+        let base =
+            model.factorize(&Supports { corners: [CornerSupport::Spring(k_base); 4], edges })?.with_refinement(0);
         let n = model.dofs();
         let mut rhs = Mat::<f64>::zeros(n, 4);
         let dofs: Vec<usize> = (0..4).map(|c| model.mesh().corner_w_dof(c)).collect();
@@ -71,6 +74,58 @@ impl<'m> CornerFamily<'m> {
     }
     pub fn k_base(&self) -> f64 {
         self.k_base
+    }
+
+    /// Whether mesh and edges are symmetric about x = L/2 and about z = B/2, so that the
+    /// base (equal springs at all corners) is too.
+    pub fn symmetry(&self) -> (bool, bool) {
+        let mesh = self.base.model().mesh();
+        let mirrored = |v: &[f64]| {
+            let end = *v.last().expect("two lines");
+            v.iter().zip(v.iter().rev()).all(|(a, b)| (a + b - end).abs() <= 1e-12 * end)
+        };
+        let [left, right, near, far] = self.edges;
+        (mirrored(mesh.xs()) && left == right, mirrored(mesh.zs()) && near == far)
+    }
+
+    /// Solves the base at `points`, once per class of mirror images: a point and its
+    /// mirror images about the plate's symmetry lines share C and have their corner
+    /// deflections permuted, so a doubly symmetric plate needs a quarter of the solves.
+    pub fn probe_map(&self, points: &[(f64, f64)]) -> Result<Vec<BasePoint>, FemError> {
+        let (sx, sz) = self.symmetry();
+        let (l, b) = (self.base.model().props().length, self.base.model().props().width);
+        let key = |v: f64, s: f64| (v / s * 1e9).round() as i64;
+        let mut canonical: Vec<(f64, f64)> = Vec::new();
+        let mut index = std::collections::HashMap::new();
+        let mut plan = Vec::with_capacity(points.len());
+        for &(x, z) in points {
+            let (fx, fz) = (sx && x > l - x, sz && z > b - z);
+            let (cx, cz) = (if fx { l - x } else { x }, if fz { b - z } else { z });
+            let k = (key(cx, l), key(cz, b));
+            let i = *index.entry(k).or_insert_with(|| {
+                canonical.push((cx, cz));
+                canonical.len() - 1
+            });
+            plan.push((i, fx, fz));
+        }
+        let solved = self.probe_many(&canonical)?;
+        Ok(points
+            .iter()
+            .zip(plan)
+            .map(|(&(x, z), (i, fx, fz))| {
+                let s = solved[i];
+                // Corners (0,0), (L,0), (0,B), (L,B): mirroring x swaps 0<->1 and 2<->3.
+                let perm = |c: usize| {
+                    let c = if fx { c ^ 1 } else { c };
+                    if fz {
+                        c ^ 2
+                    } else {
+                        c
+                    }
+                };
+                BasePoint { x, z, u: Vector4::from_fn(|c, _| s.u[perm(c)]), ..s }
+            })
+            .collect())
     }
 
     /// Solves the base at many points, in blocks.

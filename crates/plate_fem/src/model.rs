@@ -253,23 +253,28 @@ impl<'m> Factorization<'m> {
         self
     }
 
-    /// y = K x with the supported stiffness (stored as its upper triangle).
+    /// y = K x with the supported stiffness (stored as its upper triangle), column by column.
     pub fn apply(&self, x: faer::MatRef<'_, f64>) -> Mat<f64> {
         let k = self.stiffness.as_ref();
         let (cp, ri, v) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
         let mut y = Mat::<f64>::zeros(x.nrows(), x.ncols());
         for c in 0..x.ncols() {
+            let xc: Vec<f64> = x.col(c).iter().copied().collect();
+            let mut yc = vec![0.0; xc.len()];
             for j in 0..k.ncols() {
-                let xj = x[(j, c)];
+                let xj = xc[j];
                 let mut acc = 0.0;
                 for p in cp[j]..cp[j + 1] {
                     let i = ri[p];
-                    acc += v[p] * x[(i, c)];
+                    acc += v[p] * xc[i];
                     if i != j {
-                        y[(i, c)] += v[p] * xj;
+                        yc[i] += v[p] * xj;
                     }
                 }
-                y[(j, c)] += acc;
+                yc[j] += acc;
+            }
+            for (i, val) in yc.into_iter().enumerate() {
+                y[(i, c)] = val;
             }
         }
         y
@@ -336,6 +341,7 @@ impl<'m> Factorization<'m> {
         let n = self.model.dofs();
         let mut out = Vec::with_capacity(points.len());
         for chunk in points.chunks(BLOCK) {
+            let _ = n;
             let mut rhs = Mat::<f64>::zeros(n, chunk.len());
             let mut loads = Vec::with_capacity(chunk.len());
             for (j, &(x, z)) in chunk.iter().enumerate() {
@@ -347,7 +353,7 @@ impl<'m> Factorization<'m> {
             }
             let residuals = self.solve_in_place(&mut rhs);
             for (j, &(x, z)) in chunk.iter().enumerate() {
-                let w: Vec<f64> = (0..n).map(|i| rhs[(i, j)]).collect();
+                let w: Vec<f64> = rhs.col(j).iter().copied().collect();
                 let mut r = self.response_from_field(x, z, &loads[j], &w);
                 r.residual = residuals[j];
                 out.push(r);

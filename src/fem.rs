@@ -1,0 +1,212 @@
+//! The plate finite-element model as seen from the command line: the paper's plate in
+//! `plate_fem` terms, mesh selection by a convergence study, and `impact fem-bench`.
+
+use crate::scene::Scene;
+use crate::table::{Cell, Table};
+use analytic::Condition;
+use plate_fem::convergence::richardson;
+use plate_fem::{CornerFamily, CornerSupport, EdgeSupport, FemError, Mesh, Model, PlateProperties, Supports};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The scene's plate for `plate_fem`.
+pub fn plate_properties(scene: &Scene) -> PlateProperties {
+    let p = &scene.plate;
+    PlateProperties {
+        length: p.length(),
+        width: p.width(),
+        thickness: p.thickness(),
+        youngs_modulus: p.material().youngs_modulus(),
+        poisson_ratio: p.material().poisson_ratio(),
+        density: p.density(),
+    }
+}
+
+/// The paper's support conditions on the plate's four corners (design.md section 1).
+pub fn corner_supports(condition: Condition) -> [CornerSupport; 4] {
+    use CornerSupport::*;
+    match condition {
+        Condition::BothFixed => [Fixed; 4],
+        Condition::BothSprings { k_t } => [Spring(k_t); 4],
+        Condition::FixedAndSprings { k_t } => [Fixed, Spring(k_t), Fixed, Spring(k_t)],
+    }
+}
+
+/// A uniform mesh with `n` elements along the longer side and near-square elements; both
+/// counts are even, so the centre lines are node lines and halving h keeps every node.
+pub fn mesh_for(props: &PlateProperties, n: usize) -> Result<Mesh, FemError> {
+    let (l, b) = (props.length, props.width);
+    let even = |v: f64| (2.0 * (v / 2.0).round()).max(2.0) as usize;
+    let (nx, nz) =
+        if l >= b { (even(n as f64), even(n as f64 * b / l)) } else { (even(n as f64 * l / b), even(n as f64)) };
+    Mesh::uniform(l, b, nx, nz)
+}
+
+/// One rung of a mesh ladder.
+#[derive(Debug, Clone, Serialize)]
+pub struct Rung {
+    pub nx: usize,
+    pub nz: usize,
+    pub dofs: usize,
+    pub compliance: f64,
+    /// |C - C_ref|/C_ref against the Richardson value of the two finest rungs.
+    pub error: f64,
+    pub seconds: f64,
+}
+
+/// Meshes `base`, 2·`base`, 4·`base`, ... (`levels` of them): each halves h exactly.
+pub fn ladder_meshes(props: &PlateProperties, base: usize, levels: u32) -> Result<Vec<Mesh>, FemError> {
+    let coarse = mesh_for(props, base)?;
+    (0..levels).map(|k| Mesh::uniform(props.length, props.width, coarse.nx() << k, coarse.nz() << k)).collect()
+}
+
+/// Con 1 centre compliance on a ladder of meshes: the rungs, the extrapolated value and
+/// its observed rate.
+pub fn centre_ladder(
+    props: &PlateProperties,
+    base: usize,
+    levels: u32,
+) -> Result<(Vec<Rung>, f64, Option<f64>), FemError> {
+    let mut rungs = Vec::new();
+    for mesh in ladder_meshes(props, base, levels)? {
+        let t = Instant::now();
+        let (nx, nz) = (mesh.nx(), mesh.nz());
+        let model = Model::new(*props, mesh)?;
+        let c = model.factorize(&Supports::con1())?.respond(props.length / 2.0, props.width / 2.0)?.compliance;
+        rungs.push(Rung { nx, nz, dofs: model.dofs(), compliance: c, error: 0.0, seconds: t.elapsed().as_secs_f64() });
+    }
+    let values: Vec<f64> = rungs.iter().map(|r| r.compliance).collect();
+    let ext = richardson(&values).ok_or_else(|| FemError::Mesh("a ladder needs two meshes".into()))?;
+    for r in &mut rungs {
+        r.error = (r.compliance - ext.extrapolated).abs() / ext.extrapolated;
+    }
+    Ok((rungs, ext.extrapolated, ext.observed_rate))
+}
+
+fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+/// Timings of the compliance map.
+#[derive(Debug, Clone, Serialize)]
+pub struct BenchReport {
+    pub ladder: Vec<Rung>,
+    pub extrapolated_centre: f64,
+    pub observed_rate: Option<f64>,
+    pub chosen: (usize, usize),
+    pub dofs: usize,
+    pub nonzeros: usize,
+    pub points: usize,
+    pub assembly_s: f64,
+    pub factorization_s: f64,
+    pub solve_s: f64,
+    pub update_s: f64,
+    pub total_s: f64,
+    pub reference_s: f64,
+    pub max_residual: f64,
+    pub max_difference_to_reference: f64,
+    pub peak_memory_mib: Option<f64>,
+}
+
+/// `impact fem-bench`: choose the mesh that reaches `tolerance` at the centre, then time
+/// the compliance at `nx_pts` x `nz_pts` impact points for Con 1-3 with one factorization
+/// and rank-4 updates, against three fresh factorizations with unblocked solves.
+pub fn bench(scene: &Scene, tolerance: f64, nx_pts: usize, nz_pts: usize) -> Result<BenchReport, FemError> {
+    let props = plate_properties(scene);
+    let (ladder, extrapolated_centre, observed_rate) = centre_ladder(&props, 10, 5)?;
+    let chosen = ladder.iter().find(|r| r.error <= tolerance).unwrap_or(ladder.last().expect("non-empty"));
+    let k_t = scene.conditions.iter().find_map(|c| c.condition.spring_stiffness()).unwrap_or(5.11545e8);
+    let conditions = [Condition::BothFixed, Condition::BothSprings { k_t }, Condition::FixedAndSprings { k_t }];
+    let points: Vec<(f64, f64)> = crate::scene::even_points(props.length, nx_pts)
+        .into_iter()
+        .flat_map(|x| crate::scene::even_points(props.width, nz_pts).into_iter().map(move |z| (x, z)))
+        .collect();
+
+    let t0 = Instant::now();
+    let model = Model::new(props, Mesh::uniform(props.length, props.width, chosen.nx, chosen.nz)?)?;
+    let t1 = Instant::now();
+    let family = CornerFamily::new(&model, [EdgeSupport::Free; 4], CornerFamily::default_base_stiffness(&model))?;
+    let t2 = Instant::now();
+    let base = family.probe_map(&points)?;
+    let t3 = Instant::now();
+    let mut maps = Vec::new();
+    for c in conditions {
+        let corners = corner_supports(c);
+        maps.push(base.iter().map(|b| family.respond(b, corners)).collect::<Result<Vec<_>, _>>()?);
+    }
+    let t4 = Instant::now();
+
+    // Reference: a fresh factorization per condition and one unrefined solve per point.
+    let r0 = Instant::now();
+    let mut max_diff: f64 = 0.0;
+    for (c, map) in conditions.iter().zip(&maps) {
+        let f = model.factorize(&Supports::corners(corner_supports(*c)))?.with_refinement(0);
+        for (p, m) in points.iter().zip(map) {
+            let r = f.respond(p.0, p.1)?;
+            if r.compliance > 0.0 {
+                max_diff = max_diff.max((r.compliance - m.compliance).abs() / r.compliance);
+            }
+        }
+    }
+    let reference_s = r0.elapsed().as_secs_f64();
+    Ok(BenchReport {
+        ladder: ladder.clone(),
+        extrapolated_centre,
+        observed_rate,
+        chosen: (chosen.nx, chosen.nz),
+        dofs: model.dofs(),
+        nonzeros: model.nonzeros(),
+        points: points.len(),
+        assembly_s: (t1 - t0).as_secs_f64(),
+        factorization_s: (t2 - t1).as_secs_f64(),
+        solve_s: (t3 - t2).as_secs_f64(),
+        update_s: (t4 - t3).as_secs_f64(),
+        total_s: (t4 - t0).as_secs_f64(),
+        reference_s,
+        max_residual: base.iter().map(|b| b.residual).fold(0.0, f64::max),
+        max_difference_to_reference: max_diff,
+        peak_memory_mib: peak_memory_mib(),
+    })
+}
+
+/// The bench as tables.
+pub fn bench_tables(r: &BenchReport) -> Vec<Table> {
+    let mut ladder = Table::new(
+        "Mesh ladder: Con 1, centre compliance (reference: Richardson of the two finest)",
+        &["mesh", "DOFs", "C (m/N)", "rel. error", "time (s)"],
+    );
+    for g in &r.ladder {
+        ladder.push(vec![
+            format!("{} x {}", g.nx, g.nz).into(),
+            g.dofs.into(),
+            g.compliance.into(),
+            g.error.into(),
+            g.seconds.into(),
+        ]);
+    }
+    let mut t = Table::new(
+        format!("Compliance map: {} points x 3 conditions on the {} x {} mesh", r.points, r.chosen.0, r.chosen.1),
+        &["stage", "value"],
+    );
+    let rows: Vec<(&str, Cell)> = vec![
+        ("DOFs", r.dofs.into()),
+        ("stored nonzeros of K (upper)", r.nonzeros.into()),
+        ("assembly + symbolic analysis (s)", r.assembly_s.into()),
+        ("numeric factorization, one for all conditions (s)", r.factorization_s.into()),
+        ("blocked solves, one per point (s)", r.solve_s.into()),
+        ("rank-4 updates for Con 1-3 (s)", r.update_s.into()),
+        ("total (s)", r.total_s.into()),
+        ("reference: 3 factorizations + single solves (s)", r.reference_s.into()),
+        ("speed-up over the reference", (r.reference_s / r.total_s).into()),
+        ("max relative difference to the reference", r.max_difference_to_reference.into()),
+        ("max relative residual of the solves", r.max_residual.into()),
+        ("peak resident memory (MiB)", r.peak_memory_mib.map_or(Cell::Empty, Cell::Num)),
+    ];
+    for (k, v) in rows {
+        t.push(vec![k.into(), v]);
+    }
+    vec![ladder, t]
+}
