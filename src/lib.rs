@@ -2,6 +2,7 @@
 //! (`analytic`) and the plate finite elements (`plate_fem`).
 
 pub mod fem;
+pub mod femreport;
 pub mod output;
 pub mod paper;
 pub mod plot;

@@ -115,6 +115,7 @@ fn execute(command: Command) -> Result<(), Failure> {
         Command::Report { out } => {
             let mut all = Artifacts::new();
             all.nest("paper", impact::paper::reproduce()?);
+            all.nest("fem", impact::femreport::report(&Scene::default_scene())?);
             write(&out, &all)
         }
         Command::FemBench { common, tolerance, nx, nz } => {

@@ -14,10 +14,14 @@ pub struct Extrapolation {
     /// Richardson estimate of the mesh-converged value, from the two finest results with
     /// the observed rate (or 2 when only two results exist).
     pub extrapolated: f64,
-    /// Estimated error of the finest result: |finest - extrapolated|.
+    /// Estimated error of the finest result: |finest - extrapolated| where the sequence is
+    /// in its asymptotic range, else the conservative |finest - previous|.
     pub error_estimate: f64,
     /// Observed order p from the three finest results, if there are three.
     pub observed_rate: Option<f64>,
+    /// Whether the observed rate (if known) lies in [1.5, 2.5], so that the h² model
+    /// behind the extrapolation holds.
+    pub asymptotic: bool,
 }
 
 /// Observed order log2((q₁ - q₂)/(q₂ - q₃)) of three results on meshes h, h/2, h/4.
@@ -38,7 +42,9 @@ pub fn richardson(values: &[f64]) -> Option<Extrapolation> {
     let (q1, q2) = (values[n - 2], values[n - 1]);
     let extrapolated = q2 + (q2 - q1) / 3.0;
     let observed_rate = if n >= 3 { observed_rate(values[n - 3], q1, q2) } else { None };
-    Some(Extrapolation { finest: q2, extrapolated, error_estimate: (q2 - extrapolated).abs(), observed_rate })
+    let asymptotic = observed_rate.is_none_or(|p| (1.5..=2.5).contains(&p));
+    let error_estimate = if asymptotic { (q2 - extrapolated).abs() } else { (q2 - q1).abs() };
+    Some(Extrapolation { finest: q2, extrapolated, error_estimate, observed_rate, asymptotic })
 }
 
 #[cfg(test)]
@@ -53,5 +59,17 @@ mod tests {
         let e = richardson(&v).unwrap();
         assert_relative_eq!(e.extrapolated, exact, max_relative = 1e-14);
         assert_relative_eq!(e.observed_rate.unwrap(), 2.0, max_relative = 1e-12);
+        assert!(e.asymptotic);
+    }
+
+    /// Outside the asymptotic range the estimate falls back to the last difference.
+    #[test]
+    fn pre_asymptotic_sequence_is_flagged() {
+        let v = [1.0, 1.5, 1.6]; // rate log2(0.5/0.1) = 2.32: asymptotic
+        assert!(richardson(&v).unwrap().asymptotic);
+        let v = [1.0, 1.1, 1.17]; // rate log2(0.1/0.07) = 0.51
+        let e = richardson(&v).unwrap();
+        assert!(!e.asymptotic);
+        assert_relative_eq!(e.error_estimate, 0.07, max_relative = 1e-12);
     }
 }
