@@ -3,9 +3,11 @@
 
 pub mod fem;
 pub mod femreport;
+pub mod field;
 pub mod output;
 pub mod paper;
 pub mod plot;
+pub mod reference;
 pub mod run;
 pub mod scene;
 pub mod table;

@@ -72,6 +72,28 @@ enum Command {
         #[arg(long, default_value_t = 21)]
         nz: usize,
     },
+    /// Write the plate FE deflection field under a unit load (JSON for meshio; see
+    /// reference/README.md).
+    Field {
+        /// Scene file; default: the paper's Table 1.
+        #[arg(long, value_name = "FILE")]
+        scene: Option<PathBuf>,
+        /// Condition name from the scene.
+        #[arg(long, default_value = "Con 1")]
+        condition: String,
+        /// Load position along the length, mm.
+        #[arg(long)]
+        x_mm: f64,
+        /// Load position across the width, mm.
+        #[arg(long)]
+        z_mm: f64,
+        /// Elements along the longer side.
+        #[arg(long, default_value_t = 40)]
+        elements: usize,
+        /// Output file.
+        #[arg(long, value_name = "FILE", default_value = "field.json")]
+        out: PathBuf,
+    },
     /// Print the embedded default scene (a template for your own).
     DefaultScene,
 }
@@ -136,6 +158,22 @@ fn execute(command: Command) -> Result<(), Failure> {
                 }
             }
             Ok(())
+        }
+        Command::Field { scene, condition, x_mm, z_mm, elements, out } => {
+            let scene = load(&Common { scene, json: false, out: None })?;
+            let cond = scene.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
+                let names: Vec<&str> = scene.conditions.iter().map(|c| c.name.as_str()).collect();
+                format!("--condition '{condition}' is not in the scene; it has {names:?}")
+            })?;
+            if !(2..=2000).contains(&elements) {
+                return Err(format!("--elements {elements} is outside the allowed range [2, 2000]").into());
+            }
+            let f = impact::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
+            let mut a = Artifacts::new();
+            let name = out.file_name().ok_or("--out must name a file")?.to_owned();
+            a.add(PathBuf::from(&name), serde_json::to_string(&f)?);
+            let dir = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+            write(dir, &a)
         }
         Command::DefaultScene => {
             print!("{DEFAULT_SCENE}");

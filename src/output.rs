@@ -62,6 +62,12 @@ impl Artifacts {
         }
         let mut written = Vec::with_capacity(staged.len());
         for (tmp, target) in staged {
+            // Temporary files are created private (0600); outputs are ordinary files.
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                tmp.as_file().set_permissions(std::fs::Permissions::from_mode(0o644))?;
+            }
             tmp.persist(&target).map_err(|e| e.error)?;
             written.push(target);
         }

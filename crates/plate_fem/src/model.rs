@@ -184,6 +184,25 @@ impl Model {
         Ok(dofs.iter().zip(n.iter()).map(|(&d, &v)| w[d] * v).sum())
     }
 
+    /// Bending moments (M_x, M_z, M_xz) = -D κ per unit width at every element centre, for
+    /// the field `w`; elements in row order (ex fastest).
+    pub fn centre_moments(&self, w: &[f64]) -> Vec<[f64; 3]> {
+        let dm = element::bending_matrix(self.props.rigidity(), self.props.poisson_ratio);
+        let mut out = Vec::with_capacity(self.mesh.elements());
+        for ez in 0..self.mesh.nz() {
+            for ex in 0..self.mesh.nx() {
+                let (a, b) = self.mesh.element_size(ex, ez);
+                let dofs = self.mesh.element_dofs(ex, ez);
+                let we = Vec16::from_fn(|k, _| w[dofs[k]]);
+                // With κ = (w_xx, w_zz, 2w_xz), the third row of D κ is D(1-ν) w_xz, so
+                // -Dκ is (M_x, M_z, M_xz) in Timoshenko's convention.
+                let m = -(dm * (element::curvature(a, b, 0.5, 0.5) * we));
+                out.push([m[0], m[1], m[2]]);
+            }
+        }
+        out
+    }
+
     /// The element stiffness of element (ex, ez).
     fn element_stiffness(&self, ex: usize, ez: usize) -> Mat16 {
         let (a, b) = self.mesh.element_size(ex, ez);

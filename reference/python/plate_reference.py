@@ -1,0 +1,232 @@
+"""Reference compliances of supported Kirchhoff plates from scikit-fem.
+
+The same plates as the Rust crate `plate_fem` (corner points fixed or on springs, edges
+simply supported or clamped) with two independent triangular elements:
+
+- Argyris: C1, quintic, conforming (DOFs u, u_x, u_y, u_xx, u_xy, u_yy at vertices, u_n
+  at edge midpoints);
+- Morley: quadratic, nonconforming (u at vertices, u_n at edge midpoints).
+
+Plate parameters come from the same TOML scenes as the Rust code. For each case and element
+the script solves a ladder of meshes and writes, per point, the compliance C = N^T K^-1 N
+(by reciprocity: the deflection under a unit point load at that point), with mesh sizes,
+DOFs, run times and package versions, to reference/data/<name>.json.
+
+Usage: python plate_reference.py [--quick] [--scene FILE] [--out DIR]
+"""
+
+import argparse
+import json
+import platform
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import meshio
+import numpy as np
+import scipy
+import scipy.sparse.linalg as spla
+import skfem
+from skfem import Basis, BilinearForm, ElementTriArgyris, ElementTriMorley, MeshTri, asm
+from skfem.helpers import dd, ddot, eye, trace
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def plate_from_scene(path):
+    """Plate geometry and material (SI) and the scene's spring stiffness."""
+    scene = tomllib.loads(Path(path).read_text())
+    p = scene["plate"]
+    k_t = next((c["spring_stiffness_n_per_m"] for c in scene["conditions"] if "spring_stiffness_n_per_m" in c), None)
+    return {
+        "length": p["length_mm"] * 1e-3,
+        "width": p["width_mm"] * 1e-3,
+        "thickness": p["thickness_mm"] * 1e-3,
+        "youngs_modulus": p["youngs_modulus_gpa"] * 1e9,
+        "poisson_ratio": p["poisson_ratio"],
+    }, k_t
+
+
+def bending_form(plate):
+    """a(u, v) = ∫ M(u) : κ(v), M = D[(1-ν)κ + ν tr(κ) I], D = E h³/12(1-ν²)."""
+    e, nu, h = plate["youngs_modulus"], plate["poisson_ratio"], plate["thickness"]
+
+    def moments(t):
+        return e / (1.0 + nu) * (t + nu / (1.0 - nu) * eye(trace(t), 2))
+
+    @BilinearForm
+    def a(u, v, w):
+        return h**3 / 12.0 * ddot(moments(dd(u)), dd(v))
+
+    return a
+
+
+def rectangle_mesh(length, width, nx, nz):
+    """A structured triangle mesh over [0, L] x [0, B] (each square split in two)."""
+    return MeshTri.init_tensor(np.linspace(0.0, length, nx + 1), np.linspace(0.0, width, nz + 1))
+
+
+def mesh_from_meshio(path):
+    """Reads a quad or triangle mesh written through meshio and triangulates it, so that
+    scikit-fem runs on the nodes of the Rust mesh."""
+    m = meshio.read(path)
+    pts = m.points[:, :2].T
+    tris = []
+    for block in m.cells:
+        if block.type == "quad":
+            q = block.data
+            tris.append(np.vstack([q[:, [0, 1, 2]], q[:, [0, 2, 3]]]))
+        elif block.type == "triangle":
+            tris.append(block.data)
+    return MeshTri(pts, np.vstack(tris).T)
+
+
+def constrained_dofs(basis, element, plate, supports):
+    """DOFs held at zero: fixed corners (u) and supported edges."""
+    length, width = plate["length"], plate["width"]
+    held = []
+    corners = [(0.0, 0.0), (length, 0.0), (0.0, width), (length, width)]
+    p = basis.mesh.p
+    for (cx, cz), kind in zip(corners, supports["corners"]):
+        if kind == "fixed":
+            node = int(np.argmin((p[0] - cx) ** 2 + (p[1] - cz) ** 2))
+            held.extend(basis.get_dofs(nodes=np.array([node])).nodal["u"].tolist())
+    edges = {
+        "left": lambda x: np.isclose(x[0], 0.0),
+        "right": lambda x: np.isclose(x[0], length),
+        "near": lambda x: np.isclose(x[1], 0.0),
+        "far": lambda x: np.isclose(x[1], width),
+    }
+    argyris = isinstance(element, ElementTriArgyris)
+    for name, kind in supports["edges"].items():
+        if kind == "free":
+            continue
+        dofs = basis.get_dofs(edges[name])
+        # Along an x = const edge, u = 0 fixes u_y and u_yy too (tangential derivatives).
+        tangential = ["u_y", "u_yy"] if name in ("left", "right") else ["u_x", "u_xx"]
+        keys = ["u"] + (tangential if argyris else [])
+        if kind == "clamped":
+            keys += ["u_n"] + ((["u_x", "u_xy"] if name in ("left", "right") else ["u_y", "u_xy"]) if argyris else [])
+        for k in keys:
+            if k in dofs.nodal:
+                held.extend(dofs.nodal[k].tolist())
+            if k in dofs.facet:
+                held.extend(dofs.facet[k].tolist())
+    return np.unique(np.array(held, dtype=np.int64))
+
+
+def spring_dofs(basis, plate, supports):
+    """(u DOF at the corner, stiffness) of every corner spring."""
+    length, width = plate["length"], plate["width"]
+    corners = [(0.0, 0.0), (length, 0.0), (0.0, width), (length, width)]
+    p = basis.mesh.p
+    out = []
+    for (cx, cz), kind in zip(corners, supports["corners"]):
+        if isinstance(kind, (int, float)):
+            node = int(np.argmin((p[0] - cx) ** 2 + (p[1] - cz) ** 2))
+            out.append((int(basis.get_dofs(nodes=np.array([node])).nodal["u"][0]), float(kind)))
+    return out
+
+
+def compliances(mesh, element, plate, supports, points):
+    """C at each point: solve K w = N(p) and take N(p)·w."""
+    t0 = time.perf_counter()
+    basis = Basis(mesh, element)
+    k = asm(bending_form(plate), basis).tocsr()
+    for dof, stiffness in spring_dofs(basis, plate, supports):
+        k[dof, dof] += stiffness
+    held = constrained_dofs(basis, element, plate, supports)
+    free = np.setdiff1d(np.arange(basis.N), held)
+    kff = k[free][:, free].tocsc()
+    t1 = time.perf_counter()
+    lu = spla.splu(kff)
+    out = []
+    for x, z in points:
+        f = basis.point_source(np.array([x, z]))[free]
+        w = lu.solve(f)
+        out.append(float(f @ w))
+    t2 = time.perf_counter()
+    return out, {"dofs": int(basis.N), "free_dofs": int(len(free)), "assembly_s": t1 - t0, "solve_s": t2 - t1}
+
+
+ELEMENTS = {"argyris": ElementTriArgyris, "morley": ElementTriMorley}
+
+
+def cases(plate, k_t):
+    """The cases of issue 4: the paper's three conditions and the classical edge checks."""
+    length, width = plate["length"], plate["width"]
+    free_edges = {"left": "free", "right": "free", "near": "free", "far": "free"}
+    pts = [(length / 2, width / 2), (length / 4, width / 4), (length / 2, 0.0), (0.0, width / 2), (0.1 * length, 0.1 * width)]
+    out = [
+        ("paper-con1", {"corners": ["fixed"] * 4, "edges": free_edges}, pts),
+        ("paper-con2", {"corners": [k_t] * 4, "edges": free_edges}, pts),
+        ("paper-con3", {"corners": ["fixed", k_t, "fixed", k_t], "edges": free_edges}, pts),
+        (
+            "paper-simple-all",
+            {"corners": ["free"] * 4, "edges": {"left": "simple", "right": "simple", "near": "simple", "far": "simple"}},
+            pts[:3],
+        ),
+        (
+            "paper-simple-free",
+            {"corners": ["free"] * 4, "edges": {"left": "simple", "right": "simple", "near": "free", "far": "free"}},
+            pts[:3],
+        ),
+    ]
+    return out
+
+
+def versions():
+    return {
+        "python": platform.python_version(),
+        "scikit-fem": skfem.__version__,
+        "meshio": meshio.__version__,
+        "numpy": np.__version__,
+        "scipy": scipy.__version__,
+    }
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scene", default=str(ROOT / "scenes" / "paper-table-1.toml"))
+    ap.add_argument("--out", default=str(ROOT / "reference" / "data"))
+    ap.add_argument("--quick", action="store_true", help="coarse meshes only (CI smoke run)")
+    args = ap.parse_args(argv)
+    plate, k_t = plate_from_scene(args.scene)
+    # (nx, nz) ladders that halve h exactly and keep the centre on a node: the Rust ladder
+    # of the paper's plate is 10 x 8, 20 x 16, ... (B/L = 0.785 ≈ 4/5).
+    ladders = {
+        "argyris": [(5, 4), (10, 8), (20, 16), (40, 32)],
+        "morley": [(10, 8), (20, 16), (40, 32), (80, 64), (160, 128)],
+    }
+    if args.quick:
+        ladders = {"argyris": [(5, 4), (10, 8)], "morley": [(10, 8), (20, 16)]}
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    for name, supports, points in cases(plate, k_t):
+        record = {
+            "case": name,
+            "scene": str(Path(args.scene).relative_to(ROOT)) if Path(args.scene).is_relative_to(ROOT) else args.scene,
+            "plate": plate,
+            "supports": supports,
+            "points": points,
+            "versions": versions(),
+            "results": {},
+        }
+        for elem, ladder in ladders.items():
+            runs = []
+            for n, nz in ladder:
+                mesh = rectangle_mesh(plate["length"], plate["width"], n, nz)
+                c, info = compliances(mesh, ELEMENTS[elem](), plate, supports, points)
+                runs.append({"nx": n, "nz": nz, "h": plate["length"] / n, **info, "compliance": c})
+                print(f"{name} {elem} {n}x{nz}: dofs {info['dofs']}, C[0] = {c[0]:.10e}, {info['assembly_s'] + info['solve_s']:.2f} s", file=sys.stderr)
+            record["results"][elem] = runs
+        suffix = "-quick" if args.quick else ""
+        path = out / f"{name}{suffix}.json"
+        tmp = path.with_suffix(".json.tmp")
+        tmp.write_text(json.dumps(record, indent=1))
+        tmp.replace(path)
+
+
+if __name__ == "__main__":
+    main()

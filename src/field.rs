@@ -1,0 +1,87 @@
+//! Deflection fields for viewing: the mesh and fields in a simple documented JSON form
+//! (`impact-plate-field/1`, see reference/README.md) that reference/python/export_fields.py
+//! turns into .vtu and .xdmf with meshio.
+
+use crate::fem::{corner_supports, mesh_for, plate_properties};
+use crate::scene::{NamedCondition, Scene};
+use plate_fem::{FemError, Model, Supports};
+use serde::Serialize;
+
+/// The JSON document.
+#[derive(Debug, Serialize)]
+pub struct FieldFile {
+    pub format: &'static str,
+    pub scene: String,
+    pub condition: String,
+    /// The unit point load: (x, z) in m, force 1 N.
+    pub load: [f64; 2],
+    /// Node coordinates (x, z) in m; node (i, j) is number j·(nx+1) + i.
+    pub points: Vec<[f64; 2]>,
+    /// Quadrilaterals, counter-clockwise node numbers.
+    pub quads: Vec<[usize; 4]>,
+    /// Nodal fields per unit load: w (m/N), w_x, w_z (1/N), w_xz (1/(m·N)).
+    pub point_data: PointData,
+    /// Element-centre moments per unit load: M_x, M_z, M_xz (N·m/m per N).
+    pub cell_data: CellData,
+    /// Relative residual of the solve.
+    pub residual: f64,
+}
+
+#[derive(Debug, Serialize)]
+pub struct PointData {
+    pub w: Vec<f64>,
+    pub w_x: Vec<f64>,
+    pub w_z: Vec<f64>,
+    pub w_xz: Vec<f64>,
+}
+
+#[derive(Debug, Serialize)]
+pub struct CellData {
+    #[serde(rename = "M_x")]
+    pub m_x: Vec<f64>,
+    #[serde(rename = "M_z")]
+    pub m_z: Vec<f64>,
+    #[serde(rename = "M_xz")]
+    pub m_xz: Vec<f64>,
+}
+
+/// The field of `condition` under a unit load at (x, z), on a mesh of `n` elements along
+/// the longer side.
+pub fn field(scene: &Scene, condition: &NamedCondition, x: f64, z: f64, n: usize) -> Result<FieldFile, FemError> {
+    let props = plate_properties(scene);
+    let mesh = mesh_for(&props, n)?;
+    let model = Model::new(props, mesh.clone())?;
+    let f = model.factorize(&Supports::corners(corner_supports(condition.condition)))?;
+    let w = f.deflection_field(x, z)?;
+    let residual = f.respond(x, z)?.residual;
+    let (nx, nz) = (mesh.nx(), mesh.nz());
+    let mut points = Vec::with_capacity(mesh.nodes());
+    for j in 0..=nz {
+        for i in 0..=nx {
+            points.push([mesh.xs()[i], mesh.zs()[j]]);
+        }
+    }
+    let mut quads = Vec::with_capacity(mesh.elements());
+    for ez in 0..nz {
+        for ex in 0..nx {
+            quads.push([mesh.node(ex, ez), mesh.node(ex + 1, ez), mesh.node(ex + 1, ez + 1), mesh.node(ex, ez + 1)]);
+        }
+    }
+    let comp = |q: usize| (0..mesh.nodes()).map(|n| w[4 * n + q]).collect::<Vec<f64>>();
+    let moments = model.centre_moments(&w);
+    Ok(FieldFile {
+        format: "impact-plate-field/1",
+        scene: scene.name.clone(),
+        condition: condition.name.clone(),
+        load: [x, z],
+        points,
+        quads,
+        point_data: PointData { w: comp(0), w_x: comp(1), w_z: comp(2), w_xz: comp(3) },
+        cell_data: CellData {
+            m_x: moments.iter().map(|m| m[0]).collect(),
+            m_z: moments.iter().map(|m| m[1]).collect(),
+            m_xz: moments.iter().map(|m| m[2]).collect(),
+        },
+        residual,
+    })
+}
