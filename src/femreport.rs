@@ -400,8 +400,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         for (i, (r, g)) in ours.iter().zip(&arg).enumerate() {
             let (x, z) = case.points[i];
             let zero = g.extrapolated.abs() < 1e-20;
-            st.push(
-                vec![
+            st.push(vec![
                     name.into(),
                     format!("({:.1}, {:.1})", x * 1e3, z * 1e3).into(),
                     r.extrapolated.into(),
@@ -422,8 +421,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                         "NO"
                     })
                     .into(),
-                ],
-            );
+                ]);
         }
     }
     a.add("skfem-comparison.csv", st.to_csv());
@@ -435,7 +433,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         if c.len() == 7 {
             let num = |t: &str| {
                 t.parse::<u64>()
-                    .map(|v| Cell::Int(v))
+                    .map(Cell::Int)
                     .or_else(|_| t.parse::<f64>().map(Cell::Num))
                     .unwrap_or(Cell::Text(t.into()))
             };
