@@ -1,11 +1,14 @@
 //! `impact`: the scene files, the plan and the reports around the paper's model
 //! (`analytic`) and the plate finite elements (`plate_fem`).
 
+pub mod compare;
+pub mod conclusions;
 pub mod fem;
 pub mod femreport;
 pub mod field;
 pub mod output;
 pub mod paper;
+pub mod platemodel;
 pub mod plot;
 pub mod reference;
 pub mod run;

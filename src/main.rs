@@ -47,6 +47,15 @@ enum Command {
     },
     /// Yield velocities at the scene's points (eqs. 51-54).
     Yield(Common),
+    /// Beam against plate FE for a scene: tables, maps across the width, error against
+    /// run time, into DIR (default reports/<scene name>).
+    Compare {
+        /// Scene file; default: the paper's Table 1.
+        #[arg(long, value_name = "FILE")]
+        scene: Option<PathBuf>,
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         #[arg(long, value_name = "DIR", default_value = "reports/paper")]
@@ -134,10 +143,19 @@ fn execute(command: Command) -> Result<(), Failure> {
             emit(&c, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
         }
         Command::Paper { out } => write(&out, &impact::paper::reproduce()?),
+        Command::Compare { scene, out } => {
+            let scene = load(&Common { scene, json: false, out: None })?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("reports").join(slug(&scene.name)));
+            write(&dir, &impact::compare::report(&scene)?)
+        }
         Command::Report { out } => {
             let mut all = Artifacts::new();
             all.nest("paper", impact::paper::reproduce()?);
             all.nest("fem", impact::femreport::report(&Scene::default_scene())?);
+            let scene = Scene::default_scene();
+            let mut cmp = impact::compare::report(&scene)?;
+            impact::compare::add_paper_studies(&mut cmp)?;
+            all.nest(&slug(&scene.name), cmp);
             write(&out, &all)
         }
         Command::FemBench { common, tolerance, nx, nz } => {

@@ -148,6 +148,10 @@ impl Plate {
         let nu = self.material.poisson_ratio;
         self.material.youngs_modulus * self.thickness.powi(3) / (12.0 * (1.0 - nu * nu))
     }
+    /// Copy with another width.
+    pub fn with_width(&self, width: f64) -> Result<Self, InvalidParameter> {
+        Self::new(self.length, width, self.thickness, self.density, self.material)
+    }
     /// Copy with another length (the plate-length study of Figs. 14-16).
     pub fn with_length(&self, length: f64) -> Result<Self, InvalidParameter> {
         Self::new(length, self.width, self.thickness, self.density, self.material)

@@ -1,0 +1,304 @@
+//! The paper's conclusions (section V, items 1-5) tested under the beam and the plate FE
+//! model, with the numbers behind each verdict (issue 5).
+
+use crate::paper::Paper;
+use crate::platemodel::PlateModel;
+use crate::run::{impact_of, BeamModel, ComplianceModel};
+use crate::scene::{even_points, NamedCondition, Scene};
+use crate::table::{sig, Table};
+use analytic::{respond, yield_velocity, Condition, DruckerPrager, Method, Response, Sphere};
+
+type Failure = Box<dyn std::error::Error>;
+
+const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
+
+/// Yield velocities, contact forces and spring energy ratios over a k_T sweep.
+type Sweep = (Vec<f64>, Vec<f64>, Vec<f64>);
+
+/// One verdict.
+pub struct Check {
+    pub item: &'static str,
+    pub statement: String,
+    pub beam: String,
+    pub plate: String,
+    pub beam_holds: bool,
+    pub plate_holds: bool,
+}
+
+/// Both models at the points of one line for a set of conditions.
+struct Line<'a> {
+    scene: &'a Scene,
+    model: PlateModel,
+    xs: Vec<f64>,
+    z: f64,
+}
+
+impl<'a> Line<'a> {
+    fn new(scene: &'a Scene, conds: &[NamedCondition], z: f64) -> Result<Self, Failure> {
+        let xs = even_points(scene.plate.length(), 101);
+        let pts: Vec<(f64, f64)> = xs.iter().map(|&x| (x, z)).collect();
+        let model = PlateModel::compute(scene, conds, &pts, crate::compare::BASE_MESH, crate::compare::LEVELS)?;
+        Ok(Self { scene, model, xs, z })
+    }
+    fn compliance(&self, plate: bool, c: &NamedCondition, x: f64) -> Result<analytic::PointCompliance, Failure> {
+        Ok(if plate {
+            self.model.compliance(c, x, self.z)?
+        } else {
+            BeamModel { plate: &self.scene.plate }.compliance(c, x, 0.0)?
+        })
+    }
+    fn response(&self, plate: bool, c: &NamedCondition, body: &Sphere, x: f64, v: f64) -> Result<Response, Failure> {
+        Ok(respond(&impact_of(self.scene, body, v), &self.compliance(plate, c, x)?, METHOD)?)
+    }
+    fn vy(&self, plate: bool, c: &NamedCondition, body: &Sphere, x: f64) -> Result<f64, Failure> {
+        let imp = impact_of(self.scene, body, 1.0);
+        let d = DruckerPrager::of(body).yield_compression(body.radius(), imp.contact_stiffness);
+        Ok(yield_velocity(body, &imp, self.compliance(plate, c, x)?.total(), d))
+    }
+    /// (argmin x, argmax x) of f along the line, in units of L.
+    fn extremes(&self, f: impl Fn(f64) -> Result<f64, Failure>) -> Result<(f64, f64, f64, f64), Failure> {
+        let vals: Vec<f64> = self.xs.iter().map(|&x| f(x)).collect::<Result<_, _>>()?;
+        let l = self.scene.plate.length();
+        let (imin, imax) = vals
+            .iter()
+            .enumerate()
+            .fold((0, 0), |(a, b), (i, v)| (if *v < vals[a] { i } else { a }, if *v > vals[b] { i } else { b }));
+        Ok((self.xs[imin] / l, vals[imin], self.xs[imax] / l, vals[imax]))
+    }
+}
+
+fn named(name: &str, condition: Condition) -> NamedCondition {
+    NamedCondition { name: name.into(), condition }
+}
+
+fn both<T>(f: impl Fn(bool) -> Result<T, Failure>) -> Result<(T, T), Failure> {
+    Ok((f(false)?, f(true)?))
+}
+
+/// Runs every check on the paper's scene, on the centreline and on the free edge.
+pub fn checks() -> Result<Vec<Check>, Failure> {
+    let paper = Paper::new();
+    let scene = &paper.scene;
+    let (l, b) = (scene.plate.length(), scene.plate.width());
+    let k = paper.k_t;
+    let mut conds = vec![
+        named("Con 1", Condition::BothFixed),
+        named("Con 2", Condition::BothSprings { k_t: k }),
+        named("Con 3", Condition::FixedAndSprings { k_t: k }),
+    ];
+    let ks = [5e4, 2.50025e8, 5e8];
+    for kk in ks {
+        conds.push(named(&format!("Con 2 k{kk:e}"), Condition::BothSprings { k_t: kk }));
+    }
+    let mut out = Vec::new();
+    for (where_, z) in [("centreline", b / 2.0), ("free edge z = 0", 0.0)] {
+        let line = Line::new(scene, &conds, z)?;
+        let (c1, c2, c3) = (&conds[0], &conds[1], &conds[2]);
+        let (coal, g1, g2) = (&paper.coal, &paper.gangue1, &paper.gangue2);
+        let fmt_ext = |e: (f64, f64, f64, f64)| {
+            format!("min {} at x = {:.2} L, max {} at x = {:.2} L", sig(e.1, 5), e.0, sig(e.3, 5), e.2)
+        };
+        let end = |x: f64| !(0.05..=0.95).contains(&x);
+        let middle = |x: f64| (0.4..=0.6).contains(&x);
+
+        // Item 1: shapes along the plate.
+        let (eb, ep) = both(|p| line.extremes(|x| line.vy(p, c1, coal, x)))?;
+        out.push(Check {
+            item: "1",
+            statement: format!(
+                "coal v_y along the plate ({where_}, Con 1): minimum at an end, maximum near the midpoint"
+            ),
+            beam: fmt_ext(eb),
+            plate: fmt_ext(ep),
+            beam_holds: end(eb.0) && middle(eb.2),
+            plate_holds: end(ep.0) && middle(ep.2),
+        });
+        let (eb, ep) = both(|p| line.extremes(|x| Ok(line.response(p, c1, coal, x, 0.008)?.contact_force)))?;
+        out.push(Check {
+            item: "1",
+            statement: format!(
+                "coal P_max at 0.008 m/s ({where_}, Con 1): decreases then increases, minimum near the midpoint"
+            ),
+            beam: fmt_ext(eb),
+            plate: fmt_ext(ep),
+            beam_holds: middle(eb.0) && end(eb.2),
+            plate_holds: middle(ep.0) && end(ep.2),
+        });
+        let (eb, ep) = both(|p| line.extremes(|x| Ok(line.response(p, c1, coal, x, 0.008)?.deflection)))?;
+        out.push(Check {
+            item: "1",
+            statement: format!("impact-point deflection ({where_}, Con 1): maximum near the midpoint"),
+            beam: fmt_ext(eb),
+            plate: fmt_ext(ep),
+            beam_holds: middle(eb.2),
+            plate_holds: middle(ep.2),
+        });
+
+        // Item 2: elastic supports raise v_y and lower P_max; Con 2 springs take more energy.
+        let areas: Vec<f64> = crate::compare::AREAS.iter().map(|f| f * l).collect();
+        let order = |p: bool| -> Result<(usize, String), Failure> {
+            let mut n = 0;
+            let mut worst = f64::INFINITY;
+            for &x in &areas {
+                let (v1, v2, v3) = (line.vy(p, c1, coal, x)?, line.vy(p, c2, coal, x)?, line.vy(p, c3, coal, x)?);
+                if v2 >= v3 * (1.0 - 1e-12) && v3 >= v1 * (1.0 - 1e-12) {
+                    n += 1;
+                }
+                worst = worst.min(v2 / v1 - 1.0);
+            }
+            Ok((n, format!("{n}/7 areas; v_y(Con 2)/v_y(Con 1) - 1 ≥ {}", sig(worst, 3))))
+        };
+        let ((nb, sb), (np, sp)) = both(order)?;
+        out.push(Check {
+            item: "2",
+            statement: format!("v_y(Con 2) ≥ v_y(Con 3) ≥ v_y(Con 1) at Areas 1-7 ({where_})"),
+            beam: sb,
+            plate: sp,
+            beam_holds: nb == 7,
+            plate_holds: np == 7,
+        });
+        let mid = l / 2.0;
+        let spring = |p: bool| -> Result<(f64, f64), Failure> {
+            Ok((
+                line.response(p, c2, coal, mid, 0.008)?.spring_ratio,
+                line.response(p, c3, coal, mid, 0.008)?.spring_ratio,
+            ))
+        };
+        let ((b2, b3), (p2, p3)) = both(spring)?;
+        out.push(Check {
+            item: "2",
+            statement: format!("spring energy ratio Con 2 > Con 3 at x = L/2 ({where_})"),
+            beam: format!("{} vs {}", sig(b2, 4), sig(b3, 4)),
+            plate: format!("{} vs {}", sig(p2, 4), sig(p3, 4)),
+            beam_holds: b2 > b3,
+            plate_holds: p2 > p3,
+        });
+        let force = |p: bool| -> Result<[f64; 3], Failure> {
+            Ok([c1, c3, c2].map(|c| line.response(p, c, coal, mid, 0.008).map(|r| r.contact_force).unwrap_or(f64::NAN)))
+        };
+        let (fb, fp) = both(force)?;
+        out.push(Check {
+            item: "2",
+            statement: format!(
+                "supports soften the impact: P_max(Con 1) ≥ P_max(Con 3) ≥ P_max(Con 2) at x = L/2 ({where_})"
+            ),
+            beam: fb.map(|v| sig(v, 7)).join(" ≥ "),
+            plate: fp.map(|v| sig(v, 7)).join(" ≥ "),
+            beam_holds: fb[0] >= fb[1] && fb[1] >= fb[2],
+            plate_holds: fp[0] >= fp[1] && fp[1] >= fp[2],
+        });
+
+        // Item 3: stiffer springs lower v_y, raise P_max, lower the spring energy share.
+        let sweep = |p: bool| -> Result<Sweep, Failure> {
+            let (mut vy, mut pm, mut sr) = (vec![], vec![], vec![]);
+            for c in &conds[3..] {
+                vy.push(line.vy(p, c, coal, mid)?);
+                let r = line.response(p, c, coal, mid, 0.008)?;
+                pm.push(r.contact_force);
+                sr.push(r.spring_ratio);
+            }
+            Ok((vy, pm, sr))
+        };
+        let ((vb, pb, sb), (vp, pp, sp)) = both(sweep)?;
+        let dec = |v: &[f64]| v.windows(2).all(|w| w[1] <= w[0]);
+        let inc = |v: &[f64]| v.windows(2).all(|w| w[1] >= w[0]);
+        let show = |v: &[f64]| v.iter().map(|x| sig(*x, 6)).collect::<Vec<_>>().join(" → ");
+        out.push(Check {
+            item: "3",
+            statement: format!("k_T = 5e4 → 2.5e8 → 5e8 N/m (Con 2, x = L/2, {where_}): v_y falls, P_max rises, spring energy ratio falls"),
+            beam: format!("v_y {}; P {}; springs {}", show(&vb), show(&pb), show(&sb)),
+            plate: format!("v_y {}; P {}; springs {}", show(&vp), show(&pp), show(&sp)),
+            beam_holds: dec(&vb) && inc(&pb) && dec(&sb),
+            plate_holds: dec(&vp) && inc(&pp) && dec(&sp),
+        });
+
+        // Item 5: gangue against coal at the midpoint, v = 0.0025 m/s.
+        let gang = |p: bool| -> Result<(bool, String, [f64; 3]), Failure> {
+            let mut ok = true;
+            let mut diffs = [0.0; 3];
+            let mut text = Vec::new();
+            for (i, c) in [c1, c2, c3].iter().enumerate() {
+                let rc = line.response(p, c, coal, mid, 0.0025)?;
+                for g in [g1, g2] {
+                    let rg = line.response(p, c, g, mid, 0.0025)?;
+                    ok &= rg.compression < rc.compression
+                        && rg.contact_force > rc.contact_force
+                        && rg.deflection > rc.deflection
+                        && rg.plate_ratio > rc.plate_ratio;
+                }
+                let rg = line.response(p, c, g1, mid, 0.0025)?;
+                diffs[i] = (rc.contact_force - rg.contact_force).abs();
+                text.push(format!("{}: ΔP(coal - gangue 1) = {}", c.name, sig(rc.contact_force - rg.contact_force, 6)));
+            }
+            Ok((ok, text.join("; "), diffs))
+        };
+        let ((okb, tb, db), (okp, tp, dp)) = both(gang)?;
+        out.push(Check {
+            item: "5",
+            statement: format!("gangue (same mass or size) against coal at x = L/2, 0.0025 m/s ({where_}): smaller δ, larger P_max, deflection and plate energy"),
+            beam: tb.clone(),
+            plate: tp.clone(),
+            beam_holds: okb,
+            plate_holds: okp,
+        });
+        out.push(Check {
+            item: "5",
+            statement: format!(
+                "elastic supports reduce the coal-gangue difference in P_max: |ΔP| Con 1 > Con 3 > Con 2 ({where_})"
+            ),
+            beam: db.map(|v| sig(v, 7)).join(", "),
+            plate: dp.map(|v| sig(v, 7)).join(", "),
+            beam_holds: db[0] > db[2] && db[2] > db[1],
+            plate_holds: dp[0] > dp[2] && dp[2] > dp[1],
+        });
+    }
+
+    // Item 4: longer plates, same absolute point x = 0.2 m on the centreline, Con 1.
+    let x = 0.2;
+    let mut rows = (vec![], vec![]);
+    for f in [0.8, 1.0, 1.2, 1.4] {
+        let plate = scene.plate.with_length(scene.plate.length() * f)?;
+        let s = Scene { plate, ..scene.clone() };
+        let pts = [(x, plate.width() / 2.0)];
+        let c = named("Con 1", Condition::BothFixed);
+        let model =
+            PlateModel::compute(&s, std::slice::from_ref(&c), &pts, crate::compare::BASE_MESH, crate::compare::LEVELS)?;
+        let imp = impact_of(&s, &paper.coal, 0.008);
+        let rb = respond(&imp, &BeamModel { plate: &s.plate }.compliance(&c, x, 0.0)?, METHOD)?;
+        let rp = respond(&imp, &model.compliance(&c, x, plate.width() / 2.0)?, METHOD)?;
+        rows.0.push((rb.contact_force, rb.deflection));
+        rows.1.push((rp.contact_force, rp.deflection));
+    }
+    let holds = |v: &[(f64, f64)]| v.windows(2).all(|w| w[1].0 < w[0].0 && w[1].1 > w[0].1);
+    let show = |v: &[(f64, f64)]| {
+        v.iter().map(|(p, d)| format!("{}/{}", sig(*p, 5), sig(*d, 4))).collect::<Vec<_>>().join(" → ")
+    };
+    out.push(Check {
+        item: "4",
+        statement: "L = 0.8, 1.0, 1.2, 1.4 x 458.4 mm (Con 1, x = 0.2 m, centreline, coal 0.008 m/s): P_max falls and deflection rises (shown P (N)/deflection (m))".into(),
+        beam: show(&rows.0),
+        plate: show(&rows.1),
+        beam_holds: holds(&rows.0),
+        plate_holds: holds(&rows.1),
+    });
+    out.sort_by_key(|c| c.item);
+    Ok(out)
+}
+
+/// The verdicts as a table.
+pub fn table(checks: &[Check]) -> Table {
+    let mut t =
+        Table::new("", &["item", "statement of section V", "beam", "holds (beam)", "plate FE", "holds (plate)"]);
+    for c in checks {
+        let yn = |b: bool| if b { "yes" } else { "**no**" };
+        t.push(vec![
+            c.item.into(),
+            c.statement.clone().into(),
+            c.beam.clone().into(),
+            yn(c.beam_holds).into(),
+            c.plate.clone().into(),
+            yn(c.plate_holds).into(),
+        ]);
+    }
+    t
+}

@@ -1,0 +1,191 @@
+//! The plate FE model as a compliance provider for the shared energy balance.
+//!
+//! Everything a scene needs is computed up front: for each mesh of a short ladder (h and
+//! h/2), one base factorization ([`CornerFamily`]), one blocked solve per distinct impact
+//! point (mirror images share it), and a rank-4 update per condition. The two meshes are
+//! combined by Richardson extrapolation into the compliance that feeds the balance, with
+//! the error estimate it carries. Downstream code sees an `analytic::PointCompliance`, as
+//! it does for the beam.
+
+use crate::fem::{corner_supports, ladder_meshes, plate_properties};
+use crate::run::{ComplianceModel, RunError};
+use crate::scene::{NamedCondition, Scene};
+use analytic::{PointCompliance, SpringReaction, Store, StoreKind};
+use plate_fem::convergence::richardson;
+use plate_fem::{Corner, CornerFamily, CornerSupport, EdgeSupport, FemError, Model, PointResponse};
+use std::collections::HashMap;
+use std::time::Instant;
+
+/// A compliance with its discretization error.
+#[derive(Debug, Clone)]
+pub struct FeCompliance {
+    pub compliance: PointCompliance,
+    /// Estimated absolute error of the total compliance (m/N).
+    pub error_estimate: f64,
+    /// Whether the mesh sequence was in its asymptotic range (see `plate_fem::convergence`).
+    pub asymptotic: bool,
+}
+
+/// One mesh of the ladder and what it cost.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct LevelCost {
+    pub nx: usize,
+    pub nz: usize,
+    pub dofs: usize,
+    pub seconds: f64,
+}
+
+/// Precomputed plate compliances for every (condition, x, z) a scene needs.
+pub struct PlateModel {
+    name: String,
+    values: HashMap<(String, i64, i64), FeCompliance>,
+    length: f64,
+    width: f64,
+    pub levels: Vec<LevelCost>,
+}
+
+fn key(v: f64, scale: f64) -> i64 {
+    (v / scale * 1e9).round() as i64
+}
+
+/// Bilinear weights of the four corners at (x, z).
+fn corner_weights(x: f64, z: f64, l: f64, b: f64) -> [f64; 4] {
+    let (s, t) = (x / l, z / b);
+    [(1.0 - s) * (1.0 - t), s * (1.0 - t), (1.0 - s) * t, s * t]
+}
+
+/// The analytic compliance of one FE response: plate store, one store per spring, spring
+/// reactions, and the bending deflection (w at the point minus the bilinear plane through
+/// the corner deflections, the plate's analogue of eq. 11, which leaves out the rigid
+/// motion on the springs).
+fn to_analytic(r: &PointResponse, corners: [CornerSupport; 4], l: f64, b: f64) -> PointCompliance {
+    let mut stores =
+        vec![Store { name: "plate bending".into(), kind: StoreKind::Plate, compliance: r.plate_compliance.max(0.0) }];
+    let mut springs = Vec::new();
+    let weights = corner_weights(r.x, r.z, l, b);
+    let mut support_plane = 0.0;
+    for c in Corner::ALL {
+        let i = c.index();
+        if let CornerSupport::Spring(k) = corners[i] {
+            stores.push(Store {
+                name: format!("spring at {}", c.name()),
+                kind: StoreKind::Spring,
+                compliance: r.corners[i].spring_compliance,
+            });
+            springs
+                .push(SpringReaction { name: format!("spring at {}", c.name()), per_unit_load: r.corners[i].reaction });
+            support_plane += weights[i] * r.corners[i].reaction / k;
+        }
+    }
+    PointCompliance::new(stores, springs, r.compliance - support_plane).expect("FE stores are finite and non-negative")
+}
+
+/// Richardson-extrapolates each component of two analytic compliances (same layout).
+fn extrapolate(coarse: &PointCompliance, fine: &PointCompliance, finer_of: &[PointCompliance]) -> FeCompliance {
+    let ext = |a: f64, b: f64| richardson(&[a, b]).map_or(b, |e| e.extrapolated);
+    let stores = coarse
+        .stores()
+        .iter()
+        .zip(fine.stores())
+        .map(|(a, b)| Store {
+            name: b.name.clone(),
+            kind: b.kind,
+            compliance: ext(a.compliance, b.compliance).max(0.0),
+        })
+        .collect();
+    let springs = coarse
+        .springs()
+        .iter()
+        .zip(fine.springs())
+        .map(|(a, b)| SpringReaction { name: b.name.clone(), per_unit_load: ext(a.per_unit_load, b.per_unit_load) })
+        .collect();
+    let deflection = ext(coarse.deflection_per_unit_load(), fine.deflection_per_unit_load());
+    let compliance = PointCompliance::new(stores, springs, deflection).expect("extrapolated stores stay finite");
+    let totals: Vec<f64> = finer_of.iter().map(|c| c.total()).collect();
+    let e = richardson(&totals).expect("two levels");
+    FeCompliance { compliance, error_estimate: e.error_estimate, asymptotic: e.asymptotic }
+}
+
+impl PlateModel {
+    /// Computes the compliances of `conditions` at `points` on the ladder of meshes with
+    /// `base` elements along the longer side, then 2·base, ... (`levels` ≥ 2).
+    pub fn compute(
+        scene: &Scene,
+        conditions: &[NamedCondition],
+        points: &[(f64, f64)],
+        base: usize,
+        levels: u32,
+    ) -> Result<Self, FemError> {
+        let props = plate_properties(scene);
+        Self::on_meshes(scene, conditions, points, ladder_meshes(&props, base, levels.max(2))?)
+    }
+
+    /// The same on given meshes, each twice as fine as the one before. With one mesh the
+    /// values are that mesh's, with no error estimate (NaN).
+    pub fn on_meshes(
+        scene: &Scene,
+        conditions: &[NamedCondition],
+        points: &[(f64, f64)],
+        meshes: Vec<plate_fem::Mesh>,
+    ) -> Result<Self, FemError> {
+        let props = plate_properties(scene);
+        let (l, b) = (props.length, props.width);
+        let mut per_level: Vec<Vec<Vec<PointCompliance>>> = Vec::new(); // level -> condition -> point
+        let mut costs = Vec::new();
+        for mesh in meshes {
+            let t = Instant::now();
+            let (nx, nz) = (mesh.nx(), mesh.nz());
+            let model = Model::new(props, mesh)?;
+            let family =
+                CornerFamily::new(&model, [EdgeSupport::Free; 4], CornerFamily::default_base_stiffness(&model))?;
+            let base_points = family.probe_map(points)?;
+            let mut per_cond = Vec::with_capacity(conditions.len());
+            for c in conditions {
+                let corners = corner_supports(c.condition);
+                let row = base_points
+                    .iter()
+                    .map(|bp| family.respond(bp, corners).map(|r| to_analytic(&r, corners, l, b)))
+                    .collect::<Result<Vec<_>, _>>()?;
+                per_cond.push(row);
+            }
+            costs.push(LevelCost { nx, nz, dofs: model.dofs(), seconds: t.elapsed().as_secs_f64() });
+            per_level.push(per_cond);
+        }
+        let n = per_level.len();
+        let mut values = HashMap::new();
+        for (ci, c) in conditions.iter().enumerate() {
+            for (pi, &(x, z)) in points.iter().enumerate() {
+                let seq: Vec<PointCompliance> = per_level.iter().map(|lv| lv[ci][pi].clone()).collect();
+                let fe = if n >= 2 {
+                    extrapolate(&seq[n - 2], &seq[n - 1], &seq)
+                } else {
+                    FeCompliance { compliance: seq[0].clone(), error_estimate: f64::NAN, asymptotic: false }
+                };
+                values.insert((c.name.clone(), key(x, l), key(z, b)), fe);
+            }
+        }
+        let finest = costs.last().map(|c| format!("{} x {}", c.nx, c.nz)).unwrap_or_default();
+        let name =
+            if n >= 2 { format!("plate FE (extrapolated from {finest})") } else { format!("plate FE ({finest})") };
+        Ok(Self { name, values, length: l, width: b, levels: costs })
+    }
+
+    /// The FE value at (condition, x, z), if computed.
+    pub fn get(&self, condition: &str, x: f64, z: f64) -> Option<&FeCompliance> {
+        self.values.get(&(condition.to_string(), key(x, self.length), key(z, self.width)))
+    }
+}
+
+impl ComplianceModel for PlateModel {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn resolves_width(&self) -> bool {
+        true
+    }
+    fn compliance(&self, condition: &NamedCondition, x: f64, z: f64) -> Result<PointCompliance, RunError> {
+        self.get(&condition.name, x, z).map(|v| v.compliance.clone()).ok_or_else(|| {
+            RunError::Model(format!("plate compliance at ({x}, {z}) for {} was not computed", condition.name))
+        })
+    }
+}
