@@ -488,6 +488,11 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let _ = writeln!(md, "\n## How the beam error depends on B/L\n\nCon 1, same length, thickness and material; the beam's I = B h³/12 grows with B like the plate's width. The beam is right only for a narrow plate; as the plate widens, a point load bends it locally and the corners carry it through twisting, which the beam has no term for.\n\n{}", wd.to_markdown());
     pb.inc(1);
 
+    pb.set_message("extreme cases");
+    let xt = extreme_cases(scene)?;
+    a.add("extreme-cases.csv", xt.to_csv());
+    let _ = writeln!(md, "\n## Stiff and extreme cases\n\nThe scene's first body at the centre, an end midpoint and an edge midpoint, with springs from 1 N/m to 1e15 N/m (Con 2), velocities over seven decades and plates from 0.5 mm to 80 mm thick. \"stable\" means finite results and a converged balance (its residuals shown); the FE error estimate is relative to C.\n\n{}", xt.to_markdown());
+
     pb.set_message("error against run time");
     let (et, recommended, err_svg) = error_vs_time(scene)?;
     a.add("error-vs-time.csv", et.to_csv());
@@ -568,6 +573,79 @@ pub fn error_vs_time(scene: &Scene) -> Result<(Table, String, String), Failure> 
 /// The paper as seen through both models: a checker of section V's conclusions.
 pub fn paper_scene() -> Scene {
     Paper::new().scene
+}
+
+/// Both models on extreme inputs: do they stay finite, converged and stable?
+pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
+    let body = scene.bodies.first().ok_or("the scene has no body")?;
+    let mut t = Table::new(
+        "",
+        &[
+            "case",
+            "point",
+            "P_max beam (N)",
+            "P_max plate (N)",
+            "plate/beam - 1",
+            "balance residual (beam, plate)",
+            "FE ± rel.",
+            "stable",
+        ],
+    );
+    let (l, b) = (scene.plate.length(), scene.plate.width());
+    let points = [("centre", (l / 2.0, b / 2.0)), ("end (0, B/2)", (0.0, b / 2.0)), ("edge (L/2, 0)", (l / 2.0, 0.0))];
+    let mut cases: Vec<(String, Scene, NamedCondition, f64)> = Vec::new();
+    for k in [1.0, 5e4, 5.11545e8, 1e15] {
+        cases.push((
+            format!("Con 2, k_T = {k:e} N/m, v = 0.008"),
+            scene.clone(),
+            NamedCondition { name: "Con 2".into(), condition: Condition::BothSprings { k_t: k } },
+            0.008,
+        ));
+    }
+    let con1 = NamedCondition { name: "Con 1".into(), condition: Condition::BothFixed };
+    for v in [1e-6, 1e-3, 1.0, 10.0] {
+        cases.push((format!("Con 1, v = {v:e} m/s"), scene.clone(), con1.clone(), v));
+    }
+    for h in [0.5e-3, 80e-3] {
+        let plate = analytic::Plate::new(l, b, h, scene.plate.density(), scene.plate.material())?;
+        cases.push((
+            format!("Con 1, h = {} mm, v = 0.008", h * 1e3),
+            Scene { plate, ..scene.clone() },
+            con1.clone(),
+            0.008,
+        ));
+    }
+    for (name, s, cond, v) in cases {
+        let pts: Vec<(f64, f64)> = points.iter().map(|p| p.1).collect();
+        let model = PlateModel::compute(&s, std::slice::from_ref(&cond), &pts, BASE_MESH, LEVELS)?;
+        let beam = BeamModel { plate: &s.plate };
+        let imp = crate::run::impact_of(&s, body, v);
+        for (pname, (x, z)) in points {
+            let cb = beam.compliance(&cond, x, z)?;
+            let fe = model.get(&cond.name, x, z).ok_or("missing")?;
+            let rb = analytic::respond(&imp, &cb, s.solver);
+            let rp = analytic::respond(&imp, &fe.compliance, s.solver);
+            let (pb, pp) =
+                (rb.as_ref().map_or(f64::NAN, |r| r.contact_force), rp.as_ref().map_or(f64::NAN, |r| r.contact_force));
+            let res = |r: &Result<analytic::Response, analytic::NotConverged>| {
+                r.as_ref().map_or(f64::NAN, |r| r.solution.residual)
+            };
+            let fe_rel = fe.error_estimate / fe.compliance.total();
+            let stable =
+                rb.is_ok() && rp.is_ok() && pb.is_finite() && pp.is_finite() && fe.compliance.total().is_finite();
+            t.push(vec![
+                name.clone().into(),
+                pname.into(),
+                pb.into(),
+                pp.into(),
+                rel(pp, pb),
+                format!("{}, {}", sig(res(&rb), 2), sig(res(&rp), 2)).into(),
+                fe_rel.into(),
+                (if stable { "yes" } else { "NO" }).into(),
+            ]);
+        }
+    }
+    Ok(t)
 }
 
 /// The paper's conclusions under both models, appended to a report of the paper's scene.

@@ -1,0 +1,143 @@
+//! The beam/plate comparison (issue 5): only what a scene asks for is computed and written,
+//! output is deterministic, and the plate side meets its references through the pipeline.
+
+use impact::compare::{pair, report};
+use impact::scene::{Scene, DEFAULT_SCENE};
+use std::process::Command;
+
+/// The default scene cut down: one body, only Con 1, one point, responses only.
+fn small_scene() -> Scene {
+    let text = DEFAULT_SCENE
+        .split("[[bodies]]")
+        .enumerate()
+        .filter(|(i, _)| *i <= 1)
+        .map(|(_, s)| s)
+        .collect::<Vec<_>>()
+        .join("[[bodies]]");
+    let text = text + &DEFAULT_SCENE[DEFAULT_SCENE.find("[[conditions]]").unwrap()..];
+    let text = text
+        .replace("analyses = [\"responses\", \"yield-velocity\"]", "analyses = [\"responses\"]")
+        .replace("x_mm = [0.0, 13.752, 114.6, 210.864, 229.2, 247.536, 343.8, 449.232, 458.4]", "x_mm = [229.2]")
+        .replace("m_per_s = [0.008, 0.0025]", "m_per_s = [0.008]");
+    let cut = text.find("[[conditions]]\nname = \"Con 2\"").unwrap();
+    let rest = &text[text.find("[points]").unwrap()..];
+    Scene::parse(&format!("{}{}", &text[..cut], rest), "small").unwrap()
+}
+
+#[test]
+fn small_scene_is_what_we_meant() {
+    let s = small_scene();
+    assert_eq!(s.bodies.len(), 1);
+    assert_eq!(s.conditions.len(), 1);
+    assert_eq!(s.points.x, vec![0.2292]);
+    assert_eq!(s.velocities, vec![0.008]);
+}
+
+/// Only the requested condition, body, point and analysis are computed; Con 1 has no
+/// spring column and no spring table; no yield table when yield is not asked for.
+#[test]
+fn leaves_out_what_the_scene_does_not_need() {
+    let s = small_scene();
+    let p = pair(&s).unwrap();
+    assert_eq!(p.beam.responses.len(), 1);
+    assert_eq!(p.plate.responses.len(), 1);
+    assert!(p.plate.yields.is_empty() && p.beam.yields.is_empty());
+    assert!(p.model.get("Con 2", 0.2292, 0.18).is_none(), "no compliance for a condition not asked for");
+    let a = report(&s).unwrap();
+    let paths: Vec<String> = a.paths().map(|p| p.display().to_string()).collect();
+    assert!(!paths.iter().any(|p| p.contains("con-2") || p.contains("con-3")), "{paths:?}");
+    assert!(!paths.iter().any(|p| p.contains("yield")), "{paths:?}");
+    assert!(!paths.iter().any(|p| p.contains("spring")), "{paths:?}");
+    let csv = String::from_utf8(a.get("table-con-1-responses-beam-against-plate-fe.csv").unwrap().to_vec()).unwrap();
+    assert!(!csv.lines().next().unwrap().contains("spring"));
+    assert_eq!(csv.lines().count(), 2, "header and one row");
+}
+
+/// The same input gives the same bytes, except the page of timings.
+#[test]
+fn output_is_deterministic() {
+    let s = small_scene();
+    let (a, b) = (report(&s).unwrap(), report(&s).unwrap());
+    let mut n = 0;
+    for p in a.paths() {
+        let name = p.display().to_string();
+        if name.starts_with("error-vs-time") {
+            continue;
+        }
+        assert_eq!(a.get(&name), b.get(&name), "{name} differs between runs");
+        n += 1;
+    }
+    assert!(n > 5);
+}
+
+/// Through the whole pipeline, the plate's compliance at the centre (Con 1) meets the
+/// scikit-fem Argyris extrapolation (7.4702346e-7 m/N, reference/data/paper-con1.json) within
+/// the FE error estimate of the 20 x 16 / 40 x 32 pair (5e-6 relative, reports/fem).
+#[test]
+fn plate_centre_meets_argyris_through_the_pipeline() {
+    let s = small_scene();
+    let p = pair(&s).unwrap();
+    let c = p.plate.responses[0].compliance;
+    let argyris =
+        impact::reference::extrapolate(&impact::reference::load("paper-con1").unwrap().argyris)[0].extrapolated;
+    assert!((c - argyris).abs() / argyris < 5e-6, "{c:e} vs {argyris:e}");
+    // The energy identity holds for the plate model as for the beam.
+    let r = &p.plate.responses[0].response;
+    assert!((r.rock_total_ratio + r.plate_ratio + r.spring_ratio - 1.0).abs() < 1e-12);
+}
+
+/// A narrow corner-supported plate approaches the beam: by Lévy's series the plate/beam
+/// ratio of a narrow plate is 1 - 0.43 (B/L)² (reports/fem), 0.9957 at B/L = 0.1; the
+/// corner supports add end effects of the same order. Within 1 %.
+#[test]
+fn narrow_plate_approaches_the_beam() {
+    let t = impact::compare::width_dependence(&small_scene()).unwrap();
+    let first = &t.rows[0];
+    let ratio = match first[1] {
+        impact::table::Cell::Num(v) => v,
+        _ => panic!("ratio"),
+    };
+    assert!((ratio - 1.0).abs() < 0.01, "B/L = 0.1: {ratio}");
+    // And the beam is wrong by more than 10 % at the paper's B/L = 0.785.
+    let paper = match t.rows[3][1] {
+        impact::table::Cell::Num(v) => v,
+        _ => panic!("ratio"),
+    };
+    assert!(paper > 1.1, "{paper}");
+}
+
+/// The command writes the report and refuses a bad scene without writing.
+#[test]
+fn command_line_compare() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.toml");
+    std::fs::write(
+        &scene,
+        DEFAULT_SCENE.replace(
+            "x_mm = [0.0, 13.752, 114.6, 210.864, 229.2, 247.536, 343.8, 449.232, 458.4]",
+            "x_mm = [100.0, 229.2]",
+        ),
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["compare", "--scene"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("index.md").exists() && out.join("results.json").exists() && out.join("map-con-2.svg").exists());
+    std::fs::write(&scene, DEFAULT_SCENE.replace("x_mm = [0.0,", "x_mm = [-5.0,")).unwrap();
+    let out2 = dir.path().join("out2");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["compare", "--scene"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out2)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(!out2.exists());
+}
