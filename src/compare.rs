@@ -394,7 +394,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     }
 
     // Maps and lines.
-    let _ = writeln!(md, "\n## Across the width\n\nThe beam cannot see z; the plate can. Maps of C_plate/C_beam - 1 over the plate ({} x {} points), lines along the centreline and the free edge, and across the width at the paper's Areas 1-7. Where the beam compliance is zero (fixed ends) the ratio is undefined (grey).\n", MAP_X, MAP_Z);
+    let _ = writeln!(md, "\n## Across the width\n\nThe beam cannot see z; the plate can. Maps of log10(C_plate/C_beam) over 0.1 L ≤ x ≤ 0.9 L ({} x {} points; towards the ends the beam's C falls to zero and the ratio diverges, see the lines), lines along the centreline and the free edge, and C_plate/C_beam across the width at the paper's Areas 1-7. All values are in maps.csv.\n", MAP_X, MAP_Z);
     let mut map_csv = Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
     for (ci, c) in scene.conditions.iter().enumerate() {
         let ratio = |i: usize, j: usize| {
@@ -420,7 +420,19 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         let stem = format!("map-{}", slug(&c.name));
         a.add(
             format!("{stem}.svg"),
-            heat_map(&format!("{}: C_plate / C_beam - 1", c.name), &mp.xs, &mp.zs, ratio, "plate/beam - 1"),
+            heat_map(
+                &format!("{}: log10(C_plate / C_beam), 0.1 L to 0.9 L", c.name),
+                &mp.xs,
+                &mp.zs,
+                |i, j| {
+                    if (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())) {
+                        (ratio(i, j) + 1.0).log10()
+                    } else {
+                        f64::NAN
+                    }
+                },
+                "log10 ratio",
+            ),
         );
         // Interior statistics (away from the ends, where the beam ratio is singular).
         let inner: Vec<f64> = (0..mp.xs.len())
@@ -463,18 +475,18 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                 let i = nearest(&mp.xs, f * scene.plate.length());
                 Series::new(
                     format!("Area {} (x = {:.0} mm)", k + 1, mp.xs[i] * 1e3),
-                    mp.zs.iter().enumerate().map(|(j, z)| (z * 1e3, ratio(i, j))).collect(),
+                    mp.zs.iter().enumerate().map(|(j, z)| (z * 1e3, ratio(i, j) + 1.0)).collect(),
                 )
             })
             .collect();
         a.add(
             format!("{stem}-across.svg"),
             line_plot(
-                &format!("{}: C_plate/C_beam - 1 across the width", c.name),
+                &format!("{}: C_plate/C_beam across the width", c.name),
                 "z (mm)",
-                "plate/beam - 1",
+                "C_plate / C_beam (log)",
                 &across,
-                Scale::Linear,
+                Scale::Log,
             ),
         );
         let _ = writeln!(md, "![along]({stem}-along.svg)\n\n![across]({stem}-across.svg)\n");
@@ -663,6 +675,18 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
         held(true),
         t.to_markdown()
     );
+    let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
+    for (stem, title, ylabel, series) in crate::conclusions::study_figures()? {
+        a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
+        let mut csv = Table::new("", &["series", "x_mm", "value"]);
+        for s in &series {
+            for &(x, y) in &s.points {
+                csv.push(vec![s.name.clone().into(), x.into(), y.into()]);
+            }
+        }
+        a.add(format!("{stem}.csv"), csv.to_csv());
+        let _ = writeln!(md, "![{title}]({stem}.svg)\n");
+    }
     a.add("index.md", md);
     Ok(())
 }

@@ -302,3 +302,115 @@ pub fn table(checks: &[Check]) -> Table {
     }
     t
 }
+
+/// The paper's figures redone with both models along the centreline: (file stem, title,
+/// y label, series). Beam curves dashed in the legend by name ("beam ..."), plate curves
+/// "plate ...".
+pub fn study_figures() -> Result<Vec<(String, String, String, Vec<crate::plot::Series>)>, Failure> {
+    use crate::plot::Series;
+    let paper = Paper::new();
+    let scene = &paper.scene;
+    let (l, b) = (scene.plate.length(), scene.plate.width());
+    let k = paper.k_t;
+    let mut conds = vec![
+        named("Con 1", Condition::BothFixed),
+        named("Con 2", Condition::BothSprings { k_t: k }),
+        named("Con 3", Condition::FixedAndSprings { k_t: k }),
+    ];
+    for kk in [5e4, 2.50025e8, 5e8] {
+        conds.push(named(&format!("Con 2, k_T = {kk:e}"), Condition::BothSprings { k_t: kk }));
+    }
+    let line = Line::new(scene, &conds, b / 2.0)?;
+    let mm = |x: f64| x * 1e3;
+    let mut figs = Vec::new();
+    let curve = |p: bool,
+                 c: &NamedCondition,
+                 f: &dyn Fn(bool, &NamedCondition, f64) -> Result<f64, Failure>|
+     -> Result<Series, Failure> {
+        let pts = line.xs.iter().map(|&x| Ok((mm(x), f(p, c, x)?))).collect::<Result<Vec<_>, Failure>>()?;
+        Ok(Series::new(format!("{} {}", if p { "plate" } else { "beam" }, c.name), pts))
+    };
+    let vy_coal = |p: bool, c: &NamedCondition, x: f64| line.vy(p, c, &paper.coal, x);
+    let p_coal = |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.contact_force);
+    let defl = |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.deflection * 1e6);
+    let mut s8 = Vec::new();
+    let mut s10 = Vec::new();
+    let mut s10d = Vec::new();
+    for c in &conds[..3] {
+        for p in [false, true] {
+            s8.push(curve(p, c, &vy_coal)?);
+            s10.push(curve(p, c, &p_coal)?);
+            s10d.push(curve(p, c, &defl)?);
+        }
+    }
+    figs.push((
+        "study-fig08-yield-coal".into(),
+        "Fig. 8 redone: coal yield velocity along the centreline".into(),
+        "v_y (m/s)".into(),
+        s8,
+    ));
+    figs.push((
+        "study-fig10-contact-force".into(),
+        "Fig. 10(1) redone: coal P_max at 0.008 m/s, centreline".into(),
+        "P_max (N)".into(),
+        s10,
+    ));
+    figs.push((
+        "study-fig10-deflection".into(),
+        "Fig. 10(3) redone: impact-point deflection, centreline".into(),
+        "deflection (µm)".into(),
+        s10d,
+    ));
+    let mut s11 = Vec::new();
+    for c in &conds[3..] {
+        for p in [false, true] {
+            s11.push(curve(p, c, &vy_coal)?);
+        }
+    }
+    figs.push((
+        "study-fig11-yield-stiffness".into(),
+        "Fig. 11 redone: coal yield velocity, Con 2, three k_T".into(),
+        "v_y (m/s)".into(),
+        s11,
+    ));
+    let mut s17 = Vec::new();
+    for body in [&paper.coal, &paper.gangue1, &paper.gangue2] {
+        for p in [false, true] {
+            let f = |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, body, x, 0.0025)?.contact_force);
+            let mut s = curve(p, &conds[0], &f)?;
+            s.name = format!("{} {}", if p { "plate" } else { "beam" }, body.name);
+            s17.push(s);
+        }
+    }
+    figs.push((
+        "study-fig17-contact-force-bodies".into(),
+        "Fig. 17(2) redone: P_max of three spheres at 0.0025 m/s, Con 1".into(),
+        "P_max (N)".into(),
+        s17,
+    ));
+    let mut s14 = Vec::new();
+    for f in [0.8, 1.0, 1.2, 1.4] {
+        let plate = scene.plate.with_length(l * f)?;
+        let s = Scene { plate, ..scene.clone() };
+        let c1 = named("Con 1", Condition::BothFixed);
+        let ln = Line::new(&s, std::slice::from_ref(&c1), b / 2.0)?;
+        for p in [false, true] {
+            let pts = ln
+                .xs
+                .iter()
+                .map(|&x| Ok((mm(x), ln.response(p, &c1, &paper.coal, x, 0.008)?.contact_force)))
+                .collect::<Result<Vec<_>, Failure>>()?;
+            s14.push(Series::new(
+                format!("{} L = {:.0} mm", if p { "plate" } else { "beam" }, plate.length() * 1e3),
+                pts,
+            ));
+        }
+    }
+    figs.push((
+        "study-fig14-contact-force-length".into(),
+        "Fig. 14(1) redone: coal P_max at 0.008 m/s, Con 1, four lengths".into(),
+        "P_max (N)".into(),
+        s14,
+    ));
+    Ok(figs)
+}
