@@ -676,7 +676,7 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
         t.to_markdown()
     );
     let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
-    for (stem, title, ylabel, series) in crate::conclusions::study_figures()? {
+    for crate::conclusions::Figure { stem, title, y_label: ylabel, series } in crate::conclusions::study_figures()? {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
         let mut csv = Table::new("", &["series", "x_mm", "value"]);
         for s in &series {

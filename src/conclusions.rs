@@ -303,10 +303,21 @@ pub fn table(checks: &[Check]) -> Table {
     t
 }
 
-/// The paper's figures redone with both models along the centreline: (file stem, title,
-/// y label, series). Beam curves dashed in the legend by name ("beam ..."), plate curves
-/// "plate ...".
-pub fn study_figures() -> Result<Vec<(String, String, String, Vec<crate::plot::Series>)>, Failure> {
+/// A figure of the paper redone: file stem, title, y label and curves.
+pub struct Figure {
+    pub stem: String,
+    pub title: String,
+    pub y_label: String,
+    pub series: Vec<crate::plot::Series>,
+}
+
+fn figure(stem: &str, title: &str, y_label: &str, series: Vec<crate::plot::Series>) -> Figure {
+    Figure { stem: stem.into(), title: title.into(), y_label: y_label.into(), series }
+}
+
+/// The paper's figures redone with both models along the centreline; curves are named
+/// "beam ..." and "plate ...".
+pub fn study_figures() -> Result<Vec<Figure>, Failure> {
     use crate::plot::Series;
     let paper = Paper::new();
     let scene = &paper.scene;
@@ -343,22 +354,22 @@ pub fn study_figures() -> Result<Vec<(String, String, String, Vec<crate::plot::S
             s10d.push(curve(p, c, &defl)?);
         }
     }
-    figs.push((
-        "study-fig08-yield-coal".into(),
-        "Fig. 8 redone: coal yield velocity along the centreline".into(),
-        "v_y (m/s)".into(),
+    figs.push(figure(
+        "study-fig08-yield-coal",
+        "Fig. 8 redone: coal yield velocity along the centreline",
+        "v_y (m/s)",
         s8,
     ));
-    figs.push((
-        "study-fig10-contact-force".into(),
-        "Fig. 10(1) redone: coal P_max at 0.008 m/s, centreline".into(),
-        "P_max (N)".into(),
+    figs.push(figure(
+        "study-fig10-contact-force",
+        "Fig. 10(1) redone: coal P_max at 0.008 m/s, centreline",
+        "P_max (N)",
         s10,
     ));
-    figs.push((
-        "study-fig10-deflection".into(),
-        "Fig. 10(3) redone: impact-point deflection, centreline".into(),
-        "deflection (µm)".into(),
+    figs.push(figure(
+        "study-fig10-deflection",
+        "Fig. 10(3) redone: impact-point deflection, centreline",
+        "deflection (µm)",
         s10d,
     ));
     let mut s11 = Vec::new();
@@ -367,10 +378,10 @@ pub fn study_figures() -> Result<Vec<(String, String, String, Vec<crate::plot::S
             s11.push(curve(p, c, &vy_coal)?);
         }
     }
-    figs.push((
-        "study-fig11-yield-stiffness".into(),
-        "Fig. 11 redone: coal yield velocity, Con 2, three k_T".into(),
-        "v_y (m/s)".into(),
+    figs.push(figure(
+        "study-fig11-yield-stiffness",
+        "Fig. 11 redone: coal yield velocity, Con 2, three k_T",
+        "v_y (m/s)",
         s11,
     ));
     let mut s17 = Vec::new();
@@ -382,10 +393,10 @@ pub fn study_figures() -> Result<Vec<(String, String, String, Vec<crate::plot::S
             s17.push(s);
         }
     }
-    figs.push((
-        "study-fig17-contact-force-bodies".into(),
-        "Fig. 17(2) redone: P_max of three spheres at 0.0025 m/s, Con 1".into(),
-        "P_max (N)".into(),
+    figs.push(figure(
+        "study-fig17-contact-force-bodies",
+        "Fig. 17(2) redone: P_max of three spheres at 0.0025 m/s, Con 1",
+        "P_max (N)",
         s17,
     ));
     let mut s14 = Vec::new();
@@ -406,10 +417,10 @@ pub fn study_figures() -> Result<Vec<(String, String, String, Vec<crate::plot::S
             ));
         }
     }
-    figs.push((
-        "study-fig14-contact-force-length".into(),
-        "Fig. 14(1) redone: coal P_max at 0.008 m/s, Con 1, four lengths".into(),
-        "P_max (N)".into(),
+    figs.push(figure(
+        "study-fig14-contact-force-length",
+        "Fig. 14(1) redone: coal P_max at 0.008 m/s, Con 1, four lengths",
+        "P_max (N)",
         s14,
     ));
     Ok(figs)
