@@ -1040,6 +1040,11 @@ A bare printed 0 is judged against the finest resolution printed in its column.
   these; all are below the 1e-5 threshold.
 - Tables 9, 10 and 12 are differences of the printed Tables 6-8 and 11 and inherit their
   recursion truncation; reproduced as differences of our values.
+- **Con 3 is not self-consistent** (reproduced as printed): by Clapeyron the stores of a linear
+  structure under P hold ½ P w, so the deflection per unit load should equal the total
+  compliance. At x = L, eqs. 43-44 give C_T + C_X = {c3_stores:.6e} m/N while eq. 40 gives the
+  cantilever tip deflection {c3_defl:.6e} m/N per unit load (ratio {c3_ratio:.6}). The energy
+  balance uses the stores, the reported deflection uses eq. 41, as the paper does.
 
 ## Table 2: the yield velocities and δ_my
 
@@ -1107,6 +1112,16 @@ takes fewer steps.
                 Solve::PaperRecursion
             )
             .deflection,
+        c3_stores = {
+            let c = beam_compliance(&paper.scene.plate, Paper::condition(3, paper.k_t), paper.scene.plate.length())?;
+            c.total()
+        },
+        c3_defl = beam_compliance(&paper.scene.plate, Paper::condition(3, paper.k_t), paper.scene.plate.length())?
+            .deflection_per_unit_load(),
+        c3_ratio = {
+            let c = beam_compliance(&paper.scene.plate, Paper::condition(3, paper.k_t), paper.scene.plate.length())?;
+            c.total() / c.deflection_per_unit_load()
+        },
         wx3 = paper
             .respond(
                 &paper.scene.plate,
