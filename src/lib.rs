@@ -3,6 +3,7 @@
 
 pub mod compare;
 pub mod conclusions;
+pub mod dynamic;
 pub mod fem;
 pub mod femreport;
 pub mod field;

@@ -18,6 +18,7 @@
 pub mod classical;
 pub mod convergence;
 pub mod corners;
+pub mod dynamics;
 pub mod element;
 pub mod mesh;
 pub mod model;

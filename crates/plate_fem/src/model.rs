@@ -64,6 +64,8 @@ pub struct Model {
     entries: Vec<(usize, usize)>,
     /// Element stiffness values in the order of `entries` (support slots excluded).
     element_values: Vec<f64>,
+    /// Consistent element mass values in the same order.
+    mass_values: Vec<f64>,
     /// The assembled diagonal, the scale given to a held DOF.
     diagonal: Vec<f64>,
     pattern: SymbolicSparseColMat<usize>,
@@ -92,15 +94,19 @@ impl Model {
         let n = mesh.dofs();
         let d = props.rigidity();
         let mut cache: HashMap<(u64, u64), Mat16> = HashMap::new();
+        let mut mass_cache: HashMap<(u64, u64), Mat16> = HashMap::new();
+        let rho_h = props.density * props.thickness;
         let per = 136;
         let mut entries = Vec::with_capacity(mesh.elements() * per + n);
         let mut element_values = Vec::with_capacity(mesh.elements() * per);
+        let mut mass_values = Vec::with_capacity(mesh.elements() * per);
         let mut diagonal = vec![0.0; n];
         for ez in 0..mesh.nz() {
             for ex in 0..mesh.nx() {
                 let (a, b) = mesh.element_size(ex, ez);
                 let ke =
                     cache.entry(size_key(a, b)).or_insert_with(|| element::stiffness(a, b, d, props.poisson_ratio));
+                let me = mass_cache.entry(size_key(a, b)).or_insert_with(|| element::mass(a, b, rho_h));
                 let dofs = mesh.element_dofs(ex, ez);
                 for p in 0..16 {
                     diagonal[dofs[p]] += ke[(p, p)];
@@ -109,6 +115,7 @@ impl Model {
                         if r <= c && (r < c || p == q) {
                             entries.push((r, c));
                             element_values.push(ke[(p, q)]);
+                            mass_values.push(me[(p, q)]);
                         }
                     }
                 }
@@ -120,7 +127,7 @@ impl Model {
             .map_err(|e| FemError::Factorization(format!("pattern: {e:?}")))?;
         let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Upper)
             .map_err(|e| FemError::Factorization(format!("symbolic analysis: {e:?}")))?;
-        Ok(Self { props, mesh, entries, element_values, diagonal, pattern, argsort, symbolic })
+        Ok(Self { props, mesh, entries, element_values, mass_values, diagonal, pattern, argsort, symbolic })
     }
 
     pub fn props(&self) -> &PlateProperties {
@@ -139,6 +146,24 @@ impl Model {
 
     /// The stiffness with `supports` applied, upper triangle, in the model's pattern.
     pub fn supported_stiffness(&self, supports: &Supports) -> Result<SparseColMat<usize, f64>, FemError> {
+        self.supported_matrix(supports, 1.0, 0.0, true)
+    }
+
+    /// The consistent mass with the held DOFs of `supports` removed (their rows and columns
+    /// zero, unit diagonal kept out: a held DOF has no inertia).
+    pub fn supported_mass(&self, supports: &Supports) -> Result<SparseColMat<usize, f64>, FemError> {
+        self.supported_matrix(supports, 0.0, 1.0, false)
+    }
+
+    /// α K + β M with `supports` applied (springs scaled by α), upper triangle. A held DOF
+    /// keeps a positive diagonal when `hold_diagonal`, so the matrix stays factorizable.
+    pub fn supported_matrix(
+        &self,
+        supports: &Supports,
+        alpha: f64,
+        beta: f64,
+        hold_diagonal: bool,
+    ) -> Result<SparseColMat<usize, f64>, FemError> {
         supports.validate(self.props.length, self.props.width)?;
         let n = self.dofs();
         let mut held = vec![false; n];
@@ -148,12 +173,17 @@ impl Model {
         let m = self.element_values.len();
         let mut values = Vec::with_capacity(self.entries.len());
         for (k, &(r, c)) in self.entries[..m].iter().enumerate() {
-            values.push(if held[r] || held[c] { 0.0 } else { self.element_values[k] });
+            values.push(if held[r] || held[c] {
+                0.0
+            } else {
+                alpha * self.element_values[k] + beta * self.mass_values[k]
+            });
         }
-        let mut slots: Vec<f64> =
-            (0..n).map(|i| if held[i] { self.diagonal[i].max(f64::MIN_POSITIVE) } else { 0.0 }).collect();
+        let mut slots: Vec<f64> = (0..n)
+            .map(|i| if held[i] && hold_diagonal { self.diagonal[i].max(f64::MIN_POSITIVE) } else { 0.0 })
+            .collect();
         for (dof, k) in supports.springs(&self.mesh) {
-            slots[dof] += k;
+            slots[dof] += alpha * k;
         }
         values.extend(slots);
         SparseColMat::new_from_argsort(self.pattern.clone(), &self.argsort, &values)
@@ -163,7 +193,20 @@ impl Model {
     /// One numeric Cholesky factorization for `supports` (checked for rigid-body motion
     /// first).
     pub fn factorize(&self, supports: &Supports) -> Result<Factorization<'_>, FemError> {
-        let k = self.supported_stiffness(supports)?;
+        self.factorize_matrix(supports, self.supported_stiffness(supports)?)
+    }
+
+    /// Factorizes K + `shift`·M for `supports` (the effective matrix of implicit time
+    /// stepping); same symbolic analysis.
+    pub fn factorize_shifted(&self, supports: &Supports, shift: f64) -> Result<Factorization<'_>, FemError> {
+        self.factorize_matrix(supports, self.supported_matrix(supports, 1.0, shift, true)?)
+    }
+
+    fn factorize_matrix(
+        &self,
+        supports: &Supports,
+        k: SparseColMat<usize, f64>,
+    ) -> Result<Factorization<'_>, FemError> {
         let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), k.as_ref(), Side::Upper).map_err(|e| {
             FemError::Factorization(format!("{e:?}: the stiffness is not positive definite (extreme stiffness ratio?)"))
         })?;
@@ -208,6 +251,26 @@ impl Model {
         let (a, b) = self.mesh.element_size(ex, ez);
         element::stiffness(a, b, self.props.rigidity(), self.props.poisson_ratio)
     }
+}
+
+/// y = A x for a symmetric matrix stored as its upper triangle.
+pub fn symmetric_upper_apply(a: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
+    let a = a.as_ref();
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let mut y = vec![0.0; x.len()];
+    for j in 0..a.ncols() {
+        let xj = x[j];
+        let mut acc = 0.0;
+        for p in cp[j]..cp[j + 1] {
+            let i = ri[p];
+            acc += v[p] * x[i];
+            if i != j {
+                y[i] += v[p] * xj;
+            }
+        }
+        y[j] += acc;
+    }
+    y
 }
 
 /// What one corner does under a unit load at the impact point.

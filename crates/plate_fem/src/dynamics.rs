@@ -1,0 +1,171 @@
+//! Structural dynamics of the supported plate: M ẅ + K w = N(p) F(t), with Newmark's
+//! average-acceleration scheme (β = 1/4, γ = 1/2: unconditionally stable, second order, no
+//! numerical damping, energy-conserving for linear systems).
+//!
+//! The effective matrix K + (4/Δt²)M is factorized once per time step size. The load acts
+//! at one point p, so each step splits into a predictor w_hat (the response if F_{n+1} = 0,
+//! one solve) and the precomputed response G = (K + 4M/Δt²)⁻¹ N to a unit force: the point
+//! displacement at the end of the step is w_hat(p) + g F_{n+1} with g = Nᵀ G. A caller with
+//! a nonlinear force law (contact) solves one scalar equation per step and commits F.
+//! The module knows nothing of what produces F.
+
+use crate::model::{symmetric_upper_apply, Factorization, Model};
+use crate::supports::{Corner, CornerSupport, Supports};
+use crate::FemError;
+use faer::{sparse::SparseColMat, Mat};
+
+/// The time-stepping state and its operators.
+pub struct Newmark<'m> {
+    model: &'m Model,
+    supports: Supports,
+    effective: Factorization<'m>,
+    stiffness: SparseColMat<usize, f64>,
+    mass: SparseColMat<usize, f64>,
+    dt: f64,
+    /// N(p), the load vector of a unit force at p.
+    load: Vec<f64>,
+    /// (K + 4M/Δt²)⁻¹ N.
+    unit_response: Vec<f64>,
+    w: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    w_hat: Vec<f64>,
+}
+
+/// Energies of the plate (J).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PlateEnergy {
+    pub kinetic: f64,
+    pub strain: f64,
+    pub springs: f64,
+}
+
+impl<'m> Newmark<'m> {
+    /// A plate at rest, loaded at (x, z), stepping with `dt`.
+    pub fn new(model: &'m Model, supports: Supports, dt: f64, x: f64, z: f64) -> Result<Self, FemError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(FemError::Mesh(format!("time step {dt} s is outside the allowed range (0, inf) s")));
+        }
+        let effective = model.factorize_shifted(&supports, 4.0 / (dt * dt))?.with_refinement(1);
+        let stiffness = model.supported_matrix(&supports, 1.0, 0.0, false)?;
+        let mass = model.supported_mass(&supports)?;
+        let load = effective.load_vector(x, z)?;
+        let n = load.len();
+        let mut g = Mat::from_fn(n, 1, |i, _| load[i]);
+        effective.solve_in_place(&mut g);
+        let unit_response = (0..n).map(|i| g[(i, 0)]).collect();
+        Ok(Self {
+            model,
+            supports,
+            effective,
+            stiffness,
+            mass,
+            dt,
+            load,
+            unit_response,
+            w: vec![0.0; n],
+            v: vec![0.0; n],
+            a: vec![0.0; n],
+            w_hat: vec![0.0; n],
+        })
+    }
+
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// g = Nᵀ (K + 4M/Δt²)⁻¹ N: the point's displacement at the end of a step per unit force.
+    pub fn point_flexibility(&self) -> f64 {
+        dot(&self.load, &self.unit_response)
+    }
+
+    /// Point displacement and velocity now.
+    pub fn point_state(&self) -> (f64, f64) {
+        (dot(&self.load, &self.w), dot(&self.load, &self.v))
+    }
+
+    /// The predictor for the next step: (w_hat(p), v_hat(p)), the point's displacement and
+    /// velocity at the end of the step if no force acted in it. The velocity then grows by
+    /// (2/Δt) g F with the force.
+    pub fn predict(&mut self) -> (f64, f64) {
+        let (c0, c1) = (4.0 / (self.dt * self.dt), 4.0 / self.dt);
+        let n = self.w.len();
+        let y: Vec<f64> = (0..n).map(|i| c0 * self.w[i] + c1 * self.v[i] + self.a[i]).collect();
+        let rhs = symmetric_upper_apply(&self.mass, &y);
+        let mut m = Mat::from_fn(n, 1, |i, _| rhs[i]);
+        self.effective.solve_in_place(&mut m);
+        self.w_hat = (0..n).map(|i| m[(i, 0)]).collect();
+        let wp = dot(&self.load, &self.w_hat);
+        // v_{n+1} = v_n + Δt/2 (a_n + a_{n+1}), a_{n+1} = c0 (w_{n+1} - w_n) - c1 v_n - a_n.
+        let vp = (0..n)
+            .map(|i| self.load[i] * (self.v[i] + 0.5 * self.dt * (c0 * (self.w_hat[i] - self.w[i]) - c1 * self.v[i])))
+            .sum();
+        (wp, vp)
+    }
+
+    /// Ends the step with force `f` at the point.
+    pub fn commit(&mut self, f: f64) {
+        let (c0, c1) = (4.0 / (self.dt * self.dt), 4.0 / self.dt);
+        for i in 0..self.w.len() {
+            let w_new = self.w_hat[i] + f * self.unit_response[i];
+            let a_new = c0 * (w_new - self.w[i]) - c1 * self.v[i] - self.a[i];
+            self.v[i] += 0.5 * self.dt * (self.a[i] + a_new);
+            self.a[i] = a_new;
+            self.w[i] = w_new;
+        }
+    }
+
+    /// Kinetic, strain and spring energy of the plate now.
+    pub fn energy(&self) -> PlateEnergy {
+        let kinetic = 0.5 * dot(&self.v, &symmetric_upper_apply(&self.mass, &self.v));
+        let total = 0.5 * dot(&self.w, &symmetric_upper_apply(&self.stiffness, &self.w));
+        let mesh = self.model.mesh();
+        let springs: f64 = Corner::ALL
+            .iter()
+            .zip(&self.supports.corners)
+            .map(|(c, s)| match *s {
+                CornerSupport::Spring(k) => 0.5 * k * self.w[mesh.corner_w_dof(c.index())].powi(2),
+                _ => 0.0,
+            })
+            .sum();
+        PlateEnergy { kinetic, strain: total - springs, springs }
+    }
+
+    /// The deflection field now.
+    pub fn field(&self) -> &[f64] {
+        &self.w
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The fundamental angular frequency ω₁ of the supported plate (rad/s), by inverse
+/// iteration with the Rayleigh quotient; returns (ω₁, relative change of the last step).
+pub fn fundamental_frequency(model: &Model, supports: &Supports, iterations: usize) -> Result<(f64, f64), FemError> {
+    let f = model.factorize(supports)?;
+    let k = model.supported_matrix(supports, 1.0, 0.0, false)?;
+    let m = model.supported_mass(supports)?;
+    let n = model.dofs();
+    // Start from the static deflection under a uniform-ish load (all w DOFs 1).
+    let mut x: Vec<f64> = (0..n).map(|i| if i % 4 == 0 { 1.0 } else { 0.0 }).collect();
+    let (mut omega2, mut change) = (f64::NAN, f64::NAN);
+    for _ in 0..iterations.max(2) {
+        let mx = symmetric_upper_apply(&m, &x);
+        let mut y = Mat::from_fn(n, 1, |i, _| mx[i]);
+        f.solve_in_place(&mut y);
+        x = (0..n).map(|i| y[(i, 0)]).collect();
+        let kx = symmetric_upper_apply(&k, &x);
+        let mx = symmetric_upper_apply(&m, &x);
+        let q = dot(&x, &kx) / dot(&x, &mx);
+        change = ((q - omega2) / q).abs();
+        omega2 = q;
+        let norm = dot(&x, &mx).sqrt();
+        x.iter_mut().for_each(|v| *v /= norm);
+        if change < 1e-13 {
+            break;
+        }
+    }
+    Ok((omega2.sqrt(), change))
+}

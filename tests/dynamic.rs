@@ -1,0 +1,105 @@
+//! Transient impact (issue 6) against its references.
+
+use impact::dynamic::{simulate, zener, Striker};
+use impact::fem::{mesh_for, plate_properties};
+use impact::run::impact_of;
+use impact::scene::Scene;
+use plate_fem::dynamics::{fundamental_frequency, Newmark};
+use plate_fem::{Mesh, Model, PlateProperties, Supports};
+
+fn coal(v: f64, e: f64) -> Striker {
+    let scene = Scene::default_scene();
+    let imp = impact_of(&scene, &scene.bodies[0], v);
+    Striker { k: imp.contact_stiffness, restitution: e, mass: imp.mass, velocity: v }
+}
+
+/// Rigid target, e = 1: Hertz. Newmark's rule is second order, so the force error falls 4x
+/// per halving of Δt (measured -1.3e-4 at t_c/100, -3.5e-5 at t_c/200); at t_c/200 both
+/// force and duration are within 1e-4 of Hertz. The rebound is elastic.
+#[test]
+fn rigid_target_is_hertz() {
+    let s = coal(0.008, 1.0);
+    let tc = s.hertz_time();
+    let o = simulate(&s, None, tc / 200.0, 3.0 * tc);
+    assert!((o.force_max / s.hertz_force() - 1.0).abs() < 1e-4, "{}", o.force_max / s.hertz_force());
+    assert!((o.contact_time / tc - 1.0).abs() < 1e-4, "{}", o.contact_time / tc);
+    assert!((o.apparent_restitution - 1.0).abs() < 1e-5);
+    let coarse = simulate(&s, None, tc / 100.0, 3.0 * tc);
+    let ratio = (coarse.force_max - s.hertz_force()) / (o.force_max - s.hertz_force());
+    assert!((3.0..5.0).contains(&ratio), "second order: error ratio {ratio}");
+}
+
+/// With damping on a rigid target, the apparent restitution of the Flores law tends to e as
+/// e → 1: its damping coefficient 8(1-e)/(5e) comes from an energy estimate exact in that
+/// limit. Measured on this integrator (t_c/800): relative deviation -0.0007, -0.0033,
+/// -0.0068, -0.0143 for e = 0.99, 0.95, 0.9, 0.8 (about -0.07(1 - e)), and -0.030 at the
+/// paper's e = 0.65. The test: within 0.1(1 - e) for e ≥ 0.8, and monotone in e.
+#[test]
+fn rigid_target_restitution_follows_flores() {
+    let mut last = 0.0;
+    for e in [0.8, 0.9, 0.95, 0.99] {
+        let s = coal(0.008, e);
+        let o = simulate(&s, None, s.hertz_time() / 800.0, 3.0 * s.hertz_time());
+        assert!((o.apparent_restitution / e - 1.0).abs() < 0.1 * (1.0 - e), "e = {e}: {}", o.apparent_restitution);
+        assert!(o.apparent_restitution > last);
+        last = o.apparent_restitution;
+    }
+}
+
+/// e = 1 on the paper's plate: total energy (sphere, contact, plate kinetic and strain,
+/// springs) is conserved up to the O(Δt²) error of the trapezoidal treatment of the
+/// nonlinear contact: below 1e-4 at t_c/200 (measured 5.3e-5), falling ~4x per halving.
+#[test]
+fn energy_is_conserved_without_damping() {
+    let scene = Scene::default_scene();
+    let props = plate_properties(&scene);
+    let model = Model::new(props, mesh_for(&props, 20).unwrap()).unwrap();
+    let s = coal(0.008, 1.0);
+    let tc = s.hertz_time();
+    let run = |n: f64| {
+        let mut nm =
+            Newmark::new(&model, Supports::con2(5.11545e8), tc / n, props.length / 2.0, props.width / 2.0).unwrap();
+        simulate(&s, Some(&mut nm), tc / n, 5.0 * tc).max_energy_error
+    };
+    let (e100, e200) = (run(100.0), run(200.0));
+    assert!(e200 < 1e-4, "{e200}");
+    assert!((3.0..5.0).contains(&(e100 / e200)), "O(dt²): {e100} / {e200}");
+}
+
+/// Zener's infinite plate: a 1 m x 1 m, 4 mm plate (simply supported far edges) struck at
+/// its centre by the coal sphere at 1 m/s; contact ends (0.45 ms) before bending waves
+/// return from the edges. The FE converges to Zener's ODE as the mesh refines (P_max error
+/// 2.6e-2, 5.2e-3, 3.7e-3, 1.8e-3 on 16², 24², 32², 48²): on 24 x 24 within 1 %.
+#[test]
+fn large_plate_meets_zener() {
+    let scene = Scene::default_scene();
+    let props = PlateProperties { length: 1.0, width: 1.0, thickness: 0.004, ..plate_properties(&scene) };
+    let s = coal(1.0, 1.0);
+    let z = 8.0 * (props.rigidity() * props.density * props.thickness).sqrt();
+    let (fz, tz) = zener(&s, z, 20000);
+    assert!(fz < 0.7 * s.hertz_force(), "the plate matters in this case");
+    let model = Model::new(props, Mesh::uniform(1.0, 1.0, 24, 24).unwrap()).unwrap();
+    let mut nm = Newmark::new(&model, Supports::all_edges_simple(), tz / 200.0, 0.5, 0.5).unwrap();
+    let o = simulate(&s, Some(&mut nm), tz / 200.0, 5.0 * tz);
+    assert!((o.force_max / fz - 1.0).abs() < 1e-2, "{}", o.force_max / fz);
+    assert!((o.contact_time / tz - 1.0).abs() < 1e-2, "{}", o.contact_time / tz);
+}
+
+/// The fundamental frequency by inverse iteration: for a simply supported square plate,
+/// ω₁ = 2π² /a² √(D/ρh) (Timoshenko), within the O(h⁴) eigenvalue error of BFS on 16².
+#[test]
+fn fundamental_frequency_of_navier_plate() {
+    let p = PlateProperties {
+        length: 1.0,
+        width: 1.0,
+        thickness: 0.01,
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.3,
+        density: 7850.0,
+    };
+    let model = Model::new(p, Mesh::uniform(1.0, 1.0, 16, 16).unwrap()).unwrap();
+    let (w, change) = fundamental_frequency(&model, &Supports::all_edges_simple(), 100).unwrap();
+    let exact = 2.0 * std::f64::consts::PI.powi(2) * (p.rigidity() / (p.density * p.thickness)).sqrt();
+    assert!((w / exact - 1.0).abs() < 1e-5, "{}", w / exact);
+    assert!(change < 1e-10);
+}
