@@ -675,6 +675,7 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
         held(true),
         t.to_markdown()
     );
+    let _ = writeln!(md, "\n## Is the quasi-static assumption right?\n\nThe paper points to a dynamic FE model as future work. [dynamic/index.md](dynamic/index.md) integrates sphere, Flores contact and plate dynamics in time and sets them against both quasi-static models: for this plate the contact lasts about a tenth of the plate's fundamental period, and the quasi-static balance is off by the amounts summarized there.\n");
     let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
     for crate::conclusions::Figure { stem, title, y_label: ylabel, series } in crate::conclusions::study_figures()? {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));

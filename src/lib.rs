@@ -4,6 +4,7 @@
 pub mod compare;
 pub mod conclusions;
 pub mod dynamic;
+pub mod dynreport;
 pub mod fem;
 pub mod femreport;
 pub mod field;

@@ -56,6 +56,15 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Transient impact against the quasi-static models for a scene (default out:
+    /// reports/<scene>/dynamic).
+    Dynamic {
+        /// Scene file; default: the paper's Table 1.
+        #[arg(long, value_name = "FILE")]
+        scene: Option<PathBuf>,
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         #[arg(long, value_name = "DIR", default_value = "reports/paper")]
@@ -143,6 +152,12 @@ fn execute(command: Command) -> Result<(), Failure> {
             emit(&c, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
         }
         Command::Paper { out } => write(&out, &impact::paper::reproduce()?),
+        Command::Dynamic { scene, out } => {
+            let scene = load(&Common { scene, json: false, out: None })?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("reports").join(slug(&scene.name)).join("dynamic"));
+            let points = impact::compare::scene_points(&scene);
+            write(&dir, &impact::dynreport::report(&scene, &points)?)
+        }
         Command::Compare { scene, out } => {
             let scene = load(&Common { scene, json: false, out: None })?;
             let dir = out.unwrap_or_else(|| PathBuf::from("reports").join(slug(&scene.name)));
@@ -155,6 +170,11 @@ fn execute(command: Command) -> Result<(), Failure> {
             let scene = Scene::default_scene();
             let mut cmp = impact::compare::report(&scene)?;
             impact::compare::add_paper_studies(&mut cmp)?;
+            // The transient section at representative points: Area 2 and the midpoint on the
+            // centreline, the midpoint of a free edge and of an end.
+            let (l, b) = (scene.plate.length(), scene.plate.width());
+            let points = [(l / 4.0, b / 2.0), (l / 2.0, b / 2.0), (l / 2.0, 0.0), (0.0, b / 2.0)];
+            cmp.nest("dynamic", impact::dynreport::report(&scene, &points)?);
             all.nest(&slug(&scene.name), cmp);
             write(&out, &all)
         }
