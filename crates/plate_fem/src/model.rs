@@ -335,28 +335,13 @@ impl<'m> Factorization<'m> {
         self
     }
 
-    /// y = K x with the supported stiffness (stored as its upper triangle), column by column.
+    /// y = K x with the supported stiffness, column by column.
     pub fn apply(&self, x: faer::MatRef<'_, f64>) -> Mat<f64> {
-        let k = self.stiffness.as_ref();
-        let (cp, ri, v) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
         let mut y = Mat::<f64>::zeros(x.nrows(), x.ncols());
         for c in 0..x.ncols() {
             let xc: Vec<f64> = x.col(c).iter().copied().collect();
-            let mut yc = vec![0.0; xc.len()];
-            for j in 0..k.ncols() {
-                let xj = xc[j];
-                let mut acc = 0.0;
-                for p in cp[j]..cp[j + 1] {
-                    let i = ri[p];
-                    acc += v[p] * xc[i];
-                    if i != j {
-                        yc[i] += v[p] * xj;
-                    }
-                }
-                yc[j] += acc;
-            }
-            for (i, val) in yc.into_iter().enumerate() {
-                y[(i, c)] = val;
+            for (i, v) in symmetric_upper_apply(&self.stiffness, &xc).into_iter().enumerate() {
+                y[(i, c)] = v;
             }
         }
         y
