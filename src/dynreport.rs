@@ -210,7 +210,7 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
 
     let props = plate_properties(scene);
     let mut en =
-        Table::new("", &["steps per t_c", "max |E - E₀|/E₀, e = 1, Con 2, centre", "P_max (N)", "run time (s)"]);
+        Table::new("", &["steps per t_c", "max abs(E - E₀)/E₀, e = 1, Con 2, centre", "P_max (N)", "run time (s)"]);
     let model = Model::new(props, mesh_for(&props, DYNAMIC_MESH)?)?;
     let mut p_ref = Vec::new();
     for n in [50.0, 100.0, 200.0, 400.0] {

@@ -128,7 +128,8 @@ impl Table {
     /// A GitHub-flavoured Markdown table (without the title).
     pub fn to_markdown(&self) -> String {
         let mut out = String::new();
-        let _ = writeln!(out, "| {} |", self.headers.join(" | "));
+        let headers: Vec<String> = self.headers.iter().map(|h| h.replace('|', "\\|")).collect();
+        let _ = writeln!(out, "| {} |", headers.join(" | "));
         let _ = writeln!(out, "|{}|", self.headers.iter().map(|_| "---").collect::<Vec<_>>().join("|"));
         for r in &self.rows {
             let cells: Vec<String> = r.iter().map(|c| c.show().replace('|', "\\|")).collect();
