@@ -331,6 +331,9 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
     for kk in [5e4, 2.50025e8, 5e8] {
         conds.push(named(&format!("Con 2, k_T = {kk:e}"), Condition::BothSprings { k_t: kk }));
     }
+    for kk in [5e4, 2.50025e8, 5e8] {
+        conds.push(named(&format!("Con 3, k_T = {kk:e}"), Condition::FixedAndSprings { k_t: kk }));
+    }
     let line = Line::new(scene, &conds, b / 2.0)?;
     let mm = |x: f64| x * 1e3;
     let mut figs = Vec::new();
@@ -373,7 +376,7 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
         s10d,
     ));
     let mut s11 = Vec::new();
-    for c in &conds[3..] {
+    for c in &conds[3..6] {
         for p in [false, true] {
             s11.push(curve(p, c, &vy_coal)?);
         }
@@ -383,6 +386,65 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
         "Fig. 11 redone: coal yield velocity, Con 2, three k_T",
         "v_y (m/s)",
         s11,
+    ));
+    let mut s12 = Vec::new();
+    let mut s13 = Vec::new();
+    let spring_energy =
+        |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.spring_ratio);
+    for c in &conds[3..] {
+        for p in [false, true] {
+            if c.name.starts_with("Con 3") {
+                s12.push(curve(p, c, &vy_coal)?);
+            }
+            s13.push(curve(p, c, &spring_energy)?);
+        }
+    }
+    figs.push(figure(
+        "study-fig12-yield-stiffness-con3",
+        "Fig. 12 redone: coal yield velocity, Con 3, three k_T",
+        "v_y (m/s)",
+        s12,
+    ));
+    figs.push(figure(
+        "study-fig13-spring-energy",
+        "Fig. 13(8) redone: spring energy ratio, coal 0.008 m/s, three k_T",
+        "spring energy / E0",
+        s13,
+    ));
+    // Figs. 18-19, Con 2 at 0.0025 m/s: the right-end spring force (beam: each of its two
+    // springs; plate: the corner (L, 0) spring) and the spring energy ratio.
+    let mut s18 = Vec::new();
+    let mut s19 = Vec::new();
+    for body in [&paper.coal, &paper.gangue1, &paper.gangue2] {
+        for p in [false, true] {
+            let label = format!("{} {}", if p { "plate" } else { "beam" }, body.name);
+            let mut pts18 = Vec::new();
+            let mut pts19 = Vec::new();
+            for &x in &line.xs {
+                let r = line.response(p, &conds[1], body, x, 0.0025)?;
+                let f = r
+                    .spring_forces
+                    .iter()
+                    .find(|s| s.name.contains("right") || s.name.ends_with("(L, 0)"))
+                    .map_or(f64::NAN, |s| s.force);
+                pts18.push((mm(x), f));
+                pts19.push((mm(x), r.spring_ratio));
+            }
+            s18.push(Series::new(label.clone(), pts18));
+            s19.push(Series::new(label, pts19));
+        }
+    }
+    figs.push(figure(
+        "study-fig18-spring-force",
+        "Fig. 18 redone: right-end spring force, Con 2, 0.0025 m/s",
+        "spring force (N)",
+        s18,
+    ));
+    figs.push(figure(
+        "study-fig19-spring-energy",
+        "Fig. 19 redone: spring energy ratio, Con 2, 0.0025 m/s",
+        "spring energy / E0",
+        s19,
     ));
     let mut s17 = Vec::new();
     for body in [&paper.coal, &paper.gangue1, &paper.gangue2] {
