@@ -461,12 +461,33 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
         "P_max (N)",
         s17,
     ));
+    let mut s15 = Vec::new();
+    let mut s16 = Vec::new();
     let mut s14 = Vec::new();
     for f in [0.8, 1.0, 1.2, 1.4] {
         let plate = scene.plate.with_length(l * f)?;
         let s = Scene { plate, ..scene.clone() };
         let c1 = named("Con 1", Condition::BothFixed);
-        let ln = Line::new(&s, std::slice::from_ref(&c1), b / 2.0)?;
+        // Section IV-C uses k_T = 5e6 N/m for the length study.
+        let c2 = named("Con 2", Condition::BothSprings { k_t: 5e6 });
+        let ln = Line::new(&s, &[c1.clone(), c2.clone()], b / 2.0)?;
+        for p in [false, true] {
+            let (mut f, mut e) = (Vec::new(), Vec::new());
+            for &x in &ln.xs {
+                let r = ln.response(p, &c2, &paper.coal, x, 0.008)?;
+                // Left end: the beam's each spring, the plate's corner (0, 0) spring.
+                let left = r
+                    .spring_forces
+                    .iter()
+                    .find(|s| s.name.contains("left") || s.name.ends_with("(0, 0)"))
+                    .map_or(f64::NAN, |s| s.force);
+                f.push((mm(x), left));
+                e.push((mm(x), r.spring_ratio));
+            }
+            let label = format!("{} L = {:.0} mm", if p { "plate" } else { "beam" }, plate.length() * 1e3);
+            s15.push(Series::new(label.clone(), f));
+            s16.push(Series::new(label, e));
+        }
         for p in [false, true] {
             let pts = ln
                 .xs
@@ -479,6 +500,18 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
             ));
         }
     }
+    figs.push(figure(
+        "study-fig15-spring-force-length",
+        "Fig. 15 redone: left-end spring force, Con 2, k_T = 5e6 N/m, coal 0.008 m/s, four lengths",
+        "spring force (N)",
+        s15,
+    ));
+    figs.push(figure(
+        "study-fig16-spring-energy-length",
+        "Fig. 16 redone: spring energy ratio, Con 2, k_T = 5e6 N/m, four lengths",
+        "spring energy / E0",
+        s16,
+    ));
     figs.push(figure(
         "study-fig14-contact-force-length",
         "Fig. 14(1) redone: coal P_max at 0.008 m/s, Con 1, four lengths",

@@ -64,6 +64,13 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<(Table, Vec<Ou
         ],
     );
     let mut outs = Vec::new();
+    let total = scene.conditions.len() * scene.bodies.len() * scene.velocities.len() * points.len();
+    let pb = indicatif::ProgressBar::new(total as u64);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("transient runs [{bar:30}] {pos}/{len} {elapsed}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
     for cond in &scene.conditions {
         let (w1, _) = fundamental_frequency(&model, &Supports::corners(corner_supports(cond.condition)), 200)?;
         let t1 = 2.0 * std::f64::consts::PI / w1;
@@ -96,10 +103,12 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<(Table, Vec<Ou
                         (m.sphere_kinetic / e0).into(),
                     ]);
                     outs.push(o);
+                    pb.inc(1);
                 }
             }
         }
     }
+    pb.finish_and_clear();
     Ok((t, outs))
 }
 
