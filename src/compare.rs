@@ -51,7 +51,11 @@ pub fn scene_points(scene: &Scene) -> Vec<(f64, f64)> {
 
 /// Runs both models on the scene's own points.
 pub fn pair(scene: &Scene) -> Result<Pair, Failure> {
-    let model = PlateModel::compute(scene, &scene.conditions, &scene_points(scene), BASE_MESH, LEVELS)?;
+    pair_on(scene, PlateModel::compute(scene, &scene.conditions, &scene_points(scene), BASE_MESH, LEVELS)?)
+}
+
+/// Runs both models on the scene's points with a plate model already computed there.
+pub fn pair_on(scene: &Scene, model: PlateModel) -> Result<Pair, Failure> {
     let beam = run(scene, &BeamModel { plate: &scene.plate })?;
     let plate = run(scene, &model)?;
     Ok(Pair { beam, plate, model })
@@ -218,14 +222,23 @@ pub struct Maps {
     pub plate: Vec<Vec<Vec<f64>>>,
     pub error: Vec<Vec<Vec<f64>>>,
     pub beam: Vec<Vec<f64>>,
-    pub model: PlateModel,
 }
 
+/// The map grid: L in `MAP_X - 1` parts, B in `MAP_Z - 1`.
+pub fn map_points(scene: &Scene) -> Vec<(f64, f64)> {
+    let zs = even_points(scene.plate.width(), MAP_Z);
+    even_points(scene.plate.length(), MAP_X).into_iter().flat_map(|x| zs.iter().map(move |&z| (x, z))).collect()
+}
+
+/// The maps, with their own plate model.
 pub fn maps(scene: &Scene) -> Result<Maps, Failure> {
+    maps_from(scene, &PlateModel::compute(scene, &scene.conditions, &map_points(scene), BASE_MESH, LEVELS)?)
+}
+
+/// The maps from a plate model that holds the map grid.
+pub fn maps_from(scene: &Scene, model: &PlateModel) -> Result<Maps, Failure> {
     let xs = even_points(scene.plate.length(), MAP_X);
     let zs = even_points(scene.plate.width(), MAP_Z);
-    let pts: Vec<(f64, f64)> = xs.iter().flat_map(|&x| zs.iter().map(move |&z| (x, z))).collect();
-    let model = PlateModel::compute(scene, &scene.conditions, &pts, BASE_MESH, LEVELS)?;
     let beam = BeamModel { plate: &scene.plate };
     let mut plate = Vec::new();
     let mut error = Vec::new();
@@ -249,7 +262,7 @@ pub fn maps(scene: &Scene) -> Result<Maps, Failure> {
         error.push(egrid);
         beam_c.push(brow);
     }
-    Ok(Maps { xs, zs, plate, error, beam: beam_c, model })
+    Ok(Maps { xs, zs, plate, error, beam: beam_c })
 }
 
 /// A heat map as SVG: value(ix, iz) over x (mm) and z (mm), NaN drawn grey.
@@ -369,11 +382,14 @@ pub fn width_dependence(scene: &Scene) -> Result<Table, Failure> {
 /// Everything `impact compare` writes for `scene`.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let t0 = Instant::now();
-    let pb = progress(5, "plate FE at the scene's points");
-    let pr = pair(scene)?;
+    let pb = progress(5, "plate FE at all points");
+    // One plate model (one factorization per mesh) for the scene's points and the map grid.
+    let mut points = scene_points(scene);
+    points.extend(map_points(scene));
+    let pr = pair_on(scene, PlateModel::compute(scene, &scene.conditions, &points, BASE_MESH, LEVELS)?)?;
     pb.inc(1);
     pb.set_message("compliance maps");
-    let mp = maps(scene)?;
+    let mp = maps_from(scene, &pr.model)?;
     pb.inc(1);
     let mut a = Artifacts::new();
     let mut md = String::new();
@@ -731,13 +747,7 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
     let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
     for crate::conclusions::Figure { stem, title, y_label: ylabel, series } in crate::conclusions::study_figures()? {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
-        let mut csv = Table::new("", &["series", "x_mm", "value"]);
-        for s in &series {
-            for &(x, y) in &s.points {
-                csv.push(vec![s.name.clone().into(), x.into(), y.into()]);
-            }
-        }
-        a.add(format!("{stem}.csv"), csv.to_csv());
+        a.add(format!("{stem}.csv"), crate::plot::series_csv(&series));
         let _ = writeln!(md, "![{title}]({stem}.svg)\n");
     }
     a.add("index.md", md);

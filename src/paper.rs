@@ -972,13 +972,7 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
     for p in &panels {
         let svg = line_plot(&p.title, "Impact position x (mm)", &p.y_label, &p.series, p.scale);
         a.add(format!("{}.svg", p.stem), svg);
-        let mut csv = Table::new("", &["series", "x_mm", "value"]);
-        for s in &p.series {
-            for &(x, y) in &s.points {
-                csv.push(vec![s.name.clone().into(), x.into(), y.into()]);
-            }
-        }
-        a.add(format!("{}.csv", p.stem), csv.to_csv());
+        a.add(format!("{}.csv", p.stem), crate::plot::series_csv(&p.series));
         let fig = p.stem[..5].to_string();
         if fig != last_fig {
             let _ = writeln!(fig_md, "\n### Fig. {}\n", fig[3..].trim_start_matches('0'));

@@ -15,6 +15,17 @@ impl Series {
     }
 }
 
+/// The curves of a plot as long-format CSV: series, x_mm, value.
+pub fn series_csv(series: &[Series]) -> String {
+    let mut t = crate::table::Table::new("", &["series", "x_mm", "value"]);
+    for s in series {
+        for &(x, y) in &s.points {
+            t.push(vec![s.name.clone().into(), x.into(), y.into()]);
+        }
+    }
+    t.to_csv()
+}
+
 /// Axis scaling.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Scale {
