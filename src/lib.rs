@@ -1,19 +1,11 @@
-//! `impact`: the scene files, the plan and the reports around the paper's model
-//! (`analytic`) and the plate finite elements (`plate_fem`).
+//! `impact`: the command line around the physics libraries. Scene files are read and
+//! validated here (`scene`), results are presented here (`present`: tables, plots, row
+//! layouts), studies are written up here (`report`), and files are written here
+//! (`output`). The physics lives in `analytic` (the paper), `plate_fem` (plate finite
+//! elements) and `coupled` (support sets, compliance models, the plan, validity, the
+//! transient model).
 
-pub mod compare;
-pub mod conclusions;
-pub mod dynamic;
-pub mod dynreport;
-pub mod fem;
-pub mod femreport;
-pub mod field;
 pub mod output;
-pub mod paper;
-pub mod platemodel;
-pub mod plot;
-pub mod reference;
-pub mod run;
+pub mod present;
+pub mod report;
 pub mod scene;
-pub mod table;
-pub mod views;

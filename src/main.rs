@@ -1,11 +1,16 @@
 //! The `impact` command line.
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, Results};
+use coupled::transient::TransientSettings;
+use coupled::{BeamModel, PlateModel};
 use impact::output::Artifacts;
-use impact::run::{run, BeamModel, Results};
-use impact::scene::{Analysis, Scene, DEFAULT_SCENE};
-use impact::table::Table;
-use impact::views::{response_tables, slug, yield_tables};
+use impact::present::rows::{response_tables, slug, yield_tables};
+use impact::present::table::Table;
+use impact::report::studies::{BASE_MESH, LEVELS};
+use impact::report::Failure;
+use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -31,6 +36,30 @@ struct Common {
     /// Also write CSV and JSON files into DIR.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Which model answers: the paper's beam, the plate finite elements (quasi-static), the
+    /// transient plate, or all three.
+    #[arg(long, value_enum, default_value_t = ModelChoice::Beam)]
+    model: ModelChoice,
+}
+
+/// The `--model` choice.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum ModelChoice {
+    Beam,
+    Plate,
+    Transient,
+    All,
+}
+
+impl ModelChoice {
+    fn kinds(self) -> Vec<ModelKind> {
+        match self {
+            ModelChoice::Beam => vec![ModelKind::Beam],
+            ModelChoice::Plate => vec![ModelKind::Plate],
+            ModelChoice::Transient => vec![ModelKind::Transient],
+            ModelChoice::All => ModelKind::ALL.to_vec(),
+        }
+    }
 }
 
 #[derive(Subcommand)]
@@ -41,14 +70,14 @@ enum Command {
     Sweep {
         #[command(flatten)]
         common: Common,
-        /// Number of points on [0, L] (the paper uses 101).
-        #[arg(long, default_value_t = 101)]
-        count: usize,
+        /// Number of points on the centreline from 0 to L (the paper uses 101), at most 100000.
+        #[arg(long, default_value_t = 101, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+        count: u32,
     },
     /// Yield velocities at the scene's points (eqs. 51-54).
     Yield(Common),
-    /// Beam against plate FE for a scene: tables, maps across the width, error against
-    /// run time, into DIR (default reports/<scene name>).
+    /// Beam against plate FE for a scene: the studies the scene names, into DIR (default
+    /// impact-out/<scene name>/compare).
     Compare {
         /// Scene file; default: the paper's Table 1.
         #[arg(long, value_name = "FILE")]
@@ -57,7 +86,7 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Transient impact against the quasi-static models for a scene (default out:
-    /// reports/<scene>/dynamic).
+    /// impact-out/<scene name>/dynamic).
     Dynamic {
         /// Scene file; default: the paper's Table 1.
         #[arg(long, value_name = "FILE")]
@@ -67,7 +96,7 @@ enum Command {
     },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
-        #[arg(long, value_name = "DIR", default_value = "reports/paper")]
+        #[arg(long, value_name = "DIR", default_value = "impact-out/paper")]
         out: PathBuf,
     },
     /// The main job on the default scene: every report into DIR.
@@ -100,10 +129,10 @@ enum Command {
         #[arg(long, default_value = "Con 1")]
         condition: String,
         /// Load position along the length, mm.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         x_mm: f64,
         /// Load position across the width, mm.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         z_mm: f64,
         /// Elements along the longer side.
         #[arg(long, default_value_t = 40)]
@@ -121,102 +150,138 @@ fn main() -> ExitCode {
     match execute(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
+            // A closed pipe (`impact solve | head -1`) is the reader's normal end, not ours.
+            if e.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
+                return ExitCode::SUCCESS;
+            }
             eprintln!("error: {e}");
             ExitCode::FAILURE
         }
     }
 }
 
-type Failure = Box<dyn std::error::Error>;
-
-fn load(common: &Common) -> Result<Scene, Failure> {
-    Ok(match &common.scene {
+fn load(path: &Option<PathBuf>) -> Result<Scene, Failure> {
+    Ok(match path {
         Some(p) => Scene::load(p)?,
         None => Scene::default_scene(),
     })
 }
 
+/// Writes to standard output; a closed pipe ends the program quietly (see `main`).
+fn out(text: &str) -> Result<(), Failure> {
+    let mut o = std::io::stdout().lock();
+    o.write_all(text.as_bytes())?;
+    o.flush()?;
+    Ok(())
+}
+
+/// The scene's rows by each requested model.
+fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
+    let mut all = Results { scene: scene.name.clone(), responses: vec![], yields: vec![] };
+    let quasi_static = models.iter().any(|m| *m != ModelKind::Transient);
+    let periods = if quasi_static { fundamental_periods(scene)? } else { vec![] };
+    for &kind in models {
+        let r = match kind {
+            ModelKind::Beam => run(scene, &BeamModel { plate: &scene.plate }, kind, &periods)?,
+            ModelKind::Plate => {
+                let model =
+                    PlateModel::compute(&scene.plate, &scene.conditions, &scene.point_pairs(), BASE_MESH, LEVELS)?;
+                run(scene, &model, kind, &periods)?
+            }
+            ModelKind::Transient => run_transient(scene, TransientSettings::default())?,
+        };
+        all.extend(r);
+    }
+    Ok(all)
+}
+
 fn execute(command: Command) -> Result<(), Failure> {
     match command {
         Command::Solve(c) => {
-            let scene = load(&c)?;
-            emit(&c, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
+            let scene = load(&c.scene)?;
+            let r = results(&scene, &c.model.kinds())?;
+            emit(&c, &scene, r)
         }
         Command::Sweep { common, count } => {
-            let scene = load(&common)?.with_sweep(count)?;
-            emit(&common, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
+            let scene = load(&common.scene)?.with_sweep(count as usize);
+            let r = results(&scene, &common.model.kinds())?;
+            emit(&common, &scene, r)
         }
         Command::Yield(c) => {
-            let mut scene = load(&c)?;
+            let mut scene = load(&c.scene)?;
             scene.analyses = vec![Analysis::YieldVelocity];
-            emit(&c, &scene, run(&scene, &BeamModel { plate: &scene.plate })?)
+            let r = results(&scene, &c.model.kinds())?;
+            emit(&c, &scene, r)
         }
-        Command::Paper { out } => write(&out, &impact::paper::reproduce()?),
+        Command::Paper { out } => write(&out, &impact::report::paper::reproduce()?),
         Command::Dynamic { scene, out } => {
-            let scene = load(&Common { scene, json: false, out: None })?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("reports").join(slug(&scene.name)).join("dynamic"));
-            let points = impact::compare::scene_points(&scene);
-            write(&dir, &impact::dynreport::report(&scene, &points)?)
+            let scene = load(&scene)?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(slug(&scene.name)).join("dynamic"));
+            let points = scene.point_pairs();
+            write(&dir, &impact::report::transient::report(&scene, &points)?)
         }
         Command::Compare { scene, out } => {
-            let scene = load(&Common { scene, json: false, out: None })?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("reports").join(slug(&scene.name)));
-            write(&dir, &impact::compare::report(&scene)?)
+            let scene = load(&scene)?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(slug(&scene.name)).join("compare"));
+            write(&dir, &impact::report::comparison::report(&scene)?)
         }
         Command::Report { out } => {
             let mut all = Artifacts::new();
-            all.nest("paper", impact::paper::reproduce()?);
-            all.nest("fem", impact::femreport::report(&Scene::default_scene())?);
+            all.nest("paper", impact::report::paper::reproduce()?);
+            all.nest("fem", impact::report::fem_verification::report(&Scene::default_scene())?);
             let scene = Scene::default_scene();
-            let mut cmp = impact::compare::report(&scene)?;
-            impact::compare::add_paper_studies(&mut cmp)?;
+            let mut cmp = impact::report::comparison::report(&scene)?;
+            impact::report::comparison::add_paper_studies(&mut cmp)?;
             // The transient section at representative points: Area 2 and the midpoint on the
             // centreline, the midpoint of a free edge and of an end.
             let (l, b) = (scene.plate.length(), scene.plate.width());
             let points = [(l / 4.0, b / 2.0), (l / 2.0, b / 2.0), (l / 2.0, 0.0), (0.0, b / 2.0)];
-            cmp.nest("dynamic", impact::dynreport::report(&scene, &points)?);
+            cmp.nest("dynamic", impact::report::transient::report(&scene, &points)?);
             all.nest(&slug(&scene.name), cmp);
             write(&out, &all)
         }
         Command::FemBench { common, tolerance, nx, nz } => {
-            let scene = load(&common)?;
-            if !(tolerance > 0.0 && tolerance < 1.0) {
-                return Err(format!("--tolerance {tolerance} is outside the allowed range (0, 1)").into());
+            let scene = load(&common.scene)?;
+            if !(1e-12..1.0).contains(&tolerance) {
+                return Err(format!("--tolerance {tolerance} is outside the allowed range [1e-12, 1)").into());
             }
-            if nx < 2 || nz < 2 {
-                return Err(format!("--nx {nx} and --nz {nz} must each be at least 2").into());
+            if !(2..=1001).contains(&nx) || !(2..=1001).contains(&nz) {
+                return Err(format!("--nx {nx} and --nz {nz} must each be in [2, 1001]").into());
             }
-            let r = impact::fem::bench(&scene, tolerance, nx, nz)?;
+            let r = impact::report::fem_bench::bench(&scene, tolerance, nx, nz)?;
             if common.json {
-                println!("{}", serde_json::to_string_pretty(&r)?);
+                out(&format!("{}\n", serde_json::to_string_pretty(&r)?))?;
             } else {
-                for t in impact::fem::bench_tables(&r) {
-                    println!();
-                    print!("{}", t.to_text());
+                for t in impact::report::fem_bench::bench_tables(&r) {
+                    out(&format!("\n{}", t.to_text()))?;
                 }
             }
             Ok(())
         }
         Command::Field { scene, condition, x_mm, z_mm, elements, out } => {
-            let scene = load(&Common { scene, json: false, out: None })?;
+            let scene = load(&scene)?;
             let cond = scene.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
                 let names: Vec<&str> = scene.conditions.iter().map(|c| c.name.as_str()).collect();
                 format!("--condition '{condition}' is not in the scene; it has {names:?}")
             })?;
-            if !(2..=2000).contains(&elements) {
-                return Err(format!("--elements {elements} is outside the allowed range [2, 2000]").into());
+            if !(2..=400).contains(&elements) {
+                return Err(format!("--elements {elements} is outside the allowed range [2, 400]").into());
             }
-            let f = impact::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
+            let (l, b) = (scene.plate.length() * 1e3, scene.plate.width() * 1e3);
+            if !(0.0..=l).contains(&x_mm) {
+                return Err(format!("--x-mm {x_mm} is outside the plate: the allowed range is [0, {l}] mm").into());
+            }
+            if !(0.0..=b).contains(&z_mm) {
+                return Err(format!("--z-mm {z_mm} is outside the plate: the allowed range is [0, {b}] mm").into());
+            }
+            let f = impact::report::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
             let mut a = Artifacts::new();
             let name = out.file_name().ok_or("--out must name a file")?.to_owned();
             a.add(PathBuf::from(&name), serde_json::to_string(&f)?);
             let dir = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
             write(dir, &a)
         }
-        Command::DefaultScene => {
-            print!("{DEFAULT_SCENE}");
-            Ok(())
-        }
+        Command::DefaultScene => out(DEFAULT_SCENE),
     }
 }
 
@@ -226,27 +291,58 @@ fn write(dir: &Path, artifacts: &Artifacts) -> Result<(), Failure> {
     Ok(())
 }
 
+/// One line on the rows: how many, how many valid, and what the others are beyond.
+fn status_line(results: &Results) -> String {
+    let s = results.summary();
+    let mut parts = vec![format!("{} results, {} inside every validity criterion", s.computed, s.valid)];
+    for (n, what) in [
+        (s.beyond_elastic, "beyond the elastic range (v above the yield velocity of the same model)"),
+        (s.not_quasi_static, "not quasi-static (t_c/T₁ < 0.2)"),
+        (s.beyond_thin_plate, "beyond the thin-plate range (h/min(L, B) > 0.05)"),
+        (s.recontact, "with a second contact to follow"),
+        (s.not_applicable, "not applicable (the beam describes only Con 1-3)"),
+    ] {
+        if n > 0 {
+            parts.push(format!("{n} {what}"));
+        }
+    }
+    format!("status: {}", parts.join("; "))
+}
+
 fn emit(c: &Common, scene: &Scene, results: Results) -> Result<(), Failure> {
-    let tables: Vec<Table> = response_tables(&results).into_iter().chain(yield_tables(&results)).collect();
-    let json = serde_json::to_string_pretty(&results)?;
+    let responses = response_tables(&results);
+    let yields = yield_tables(&results);
+    let status = status_line(&results);
+    let json = serde_json::to_string_pretty(&serde_json::json!({
+        "program": "impact",
+        "version": env!("CARGO_PKG_VERSION"),
+        "units": "SI (m, m/s, N, m/N, J ratios)",
+        "status": status,
+        "summary": results.summary(),
+        "results": &results,
+    }))?;
     if let Some(dir) = &c.out {
         let mut a = Artifacts::new();
-        for t in &tables {
-            let kind = if t.title.contains("yield") { "yield" } else { "responses" };
-            let cond = t.title.split(" (").next().unwrap_or("condition");
-            a.add(format!("{}-{}-{}.csv", slug(&scene.name), kind, slug(cond)), t.to_csv());
+        // File names from the support set's position in the scene (unique), not its name.
+        for (kind, tables) in [("responses", &responses), ("yield", &yields)] {
+            for (i, t) in tables.iter().enumerate() {
+                a.add(format!("{kind}-{}.csv", i + 1), t.to_csv());
+            }
         }
-        a.add(format!("{}.json", slug(&scene.name)), json.clone());
+        a.add("results.json", json.clone());
         write(dir, &a)?;
     }
     if c.json {
-        println!("{json}");
+        out(&format!("{json}\n"))?;
     } else {
-        println!("scene: {} ({})", scene.name, scene.description);
-        for t in &tables {
-            println!();
-            print!("{}", t.to_text());
+        let mut text = format!("scene: {} ({})\n", scene.name, scene.description);
+        for t in responses.iter().chain(&yields) {
+            text.push('\n');
+            text.push_str(&t.to_text());
         }
+        text.push_str(&format!("\n{status}\n"));
+        out(&text)?;
     }
+    eprintln!("{status}");
     Ok(())
 }

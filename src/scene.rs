@@ -1,27 +1,121 @@
 //! Scene files: what to compute, in TOML with units in the key names, validated once into
-//! a [`Scene`] in SI units. Every error names the TOML field and its allowed range.
+//! a [`Scene`] in SI units. Every error names the TOML field, the value as written and its
+//! allowed range; ranges are checked in the file's units and chosen so that nothing
+//! overflows or underflows after conversion to SI (a length of 1e300 mm is refused, not
+//! turned into inf).
 
-use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO, POSITIVE, RESTITUTION};
-use analytic::{Condition, Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
-use serde::{Deserialize, Serialize};
+use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO, RESTITUTION};
+use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
+pub use coupled::scene::{even_points, Analysis, Points, Scene};
+pub use coupled::SupportSet;
+use plate_fem::{CornerSupport, EdgeSupport, Supports};
+use serde::Deserialize;
 use std::path::Path;
 
 /// The embedded default scene: the paper's Table 1.
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/paper-table-1.toml");
 /// How the default scene is named in messages.
 pub const DEFAULT_ORIGIN: &str = "<default scene: paper Table 1>";
+/// Largest scene file read, bytes: a scene is a few kilobytes; anything near this is not one.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+/// Most impact points a scene may name (each costs one solve per mesh and one balance per
+/// body, velocity and model; 1e5 points stay well inside this machine's memory).
+pub const MAX_POINTS: usize = 100_000;
+
+/// Accepted ranges, in the file's units. Each is wide against any real plate, rock or
+/// support and narrow enough that the SI values, and the powers of them the models take
+/// (δ^{5/2}, h³, R³), stay far from overflow and underflow.
+pub mod limits {
+    use analytic::params::Range;
+    /// Plate length and width, mm (1 mm to 100 m).
+    pub const PLATE_SIZE_MM: Range = Range::closed(1.0, 1e5);
+    /// Plate thickness, mm (1 µm to 10 m; and never more than the smaller side).
+    pub const THICKNESS_MM: Range = Range::closed(1e-3, 1e4);
+    /// Sphere radius, mm (1 µm to 10 m).
+    pub const RADIUS_MM: Range = Range::closed(1e-3, 1e4);
+    /// Young's moduli, GPa (1 kPa to 10 TPa).
+    pub const MODULUS_GPA: Range = Range::closed(1e-6, 1e4);
+    /// Densities, kg/m³.
+    pub const DENSITY_KG_M3: Range = Range::closed(1.0, 1e5);
+    /// Cohesion, MPa (1 Pa to 100 GPa).
+    pub const COHESION_MPA: Range = Range::closed(1e-6, 1e5);
+    /// Corner spring stiffness, N/m.
+    pub const SPRING_N_PER_M: Range = Range::closed(1e-6, 1e18);
+    /// Impact velocity, m/s (above 1 km/s no contact law here has meaning).
+    pub const VELOCITY_M_PER_S: Range = Range::closed(1e-9, 1e3);
+    /// Relative tolerance of the energy balance: below 1e-15 double precision cannot
+    /// reach it; above 1e-3 the "root" is not one (a loose stop returns the starting value).
+    pub const SOLVER_TOLERANCE: Range = Range::closed(1e-15, 1e-3);
+}
 
 /// An invalid scene, with where it came from.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
+    /// The file could not be read.
     #[error("cannot read scene file {path}: {source}")]
     Read { path: String, source: std::io::Error },
+    /// The file is not one a scene can be (a device, a FIFO, a directory, too large).
+    #[error("scene file {path}: {message}")]
+    NotAFile { path: String, message: String },
+    /// TOML syntax or layout.
     #[error("scene {origin}: {message}")]
     Syntax { origin: String, message: String },
+    /// A value outside its range.
     #[error("scene {origin}: {source}")]
     OutOfRange { origin: String, source: InvalidParameter },
+    /// Values that do not fit together.
     #[error("scene {origin}: {field}: {message}")]
     Inconsistent { origin: String, field: String, message: String },
+}
+
+/// Reading a [`Scene`] from scene text or files.
+pub trait SceneSource: Sized {
+    /// The embedded default scene (the paper's Table 1).
+    fn default_scene() -> Self;
+    /// Reads and validates a scene file (a regular file of at most [`MAX_SCENE_BYTES`]).
+    fn load(path: &Path) -> Result<Self, SceneError>;
+    /// Parses and validates scene text; `origin` names it in errors.
+    fn parse(text: &str, origin: &str) -> Result<Self, SceneError>;
+}
+
+impl SceneSource for Scene {
+    fn default_scene() -> Self {
+        // The embedded text is part of the program and is checked by a test; a failure
+        // here is a build defect, not a user error.
+        Self::parse(DEFAULT_SCENE, DEFAULT_ORIGIN).expect("the embedded default scene is valid")
+    }
+
+    fn load(path: &Path) -> Result<Self, SceneError> {
+        let shown = path.display().to_string();
+        let meta = std::fs::metadata(path).map_err(|source| SceneError::Read { path: shown.clone(), source })?;
+        if !meta.is_file() {
+            return Err(SceneError::NotAFile {
+                path: shown,
+                message: "is not a regular file (a directory, device or FIFO cannot hold a scene)".into(),
+            });
+        }
+        if meta.len() > MAX_SCENE_BYTES {
+            return Err(SceneError::NotAFile {
+                path: shown,
+                message: format!("is {} bytes; a scene file has at most {MAX_SCENE_BYTES} bytes", meta.len()),
+            });
+        }
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { path: shown.clone(), source })?;
+        Self::parse(&text, &shown)
+    }
+
+    fn parse(text: &str, origin: &str) -> Result<Self, SceneError> {
+        let raw: RawScene = toml::from_str(text).map_err(|e| SceneError::Syntax {
+            origin: origin.to_string(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        validate(raw).map_err(|e| match e {
+            Invalid::Range(source) => SceneError::OutOfRange { origin: origin.to_string(), source },
+            Invalid::Other { field, message } => {
+                SceneError::Inconsistent { origin: origin.to_string(), field, message }
+            }
+        })
+    }
 }
 
 // ---------------------------------------------------------------- raw file layout
@@ -39,7 +133,7 @@ struct RawScene {
     points: RawPoints,
     #[serde(default)]
     velocities: Option<RawVelocities>,
-    #[serde(default = "all_analyses")]
+    #[serde(default = "default_analyses")]
     analyses: Vec<Analysis>,
     #[serde(default)]
     solver: RawSolver,
@@ -68,9 +162,10 @@ struct RawBody {
     radius_mm: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+/// The paper's support conditions as shorthands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-enum Supports {
+enum Preset {
     /// Con 1.
     BothFixed,
     /// Con 2.
@@ -83,16 +178,71 @@ enum Supports {
 #[serde(deny_unknown_fields)]
 struct RawCondition {
     name: Option<String>,
-    supports: Supports,
+    supports: Option<Preset>,
     spring_stiffness_n_per_m: Option<f64>,
+    corners: Option<RawCorners>,
+    edges: Option<RawEdges>,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum CornerKind {
+    Fixed,
+    Free,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(untagged)]
+enum RawCorner {
+    Kind(CornerKind),
+    Spring { spring_n_per_m: f64 },
+}
+
+/// Corners by position: (x, z) = (0, 0), (L, 0), (0, B), (L, B).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCorners {
+    left_near: Option<RawCorner>,
+    right_near: Option<RawCorner>,
+    left_far: Option<RawCorner>,
+    right_far: Option<RawCorner>,
+}
+
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+enum RawEdge {
+    Free,
+    SimplySupported,
+    Clamped,
+}
+
+/// Edges: left x = 0, right x = L, near z = 0, far z = B.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawEdges {
+    left: Option<RawEdge>,
+    right: Option<RawEdge>,
+    near: Option<RawEdge>,
+    far: Option<RawEdge>,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawPoints {
     x_mm: Option<Vec<f64>>,
-    count: Option<usize>,
+    count: Option<f64>,
+    pairs_mm: Option<Vec<(f64, f64)>>,
+    grid: Option<RawGrid>,
     z_mm: Option<Vec<f64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawGrid {
+    x_mm: Option<Vec<f64>>,
+    x_count: Option<f64>,
+    z_mm: Option<Vec<f64>>,
+    z_count: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -134,105 +284,11 @@ fn default_tolerance() -> f64 {
 fn default_max_iterations() -> u32 {
     200
 }
-fn all_analyses() -> Vec<Analysis> {
+fn default_analyses() -> Vec<Analysis> {
     vec![Analysis::Responses, Analysis::YieldVelocity]
 }
 
-// ---------------------------------------------------------------- validated scene
-
-/// What a scene asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Analysis {
-    /// Responses at maximum compression for every velocity.
-    Responses,
-    /// Yield velocities (eqs. 52-54).
-    YieldVelocity,
-}
-
-/// A support condition with the name the scene gave it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct NamedCondition {
-    pub name: String,
-    pub condition: Condition,
-}
-
-/// Impact points: positions x along the length and z across the width, all pairs.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Points {
-    /// m from the left end, each in [0, L].
-    pub x: Vec<f64>,
-    /// m from the near edge, each in [0, B]; the beam model ignores z.
-    pub z: Vec<f64>,
-}
-
-/// A validated scene in SI units.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Scene {
-    pub name: String,
-    pub description: String,
-    pub plate: Plate,
-    pub bodies: Vec<Sphere>,
-    pub restitution: f64,
-    pub conditions: Vec<NamedCondition>,
-    pub points: Points,
-    /// m/s; empty only when no responses are asked for.
-    pub velocities: Vec<f64>,
-    pub analyses: Vec<Analysis>,
-    pub solver: Method,
-}
-
-impl Scene {
-    /// The embedded default scene (the paper's Table 1).
-    pub fn default_scene() -> Self {
-        Self::parse(DEFAULT_SCENE, DEFAULT_ORIGIN).expect("the embedded default scene is valid")
-    }
-
-    /// Reads and validates a scene file.
-    pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|source| SceneError::Read { path: path.display().to_string(), source })?;
-        Self::parse(&text, &path.display().to_string())
-    }
-
-    /// Parses and validates scene text; `origin` names it in errors.
-    pub fn parse(text: &str, origin: &str) -> Result<Self, SceneError> {
-        let raw: RawScene = toml::from_str(text).map_err(|e| SceneError::Syntax {
-            origin: origin.to_string(),
-            message: e.to_string().trim_end().to_string(),
-        })?;
-        validate(raw).map_err(|e| match e {
-            Invalid::Range(source) => SceneError::OutOfRange { origin: origin.to_string(), source },
-            Invalid::Other { field, message } => {
-                SceneError::Inconsistent { origin: origin.to_string(), field, message }
-            }
-        })
-    }
-
-    pub fn wants(&self, analysis: Analysis) -> bool {
-        self.analyses.contains(&analysis)
-    }
-
-    /// A copy whose points are `count` evenly spaced positions on [0, L] (the paper divides
-    /// L into 100 parts: 101 points).
-    pub fn with_sweep(&self, count: usize) -> Result<Self, SceneError> {
-        if count < 2 {
-            return Err(SceneError::Inconsistent {
-                origin: self.name.clone(),
-                field: "count".into(),
-                message: format!("{count} points cannot span the plate: the allowed range is [2, inf)"),
-            });
-        }
-        let mut s = self.clone();
-        s.points.x = even_points(self.plate.length(), count);
-        Ok(s)
-    }
-}
-
-/// `count` points from 0 to `length` inclusive; the ends are exact.
-pub fn even_points(length: f64, count: usize) -> Vec<f64> {
-    (0..count).map(|i| if i + 1 == count { length } else { length * i as f64 / (count - 1) as f64 }).collect()
-}
+// ---------------------------------------------------------------- validation
 
 enum Invalid {
     Range(InvalidParameter),
@@ -253,20 +309,193 @@ const MM: f64 = 1e-3;
 const GPA: f64 = 1e9;
 const MPA: f64 = 1e6;
 
+/// A whole count written as a TOML number, in [lo, hi].
+fn count(field: &str, value: f64, lo: usize, hi: usize) -> Result<usize, Invalid> {
+    let v = check(field, value, Range::closed(lo as f64, hi as f64), "")?;
+    if v.fract() != 0.0 {
+        return Err(other(field, format!("{value} is not a whole number; the allowed range is [{lo}, {hi}]")));
+    }
+    Ok(v as usize)
+}
+
+fn positions(field: &str, list: &[f64], range_mm: Range) -> Result<Vec<f64>, Invalid> {
+    if list.is_empty() {
+        return Err(other(field, "the list is empty; give at least one position"));
+    }
+    if list.len() > MAX_POINTS {
+        return Err(other(field, format!("{} positions; at most {MAX_POINTS} are allowed", list.len())));
+    }
+    list.iter().enumerate().map(|(j, &v)| Ok(check(&format!("{field}[{j}]"), v, range_mm, "mm")? * MM)).collect()
+}
+
+fn validate_points(raw: &RawPoints, plate: &Plate, l_mm: f64, b_mm: f64) -> Result<Points, Invalid> {
+    let (l, b) = (plate.length(), plate.width());
+    let along = Range::closed(0.0, l_mm);
+    let across = Range::closed(0.0, b_mm);
+    if raw.z_mm.is_some() {
+        return Err(other(
+            "points.z_mm",
+            "z_mm beside x_mm would silently form a grid; write pairs_mm = [[x, z], ...] for explicit points, or a [points.grid] table with x_mm and z_mm for every combination",
+        ));
+    }
+    let given = [raw.x_mm.is_some(), raw.count.is_some(), raw.pairs_mm.is_some(), raw.grid.is_some()];
+    if given.iter().filter(|g| **g).count() != 1 {
+        return Err(other(
+            "points",
+            "give exactly one of x_mm (positions on the centreline z = B/2), count (evenly spaced on the centreline), pairs_mm (explicit [x, z] pairs) or [points.grid]",
+        ));
+    }
+    if let Some(xs) = &raw.x_mm {
+        let xs = positions("points.x_mm", xs, along)?;
+        return Ok(Points::Pairs { pairs: xs.into_iter().map(|x| (x, b / 2.0)).collect() });
+    }
+    if let Some(n) = raw.count {
+        return Ok(Points::centreline(l, b, count("points.count", n, 2, MAX_POINTS)?));
+    }
+    if let Some(pairs) = &raw.pairs_mm {
+        if pairs.is_empty() {
+            return Err(other("points.pairs_mm", "the list is empty; give at least one [x, z] pair"));
+        }
+        if pairs.len() > MAX_POINTS {
+            return Err(other("points.pairs_mm", format!("{} pairs; at most {MAX_POINTS} are allowed", pairs.len())));
+        }
+        let mut out = Vec::with_capacity(pairs.len());
+        for (j, &(x, z)) in pairs.iter().enumerate() {
+            let x = check(&format!("points.pairs_mm[{j}][0] (x)"), x, along, "mm")? * MM;
+            let z = check(&format!("points.pairs_mm[{j}][1] (z)"), z, across, "mm")? * MM;
+            out.push((x, z));
+        }
+        return Ok(Points::Pairs { pairs: out });
+    }
+    let g = raw.grid.as_ref().ok_or_else(|| other("points", "no points given"))?;
+    let axis = |list: &Option<Vec<f64>>, n: Option<f64>, name: &str, range: Range, extent: f64| match (list, n) {
+        (Some(v), None) => positions(&format!("points.grid.{name}_mm"), v, range),
+        (None, Some(n)) => Ok(even_points(extent, count(&format!("points.grid.{name}_count"), n, 2, MAX_POINTS)?)),
+        _ => Err(other(format!("points.grid.{name}"), format!("give exactly one of {name}_mm or {name}_count"))),
+    };
+    let x = axis(&g.x_mm, g.x_count, "x", along, l)?;
+    let z = axis(&g.z_mm, g.z_count, "z", across, b)?;
+    if x.len().saturating_mul(z.len()) > MAX_POINTS {
+        return Err(other(
+            "points.grid",
+            format!("{} x {} = {} points; at most {MAX_POINTS} are allowed", x.len(), z.len(), x.len() * z.len()),
+        ));
+    }
+    Ok(Points::Grid { x, z })
+}
+
+fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<SupportSet, Invalid> {
+    let key = format!("conditions[{i}].spring_stiffness_n_per_m");
+    let spring = |c: &RawCondition| match c.spring_stiffness_n_per_m {
+        Some(k) => Ok(check(&key, k, limits::SPRING_N_PER_M, "N/m")?),
+        None => Err(other(
+            &key,
+            format!("is required for supports with springs; the allowed range is {} N/m", limits::SPRING_N_PER_M),
+        )),
+    };
+    let supports = match (c.supports, c.corners.is_some() || c.edges.is_some()) {
+        (Some(_), true) => {
+            return Err(other(
+                format!("conditions[{i}]"),
+                "give either supports = \"both-fixed\" | \"both-springs\" | \"fixed-and-springs\" (the paper's Con 1-3) or [conditions.corners] / [conditions.edges], not both",
+            ))
+        }
+        (None, false) => {
+            return Err(other(
+                format!("conditions[{i}]"),
+                "give supports = \"both-fixed\" | \"both-springs\" | \"fixed-and-springs\", or [conditions.corners] and [conditions.edges]",
+            ))
+        }
+        (Some(Preset::BothFixed), false) => {
+            if c.spring_stiffness_n_per_m.is_some() {
+                return Err(other(&key, "does not apply to supports = \"both-fixed\" (Con 1 has no springs)"));
+            }
+            Supports::con1()
+        }
+        (Some(Preset::BothSprings), false) => Supports::con2(spring(c)?),
+        (Some(Preset::FixedAndSprings), false) => Supports::con3(spring(c)?),
+        (None, true) => {
+            if c.spring_stiffness_n_per_m.is_some() {
+                return Err(other(&key, "applies only to the presets; give each spring its own spring_n_per_m in [conditions.corners]"));
+            }
+            let corners = c.corners.as_ref();
+            let corner = |name: &str, v: Option<RawCorner>| -> Result<CornerSupport, Invalid> {
+                Ok(match v {
+                    None | Some(RawCorner::Kind(CornerKind::Free)) => CornerSupport::Free,
+                    Some(RawCorner::Kind(CornerKind::Fixed)) => CornerSupport::Fixed,
+                    Some(RawCorner::Spring { spring_n_per_m }) => CornerSupport::Spring(check(
+                        &format!("conditions[{i}].corners.{name}.spring_n_per_m"),
+                        spring_n_per_m,
+                        limits::SPRING_N_PER_M,
+                        "N/m",
+                    )?),
+                })
+            };
+            let edges = c.edges.as_ref();
+            let edge = |v: Option<RawEdge>| match v {
+                None | Some(RawEdge::Free) => EdgeSupport::Free,
+                Some(RawEdge::SimplySupported) => EdgeSupport::Simple,
+                Some(RawEdge::Clamped) => EdgeSupport::Clamped,
+            };
+            let s = Supports {
+                corners: [
+                    corner("left_near", corners.and_then(|c| c.left_near))?,
+                    corner("right_near", corners.and_then(|c| c.right_near))?,
+                    corner("left_far", corners.and_then(|c| c.left_far))?,
+                    corner("right_far", corners.and_then(|c| c.right_far))?,
+                ],
+                edges: [
+                    edge(edges.and_then(|e| e.left)),
+                    edge(edges.and_then(|e| e.right)),
+                    edge(edges.and_then(|e| e.near)),
+                    edge(edges.and_then(|e| e.far)),
+                ],
+            };
+            // A rigid-body motion left free makes every plate model singular: refuse it
+            // here, before anything is assembled.
+            s.validate(plate.length(), plate.width())
+                .map_err(|e| other(format!("conditions[{i}]"), format!("{e}")))?;
+            s
+        }
+    };
+    let default_name = match c.supports {
+        Some(Preset::BothFixed) => "Con 1".to_string(),
+        Some(Preset::BothSprings) => "Con 2".to_string(),
+        Some(Preset::FixedAndSprings) => "Con 3".to_string(),
+        None => format!("support set {}", i + 1),
+    };
+    Ok(SupportSet::new(c.name.clone().unwrap_or(default_name), supports))
+}
+
 /// Checks every field against its range, in the units of the file, then converts to SI.
 fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, RESTITUTION, "")?;
+    if raw.name.trim().is_empty() {
+        return Err(other("name", "is empty; give the scene a name"));
+    }
 
     let p = &raw.plate;
     let plate_material = Elastic::new(
-        check("plate.youngs_modulus_gpa", p.youngs_modulus_gpa, POSITIVE, "GPa")? * GPA,
+        check("plate.youngs_modulus_gpa", p.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa")? * GPA,
         check("plate.poisson_ratio", p.poisson_ratio, POISSON_RATIO, "")?,
     )?;
+    let length_mm = check("plate.length_mm", p.length_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let width_mm = check("plate.width_mm", p.width_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let thickness_mm = check("plate.thickness_mm", p.thickness_mm, limits::THICKNESS_MM, "mm")?;
+    if thickness_mm > length_mm.min(width_mm) {
+        return Err(other(
+            "plate.thickness_mm",
+            format!(
+                "{thickness_mm} mm is more than the plate's smaller side {} mm: not a plate",
+                length_mm.min(width_mm)
+            ),
+        ));
+    }
     let plate = Plate::new(
-        check("plate.length_mm", p.length_mm, POSITIVE, "mm")? * MM,
-        check("plate.width_mm", p.width_mm, POSITIVE, "mm")? * MM,
-        check("plate.thickness_mm", p.thickness_mm, POSITIVE, "mm")? * MM,
-        check("plate.density_kg_m3", p.density_kg_m3, POSITIVE, "kg/m^3")?,
+        length_mm * MM,
+        width_mm * MM,
+        thickness_mm * MM,
+        check("plate.density_kg_m3", p.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?,
         plate_material,
     )?;
 
@@ -277,15 +506,18 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     for (i, b) in raw.bodies.iter().enumerate() {
         let f = |k: &str| format!("bodies[{i}].{k}");
         let material = Elastic::new(
-            check(&f("youngs_modulus_gpa"), b.youngs_modulus_gpa, POSITIVE, "GPa")? * GPA,
+            check(&f("youngs_modulus_gpa"), b.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa")? * GPA,
             check(&f("poisson_ratio"), b.poisson_ratio, POISSON_RATIO, "")?,
         )?;
         let strength = RockStrength::new(
-            check(&f("cohesion_mpa"), b.cohesion_mpa, POSITIVE, "MPa")? * MPA,
+            check(&f("cohesion_mpa"), b.cohesion_mpa, limits::COHESION_MPA, "MPa")? * MPA,
             check(&f("friction_angle_deg"), b.friction_angle_deg, FRICTION_ANGLE_DEG, "deg")?,
         )?;
-        let density = check(&f("density_kg_m3"), b.density_kg_m3, POSITIVE, "kg/m^3")?;
-        let radius = check(&f("radius_mm"), b.radius_mm, POSITIVE, "mm")? * MM;
+        let density = check(&f("density_kg_m3"), b.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?;
+        let radius = check(&f("radius_mm"), b.radius_mm, limits::RADIUS_MM, "mm")? * MM;
+        if b.name.trim().is_empty() {
+            return Err(other(f("name"), "is empty; give every body a name"));
+        }
         if bodies.iter().any(|s: &Sphere| s.name == b.name) {
             return Err(other(f("name"), format!("'{}' names two bodies; names must be unique", b.name)));
         }
@@ -295,71 +527,35 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     if raw.conditions.is_empty() {
         return Err(other("conditions", "at least one [[conditions]] entry is required"));
     }
-    let mut conditions: Vec<NamedCondition> = Vec::with_capacity(raw.conditions.len());
+    let mut conditions: Vec<SupportSet> = Vec::with_capacity(raw.conditions.len());
     for (i, c) in raw.conditions.iter().enumerate() {
-        let key = format!("conditions[{i}].spring_stiffness_n_per_m");
-        let k_t = |c: &RawCondition| match c.spring_stiffness_n_per_m {
-            Some(k) => Ok(check(&key, k, POSITIVE, "N/m")?),
-            None => Err(other(&key, "is required for supports with springs; the allowed range is (0, inf) N/m")),
-        };
-        let condition = match c.supports {
-            Supports::BothFixed => {
-                if c.spring_stiffness_n_per_m.is_some() {
-                    return Err(other(&key, "does not apply to supports = \"both-fixed\" (Con 1 has no springs)"));
-                }
-                Condition::BothFixed
-            }
-            Supports::BothSprings => Condition::BothSprings { k_t: k_t(c)? },
-            Supports::FixedAndSprings => Condition::FixedAndSprings { k_t: k_t(c)? },
-        };
-        let name = c.name.clone().unwrap_or_else(|| condition.label().to_string());
-        if conditions.iter().any(|n| n.name == name) {
+        let set = validate_condition(i, c, &plate)?;
+        if set.name.trim().is_empty() {
+            return Err(other(format!("conditions[{i}].name"), "is empty; give the support set a name"));
+        }
+        if conditions.iter().any(|n| n.name == set.name) {
             return Err(other(
                 format!("conditions[{i}].name"),
-                format!("'{name}' names two conditions; names must be unique"),
+                format!("'{}' names two conditions; names must be unique", set.name),
             ));
         }
-        conditions.push(NamedCondition { name, condition });
+        conditions.push(set);
     }
 
-    let length_mm = p.length_mm;
-    let x = match (&raw.points.x_mm, raw.points.count) {
-        (Some(_), Some(_)) => return Err(other("points", "give either x_mm or count, not both")),
-        (None, None) => {
-            return Err(other("points", "give x_mm (a list of positions) or count (evenly spaced on [0, L])"))
-        }
-        (None, Some(n)) if n < 2 => {
-            return Err(other("points.count", format!("{n} is outside the allowed range [2, inf)")));
-        }
-        (None, Some(n)) => even_points(plate.length(), n),
-        (Some(xs), None) => {
-            if xs.is_empty() {
-                return Err(other("points.x_mm", "the list is empty; give at least one position"));
-            }
-            let mut out = Vec::with_capacity(xs.len());
-            for (j, &x) in xs.iter().enumerate() {
-                out.push(check(&format!("points.x_mm[{j}]"), x, Range::closed(0.0, length_mm), "mm")? * MM);
-            }
-            out
-        }
-    };
-    let z = match &raw.points.z_mm {
-        None => vec![plate.width() / 2.0],
-        Some(zs) if zs.is_empty() => return Err(other("points.z_mm", "the list is empty; omit it for the centreline")),
-        Some(zs) => {
-            let mut out = Vec::with_capacity(zs.len());
-            for (j, &z) in zs.iter().enumerate() {
-                out.push(check(&format!("points.z_mm[{j}]"), z, Range::closed(0.0, p.width_mm), "mm")? * MM);
-            }
-            out
-        }
-    };
+    let points = validate_points(&raw.points, &plate, length_mm, width_mm)?;
 
     if raw.analyses.is_empty() {
-        return Err(other("analyses", "the list is empty; allowed entries: \"responses\", \"yield-velocity\""));
+        let keys: Vec<&str> = Analysis::ALL.iter().map(|a| a.key()).collect();
+        return Err(other("analyses", format!("the list is empty; allowed entries: {}", keys.join(", "))));
     }
-    let mut analyses = raw.analyses.clone();
-    analyses.dedup();
+    let mut analyses: Vec<Analysis> = Vec::new();
+    for a in raw.analyses {
+        if !analyses.contains(&a) {
+            analyses.push(a);
+        }
+    }
+    let needs_velocity =
+        analyses.iter().any(|a| matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap));
     let velocities = match &raw.velocities {
         Some(v) => {
             if v.m_per_s.is_empty() {
@@ -367,19 +563,25 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
             }
             let mut out = Vec::with_capacity(v.m_per_s.len());
             for (j, &vel) in v.m_per_s.iter().enumerate() {
-                out.push(check(&format!("velocities.m_per_s[{j}]"), vel, POSITIVE, "m/s")?);
+                out.push(check(&format!("velocities.m_per_s[{j}]"), vel, limits::VELOCITY_M_PER_S, "m/s")?);
             }
             out
         }
-        None if analyses.contains(&Analysis::Responses) => {
-            return Err(other("velocities.m_per_s", "is required when analyses include \"responses\""));
+        None if needs_velocity => {
+            return Err(other(
+                "velocities.m_per_s",
+                "is required when analyses include \"responses\", \"transient\" or \"size-map\"",
+            ));
         }
         None => vec![],
     };
 
-    let tolerance = check("solver.tolerance", raw.solver.tolerance, Range::open(0.0, 1.0), "")?;
-    if raw.solver.max_iterations == 0 {
-        return Err(other("solver.max_iterations", "0 is outside the allowed range [1, 4294967295]"));
+    let tolerance = check("solver.tolerance", raw.solver.tolerance, limits::SOLVER_TOLERANCE, "")?;
+    if !(1..=10_000).contains(&raw.solver.max_iterations) {
+        return Err(other(
+            "solver.max_iterations",
+            format!("{} is outside the allowed range [1, 10000]", raw.solver.max_iterations),
+        ));
     }
     let solver = match raw.solver.method {
         MethodName::Recursion => Method::Recursion { tolerance, max_iterations: raw.solver.max_iterations },
@@ -393,7 +595,7 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         bodies,
         restitution,
         conditions,
-        points: Points { x, z },
+        points,
         velocities,
         analyses,
         solver,

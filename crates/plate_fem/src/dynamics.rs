@@ -131,6 +131,12 @@ impl<'m> Newmark<'m> {
         PlateEnergy { kinetic, strain: total - springs, springs }
     }
 
+    /// Deflections of the four corners now, in [`Corner::ALL`] order.
+    pub fn corner_displacements(&self) -> [f64; 4] {
+        let mesh = self.model.mesh();
+        Corner::ALL.map(|c| self.w[mesh.corner_w_dof(c.index())])
+    }
+
     /// The deflection field now.
     pub fn field(&self) -> &[f64] {
         &self.w

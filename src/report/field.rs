@@ -2,8 +2,9 @@
 //! (`impact-plate-field/1`, see reference/README.md) that reference/python/export_fields.py
 //! turns into .vtu and .xdmf with meshio.
 
-use crate::fem::{corner_supports, mesh_for, plate_properties};
-use crate::scene::{NamedCondition, Scene};
+use crate::scene::{Scene, SupportSet};
+use coupled::discretisation::{mesh_for, plate_properties};
+use coupled::supports::corner_supports;
 use plate_fem::{FemError, Model, Supports};
 use serde::Serialize;
 
@@ -47,11 +48,11 @@ pub struct CellData {
 
 /// The field of `condition` under a unit load at (x, z), on a mesh of `n` elements along
 /// the longer side.
-pub fn field(scene: &Scene, condition: &NamedCondition, x: f64, z: f64, n: usize) -> Result<FieldFile, FemError> {
-    let props = plate_properties(scene);
+pub fn field(scene: &Scene, condition: &SupportSet, x: f64, z: f64, n: usize) -> Result<FieldFile, FemError> {
+    let props = plate_properties(&scene.plate);
     let mesh = mesh_for(&props, n)?;
     let model = Model::new(props, mesh.clone())?;
-    let f = model.factorize(&Supports::corners(corner_supports(condition.condition)))?;
+    let f = model.factorize(&condition.supports)?;
     let w = f.deflection_field(x, z)?;
     let residual = f.respond(x, z)?.residual;
     let (nx, nz) = (mesh.nx(), mesh.nz());

@@ -1,14 +1,15 @@
 //! The paper's conclusions (section V, items 1-5) tested under the beam and the plate FE
 //! model, with the numbers behind each verdict (issue 5).
 
-use crate::paper::Paper;
-use crate::platemodel::PlateModel;
-use crate::run::{impact_of, BeamModel, ComplianceModel};
-use crate::scene::{even_points, NamedCondition, Scene};
-use crate::table::{sig, Table};
+use crate::present::table::{sig, Table};
+use crate::report::paper::Paper;
+use crate::scene::{even_points, Scene, SupportSet};
 use analytic::{respond, yield_velocity, Condition, DruckerPrager, Method, Response, Sphere};
+use coupled::plan::impact_of;
+use coupled::PlateModel;
+use coupled::{BeamModel, ComplianceModel};
 
-type Failure = Box<dyn std::error::Error>;
+use crate::report::Failure;
 
 const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
 
@@ -34,23 +35,29 @@ struct Line<'a> {
 }
 
 impl<'a> Line<'a> {
-    fn new(scene: &'a Scene, conds: &[NamedCondition], z: f64) -> Result<Self, Failure> {
+    fn new(scene: &'a Scene, conds: &[SupportSet], z: f64) -> Result<Self, Failure> {
         let xs = even_points(scene.plate.length(), 101);
         let pts: Vec<(f64, f64)> = xs.iter().map(|&x| (x, z)).collect();
-        let model = PlateModel::compute(scene, conds, &pts, crate::compare::BASE_MESH, crate::compare::LEVELS)?;
+        let model = PlateModel::compute(
+            &scene.plate,
+            conds,
+            &pts,
+            crate::report::studies::BASE_MESH,
+            crate::report::studies::LEVELS,
+        )?;
         Ok(Self { scene, model, xs, z })
     }
-    fn compliance(&self, plate: bool, c: &NamedCondition, x: f64) -> Result<analytic::PointCompliance, Failure> {
+    fn compliance(&self, plate: bool, c: &SupportSet, x: f64) -> Result<analytic::PointCompliance, Failure> {
         Ok(if plate {
-            self.model.compliance(c, x, self.z)?
+            self.model.compliance(c, x, self.z)?.compliance
         } else {
-            BeamModel { plate: &self.scene.plate }.compliance(c, x, 0.0)?
+            BeamModel { plate: &self.scene.plate }.compliance(c, x, 0.0)?.compliance
         })
     }
-    fn response(&self, plate: bool, c: &NamedCondition, body: &Sphere, x: f64, v: f64) -> Result<Response, Failure> {
+    fn response(&self, plate: bool, c: &SupportSet, body: &Sphere, x: f64, v: f64) -> Result<Response, Failure> {
         Ok(respond(&impact_of(self.scene, body, v), &self.compliance(plate, c, x)?, METHOD)?)
     }
-    fn vy(&self, plate: bool, c: &NamedCondition, body: &Sphere, x: f64) -> Result<f64, Failure> {
+    fn vy(&self, plate: bool, c: &SupportSet, body: &Sphere, x: f64) -> Result<f64, Failure> {
         let imp = impact_of(self.scene, body, 1.0);
         let d = DruckerPrager::of(body).yield_compression(body.radius(), imp.contact_stiffness);
         Ok(yield_velocity(body, &imp, self.compliance(plate, c, x)?.total(), d))
@@ -67,8 +74,8 @@ impl<'a> Line<'a> {
     }
 }
 
-fn named(name: &str, condition: Condition) -> NamedCondition {
-    NamedCondition { name: name.into(), condition }
+fn named(name: &str, condition: Condition) -> SupportSet {
+    SupportSet::preset(name, condition)
 }
 
 fn both<T>(f: impl Fn(bool) -> Result<T, Failure>) -> Result<(T, T), Failure> {
@@ -135,7 +142,7 @@ pub fn checks() -> Result<Vec<Check>, Failure> {
         });
 
         // Item 2: elastic supports raise v_y and lower P_max; Con 2 springs take more energy.
-        let areas: Vec<f64> = crate::compare::AREAS.iter().map(|f| f * l).collect();
+        let areas: Vec<f64> = crate::report::studies::AREAS.iter().map(|f| f * l).collect();
         let order = |p: bool| -> Result<(usize, String), Failure> {
             let mut n = 0;
             let mut worst = f64::INFINITY;
@@ -261,11 +268,16 @@ pub fn checks() -> Result<Vec<Check>, Failure> {
         let s = Scene { plate, ..scene.clone() };
         let pts = [(x, plate.width() / 2.0)];
         let c = named("Con 1", Condition::BothFixed);
-        let model =
-            PlateModel::compute(&s, std::slice::from_ref(&c), &pts, crate::compare::BASE_MESH, crate::compare::LEVELS)?;
+        let model = PlateModel::compute(
+            &s.plate,
+            std::slice::from_ref(&c),
+            &pts,
+            crate::report::studies::BASE_MESH,
+            crate::report::studies::LEVELS,
+        )?;
         let imp = impact_of(&s, &paper.coal, 0.008);
-        let rb = respond(&imp, &BeamModel { plate: &s.plate }.compliance(&c, x, 0.0)?, METHOD)?;
-        let rp = respond(&imp, &model.compliance(&c, x, plate.width() / 2.0)?, METHOD)?;
+        let rb = respond(&imp, &BeamModel { plate: &s.plate }.compliance(&c, x, 0.0)?.compliance, METHOD)?;
+        let rp = respond(&imp, &model.compliance(&c, x, plate.width() / 2.0)?.compliance, METHOD)?;
         rows.0.push((rb.contact_force, rb.deflection));
         rows.1.push((rp.contact_force, rp.deflection));
     }
@@ -308,17 +320,17 @@ pub struct Figure {
     pub stem: String,
     pub title: String,
     pub y_label: String,
-    pub series: Vec<crate::plot::Series>,
+    pub series: Vec<crate::present::plot::Series>,
 }
 
-fn figure(stem: &str, title: &str, y_label: &str, series: Vec<crate::plot::Series>) -> Figure {
+fn figure(stem: &str, title: &str, y_label: &str, series: Vec<crate::present::plot::Series>) -> Figure {
     Figure { stem: stem.into(), title: title.into(), y_label: y_label.into(), series }
 }
 
 /// The paper's figures redone with both models along the centreline; curves are named
 /// "beam ..." and "plate ...".
 pub fn study_figures() -> Result<Vec<Figure>, Failure> {
-    use crate::plot::Series;
+    use crate::present::plot::Series;
     let paper = Paper::new();
     let scene = &paper.scene;
     let (l, b) = (scene.plate.length(), scene.plate.width());
@@ -338,15 +350,15 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
     let mm = |x: f64| x * 1e3;
     let mut figs = Vec::new();
     let curve = |p: bool,
-                 c: &NamedCondition,
-                 f: &dyn Fn(bool, &NamedCondition, f64) -> Result<f64, Failure>|
+                 c: &SupportSet,
+                 f: &dyn Fn(bool, &SupportSet, f64) -> Result<f64, Failure>|
      -> Result<Series, Failure> {
         let pts = line.xs.iter().map(|&x| Ok((mm(x), f(p, c, x)?))).collect::<Result<Vec<_>, Failure>>()?;
         Ok(Series::new(format!("{} {}", if p { "plate" } else { "beam" }, c.name), pts))
     };
-    let vy_coal = |p: bool, c: &NamedCondition, x: f64| line.vy(p, c, &paper.coal, x);
-    let p_coal = |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.contact_force);
-    let defl = |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.deflection * 1e6);
+    let vy_coal = |p: bool, c: &SupportSet, x: f64| line.vy(p, c, &paper.coal, x);
+    let p_coal = |p: bool, c: &SupportSet, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.contact_force);
+    let defl = |p: bool, c: &SupportSet, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.deflection * 1e6);
     let mut s8 = Vec::new();
     let mut s10 = Vec::new();
     let mut s10d = Vec::new();
@@ -389,8 +401,7 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
     ));
     let mut s12 = Vec::new();
     let mut s13 = Vec::new();
-    let spring_energy =
-        |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.spring_ratio);
+    let spring_energy = |p: bool, c: &SupportSet, x: f64| Ok(line.response(p, c, &paper.coal, x, 0.008)?.spring_ratio);
     for c in &conds[3..] {
         for p in [false, true] {
             if c.name.starts_with("Con 3") {
@@ -449,7 +460,7 @@ pub fn study_figures() -> Result<Vec<Figure>, Failure> {
     let mut s17 = Vec::new();
     for body in [&paper.coal, &paper.gangue1, &paper.gangue2] {
         for p in [false, true] {
-            let f = |p: bool, c: &NamedCondition, x: f64| Ok(line.response(p, c, body, x, 0.0025)?.contact_force);
+            let f = |p: bool, c: &SupportSet, x: f64| Ok(line.response(p, c, body, x, 0.0025)?.contact_force);
             let mut s = curve(p, &conds[0], &f)?;
             s.name = format!("{} {}", if p { "plate" } else { "beam" }, body.name);
             s17.push(s);

@@ -1,17 +1,18 @@
 //! The plate FE verification report (`reports/fem/index.md`): every check of issue 3
 //! with its reference, measured convergence rates and the extreme cases.
 
-use crate::fem::{self, corner_supports, plate_properties};
 use crate::output::Artifacts;
+use crate::present::table::{Cell, Table};
 use crate::scene::Scene;
-use crate::table::{Cell, Table};
 use analytic::Condition;
+use coupled::discretisation::{ladder_meshes, mesh_for, plate_properties};
+use coupled::supports::corner_supports;
 use plate_fem::classical::{LevyPlate, YEdge};
 use plate_fem::convergence::{observed_rate, richardson};
 use plate_fem::{CornerFamily, EdgeSupport, FemError, Mesh, Model, PlateProperties, Supports};
 use std::fmt::Write as _;
 
-type Failure = Box<dyn std::error::Error>;
+use crate::report::Failure;
 
 /// FE compliance at `p` for a ladder of meshes (n·2^k by m·2^k).
 fn ladder(
@@ -160,8 +161,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     );
 
     // 5. The paper's plate: ladders at several points for Con 1-3.
-    let props = plate_properties(scene);
-    let k_t = scene.conditions.iter().find_map(|c| c.condition.spring_stiffness()).unwrap_or(5.11545e8);
+    let props = plate_properties(&scene.plate);
+    let k_t = scene.conditions.iter().find_map(|c| c.spring_stiffnesses().next()).unwrap_or(5.11545e8);
     let (l, b) = (props.length, props.width);
     let pts = [
         ("centre", (l / 2.0, b / 2.0)),
@@ -183,7 +184,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             "asymptotic",
         ],
     );
-    let meshes = fem::ladder_meshes(&props, 10, 4)?;
+    let meshes = ladder_meshes(&props, 10, 4)?;
     for (name, cond) in [
         ("Con 1", Condition::BothFixed),
         ("Con 2", Condition::BothSprings { k_t }),
@@ -192,7 +193,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         let mut per_mesh: Vec<Vec<f64>> = Vec::new();
         for mesh in &meshes {
             let model = Model::new(props, mesh.clone())?;
-            let f = model.factorize(&Supports::corners(corner_supports(cond)))?.with_refinement(1);
+            let f = model.factorize(&corner_supports(cond))?.with_refinement(1);
             let r = f.respond_many(&pts.iter().map(|p| p.1).collect::<Vec<_>>())?;
             per_mesh.push(r.iter().map(|r| r.compliance).collect());
         }
@@ -226,11 +227,11 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     );
 
     // 6. Rank-4 corner update against fresh factorizations, k_T from 1 to 1e15.
-    let model = Model::new(props, fem::mesh_for(&props, 40)?)?;
+    let model = Model::new(props, mesh_for(&props, 40)?)?;
     let family = CornerFamily::new(&model, [EdgeSupport::Free; 4], CornerFamily::default_base_stiffness(&model))?;
     let probe = [(l / 2.0, b / 2.0), (l / 4.0, 0.0), (l, b / 2.0), (0.0, 0.0)];
     let base = family.probe_many(&probe)?;
-    let c1_centre = family.respond(&base[0], corner_supports(Condition::BothFixed))?.compliance;
+    let c1_centre = family.respond(&base[0], corner_supports(Condition::BothFixed).corners)?.compliance;
     let mut kt = Table::new(
         "",
         &[
@@ -250,7 +251,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         for (name, cond) in
             [("Con 2", Condition::BothSprings { k_t: k }), ("Con 3", Condition::FixedAndSprings { k_t: k })]
         {
-            let corners = corner_supports(cond);
+            let corners = corner_supports(cond).corners;
             let fresh = model.factorize(&Supports::corners(corners))?.with_refinement(2).respond_many(&probe)?;
             for (bp, fr) in base.iter().zip(&fresh) {
                 let up = family.respond(bp, corners)?;
@@ -292,13 +293,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     // h/L: Kirchhoff C ∝ 1/h³ exactly; C·h³ must not move.
     let c_ref = {
         let p = unit_plate(l, b, 0.008);
-        let m = Model::new(p, fem::mesh_for(&p, 20)?)?;
+        let m = Model::new(p, mesh_for(&p, 20)?)?;
         m.factorize(&Supports::con1())?.respond(l / 2.0, b / 2.0)?.compliance * 0.008f64.powi(3)
     };
     for hl in [1e-3, 1e-2, 0.0175, 0.1, 0.2] {
         let h = hl * l;
         let p = unit_plate(l, b, h);
-        let m = Model::new(p, fem::mesh_for(&p, 20)?)?;
+        let m = Model::new(p, mesh_for(&p, 20)?)?;
         let r = m.factorize(&Supports::con1())?.respond(l / 2.0, b / 2.0)?;
         xt.push(vec![
             format!("h/L = {hl}, Con 1 centre").into(),
@@ -340,7 +341,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         ("Con 2", Condition::BothSprings { k_t }),
         ("Con 3", Condition::FixedAndSprings { k_t }),
     ] {
-        let f = model.factorize(&Supports::corners(corner_supports(cond)))?.with_refinement(1);
+        let f = model.factorize(&corner_supports(cond))?.with_refinement(1);
         for (pname, p) in [
             ("corner (0, 0)", (0.0, 0.0)),
             ("corner (L, B)", (l, b)),
@@ -391,10 +392,10 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             "bracketed",
         ],
     );
-    for name in crate::reference::CASES {
-        let case = crate::reference::load(name)?;
-        let bfs = crate::reference::rust_runs(&case, 4)?;
-        let (ours, arg) = (crate::reference::extrapolate(&bfs), crate::reference::extrapolate(&case.argyris));
+    for name in crate::report::skfem::CASES {
+        let case = crate::report::skfem::load(name)?;
+        let bfs = crate::report::skfem::rust_runs(&case, 4)?;
+        let (ours, arg) = (crate::report::skfem::extrapolate(&bfs), crate::report::skfem::extrapolate(&case.argyris));
         let morley = &case.morley.last().ok_or("no Morley runs")?.compliance;
         let finest = &bfs.last().ok_or("no BFS runs")?.compliance;
         for (i, (r, g)) in ours.iter().zip(&arg).enumerate() {
@@ -425,8 +426,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         }
     }
     a.add("skfem-comparison.csv", st.to_csv());
-    let versions = crate::reference::load(crate::reference::CASES[0])?.versions;
-    let timing = std::fs::read_to_string(crate::reference::data_dir().join("timing.csv")).unwrap_or_default();
+    let versions = crate::report::skfem::load(crate::report::skfem::CASES[0])?.versions;
+    let timing = std::fs::read_to_string(crate::report::skfem::data_dir().join("timing.csv")).unwrap_or_default();
     let mut tt = Table::new("", &["code", "element", "mesh", "DOFs", "time (s)", "rel. error"]);
     for line in timing.lines().skip(1) {
         let c: Vec<&str> = line.split(',').collect();

@@ -8,17 +8,17 @@
 //! not involve the recursion; they deviate through δ_my, which [`yield_inversion`] isolates.
 
 use crate::output::Artifacts;
-use crate::plot::{line_plot, Scale, Series};
-use crate::run::{both_solvers, impact_of};
-use crate::scene::{even_points, Scene};
-use crate::table::{sig, Cell, Table};
+use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::table::{sig, Cell, Table};
+use crate::scene::{even_points, Scene, SceneSource};
 use analytic::{
     beam_compliance, contact_stiffness, evaluate, yield_velocity, Condition, DruckerPrager, Impact, Method, Plate,
     Response, Sphere,
 };
+use coupled::plan::{both_solvers, impact_of};
 use std::fmt::Write as _;
 
-type Failure = Box<dyn std::error::Error>;
+use crate::report::Failure;
 
 /// The stopping residual ğ of eq. 18 that reproduces the printed responses (Tables 3-12).
 pub const PAPER_RECURSION_TOLERANCE: f64 = 1e-6;
@@ -60,7 +60,7 @@ impl Paper {
         let k_t = scene
             .conditions
             .iter()
-            .find_map(|c| c.condition.spring_stiffness())
+            .find_map(|c| c.spring_stiffnesses().next())
             .expect("the default scene has a spring condition");
         let [coal, gangue1, gangue2]: [Sphere; 3] =
             scene.bodies.clone().try_into().expect("the default scene has coal, gangue 1, gangue 2");
@@ -972,7 +972,7 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
     for p in &panels {
         let svg = line_plot(&p.title, "Impact position x (mm)", &p.y_label, &p.series, p.scale);
         a.add(format!("{}.svg", p.stem), svg);
-        a.add(format!("{}.csv", p.stem), crate::plot::series_csv(&p.series));
+        a.add(format!("{}.csv", p.stem), crate::present::plot::series_csv(&p.series));
         let fig = p.stem[..5].to_string();
         if fig != last_fig {
             let _ = writeln!(fig_md, "\n### Fig. {}\n", fig[3..].trim_start_matches('0'));

@@ -1,46 +1,16 @@
-//! The plate finite-element model as seen from the command line: the paper's plate in
-//! `plate_fem` terms, mesh selection by a convergence study, and `impact fem-bench`.
+//! `impact fem-bench`: mesh selection by a convergence study, and the cost of the plate
+//! compliance map with one factorization and rank-4 corner updates against fresh
+//! factorizations.
 
+use crate::present::table::{Cell, Table};
 use crate::scene::Scene;
-use crate::table::{Cell, Table};
 use analytic::Condition;
+use coupled::discretisation::{ladder_meshes, plate_properties};
+use coupled::supports::corner_supports;
 use plate_fem::convergence::richardson;
-use plate_fem::{CornerFamily, CornerSupport, EdgeSupport, FemError, Mesh, Model, PlateProperties, Supports};
+use plate_fem::{CornerFamily, EdgeSupport, FemError, Mesh, Model, PlateProperties, Supports};
 use serde::Serialize;
 use std::time::Instant;
-
-/// The scene's plate for `plate_fem`.
-pub fn plate_properties(scene: &Scene) -> PlateProperties {
-    let p = &scene.plate;
-    PlateProperties {
-        length: p.length(),
-        width: p.width(),
-        thickness: p.thickness(),
-        youngs_modulus: p.material().youngs_modulus(),
-        poisson_ratio: p.material().poisson_ratio(),
-        density: p.density(),
-    }
-}
-
-/// The paper's support conditions on the plate's four corners (design.md section 1).
-pub fn corner_supports(condition: Condition) -> [CornerSupport; 4] {
-    use CornerSupport::*;
-    match condition {
-        Condition::BothFixed => [Fixed; 4],
-        Condition::BothSprings { k_t } => [Spring(k_t); 4],
-        Condition::FixedAndSprings { k_t } => [Fixed, Spring(k_t), Fixed, Spring(k_t)],
-    }
-}
-
-/// A uniform mesh with `n` elements along the longer side and near-square elements; both
-/// counts are even, so the centre lines are node lines and halving h keeps every node.
-pub fn mesh_for(props: &PlateProperties, n: usize) -> Result<Mesh, FemError> {
-    let (l, b) = (props.length, props.width);
-    let even = |v: f64| (2.0 * (v / 2.0).round()).max(2.0) as usize;
-    let (nx, nz) =
-        if l >= b { (even(n as f64), even(n as f64 * b / l)) } else { (even(n as f64 * l / b), even(n as f64)) };
-    Mesh::uniform(l, b, nx, nz)
-}
 
 /// One rung of a mesh ladder.
 #[derive(Debug, Clone, Serialize)]
@@ -52,12 +22,6 @@ pub struct Rung {
     /// |C - C_ref|/C_ref against the Richardson value of the two finest rungs.
     pub error: f64,
     pub seconds: f64,
-}
-
-/// Meshes `base`, 2·`base`, 4·`base`, ... (`levels` of them): each halves h exactly.
-pub fn ladder_meshes(props: &PlateProperties, base: usize, levels: u32) -> Result<Vec<Mesh>, FemError> {
-    let coarse = mesh_for(props, base)?;
-    (0..levels).map(|k| Mesh::uniform(props.length, props.width, coarse.nx() << k, coarse.nz() << k)).collect()
 }
 
 /// Con 1 centre compliance on a ladder of meshes: the rungs, the extrapolated value and
@@ -119,14 +83,14 @@ pub struct BenchReport {
 /// the compliance at `nx_pts` x `nz_pts` impact points for Con 1-3 with one factorization
 /// and rank-4 updates, against three fresh factorizations with unblocked solves.
 pub fn bench(scene: &Scene, tolerance: f64, nx_pts: usize, nz_pts: usize) -> Result<BenchReport, FemError> {
-    let props = plate_properties(scene);
+    let props = plate_properties(&scene.plate);
     let (ladder, extrapolated_centre, observed_rate) = centre_ladder(&props, 10, 5)?;
     let chosen = ladder.iter().find(|r| r.error <= tolerance).unwrap_or(ladder.last().expect("non-empty"));
-    let k_t = scene.conditions.iter().find_map(|c| c.condition.spring_stiffness()).unwrap_or(5.11545e8);
+    let k_t = scene.conditions.iter().find_map(|c| c.spring_stiffnesses().next()).unwrap_or(5.11545e8);
     let conditions = [Condition::BothFixed, Condition::BothSprings { k_t }, Condition::FixedAndSprings { k_t }];
-    let points: Vec<(f64, f64)> = crate::scene::even_points(props.length, nx_pts)
+    let points: Vec<(f64, f64)> = coupled::scene::even_points(props.length, nx_pts)
         .into_iter()
-        .flat_map(|x| crate::scene::even_points(props.width, nz_pts).into_iter().map(move |z| (x, z)))
+        .flat_map(|x| coupled::scene::even_points(props.width, nz_pts).into_iter().map(move |z| (x, z)))
         .collect();
 
     // Reset the resident-set high-water mark (Linux: 5 > /proc/self/clear_refs), so the
@@ -142,7 +106,7 @@ pub fn bench(scene: &Scene, tolerance: f64, nx_pts: usize, nz_pts: usize) -> Res
     let t3 = Instant::now();
     let mut maps = Vec::new();
     for c in conditions {
-        let corners = corner_supports(c);
+        let corners = corner_supports(c).corners;
         maps.push(base.iter().map(|b| family.respond(b, corners)).collect::<Result<Vec<_>, _>>()?);
     }
     let t4 = Instant::now();
@@ -152,7 +116,7 @@ pub fn bench(scene: &Scene, tolerance: f64, nx_pts: usize, nz_pts: usize) -> Res
     let r0 = Instant::now();
     let mut max_diff: f64 = 0.0;
     for (c, map) in conditions.iter().zip(&maps) {
-        let f = model.factorize(&Supports::corners(corner_supports(*c)))?.with_refinement(0);
+        let f = model.factorize(&corner_supports(*c))?.with_refinement(0);
         for (p, m) in points.iter().zip(map) {
             let r = f.respond(p.0, p.1)?;
             if r.compliance > 0.0 {

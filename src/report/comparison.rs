@@ -2,19 +2,21 @@
 //! balance and yield model, and where and by how much they differ (issue 5).
 
 use crate::output::Artifacts;
-use crate::paper::Paper;
-use crate::platemodel::PlateModel;
-use crate::plot::{line_plot, Scale, Series};
-use crate::run::{run, BeamModel, ComplianceModel, Results};
-use crate::scene::{even_points, Analysis, NamedCondition, Scene};
-use crate::table::{sig, Cell, Table};
-use crate::views::slug;
+use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::rows::slug;
+use crate::present::table::{sig, Cell, Table};
+use crate::report::paper::Paper;
+use crate::scene::{even_points, Analysis, Scene, SupportSet};
 use analytic::Condition;
+use coupled::plan::ResponseValues;
+use coupled::plan::{fundamental_periods, run, ModelKind, Results};
+use coupled::PlateModel;
+use coupled::{BeamModel, ComplianceModel};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 use std::time::Instant;
 
-type Failure = Box<dyn std::error::Error>;
+use crate::report::Failure;
 
 /// Mesh ladder of the comparison: 20 x 16 and 40 x 32 elements for the paper's plate
 /// (Richardson from the two; reports/fem shows the estimate is conservative there).
@@ -46,18 +48,19 @@ pub struct Pair {
 
 /// All (x, z) pairs of the scene's points.
 pub fn scene_points(scene: &Scene) -> Vec<(f64, f64)> {
-    scene.points.x.iter().flat_map(|&x| scene.points.z.iter().map(move |&z| (x, z))).collect()
+    scene.point_pairs()
 }
 
 /// Runs both models on the scene's own points.
 pub fn pair(scene: &Scene) -> Result<Pair, Failure> {
-    pair_on(scene, PlateModel::compute(scene, &scene.conditions, &scene_points(scene), BASE_MESH, LEVELS)?)
+    pair_on(scene, PlateModel::compute(&scene.plate, &scene.conditions, &scene_points(scene), BASE_MESH, LEVELS)?)
 }
 
 /// Runs both models on the scene's points with a plate model already computed there.
 pub fn pair_on(scene: &Scene, model: PlateModel) -> Result<Pair, Failure> {
-    let beam = run(scene, &BeamModel { plate: &scene.plate })?;
-    let plate = run(scene, &model)?;
+    let periods = fundamental_periods(scene)?;
+    let beam = run(scene, &BeamModel { plate: &scene.plate }, ModelKind::Beam, &periods)?;
+    let plate = run(scene, &model, ModelKind::Plate, &periods)?;
     Ok(Pair { beam, plate, model })
 }
 
@@ -76,7 +79,7 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
     let mut out = Vec::new();
     for cond in &scene.conditions {
         if scene.wants(Analysis::Responses) {
-            let springs = cond.condition.spring_stiffness().is_some();
+            let springs = cond.has_springs();
             let mut h = vec![
                 "body",
                 "x (mm)",
@@ -102,34 +105,41 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
             let mut t = Table::new(format!("{}: responses, beam against plate FE", cond.name), &h);
             for pr in pair.plate.responses.iter().filter(|r| r.condition == cond.name) {
                 let Some(br) = pair.beam.responses.iter().find(|b| {
-                    b.condition == cond.name && b.body == pr.body && b.x == pr.x && b.velocity == pr.velocity
+                    b.condition == cond.name
+                        && b.body == pr.body
+                        && b.x == pr.x
+                        && b.z == pr.z
+                        && b.velocity == pr.velocity
                 }) else {
                     continue;
                 };
-                let z = pr.z.unwrap_or(scene.plate.width() / 2.0);
-                let fe = pair.model.get(&cond.name, pr.x, z).map_or(f64::NAN, |v| v.error_estimate);
-                let (b, p) = (&br.response, &pr.response);
+                let z = pr.z;
+                let Some(p) = pr.values() else { continue };
+                let b = br.values();
+                let bv = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Text("n/a".into()), |b| Cell::Num(f(b)));
+                let brel = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Text("n/a".into()), |b| rel(f(p), f(b)));
+                let c = |v: &ResponseValues| v.compliance.unwrap_or(0.0);
                 let mut row: Vec<Cell> = vec![
                     pr.body.clone().into(),
                     (pr.x * 1e3).into(),
                     (z * 1e3).into(),
                     pr.velocity.into(),
-                    br.compliance.into(),
-                    pr.compliance.into(),
-                    fe.into(),
-                    rel(pr.compliance, br.compliance),
-                    b.contact_force.into(),
+                    bv(&c),
+                    c(p).into(),
+                    p.compliance_error.map_or(Cell::Empty, Cell::Num),
+                    brel(&c),
+                    bv(&|v| v.contact_force),
                     p.contact_force.into(),
-                    rel(p.contact_force, b.contact_force),
-                    b.compression.into(),
+                    brel(&|v| v.contact_force),
+                    bv(&|v| v.compression),
                     p.compression.into(),
-                    b.deflection.into(),
+                    bv(&|v| v.deflection),
                     p.deflection.into(),
-                    b.plate_ratio.into(),
+                    bv(&|v| v.plate_ratio),
                     p.plate_ratio.into(),
                 ];
                 if springs {
-                    row.extend([Cell::Num(b.spring_ratio), Cell::Num(p.spring_ratio)]);
+                    row.extend([bv(&|v| v.spring_ratio), Cell::Num(p.spring_ratio)]);
                 }
                 t.push(row);
             }
@@ -155,28 +165,30 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                 );
                 for pr in pair.plate.responses.iter().filter(|r| r.condition == cond.name) {
                     let Some(br) = pair.beam.responses.iter().find(|b| {
-                        b.condition == cond.name && b.body == pr.body && b.x == pr.x && b.velocity == pr.velocity
+                        b.condition == cond.name
+                            && b.body == pr.body
+                            && b.x == pr.x
+                            && b.z == pr.z
+                            && b.velocity == pr.velocity
                     }) else {
                         continue;
                     };
-                    let bf = |n: &str| {
-                        br.response
+                    let Some(p) = pr.values() else { continue };
+                    let bf = |n: &str| match br.values() {
+                        None => Cell::Text("n/a".into()),
+                        Some(b) => b
                             .spring_forces
                             .iter()
                             .find(|s| s.name.starts_with(n))
-                            .map_or(Cell::Empty, |s| Cell::Num(s.force))
+                            .map_or(Cell::Empty, |s| Cell::Num(s.force)),
                     };
                     let pf = |n: &str| {
-                        pr.response
-                            .spring_forces
-                            .iter()
-                            .find(|s| s.name.ends_with(n))
-                            .map_or(Cell::Empty, |s| Cell::Num(s.force))
+                        p.spring_forces.iter().find(|s| s.name.ends_with(n)).map_or(Cell::Empty, |s| Cell::Num(s.force))
                     };
                     t.push(vec![
                         pr.body.clone().into(),
                         (pr.x * 1e3).into(),
-                        (pr.z.unwrap_or(0.0) * 1e3).into(),
+                        (pr.z * 1e3).into(),
                         pr.velocity.into(),
                         bf("left"),
                         pf("(0, 0)"),
@@ -195,16 +207,21 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                 &["body", "x (mm)", "z (mm)", "v_y beam (m/s)", "v_y plate (m/s)", "rel. diff."],
             );
             for py in pair.plate.yields.iter().filter(|r| r.condition == cond.name) {
-                if let Some(by) =
-                    pair.beam.yields.iter().find(|b| b.condition == cond.name && b.body == py.body && b.x == py.x)
+                if let Some(by) = pair
+                    .beam
+                    .yields
+                    .iter()
+                    .find(|b| b.condition == cond.name && b.body == py.body && b.x == py.x && b.z == py.z)
                 {
+                    let Some(p) = py.values() else { continue };
+                    let b = by.values();
                     t.push(vec![
                         py.body.clone().into(),
                         (py.x * 1e3).into(),
-                        (py.z.unwrap_or(0.0) * 1e3).into(),
-                        by.yield_velocity.into(),
-                        py.yield_velocity.into(),
-                        rel(py.yield_velocity, by.yield_velocity),
+                        (py.z * 1e3).into(),
+                        b.map_or(Cell::Text("n/a".into()), |b| Cell::Num(b.yield_velocity)),
+                        p.yield_velocity.into(),
+                        b.map_or(Cell::Text("n/a".into()), |b| rel(p.yield_velocity, b.yield_velocity)),
                     ]);
                 }
             }
@@ -232,7 +249,7 @@ pub fn map_points(scene: &Scene) -> Vec<(f64, f64)> {
 
 /// The maps, with their own plate model.
 pub fn maps(scene: &Scene) -> Result<Maps, Failure> {
-    maps_from(scene, &PlateModel::compute(scene, &scene.conditions, &map_points(scene), BASE_MESH, LEVELS)?)
+    maps_from(scene, &PlateModel::compute(&scene.plate, &scene.conditions, &map_points(scene), BASE_MESH, LEVELS)?)
 }
 
 /// The maps from a plate model that holds the map grid.
@@ -248,7 +265,7 @@ pub fn maps_from(scene: &Scene, model: &PlateModel) -> Result<Maps, Failure> {
         let mut egrid = Vec::new();
         let mut brow = Vec::new();
         for &x in &xs {
-            brow.push(beam.compliance(c, x, 0.0)?.total());
+            brow.push(beam.compliance(c, x, 0.0)?.compliance.total());
             let (mut col, mut ecol) = (Vec::new(), Vec::new());
             for &z in &zs {
                 let v = model.get(&c.name, x, z).ok_or("map point missing")?;
@@ -360,16 +377,16 @@ pub fn width_dependence(scene: &Scene) -> Result<Table, Failure> {
     for bl in [0.1, 0.25, 0.5, 0.785, 1.0, 1.5, 2.0] {
         let plate = scene.plate.with_width(bl * l)?;
         let s = Scene { plate, ..scene.clone() };
-        let cond = NamedCondition { name: "Con 1".into(), condition: Condition::BothFixed };
+        let cond = SupportSet::preset("Con 1", Condition::BothFixed);
         let b = plate.width();
         let pts = [(l / 2.0, b / 2.0), (l / 2.0, 0.0), (l / 4.0, b / 2.0)];
         // Near-square elements, 20 (then 40) along the longer side.
-        let model = PlateModel::compute(&s, std::slice::from_ref(&cond), &pts, BASE_MESH, LEVELS)?;
+        let model = PlateModel::compute(&s.plate, std::slice::from_ref(&cond), &pts, BASE_MESH, LEVELS)?;
         let beam = BeamModel { plate: &s.plate };
         let r = |p: (f64, f64)| -> Result<(f64, f64), Failure> {
             let fe = model.get("Con 1", p.0, p.1).ok_or("missing")?;
             Ok((
-                fe.compliance.total() / beam.compliance(&cond, p.0, 0.0)?.total(),
+                fe.compliance.total() / beam.compliance(&cond, p.0, 0.0)?.compliance.total(),
                 fe.error_estimate / fe.compliance.total(),
             ))
         };
@@ -386,7 +403,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     // One plate model (one factorization per mesh) for the scene's points and the map grid.
     let mut points = scene_points(scene);
     points.extend(map_points(scene));
-    let pr = pair_on(scene, PlateModel::compute(scene, &scene.conditions, &points, BASE_MESH, LEVELS)?)?;
+    let pr = pair_on(scene, PlateModel::compute(&scene.plate, &scene.conditions, &points, BASE_MESH, LEVELS)?)?;
     pb.inc(1);
     pb.set_message("compliance maps");
     let mp = maps_from(scene, &pr.model)?;
@@ -544,9 +561,10 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
 pub fn error_vs_time(scene: &Scene) -> Result<(Table, String, String), Failure> {
     let pts = scene_points(scene);
     let mut runs: Vec<(usize, usize, usize, f64, Vec<f64>)> = Vec::new();
-    for mesh in crate::fem::ladder_meshes(&crate::fem::plate_properties(scene), 10, 5)? {
+    for mesh in coupled::discretisation::ladder_meshes(&coupled::discretisation::plate_properties(&scene.plate), 10, 5)?
+    {
         let t = Instant::now();
-        let m = PlateModel::on_meshes(scene, &scene.conditions, &pts, vec![mesh])?;
+        let m = PlateModel::on_meshes(&scene.plate, &scene.conditions, &pts, vec![mesh])?;
         let secs = t.elapsed().as_secs_f64();
         let lv = m.levels.last().ok_or("no level")?.clone();
         let mut vals = Vec::new();
@@ -621,16 +639,16 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
     );
     let (l, b) = (scene.plate.length(), scene.plate.width());
     let points = [("centre", (l / 2.0, b / 2.0)), ("end (0, B/2)", (0.0, b / 2.0)), ("edge (L/2, 0)", (l / 2.0, 0.0))];
-    let mut cases: Vec<(String, Scene, NamedCondition, f64)> = Vec::new();
+    let mut cases: Vec<(String, Scene, SupportSet, f64)> = Vec::new();
     for k in [1.0, 5e4, 5.11545e8, 1e15] {
         cases.push((
             format!("Con 2, k_T = {k:e} N/m, v = 0.008"),
             scene.clone(),
-            NamedCondition { name: "Con 2".into(), condition: Condition::BothSprings { k_t: k } },
+            SupportSet::preset("Con 2", Condition::BothSprings { k_t: k }),
             0.008,
         ));
     }
-    let con1 = NamedCondition { name: "Con 1".into(), condition: Condition::BothFixed };
+    let con1 = SupportSet::preset("Con 1", Condition::BothFixed);
     for v in [1e-6, 1e-3, 1.0, 10.0] {
         cases.push((format!("Con 1, v = {v:e} m/s"), scene.clone(), con1.clone(), v));
     }
@@ -645,11 +663,11 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
     }
     for (name, s, cond, v) in cases {
         let pts: Vec<(f64, f64)> = points.iter().map(|p| p.1).collect();
-        let model = PlateModel::compute(&s, std::slice::from_ref(&cond), &pts, BASE_MESH, LEVELS)?;
+        let model = PlateModel::compute(&s.plate, std::slice::from_ref(&cond), &pts, BASE_MESH, LEVELS)?;
         let beam = BeamModel { plate: &s.plate };
-        let imp = crate::run::impact_of(&s, body, v);
+        let imp = coupled::plan::impact_of(&s, body, v);
         for (pname, (x, z)) in points {
-            let cb = beam.compliance(&cond, x, z)?;
+            let cb = beam.compliance(&cond, x, z)?.compliance;
             let fe = model.get(&cond.name, x, z).ok_or("missing")?;
             let rb = analytic::respond(&imp, &cb, s.solver);
             let rp = analytic::respond(&imp, &fe.compliance, s.solver);
@@ -678,8 +696,8 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
 
 /// The paper's conclusions under both models, appended to a report of the paper's scene.
 pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
-    let checks = crate::conclusions::checks()?;
-    let t = crate::conclusions::table(&checks);
+    let checks = crate::report::conclusions::checks()?;
+    let t = crate::report::conclusions::table(&checks);
     a.add("conclusions.csv", t.to_csv());
     let held = |p: bool| checks.iter().filter(|c| if p { c.plate_holds } else { c.beam_holds }).count();
     let mut md = String::from_utf8(a.get("index.md").map(|b| b.to_vec()).unwrap_or_default())?;
@@ -692,10 +710,10 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
         t.to_markdown()
     );
     // Tables 6-8 and 11 of the paper (midpoint, 0.0025 m/s, three spheres) under both models.
-    let paper = crate::paper::Paper::new();
+    let paper = crate::report::paper::Paper::new();
     let sc = &paper.scene;
     let mid = (sc.plate.length() / 2.0, sc.plate.width() / 2.0);
-    let model = PlateModel::compute(sc, &sc.conditions, &[mid], BASE_MESH, LEVELS)?;
+    let model = PlateModel::compute(&sc.plate, &sc.conditions, &[mid], BASE_MESH, LEVELS)?;
     let beam = BeamModel { plate: &sc.plate };
     let mut t68 = Table::new(
         "",
@@ -718,10 +736,10 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
     );
     for cond in &sc.conditions {
         for body in paper.bodies() {
-            let imp = crate::run::impact_of(sc, body, 0.0025);
+            let imp = coupled::plan::impact_of(sc, body, 0.0025);
             let m = analytic::Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
-            let rb = analytic::respond(&imp, &beam.compliance(cond, mid.0, mid.1)?, m)?;
-            let rp = analytic::respond(&imp, &model.compliance(cond, mid.0, mid.1)?, m)?;
+            let rb = analytic::respond(&imp, &beam.compliance(cond, mid.0, mid.1)?.compliance, m)?;
+            let rp = analytic::respond(&imp, &model.compliance(cond, mid.0, mid.1)?.compliance, m)?;
             t68.push(vec![
                 cond.name.clone().into(),
                 body.name.clone().into(),
@@ -745,9 +763,11 @@ pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
 
     let _ = writeln!(md, "\n## Is the quasi-static assumption right?\n\nThe paper points to a dynamic FE model as future work. [dynamic/index.md](dynamic/index.md) integrates sphere, Flores contact and plate dynamics in time and sets them against both quasi-static models: for this plate the contact lasts about a tenth of the plate's fundamental period, and the quasi-static balance is off by the amounts summarized there.\n");
     let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
-    for crate::conclusions::Figure { stem, title, y_label: ylabel, series } in crate::conclusions::study_figures()? {
+    for crate::report::conclusions::Figure { stem, title, y_label: ylabel, series } in
+        crate::report::conclusions::study_figures()?
+    {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
-        a.add(format!("{stem}.csv"), crate::plot::series_csv(&series));
+        a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series));
         let _ = writeln!(md, "![{title}]({stem}.svg)\n");
     }
     a.add("index.md", md);

@@ -17,7 +17,7 @@ impl Series {
 
 /// The curves of a plot as long-format CSV: series, x_mm, value.
 pub fn series_csv(series: &[Series]) -> String {
-    let mut t = crate::table::Table::new("", &["series", "x_mm", "value"]);
+    let mut t = crate::present::table::Table::new("", &["series", "x_mm", "value"]);
     for s in series {
         for &(x, y) in &s.points {
             t.push(vec![s.name.clone().into(), x.into(), y.into()]);
@@ -87,8 +87,8 @@ pub fn line_plot(title: &str, x_label: &str, y_label: &str, series: &[Series], y
                     .configure_mesh()
                     .x_desc(x_label)
                     .y_desc(y_label)
-                    .y_label_formatter(&|v| crate::table::sig(*v, 3))
-                    .x_label_formatter(&|v| crate::table::sig(*v, 3))
+                    .y_label_formatter(&|v| crate::present::table::sig(*v, 3))
+                    .x_label_formatter(&|v| crate::present::table::sig(*v, 3))
                     .draw()
                     .expect("drawing to memory");
                 for (i, s) in series.iter().enumerate() {

@@ -1,7 +1,7 @@
 //! The scikit-fem reference data (reference/data/*.json, written by
 //! reference/python/plate_reference.py) and the matching Rust runs.
 
-use crate::fem::ladder_meshes;
+use coupled::discretisation::ladder_meshes;
 use plate_fem::convergence::{richardson, Extrapolation};
 use plate_fem::{CornerSupport, EdgeSupport, FemError, Model, PlateProperties, Supports};
 use serde_json::Value;

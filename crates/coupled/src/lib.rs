@@ -1,0 +1,56 @@
+//! # The coupled impact of a rock sphere on a supported plate
+//!
+//! The paper's model (crate `analytic`) needs one thing from the plate: its compliance at
+//! the impact point, split into energy stores. This crate supplies it from two models
+//! behind one trait, runs the scene's plan through the same energy balance and yield model,
+//! says of every result whether it is inside its model's assumptions, and integrates the
+//! whole impact in time where the quasi-static assumption is in doubt.
+//!
+//! It reads top-down:
+//! - [`supports`]: support sets (any corner fixed / spring / free, any edge free / simply
+//!   supported / clamped) and the paper's Con 1-3 as presets;
+//! - [`scene`]: a validated scene in SI units;
+//! - [`discretisation`]: the plate in `plate_fem` terms and its meshes;
+//! - [`compliance`]: the [`ComplianceModel`] seam, the beam ([`BeamModel`]) and the plate
+//!   finite elements with Richardson error estimates ([`PlateModel`]);
+//! - [`validity`]: elastic range, quasi-static validity, thin-plate range, re-contact;
+//! - [`transient`]: the sphere, the Flores contact and the plate dynamics in time;
+//! - [`plan`]: every model filling one row schema for a scene.
+//!
+//! No function here reads or writes files or knows of terminals.
+//!
+//! ```
+//! use analytic::{Condition, Elastic, Plate};
+//! use coupled::{BeamModel, ComplianceModel, PlateModel, SupportSet};
+//! use plate_fem::{CornerSupport, EdgeSupport, Supports};
+//! let plate = Plate::new(0.4584, 0.36, 0.008, 7850.0, Elastic::new(210e9, 0.3)?)?;
+//! // A general support set: the left edge clamped, the right corners on springs.
+//! let clamped = SupportSet::new("clamped + springs", Supports {
+//!     corners: [CornerSupport::Free, CornerSupport::Spring(1e6), CornerSupport::Free, CornerSupport::Spring(1e6)],
+//!     edges: [EdgeSupport::Clamped, EdgeSupport::Free, EdgeSupport::Free, EdgeSupport::Free],
+//! });
+//! let point = (0.2292, 0.18);
+//! // The beam does not describe it; the plate does.
+//! assert!(BeamModel { plate: &plate }.compliance(&clamped, point.0, point.1).is_err());
+//! let fe = PlateModel::compute(&plate, &[clamped.clone()], &[point], 10, 2)?;
+//! assert!(fe.compliance(&clamped, point.0, point.1)?.compliance.total() > 0.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod compliance;
+pub mod discretisation;
+pub mod error;
+pub mod plan;
+pub mod scene;
+pub mod supports;
+pub mod transient;
+pub mod validity;
+
+pub use compliance::{BeamModel, ComplianceModel, Estimate, PlateModel};
+pub use error::ModelError;
+pub use plan::{ModelKind, ResponseRow, Results, RowOutcome, YieldRow};
+pub use scene::{Analysis, Points, Scene};
+pub use supports::SupportSet;
+pub use validity::Validity;

@@ -1,0 +1,609 @@
+//! The plan: compute exactly what a scene asks for, with any model, and say of every
+//! result whether it is inside the model's assumptions.
+//!
+//! A [`ComplianceModel`] turns (support set, x, z) into an [`Estimate`]; the energy balance,
+//! the responses and the yield model are the `analytic` crate's and do not know which model
+//! produced C. The transient model ([`crate::transient`]) answers the same questions by
+//! integrating the impact in time. Every model fills the same rows, so a table, a CSV file
+//! or a JSON document has one schema with a `model` column.
+
+use crate::compliance::plate::corner_weights;
+use crate::compliance::{ComplianceModel, Estimate};
+use crate::error::ModelError;
+use crate::scene::{Analysis, Scene};
+use crate::supports::SupportSet;
+use crate::transient::{case::striker, Outcome, TransientCase, TransientSettings};
+use crate::validity::{self, Validity};
+use analytic::{
+    contact_stiffness, respond, yield_velocity, DruckerPrager, Impact, Method, PointCompliance, Response, Sphere,
+};
+use plate_fem::Corner;
+use serde::Serialize;
+
+/// Which model answers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelKind {
+    /// The paper's beam (section II): closed form, Con 1-3 only.
+    Beam,
+    /// Kirchhoff plate finite elements, quasi-static, Richardson-extrapolated.
+    Plate,
+    /// The plate finite elements in time with the Flores contact: no quasi-static assumption.
+    Transient,
+}
+
+impl ModelKind {
+    /// Every model, in the order tables list them.
+    pub const ALL: [ModelKind; 3] = [ModelKind::Beam, ModelKind::Plate, ModelKind::Transient];
+
+    /// The name in tables and files.
+    pub fn key(self) -> &'static str {
+        match self {
+            ModelKind::Beam => "beam",
+            ModelKind::Plate => "plate",
+            ModelKind::Transient => "transient",
+        }
+    }
+}
+
+/// A row's result: computed, or the model does not describe the case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "status", rename_all = "kebab-case")]
+pub enum RowOutcome<T> {
+    /// The model answered.
+    Computed(T),
+    /// The model does not describe this case (the beam and a general support set).
+    NotApplicable {
+        /// Why, in a sentence.
+        reason: String,
+    },
+}
+
+/// How a response was found.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Evidence {
+    /// The energy balance of eqs. 14, 25, 46.
+    Balance {
+        /// Iterations of the solver.
+        iterations: u32,
+        /// Relative residual ğ of eq. 18 at the root.
+        residual: f64,
+    },
+    /// The time integration.
+    Transient {
+        /// Time steps taken.
+        steps: usize,
+        /// Time step, s.
+        time_step: f64,
+        /// Largest contact force over the steps, N (it includes the Flores damping; the
+        /// paper's P_max is Kδ_max^{3/2}).
+        peak_force: f64,
+        /// Duration of the first contact, s.
+        contact_time: Option<f64>,
+        /// -v_rebound/v₀ after the first contact.
+        apparent_restitution: Option<f64>,
+    },
+}
+
+/// Responses at maximum compression, from any model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ResponseValues {
+    /// Total compliance C of the supported plate at the point, m/N (quasi-static models).
+    pub compliance: Option<f64>,
+    /// Its estimated absolute discretisation error, m/N.
+    pub compliance_error: Option<f64>,
+    /// P_max = K δ_max^{3/2}, N (eq. 20).
+    pub contact_force: f64,
+    /// Estimated absolute error of P_max from the compliance's error, N.
+    pub contact_force_error: Option<f64>,
+    /// δ_max, m.
+    pub compression: f64,
+    /// Estimated absolute error of δ_max, m.
+    pub compression_error: Option<f64>,
+    /// Plate deflection at the impact point (eq. 11; eq. 41 in Con 3; for the plate, w
+    /// minus the bilinear plane through the corner deflections), m.
+    pub deflection: f64,
+    /// Spring forces (eqs. 29-30, 36), N.
+    pub spring_forces: Vec<analytic::SpringForce>,
+    /// Energy absorbed and dissipated by the rock over E₀.
+    pub rock_total_ratio: f64,
+    /// Elastic energy of the rock, (2K/5)δ^{5/2}, over E₀.
+    pub rock_stored_ratio: f64,
+    /// Plate energy (strain, and kinetic in the transient model) over E₀.
+    pub plate_ratio: f64,
+    /// Spring energy over E₀.
+    pub spring_ratio: f64,
+    /// Kinetic energy the sphere still has at maximum compression over E₀ (0 when
+    /// quasi-static).
+    pub sphere_kinetic_ratio: f64,
+    /// How the values were found.
+    pub evidence: Evidence,
+    /// Whether the values are inside the model's assumptions.
+    pub validity: Validity,
+}
+
+/// Responses of one body at one point and velocity, by one model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ResponseRow {
+    /// Which model.
+    pub model: ModelKind,
+    /// Body name.
+    pub body: String,
+    /// Support set name.
+    pub condition: String,
+    /// m.
+    pub x: f64,
+    /// m.
+    pub z: f64,
+    /// m/s.
+    pub velocity: f64,
+    /// The values, or why there are none.
+    pub outcome: RowOutcome<ResponseValues>,
+}
+
+impl ResponseRow {
+    /// The values, if the model answered.
+    pub fn values(&self) -> Option<&ResponseValues> {
+        match &self.outcome {
+            RowOutcome::Computed(v) => Some(v),
+            RowOutcome::NotApplicable { .. } => None,
+        }
+    }
+}
+
+/// The yield velocity at one point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct YieldValues {
+    /// Total compliance C, m/N (quasi-static models).
+    pub compliance: Option<f64>,
+    /// Its estimated absolute error, m/N.
+    pub compliance_error: Option<f64>,
+    /// δ_my of eq. 51, m.
+    pub yield_compression: f64,
+    /// v_y of eqs. 52-54 (or the transient root), m/s.
+    pub yield_velocity: f64,
+    /// Estimated absolute error of v_y, m/s.
+    pub yield_velocity_error: Option<f64>,
+    /// Validity at v = v_y.
+    pub validity: Validity,
+}
+
+/// The yield velocity of one body at one point, by one model.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct YieldRow {
+    /// Which model.
+    pub model: ModelKind,
+    /// Body name.
+    pub body: String,
+    /// Support set name.
+    pub condition: String,
+    /// m.
+    pub x: f64,
+    /// m.
+    pub z: f64,
+    /// The values, or why there are none.
+    pub outcome: RowOutcome<YieldValues>,
+}
+
+impl YieldRow {
+    /// The values, if the model answered.
+    pub fn values(&self) -> Option<&YieldValues> {
+        match &self.outcome {
+            RowOutcome::Computed(v) => Some(v),
+            RowOutcome::NotApplicable { .. } => None,
+        }
+    }
+}
+
+/// Everything computed for a scene.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Results {
+    /// Scene name.
+    pub scene: String,
+    /// Responses, model by model.
+    pub responses: Vec<ResponseRow>,
+    /// Yield velocities, model by model.
+    pub yields: Vec<YieldRow>,
+}
+
+impl Results {
+    /// Appends another model's rows.
+    pub fn extend(&mut self, other: Results) {
+        self.responses.extend(other.responses);
+        self.yields.extend(other.yields);
+    }
+
+    /// A one-line count of rows by status: computed, valid, beyond validity (by criterion),
+    /// not applicable.
+    pub fn summary(&self) -> Summary {
+        let mut s = Summary::default();
+        let validities = self
+            .responses
+            .iter()
+            .map(|r| r.values().map(|v| v.validity))
+            .chain(self.yields.iter().map(|r| r.values().map(|v| v.validity)));
+        for v in validities {
+            match v {
+                None => s.not_applicable += 1,
+                Some(v) => {
+                    s.computed += 1;
+                    if v.all_valid() {
+                        s.valid += 1;
+                    }
+                    for f in v.flags() {
+                        match f {
+                            "beyond elastic range" => s.beyond_elastic += 1,
+                            "not quasi-static" => s.not_quasi_static += 1,
+                            "beyond thin-plate range" => s.beyond_thin_plate += 1,
+                            _ => s.recontact += 1,
+                        }
+                    }
+                }
+            }
+        }
+        s
+    }
+}
+
+/// Counts of rows by validity.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct Summary {
+    /// Rows with values.
+    pub computed: usize,
+    /// Rows inside every criterion.
+    pub valid: usize,
+    /// Rows beyond the elastic range.
+    pub beyond_elastic: usize,
+    /// Rows where the quasi-static assumption fails.
+    pub not_quasi_static: usize,
+    /// Rows beyond the thin-plate range.
+    pub beyond_thin_plate: usize,
+    /// Transient rows whose sphere must strike again.
+    pub recontact: usize,
+    /// Rows the model does not describe.
+    pub not_applicable: usize,
+}
+
+/// The impact of `body` on the scene's plate at `velocity`.
+pub fn impact_of(scene: &Scene, body: &Sphere, velocity: f64) -> Impact {
+    Impact {
+        contact_stiffness: contact_stiffness(body, scene.plate.material()),
+        mass: body.mass(),
+        restitution: scene.restitution,
+        velocity,
+    }
+}
+
+/// The fundamental period T₁ of the plate on each of the scene's support sets (plate FE on
+/// the transient model's mesh), for the quasi-static criterion.
+pub fn fundamental_periods(scene: &Scene) -> Result<Vec<f64>, ModelError> {
+    let case = TransientCase::new(&scene.plate, TransientSettings::default())?;
+    scene.conditions.iter().map(|c| case.fundamental_period(&c.supports)).collect()
+}
+
+/// Hertz's contact time on a rigid target, a lower bound of the contact time on any plate.
+fn hertz_time(imp: &Impact) -> f64 {
+    crate::transient::HERTZ_TIME
+        * (imp.mass * imp.mass / (imp.contact_stiffness * imp.contact_stiffness * imp.velocity)).powf(0.2)
+}
+
+fn thin_plate(scene: &Scene) -> validity::Criterion {
+    let p = &scene.plate;
+    validity::thin_plate(p.thickness(), p.length(), p.width())
+}
+
+/// The quasi-static responses of one case, with the errors that follow from the
+/// compliance's error estimate (the balance re-solved at C + error).
+fn quasi_static_values(
+    scene: &Scene,
+    imp: &Impact,
+    estimate: &Estimate,
+    delta_my: f64,
+    period: f64,
+) -> Result<(Response, ResponseValues), analytic::NotConverged> {
+    let r = respond(imp, &estimate.compliance, scene.solver)?;
+    let (force_error, compression_error) = if estimate.error_estimate > 0.0 && estimate.error_estimate.is_finite() {
+        let c = estimate.compliance.total() + estimate.error_estimate;
+        let d = imp.balance(c).solve(scene.solver)?.delta;
+        let p = imp.contact_stiffness * d.powf(1.5);
+        (Some((p - r.contact_force).abs()), Some((d - r.compression).abs()))
+    } else {
+        (Some(0.0), Some(0.0))
+    };
+    let validity = Validity {
+        elastic: Some(validity::elastic(r.compression, delta_my)),
+        quasi_static: Some(validity::quasi_static(hertz_time(imp), period)),
+        thin_plate: thin_plate(scene),
+        recontact: None,
+    };
+    let values = ResponseValues {
+        compliance: Some(estimate.compliance.total()),
+        compliance_error: Some(estimate.error_estimate),
+        contact_force: r.contact_force,
+        contact_force_error: force_error,
+        compression: r.compression,
+        compression_error,
+        deflection: r.deflection,
+        spring_forces: r.spring_forces.clone(),
+        rock_total_ratio: r.rock_total_ratio,
+        rock_stored_ratio: r.rock_stored_ratio,
+        plate_ratio: r.plate_ratio,
+        spring_ratio: r.spring_ratio,
+        sphere_kinetic_ratio: 0.0,
+        evidence: Evidence::Balance { iterations: r.solution.iterations, residual: r.solution.residual },
+        validity,
+    };
+    Ok((r, values))
+}
+
+/// The paper's responses (eqs. 14-20) for one case, as the `analytic` crate gives them.
+pub fn response(scene: &Scene, imp: &Impact, c: &PointCompliance) -> Result<Response, analytic::NotConverged> {
+    respond(imp, c, scene.solver)
+}
+
+/// Runs the scene's responses and yield velocities with a quasi-static `model`; `periods`
+/// are the fundamental periods of the scene's support sets ([`fundamental_periods`]).
+pub fn run(
+    scene: &Scene,
+    model: &dyn ComplianceModel,
+    kind: ModelKind,
+    periods: &[f64],
+) -> Result<Results, ModelError> {
+    let points = scene.point_pairs();
+    let mut responses = Vec::new();
+    let mut yields = Vec::new();
+    for body in &scene.bodies {
+        let dp = DruckerPrager::of(body);
+        for (ci, set) in scene.conditions.iter().enumerate() {
+            let period = periods.get(ci).copied().ok_or_else(|| ModelError::Missing("fundamental period".into()))?;
+            for &(x, z) in &points {
+                let estimate = match model.compliance(set, x, z) {
+                    Ok(e) => Ok(e),
+                    Err(ModelError::NotApplicable { reason, .. }) => Err(reason),
+                    Err(e) => return Err(e),
+                };
+                if scene.wants(Analysis::Responses) {
+                    for &v in &scene.velocities {
+                        let imp = impact_of(scene, body, v);
+                        let outcome = match &estimate {
+                            Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
+                            Ok(est) => {
+                                let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
+                                let (_, values) =
+                                    quasi_static_values(scene, &imp, est, d_my, period).map_err(|source| {
+                                        ModelError::NotConverged {
+                                            context: format!(
+                                                "{} on {} at (x, z) = ({x}, {z}) m, v = {v} m/s",
+                                                body.name, set.name
+                                            ),
+                                            source,
+                                        }
+                                    })?;
+                                RowOutcome::Computed(values)
+                            }
+                        };
+                        responses.push(ResponseRow {
+                            model: kind,
+                            body: body.name.clone(),
+                            condition: set.name.clone(),
+                            x,
+                            z,
+                            velocity: v,
+                            outcome,
+                        });
+                    }
+                }
+                if scene.wants(Analysis::YieldVelocity) {
+                    let outcome = match &estimate {
+                        Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
+                        Ok(est) => RowOutcome::Computed(yield_values(scene, body, &dp, est, period)),
+                    };
+                    yields.push(YieldRow {
+                        model: kind,
+                        body: body.name.clone(),
+                        condition: set.name.clone(),
+                        x,
+                        z,
+                        outcome,
+                    });
+                }
+            }
+        }
+    }
+    Ok(Results { scene: scene.name.clone(), responses, yields })
+}
+
+/// The yield velocity of eqs. 51-54 for a compliance estimate, with the error that follows
+/// from the compliance's error.
+fn yield_values(scene: &Scene, body: &Sphere, dp: &DruckerPrager, est: &Estimate, period: f64) -> YieldValues {
+    // The velocity does not enter v_y; any positive value builds the balance.
+    let imp = impact_of(scene, body, 1.0);
+    let d = dp.yield_compression(body.radius(), imp.contact_stiffness);
+    let c = est.compliance.total();
+    let v_y = yield_velocity(body, &imp, c, d);
+    let error = if est.error_estimate.is_finite() {
+        (yield_velocity(body, &imp, c + est.error_estimate, d) - v_y).abs()
+    } else {
+        0.0
+    };
+    let at_yield = Impact { velocity: v_y, ..imp };
+    YieldValues {
+        compliance: Some(c),
+        compliance_error: Some(est.error_estimate),
+        yield_compression: d,
+        yield_velocity: v_y,
+        yield_velocity_error: Some(error),
+        validity: Validity {
+            elastic: None,
+            quasi_static: Some(validity::quasi_static(hertz_time(&at_yield), period)),
+            thin_plate: thin_plate(scene),
+            recontact: None,
+        },
+    }
+}
+
+/// The transient responses of one case.
+pub fn transient_values(
+    scene: &Scene,
+    set: &SupportSet,
+    body: &Sphere,
+    o: &Outcome,
+    s: &crate::transient::Striker,
+    dt: f64,
+    (x, z): (f64, f64),
+) -> ResponseValues {
+    let e0 = 0.5 * s.mass * s.velocity * s.velocity;
+    let m = o.at_max_compression;
+    let (l, b) = (scene.plate.length(), scene.plate.width());
+    let delta = o.compression_max;
+    let p = s.k * delta.max(0.0).powf(1.5);
+    let dp = DruckerPrager::of(body);
+    let d_my = dp.yield_compression(body.radius(), s.k);
+    // The plate's own deflection: w at the point minus the bilinear plane through the
+    // corner deflections (zero at held corners), as in the quasi-static plate model.
+    let weights = corner_weights(x, z, l, b);
+    let mut support_plane = 0.0;
+    let mut spring_forces = Vec::new();
+    for c in Corner::ALL {
+        let i = c.index();
+        if let plate_fem::CornerSupport::Spring(k) = set.supports.corners[i] {
+            spring_forces.push(analytic::SpringForce {
+                name: format!("spring at {}", c.name()),
+                force: k * o.corners_at_max_compression[i],
+            });
+            support_plane += weights[i] * o.corners_at_max_compression[i];
+        }
+    }
+    let recontact = o.rebound_velocity.map(|v| validity::Criterion::at_most("v_rebound/v₀", v / s.velocity, 0.0));
+    ResponseValues {
+        compliance: None,
+        compliance_error: None,
+        contact_force: p,
+        contact_force_error: None,
+        compression: delta,
+        compression_error: None,
+        deflection: m.plate_displacement - support_plane,
+        spring_forces,
+        rock_total_ratio: (m.contact + m.dissipated) / e0,
+        rock_stored_ratio: m.contact / e0,
+        plate_ratio: (m.plate_kinetic + m.plate_strain) / e0,
+        spring_ratio: m.springs / e0,
+        sphere_kinetic_ratio: m.sphere_kinetic / e0,
+        evidence: Evidence::Transient {
+            steps: o.steps,
+            time_step: dt,
+            peak_force: o.force_max,
+            contact_time: o.contact_time,
+            apparent_restitution: o.apparent_restitution,
+        },
+        validity: Validity {
+            elastic: Some(validity::elastic(delta, d_my)),
+            quasi_static: None,
+            thin_plate: thin_plate(scene),
+            recontact,
+        },
+    }
+}
+
+/// Runs the scene's responses with the transient model (yield velocities by the transient
+/// model are the velocity at which the transient δ_max reaches δ_my).
+pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Results, ModelError> {
+    let case = TransientCase::new(&scene.plate, settings)?;
+    let points = scene.point_pairs();
+    let mut responses = Vec::new();
+    let mut yields = Vec::new();
+    for body in &scene.bodies {
+        for set in &scene.conditions {
+            for &(x, z) in &points {
+                if scene.wants(Analysis::Responses) {
+                    for &v in &scene.velocities {
+                        let s = striker(&scene.plate, body, scene.restitution, v);
+                        let o = case.run(set, &s, x, z)?;
+                        let dt = s.hertz_time() / settings.steps_per_contact;
+                        responses.push(ResponseRow {
+                            model: ModelKind::Transient,
+                            body: body.name.clone(),
+                            condition: set.name.clone(),
+                            x,
+                            z,
+                            velocity: v,
+                            outcome: RowOutcome::Computed(transient_values(scene, set, body, &o, &s, dt, (x, z))),
+                        });
+                    }
+                }
+                if scene.wants(Analysis::YieldVelocity) {
+                    yields.push(YieldRow {
+                        model: ModelKind::Transient,
+                        body: body.name.clone(),
+                        condition: set.name.clone(),
+                        x,
+                        z,
+                        outcome: RowOutcome::Computed(dynamic_yield(scene, &case, set, body, x, z)?),
+                    });
+                }
+            }
+        }
+    }
+    Ok(Results { scene: scene.name.clone(), responses, yields })
+}
+
+/// The dynamic yield velocity: the v at which the transient δ_max reaches δ_my of eq. 51.
+/// δ_max grows monotonically with v, so the root is bracketed by doubling from the
+/// quasi-static plate-free (rigid) value and found by bisection in log v to a relative
+/// width of 1e-6.
+pub fn dynamic_yield(
+    scene: &Scene,
+    case: &TransientCase,
+    set: &SupportSet,
+    body: &Sphere,
+    x: f64,
+    z: f64,
+) -> Result<YieldValues, ModelError> {
+    let dp = DruckerPrager::of(body);
+    let k = contact_stiffness(body, scene.plate.material());
+    let d_my = dp.yield_compression(body.radius(), k);
+    let reach = |v: f64| -> Result<f64, ModelError> {
+        let s = striker(&scene.plate, body, scene.restitution, v);
+        Ok(case.run(set, &s, x, z)?.compression_max - d_my)
+    };
+    // On a rigid target the balance gives the smallest v that reaches δ_my: start there.
+    let imp = impact_of(scene, body, 1.0);
+    let v_rigid = yield_velocity(body, &imp, 0.0, d_my);
+    let (mut lo, mut hi) = (v_rigid, v_rigid);
+    let mut f_hi = reach(hi)?;
+    let mut doublings = 0;
+    while f_hi < 0.0 {
+        lo = hi;
+        hi *= 2.0;
+        f_hi = reach(hi)?;
+        doublings += 1;
+        if doublings > 60 {
+            return Err(ModelError::Missing("the dynamic yield velocity could not be bracketed".into()));
+        }
+    }
+    while hi / lo - 1.0 > 1e-6 {
+        let mid = (lo * hi).sqrt();
+        if reach(mid)? < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let v_y = 0.5 * (lo + hi);
+    Ok(YieldValues {
+        compliance: None,
+        compliance_error: None,
+        yield_compression: d_my,
+        yield_velocity: v_y,
+        yield_velocity_error: Some(hi - lo),
+        validity: Validity { elastic: None, quasi_static: None, thin_plate: thin_plate(scene), recontact: None },
+    })
+}
+
+/// Solves one case with the paper's recursion and with the bracketed solver, converged or
+/// not, for the solver study.
+pub fn both_solvers(imp: &Impact, c: f64) -> (analytic::Solution, analytic::Solution) {
+    let bal = imp.balance(c);
+    (bal.attempt(Method::paper()), bal.attempt(Method::default()))
+}

@@ -1,0 +1,163 @@
+//! A validated scene in SI units: the plate, the bodies, the support sets, the impact points,
+//! the velocities and what to compute. Reading and checking scene files is the command
+//! line's business; this type only holds what passed.
+
+use crate::supports::SupportSet;
+use analytic::{Method, Plate, Sphere};
+use serde::{Deserialize, Serialize};
+
+/// What a scene asks for. Nothing that is not asked for is assembled, factorized,
+/// simulated or written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Analysis {
+    /// Responses at maximum compression for every velocity.
+    Responses,
+    /// Yield velocities (eqs. 51-54).
+    YieldVelocity,
+    /// Beam against plate over the whole plate (x along the length, z across the width).
+    WidthMaps,
+    /// Plate against beam at the centre as the width-to-length ratio B/L changes.
+    AspectRatio,
+    /// Accuracy of the plate compliance against computing time, per mesh.
+    ErrorVsTime,
+    /// Both models at extreme compliances, velocities and moduli.
+    ExtremeCases,
+    /// The plate FE and transient models against their classical references.
+    Verification,
+    /// Transient against quasi-static at the scene's points.
+    Transient,
+    /// The quasi-static error of the transient model over plate size and thickness.
+    SizeMap,
+    /// The paper's own studies: its conclusions item by item and its figures redone with
+    /// both models (the paper's plate only).
+    PaperStudies,
+}
+
+impl Analysis {
+    /// Every analysis, in the order reports present them.
+    pub const ALL: [Analysis; 10] = [
+        Analysis::Responses,
+        Analysis::YieldVelocity,
+        Analysis::WidthMaps,
+        Analysis::AspectRatio,
+        Analysis::ErrorVsTime,
+        Analysis::ExtremeCases,
+        Analysis::Verification,
+        Analysis::Transient,
+        Analysis::SizeMap,
+        Analysis::PaperStudies,
+    ];
+
+    /// The name used in scene files.
+    pub fn key(self) -> &'static str {
+        match self {
+            Analysis::Responses => "responses",
+            Analysis::YieldVelocity => "yield-velocity",
+            Analysis::WidthMaps => "width-maps",
+            Analysis::AspectRatio => "aspect-ratio",
+            Analysis::ErrorVsTime => "error-vs-time",
+            Analysis::ExtremeCases => "extreme-cases",
+            Analysis::Verification => "verification",
+            Analysis::Transient => "transient",
+            Analysis::SizeMap => "size-map",
+            Analysis::PaperStudies => "paper-studies",
+        }
+    }
+}
+
+/// Impact points, (x, z) in m: x from the left end in [0, L], z from the near edge in [0, B].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "layout", rename_all = "kebab-case")]
+pub enum Points {
+    /// Explicit (x, z) pairs, in the order given.
+    Pairs {
+        /// (x, z) in m.
+        pairs: Vec<(f64, f64)>,
+    },
+    /// Every x with every z, x outermost.
+    Grid {
+        /// Positions along the length, m.
+        x: Vec<f64>,
+        /// Positions across the width, m.
+        z: Vec<f64>,
+    },
+}
+
+impl Points {
+    /// The points as (x, z) pairs (a grid x-major).
+    pub fn pairs(&self) -> Vec<(f64, f64)> {
+        match self {
+            Points::Pairs { pairs } => pairs.clone(),
+            Points::Grid { x, z } => x.iter().flat_map(|&x| z.iter().map(move |&z| (x, z))).collect(),
+        }
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        match self {
+            Points::Pairs { pairs } => pairs.len(),
+            Points::Grid { x, z } => x.len() * z.len(),
+        }
+    }
+
+    /// Whether there are none (a validated scene always has some).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// `count` points evenly spaced along the centreline z = `width`/2 of a plate of `length`.
+    pub fn centreline(length: f64, width: f64, count: usize) -> Self {
+        Points::Pairs { pairs: even_points(length, count).into_iter().map(|x| (x, width / 2.0)).collect() }
+    }
+}
+
+/// `count` points from 0 to `length` inclusive; the ends are exact.
+pub fn even_points(length: f64, count: usize) -> Vec<f64> {
+    (0..count).map(|i| if i + 1 == count { length } else { length * i as f64 / (count - 1) as f64 }).collect()
+}
+
+/// A validated scene in SI units.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scene {
+    /// Short name, used in titles.
+    pub name: String,
+    /// One line on what the scene is.
+    pub description: String,
+    /// The plate.
+    pub plate: Plate,
+    /// The striking spheres, names unique.
+    pub bodies: Vec<Sphere>,
+    /// Restitution e of the Flores law (eq. 1).
+    pub restitution: f64,
+    /// Support sets, names unique.
+    pub conditions: Vec<SupportSet>,
+    /// Impact points.
+    pub points: Points,
+    /// m/s; empty only when no analysis needs velocities.
+    pub velocities: Vec<f64>,
+    /// What to compute.
+    pub analyses: Vec<Analysis>,
+    /// How to solve the energy balance.
+    pub solver: Method,
+}
+
+impl Scene {
+    /// Whether the scene asks for `analysis`.
+    pub fn wants(&self, analysis: Analysis) -> bool {
+        self.analyses.contains(&analysis)
+    }
+
+    /// A copy whose points are `count` evenly spaced positions on the centreline (the paper
+    /// divides L into 100 parts: 101 points).
+    pub fn with_sweep(&self, count: usize) -> Self {
+        let mut s = self.clone();
+        s.points = Points::centreline(self.plate.length(), self.plate.width(), count);
+        s
+    }
+
+    /// The impact points as (x, z) pairs.
+    pub fn point_pairs(&self) -> Vec<(f64, f64)> {
+        self.points.pairs()
+    }
+}

@@ -1,0 +1,5 @@
+//! Presentation: tables, plots, and the layout of result rows.
+
+pub mod plot;
+pub mod rows;
+pub mod table;

@@ -1,0 +1,199 @@
+//! Result rows as tables: one table per support set, every model in it (a `model`
+//! column), with only the columns that apply (no spring force where the set has no springs,
+//! no sphere kinetic energy where no row is transient), and a `validity` column that names
+//! every criterion a row is beyond.
+
+use crate::present::table::{Cell, Table};
+use coupled::plan::{Evidence, ResponseRow, Results, RowOutcome, YieldRow};
+use coupled::Validity;
+
+fn in_order<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for n in names {
+        if !out.contains(&n) {
+            out.push(n);
+        }
+    }
+    out
+}
+
+/// "valid", or the criteria a result is beyond, with their values.
+pub fn validity_text(v: &Validity) -> String {
+    let beyond: Vec<String> = v
+        .criteria()
+        .into_iter()
+        .filter(|(_, c)| !c.valid)
+        .map(|(name, c)| {
+            format!(
+                "{name}: {} = {} (limit {})",
+                c.measure,
+                crate::present::table::sig(c.value, 3),
+                crate::present::table::sig(c.limit, 3)
+            )
+        })
+        .collect();
+    if beyond.is_empty() {
+        "valid".into()
+    } else {
+        format!("beyond {}", beyond.join("; "))
+    }
+}
+
+fn opt(v: Option<f64>) -> Cell {
+    v.map_or(Cell::Empty, Cell::Num)
+}
+
+/// Response tables, one per support set.
+pub fn response_tables(results: &Results) -> Vec<Table> {
+    in_order(results.responses.iter().map(|r| r.condition.as_str()))
+        .into_iter()
+        .map(|cond| {
+            let rows: Vec<&ResponseRow> = results.responses.iter().filter(|r| r.condition == cond).collect();
+            let springs: Vec<String> = rows
+                .iter()
+                .find_map(|r| r.values().filter(|v| !v.spring_forces.is_empty()))
+                .map(|v| v.spring_forces.iter().map(|s| s.name.clone()).collect())
+                .unwrap_or_default();
+            let transient =
+                rows.iter().any(|r| matches!(r.values().map(|v| v.evidence), Some(Evidence::Transient { .. })));
+            let mut headers: Vec<String> = [
+                "model",
+                "body",
+                "x (mm)",
+                "z (mm)",
+                "v (m/s)",
+                "C (m/N)",
+                "C error (m/N)",
+                "P_max (N)",
+                "P_max error (N)",
+                "delta_max (m)",
+                "deflection (m)",
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+            headers.extend(springs.iter().map(|s| format!("{s} force (N)")));
+            headers.extend(["rock total", "rock stored", "plate"].iter().map(|s| s.to_string()));
+            if !springs.is_empty() {
+                headers.push("springs".into());
+            }
+            if transient {
+                headers.push("sphere kinetic".into());
+            }
+            headers.extend(
+                ["iterations or steps", "residual or peak force (N)", "validity"].iter().map(|s| s.to_string()),
+            );
+            let mut t = Table { title: format!("{cond}: responses at maximum compression"), headers, rows: vec![] };
+            for r in rows {
+                let mut row: Vec<Cell> = vec![
+                    r.model.key().into(),
+                    r.body.clone().into(),
+                    (r.x * 1e3).into(),
+                    (r.z * 1e3).into(),
+                    r.velocity.into(),
+                ];
+                match &r.outcome {
+                    RowOutcome::NotApplicable { reason } => {
+                        row.push(Cell::Text(format!("not applicable: {reason}")));
+                    }
+                    RowOutcome::Computed(v) => {
+                        row.extend([
+                            opt(v.compliance),
+                            opt(v.compliance_error),
+                            Cell::Num(v.contact_force),
+                            opt(v.contact_force_error),
+                            Cell::Num(v.compression),
+                            Cell::Num(v.deflection),
+                        ]);
+                        for name in &springs {
+                            row.push(
+                                v.spring_forces
+                                    .iter()
+                                    .find(|s| &s.name == name)
+                                    .map_or(Cell::Empty, |s| Cell::Num(s.force)),
+                            );
+                        }
+                        row.extend([v.rock_total_ratio, v.rock_stored_ratio, v.plate_ratio].map(Cell::Num));
+                        if !springs.is_empty() {
+                            row.push(v.spring_ratio.into());
+                        }
+                        if transient {
+                            row.push(v.sphere_kinetic_ratio.into());
+                        }
+                        match v.evidence {
+                            Evidence::Balance { iterations, residual } => {
+                                row.push(iterations.into());
+                                row.push(residual.into());
+                            }
+                            Evidence::Transient { steps, peak_force, .. } => {
+                                row.push(steps.into());
+                                row.push(peak_force.into());
+                            }
+                        }
+                        row.push(validity_text(&v.validity).into());
+                    }
+                }
+                t.push(row);
+            }
+            t
+        })
+        .collect()
+}
+
+/// Yield-velocity tables, one per support set.
+pub fn yield_tables(results: &Results) -> Vec<Table> {
+    in_order(results.yields.iter().map(|r| r.condition.as_str()))
+        .into_iter()
+        .map(|cond| {
+            let rows: Vec<&YieldRow> = results.yields.iter().filter(|r| r.condition == cond).collect();
+            let mut t = Table::new(
+                format!("{cond}: yield velocities (eqs. 51-54)"),
+                &[
+                    "model",
+                    "body",
+                    "x (mm)",
+                    "z (mm)",
+                    "C (m/N)",
+                    "C error (m/N)",
+                    "delta_my (m)",
+                    "v_y (m/s)",
+                    "v_y error (m/s)",
+                    "validity at v_y",
+                ],
+            );
+            for r in rows {
+                let mut row: Vec<Cell> =
+                    vec![r.model.key().into(), r.body.clone().into(), (r.x * 1e3).into(), (r.z * 1e3).into()];
+                match &r.outcome {
+                    RowOutcome::NotApplicable { reason } => row.push(Cell::Text(format!("not applicable: {reason}"))),
+                    RowOutcome::Computed(v) => {
+                        row.extend([
+                            opt(v.compliance),
+                            opt(v.compliance_error),
+                            Cell::Num(v.yield_compression),
+                            Cell::Num(v.yield_velocity),
+                            opt(v.yield_velocity_error),
+                        ]);
+                        row.push(validity_text(&v.validity).into());
+                    }
+                }
+                t.push(row);
+            }
+            t
+        })
+        .collect()
+}
+
+/// A file-name-safe form of a name ("Con 2" -> "con-2"). Not unique: file names that
+/// must not collide use an index beside it.
+pub fn slug(name: &str) -> String {
+    let mut s = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.ends_with('-') {
+            s.push('-');
+        }
+    }
+    s.trim_matches('-').to_string()
+}
