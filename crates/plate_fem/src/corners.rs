@@ -415,13 +415,13 @@ impl<'m> CornerFamily<'m> {
             }
         }
         if let Some((cond, residual)) = a.system {
-            if !(cond * eps <= UPDATE_SOLVE_BOUND) {
+            if cond.is_nan() || cond * eps > UPDATE_SOLVE_BOUND {
                 return fail(format!(
                     "the 4 x 4 update matrix has condition {cond:e}: its solve may keep fewer than {:.0} digits",
                     -(UPDATE_SOLVE_BOUND.log10())
                 ));
             }
-            if !(residual <= ROUNDOFF_ULPS * eps) {
+            if residual.is_nan() || residual > ROUNDOFF_ULPS * eps {
                 return fail(format!("the 4 x 4 update solve has relative residual {residual:e}"));
             }
         }
@@ -451,7 +451,8 @@ impl<'m> CornerFamily<'m> {
                 .ok_or_else(|| FemError::Singular("corner update matrix is singular".into()))?;
             let norm1 = |x: &DMatrix<f64>| x.column_iter().map(|c| c.abs().sum()).fold(0.0, f64::max);
             let cond = mat.clone().try_inverse().map_or(f64::INFINITY, |inv| norm1(&mat) * norm1(&inv));
-            let res = (&mat * &lambda - &rhs).amax() / (norm1(&mat.transpose()) * lambda.amax() + rhs.amax()).max(f64::MIN_POSITIVE);
+            let res = (&mat * &lambda - &rhs).amax()
+                / (norm1(&mat.transpose()) * lambda.amax() + rhs.amax()).max(f64::MIN_POSITIVE);
             system = Some((cond, res));
             lambda
         };
@@ -523,7 +524,9 @@ impl<'m> CornerFamily<'m> {
         let (xi, zeta) = (p.x / mesh.length(), p.z / mesh.width());
         let tau = (0..4).map(|i| t[i] * f[i]).sum::<f64>() / 4.0;
         let (hx, hz) = ([-1.0, 1.0, -1.0, 1.0], [-1.0, -1.0, 1.0, 1.0]);
-        let f = Vector4::from_fn(|i, _| 0.25 + 0.25 * (2.0 * xi - 1.0) * hx[i] + 0.25 * (2.0 * zeta - 1.0) * hz[i] + tau * t[i]);
+        let f = Vector4::from_fn(|i, _| {
+            0.25 + 0.25 * (2.0 * xi - 1.0) * hx[i] + 0.25 * (2.0 * zeta - 1.0) * hz[i] + tau * t[i]
+        });
         let phi = |i: usize| match corners[i] {
             CornerSupport::Fixed => 0.0,
             CornerSupport::Spring(k) => 1.0 / k,

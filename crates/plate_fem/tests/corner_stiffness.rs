@@ -15,7 +15,14 @@ const L: f64 = 0.4584;
 const B: f64 = 0.36;
 
 fn paper() -> PlateProperties {
-    PlateProperties { length: L, width: B, thickness: 0.008, youngs_modulus: 210e9, poisson_ratio: 0.3, density: 7850.0 }
+    PlateProperties {
+        length: L,
+        width: B,
+        thickness: 0.008,
+        youngs_modulus: 210e9,
+        poisson_ratio: 0.3,
+        density: 7850.0,
+    }
 }
 
 fn model(p: PlateProperties, nx: usize, nz: usize) -> Model {
@@ -326,7 +333,14 @@ fn old_update(fam: &CornerFamily, p: &BasePoint, corners: [CornerSupport; 4]) ->
         };
     }
     let springs: f64 = out.iter().map(|c| c.spring_compliance).sum();
-    PointResponse { x: p.x, z: p.z, compliance, plate_compliance: compliance - springs, corners: out, residual: p.residual }
+    PointResponse {
+        x: p.x,
+        z: p.z,
+        compliance,
+        plate_compliance: compliance - springs,
+        corners: out,
+        residual: p.residual,
+    }
 }
 
 fn model_corner(reaction: f64, spring_compliance: f64) -> plate_fem::model::CornerResponse {
@@ -347,8 +361,14 @@ fn bits(r: &PointResponse) -> Vec<u64> {
 /// plate, 5e4 .. 1e12 on the verification plate), Con 1, and a free corner.
 #[test]
 fn well_conditioned_results_are_bit_identical() {
-    let verification =
-        PlateProperties { length: L, width: B, thickness: 0.01, youngs_modulus: 1e9, poisson_ratio: 0.3, density: 7850.0 };
+    let verification = PlateProperties {
+        length: L,
+        width: B,
+        thickness: 0.01,
+        youngs_modulus: 1e9,
+        poisson_ratio: 0.3,
+        density: 7850.0,
+    };
     for (p, nx, nz, ks) in [
         (paper(), 24, 20, vec![5.11545e8, 5e4, 1e6, 2.50025e8, 5e8, 1e10, 1e12, 1e15]),
         (paper(), 10, 8, vec![5.11545e8, 5e4, 1e12]),
