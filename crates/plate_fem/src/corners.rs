@@ -1,19 +1,101 @@
-//! Any set of corner supports from one factorization: a rank-≤4 update.
+//! Any set of corner supports from one factorization.
 //!
 //! Factorize once with all four corners on base springs k_b (stiff, so that the base is
-//! close to the fixed plate). A target set differs from the base only at the four corner
-//! w DOFs: K = K_b + U_S Δ U_Sᵀ with Δ_i = k_i - k_b (k_i = ∞ for a fixed corner, 0 for a
-//! free one) on the corners S that change. With u = Uᵀ K_b⁻¹ N (the base deflection of the
-//! corners under the unit load, by reciprocity) and G = Uᵀ K_b⁻¹ U (the 4 x 4 corner
-//! flexibility of the base), the Woodbury identity gives
+//! close to the fixed plate). Every point is solved once on this base; every corner set is
+//! then 4 x 4 algebra, by one of two formulations that agree in exact arithmetic.
+//!
+//! # The rank-4 update
+//!
+//! A target set differs from the base only at the four corner w DOFs:
+//! K = K_b + U_S Δ U_Sᵀ with Δ_i = k_i - k_b (k_i = ∞ for a fixed corner, 0 for a free one)
+//! on the corners S that change. With u = Uᵀ K_b⁻¹ N (the base deflection of the corners
+//! under the unit load, by reciprocity) and G = Uᵀ K_b⁻¹ U (the 4 x 4 corner flexibility of
+//! the base), the Woodbury identity gives
 //!
 //! ```text
 //! (Δ⁻¹ + G_SS) λ = u_S,    C = N ᵀ K_b⁻¹ N - u_Sᵀ λ,    w_corners = u - G_{·S} λ
 //! ```
 //!
 //! where λ are the extra corner forces; a fixed corner has Δ⁻¹ = 0, so rigid supports need
-//! no large number. One solve per impact point serves every corner set, and a k_T sweep is
-//! 4 x 4 algebra.
+//! no large number. Spring reactions are k_i w_i and spring stores k_i w_i².
+//!
+//! It loses accuracy at both ends of the stiffness range, in floating point only:
+//! - a soft spring, k ≪ k_b: Δ⁻¹ = 1/(k - k_b) differs from the free value -1/k_b by the
+//!   relative amount k/k_b, which is all the information about the spring. The matrix
+//!   Δ⁻¹ + G_SS tends to the free plate's, singular along the rigid motions, and its
+//!   condition grows like (k_b/k)(k_b/4s) (s: the twist stiffness below). Below
+//!   k/k_b ~ 1e-16 the spring is lost altogether and the system is singular.
+//! - a stiff spring, k ≫ k_b: w_i = u_i - (Gλ)_i is a difference of terms of size |u|
+//!   whose round-off, ε|u|, is multiplied by k in the reaction k w_i (error ~ ε k/k_b) and
+//!   in the store k w_i² (which can then exceed C and make the plate store negative).
+//!
+//! # Condensation onto the corners (edges free)
+//!
+//! Condense the plate onto its four corner w DOFs. The interior, with the corners held, is
+//! the plate on four fixed corners (Con 1), so exactly
+//!
+//! ```text
+//! C = C_fix + fᵀ c,    (S + D) c = f,    r = f - S c,
+//! ```
+//!
+//! with C_fix the compliance on fixed corners, f the fixed-corner reactions, S the 4 x 4
+//! corner stiffness of the unsupported plate, D = diag(k_i), c the corner deflections and r
+//! the reactions. With free edges the rigid motions w = a + bx + cz are exact in the
+//! element, so S annihilates their corner values (1, x_i, z_i); their complement in R⁴ is
+//! the twist t = (1, -1, -1, 1), and S = s t tᵀ with one scalar s > 0, for any mesh. From
+//! the base, G = (S + k_b I)⁻¹, so f = G⁻¹ u (the update to four fixed corners, exactly as
+//! the rank-4 path does it), C_fix = Nᵀ K_b⁻¹ N - uᵀ f, and tᵀ G t = 4/(4s + k_b).
+//!
+//! With flexibilities φ_i = 1/k_i (0 for a fixed corner) and the Sherman-Morrison formula
+//! for the rank-1 S, the twist force β = s tᵀc and the spring part of C are
+//!
+//! ```text
+//! β = s Σ t_i φ_i f_i / (1 + s Σ φ_i),
+//! fᵀ c = (Σ φ_i f_i² + s Σ_{i<j} φ_i φ_j (f_i t_j - f_j t_i)²) / (1 + s Σ φ_i),
+//! r_i = f_i - t_i β,    spring store φ_i r_i²,    plate store C_fix + β²/s,
+//! ```
+//!
+//! (the numerator by Lagrange's identity, Σφf² Σφt² - (Σφtf)²  = Σ_{i<j} φ_iφ_j(f_it_j -
+//! f_jt_i)²). Every term is non-negative, so C and the stores carry a few ε of relative
+//! error for every k in (0, ∞]: soft springs are a large φ (the statically determinate
+//! limit appears as the ratio of the two sums, not as a difference), stiff springs a small
+//! one (the limit φ → 0 is the fixed corner, no large number is formed), and reactions
+//! come from forces, never from k times a deflection. A free corner (at most one, or the
+//! plate would move rigidly) is the limit φ_f → ∞: β = t_f f_f, so its reaction vanishes,
+//! and fᵀc = f_f²/s + Σ φ_j r_j². The sums are scaled by the largest φ so that neither
+//! 1e-300 nor 1e300 N/m overflows.
+//!
+//! The fixed-corner reactions f are known exactly in the three rigid directions: statics
+//! gives Σ f_i (1, x_i, z_i) = (1, x, z), exact in algebra because the element represents
+//! the rigid motions exactly. Condensation takes those components from statics and only
+//! the twist component tᵀf/4 from G⁻¹u; this removes the base solve's error (~1e-11) from
+//! the soft-spring limits, which depend on the rigid components alone.
+//!
+//! # Which formulation, and the check
+//!
+//! Where the rank-4 update is accurate it is kept as it was, so that existing results are
+//! reproduced bit for bit. Its error is estimated a priori as
+//!
+//! ```text
+//! e = ε max_i max((k_b/k_i)(1 + k_b/4s), k_i/k_b)    over the springs i,
+//! ```
+//!
+//! (the soft term is the condition growth above, an upper bound the measured error of C
+//! stays below by a factor ~20; the stiff term is the round-off of k w in the reactions).
+//! The update is used when e ≤ [`UPDATE_ERROR_BOUND`] = 1e-8, condensation otherwise; with
+//! supported edges condensation does not apply and the update is always used. For the
+//! paper's plate (k_b ≈ 5.97e8 N/m; s = 2(1 - ν)D/(LB), the pure twist being exact in the
+//! element, so k_b/4s ≈ 1786 on any mesh) the update covers k from ~2.4e4 to ~2.7e16 N/m.
+//!
+//! Every result of [`CornerFamily::respond`] passes an a-posteriori check before it is
+//! returned: all values finite; spring stores non-negative; C and the plate store not below
+//! -1e3 ε times the terms that cancelled in them; the stores adding up to C to the same
+//! round-off; with free edges, the reactions in equilibrium with the unit load to 1e-8
+//! (the base solve's error, ~1e-11, and the update's bound e); for the update, its 4 x 4
+//! system's residual at round-off and its forward-error bound cond₁ ε below 1e-6. If the
+//! update fails the check and condensation applies, condensation is used instead; a result
+//! that still fails is a [`FemError::CornerUpdate`] naming the corner stiffnesses and what
+//! failed.
 
 use crate::model::{CornerResponse, Factorization, Model, PointResponse};
 use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
@@ -28,6 +110,44 @@ pub struct CornerFamily<'m> {
     edges: [EdgeSupport; 4],
     /// G = Uᵀ K_b⁻¹ U.
     g: Matrix4<f64>,
+    /// The twist stiffness s of the corner condensation S = s t tᵀ, when the edges are free
+    /// and G has the structure that implies (see the module docs).
+    twist: Option<f64>,
+}
+
+/// The corner twist mode: the one corner motion (orthogonal to the rigid motions) that
+/// strains a plate with free edges.
+const TWIST: [f64; 4] = [1.0, -1.0, -1.0, 1.0];
+
+/// The a-priori error bound below which the rank-4 update is used (module docs).
+pub const UPDATE_ERROR_BOUND: f64 = 1e-8;
+
+/// Allowed error of Σ reactions = 1 (free edges): the fixed-corner reactions f come from
+/// the base solve, whose relative residual (≤ ~1e-10 without refinement on the meshes in
+/// use) bounds their error; the formulations add only a few ε to it.
+const EQUILIBRIUM_TOLERANCE: f64 = 1e-8;
+
+/// Round-off allowance, in units of ε times the size of the terms that cancel.
+const ROUNDOFF_ULPS: f64 = 1e3;
+
+/// Largest accepted forward-error bound cond(M) ε for the update's 4 x 4 solve.
+const UPDATE_SOLVE_BOUND: f64 = 1e-6;
+
+/// Which of the two formulations (module docs) produces a response.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Formulation {
+    /// The rank-4 Woodbury update of the base.
+    Update,
+    /// Condensation onto the corners with the twist stiffness (free edges only).
+    Condensed,
+}
+
+/// What the check needs to know of how a response was computed.
+struct Audit {
+    /// Size of the terms whose difference gives C (round-off of C is relative to it).
+    scale: f64,
+    /// For the update: cond₁ of its 4 x 4 matrix and the relative residual of its solve.
+    system: Option<(f64, f64)>,
 }
 
 /// A point solved on the base: what every corner set needs of it.
@@ -66,7 +186,25 @@ impl<'m> CornerFamily<'m> {
         }
         base.solve_in_place(&mut rhs);
         let g = Matrix4::from_fn(|i, j| 0.5 * (rhs[(dofs[i], j)] + rhs[(dofs[j], i)]));
-        Ok(Self { base, k_base, edges, g })
+        let twist = if edges == [EdgeSupport::Free; 4] { Self::twist_stiffness(&g, k_base) } else { None };
+        Ok(Self { base, k_base, edges, g, twist })
+    }
+
+    /// s from tᵀ G t = 4/(4s + k_b), after checking that G maps the corner values of the
+    /// rigid motions to themselves over k_b (S annihilates them) to 1e-6: the structure
+    /// the condensation relies on. The subtraction loses log10(k_b/4s) digits (about 3
+    /// for the default base), which leaves s good to ~1e-13.
+    fn twist_stiffness(g: &Matrix4<f64>, k_base: f64) -> Option<f64> {
+        let rigid = [Vector4::repeat(1.0), Vector4::new(0.0, 1.0, 0.0, 1.0), Vector4::new(0.0, 0.0, 1.0, 1.0)];
+        for a in rigid {
+            if (g * a * k_base - a).norm() > 1e-6 * a.norm() {
+                return None;
+            }
+        }
+        let t = Vector4::from(TWIST);
+        let tgt = t.dot(&(g * t));
+        let s = 1.0 / tgt - 0.25 * k_base;
+        (s.is_finite() && s > 0.0).then_some(s)
     }
 
     pub fn base(&self) -> &Factorization<'m> {
@@ -74,6 +212,15 @@ impl<'m> CornerFamily<'m> {
     }
     pub fn k_base(&self) -> f64 {
         self.k_base
+    }
+    /// The base corner flexibility G = Uᵀ K_b⁻¹ U.
+    pub fn corner_flexibility(&self) -> &Matrix4<f64> {
+        &self.g
+    }
+    /// The corner twist stiffness s (N/m), with S = s t tᵀ, t = (1, -1, -1, 1); `None` when
+    /// an edge is supported (the condensation then does not apply).
+    pub fn twist_stiffness_value(&self) -> Option<f64> {
+        self.twist
     }
 
     /// Whether mesh and edges are symmetric about x = L/2 and about z = B/2, so that the
@@ -144,10 +291,154 @@ impl<'m> CornerFamily<'m> {
             .collect())
     }
 
-    /// The response of the plate with corner set `corners` at a base point.
+    /// The a-priori error estimate e of the rank-4 update for `corners` (module docs);
+    /// `None` when condensation does not apply (supported edges), so only the update can be
+    /// used.
+    pub fn update_error_estimate(&self, corners: &[CornerSupport; 4]) -> Option<f64> {
+        let s = self.twist?;
+        let kb = self.k_base;
+        let amplification = 1.0 + kb / (4.0 * s);
+        let worst = corners
+            .iter()
+            .map(|c| match *c {
+                CornerSupport::Spring(k) => ((kb / k) * amplification).max(k / kb),
+                // A free corner is the update's k = 0 with exact Δ⁻¹ = -1/k_b: it loses
+                // only the twist's log10(k_b/4s) digits.
+                CornerSupport::Free => amplification,
+                CornerSupport::Fixed => 1.0,
+            })
+            .fold(1.0, f64::max);
+        Some(f64::EPSILON * worst)
+    }
+
+    /// The formulation [`respond`](Self::respond) tries first for `corners`: the update
+    /// where its error estimate is at most [`UPDATE_ERROR_BOUND`] or where condensation does
+    /// not apply, condensation otherwise.
+    pub fn formulation(&self, corners: &[CornerSupport; 4]) -> Formulation {
+        match self.update_error_estimate(corners) {
+            Some(e) if e > UPDATE_ERROR_BOUND && self.condensable(corners) => Formulation::Condensed,
+            _ => Formulation::Update,
+        }
+    }
+
+    fn condensable(&self, corners: &[CornerSupport; 4]) -> bool {
+        self.twist.is_some() && corners.iter().filter(|&&c| c == CornerSupport::Free).count() <= 1
+    }
+
+    /// The response of the plate with corner set `corners` at a base point, by the
+    /// formulation [`formulation`](Self::formulation) chooses, checked (module docs).
     pub fn respond(&self, p: &BasePoint, corners: [CornerSupport; 4]) -> Result<PointResponse, FemError> {
+        let first = self.formulation(&corners);
+        match self.respond_by(p, corners, first) {
+            Err(e) if first == Formulation::Update && self.condensable(&corners) => {
+                // The update failed its own check: condensation is exact in algebra too and
+                // well conditioned wherever it applies.
+                self.respond_by(p, corners, Formulation::Condensed).map_err(|_| e)
+            }
+            r => r,
+        }
+    }
+
+    /// The response by a given formulation, with the a-posteriori check.
+    pub fn respond_by(
+        &self,
+        p: &BasePoint,
+        corners: [CornerSupport; 4],
+        formulation: Formulation,
+    ) -> Result<PointResponse, FemError> {
         let model = self.base.model();
         Supports { corners, edges: self.edges }.validate(model.props().length, model.props().width)?;
+        let (r, audit) = match formulation {
+            Formulation::Update => self.update(p, corners)?,
+            Formulation::Condensed => {
+                if !self.condensable(&corners) {
+                    return Err(self.failure(
+                        &corners,
+                        "condensation onto the corners needs free edges and at most one free corner".into(),
+                    ));
+                }
+                self.condensed(p, corners)
+            }
+        };
+        self.check(p, &corners, &r, &audit)?;
+        Ok(r)
+    }
+
+    fn failure(&self, corners: &[CornerSupport; 4], what: String) -> FemError {
+        let names: Vec<String> = Corner::ALL
+            .iter()
+            .zip(corners)
+            .map(|(c, s)| match s {
+                CornerSupport::Spring(k) => format!("{} spring k = {k:e} N/m", c.name()),
+                other => format!("{} {other:?}", c.name()),
+            })
+            .collect();
+        FemError::CornerUpdate { corners: names.join(", "), k_base: self.k_base, what }
+    }
+
+    /// The a-posteriori check (module docs).
+    fn check(&self, p: &BasePoint, corners: &[CornerSupport; 4], r: &PointResponse, a: &Audit) -> Result<(), FemError> {
+        let eps = f64::EPSILON;
+        let springs: f64 = r.corners.iter().map(|c| c.spring_compliance).sum();
+        let fail = |what: String| Err(self.failure(corners, what));
+        let finite = r.compliance.is_finite()
+            && r.plate_compliance.is_finite()
+            && r.corners.iter().all(|c| c.reaction.is_finite() && c.spring_compliance.is_finite());
+        if !finite {
+            return fail(format!(
+                "non-finite result (C = {:e} m/N, plate store {:e} m/N) at (x = {}, z = {}) m",
+                r.compliance, r.plate_compliance, p.x, p.z
+            ));
+        }
+        if let Some((i, c)) = r.corners.iter().enumerate().find(|(_, c)| c.spring_compliance < 0.0) {
+            return fail(format!("negative spring store {:e} m/N at {}", c.spring_compliance, Corner::ALL[i].name()));
+        }
+        let allowance = ROUNDOFF_ULPS * eps * (a.scale + springs);
+        if r.compliance < -allowance {
+            return fail(format!(
+                "negative compliance C = {:e} m/N under a positive load at (x = {}, z = {}) m (round-off allowance {:e})",
+                r.compliance, p.x, p.z, allowance
+            ));
+        }
+        if r.plate_compliance < -allowance {
+            return fail(format!(
+                "negative plate store {:e} m/N at (x = {}, z = {}) m (C = {:e} m/N, spring stores {:e} m/N, round-off allowance {:e})",
+                r.plate_compliance, p.x, p.z, r.compliance, springs, allowance
+            ));
+        }
+        let bookkeeping = (r.compliance - r.plate_compliance - springs).abs();
+        if bookkeeping > allowance.max(ROUNDOFF_ULPS * eps * r.compliance.abs()) {
+            return fail(format!(
+                "stores do not add up: C = {:e} m/N, plate {:e} m/N, springs {:e} m/N",
+                r.compliance, r.plate_compliance, springs
+            ));
+        }
+        if self.edges == [EdgeSupport::Free; 4] {
+            let sum = r.total_reaction();
+            if (sum - 1.0).abs() > EQUILIBRIUM_TOLERANCE {
+                return fail(format!(
+                    "reactions sum to {sum} of the unit load at (x = {}, z = {}) m (allowed error {EQUILIBRIUM_TOLERANCE:e})",
+                    p.x, p.z
+                ));
+            }
+        }
+        if let Some((cond, residual)) = a.system {
+            if cond.is_nan() || cond * eps > UPDATE_SOLVE_BOUND {
+                return fail(format!(
+                    "the 4 x 4 update matrix has condition {cond:e}: its solve may keep fewer than {:.0} digits",
+                    -(UPDATE_SOLVE_BOUND.log10())
+                ));
+            }
+            if residual.is_nan() || residual > ROUNDOFF_ULPS * eps {
+                return fail(format!("the 4 x 4 update solve has relative residual {residual:e}"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The rank-4 update, operation for operation as it always was (results reproduced bit
+    /// for bit), plus what the check needs.
+    fn update(&self, p: &BasePoint, corners: [CornerSupport; 4]) -> Result<(PointResponse, Audit), FemError> {
         let s: Vec<usize> = (0..4).filter(|&i| corners[i] != CornerSupport::Spring(self.k_base)).collect();
         let inv_delta = |i: usize| match corners[i] {
             CornerSupport::Fixed => 0.0,
@@ -155,17 +446,30 @@ impl<'m> CornerFamily<'m> {
             CornerSupport::Spring(k) => 1.0 / (k - self.k_base),
         };
         let m = s.len();
+        let mut system = None;
         let lambda = if m == 0 {
             DVector::zeros(0)
         } else {
             let mat = DMatrix::from_fn(m, m, |a, b| self.g[(s[a], s[b])] + if a == b { inv_delta(s[a]) } else { 0.0 });
             let rhs = DVector::from_fn(m, |a, _| p.u[s[a]]);
-            mat.lu().solve(&rhs).ok_or_else(|| FemError::Singular("corner update matrix is singular".into()))?
+            let lambda = mat
+                .clone()
+                .lu()
+                .solve(&rhs)
+                .ok_or_else(|| FemError::Singular("corner update matrix is singular".into()))?;
+            let norm1 = |x: &DMatrix<f64>| x.column_iter().map(|c| c.abs().sum()).fold(0.0, f64::max);
+            let cond = mat.clone().try_inverse().map_or(f64::INFINITY, |inv| norm1(&mat) * norm1(&inv));
+            let res = (&mat * &lambda - &rhs).amax()
+                / (norm1(&mat.transpose()) * lambda.amax() + rhs.amax()).max(f64::MIN_POSITIVE);
+            system = Some((cond, res));
+            lambda
         };
         let mut compliance = p.compliance;
+        let mut scale = p.compliance.abs();
         let mut w = p.u;
         for (a, &i) in s.iter().enumerate() {
             compliance -= p.u[i] * lambda[a];
+            scale += (p.u[i] * lambda[a]).abs();
             for r in 0..4 {
                 w[r] -= self.g[(r, i)] * lambda[a];
             }
@@ -181,13 +485,117 @@ impl<'m> CornerFamily<'m> {
             };
         }
         let springs: f64 = out.iter().map(|c| c.spring_compliance).sum();
-        Ok(PointResponse {
+        let r = PointResponse {
             x: p.x,
             z: p.z,
             compliance,
             plate_compliance: compliance - springs,
             corners: out,
             residual: p.residual,
-        })
+        };
+        Ok((r, Audit { scale, system }))
+    }
+
+    /// The fixed-corner compliance C_fix and reactions f = G⁻¹u, by the update to four
+    /// fixed corners (the same operations as [`update`](Self::update) for Con 1, so C_fix
+    /// is bit for bit the update's Con 1 value), with the size of the terms that cancel.
+    fn fixed_corners(&self, p: &BasePoint) -> Result<(f64, Vector4<f64>, f64), FemError> {
+        let mat = DMatrix::from_fn(4, 4, |a, b| self.g[(a, b)]);
+        let rhs = DVector::from_fn(4, |a, _| p.u[a]);
+        let f = mat.lu().solve(&rhs).ok_or_else(|| FemError::Singular("base corner flexibility is singular".into()))?;
+        let mut c = p.compliance;
+        let mut scale = p.compliance.abs();
+        for i in 0..4 {
+            c -= p.u[i] * f[i];
+            scale += (p.u[i] * f[i]).abs();
+        }
+        Ok((c, Vector4::from_fn(|i, _| f[i]), scale))
+    }
+
+    /// Condensation onto the corners (module docs). Needs free edges and at most one free
+    /// corner (checked by the caller).
+    fn condensed(&self, p: &BasePoint, corners: [CornerSupport; 4]) -> (PointResponse, Audit) {
+        let s = self.twist.expect("condensable");
+        let (c_fix, f, scale) = match self.fixed_corners(p) {
+            Ok(v) => v,
+            Err(_) => (f64::NAN, Vector4::repeat(f64::NAN), f64::NAN),
+        };
+        let t = TWIST;
+        // Statics fixes f in the three rigid directions exactly (the element represents the
+        // rigid motions exactly, so Σ f_i (1, x_i, z_i) = (1, x, z) in algebra); only the
+        // twist component τ = tᵀf/4 depends on the plate. In the orthogonal basis 1,
+        // h_x = (-1, 1, -1, 1), h_z = (-1, -1, 1, 1), t of R⁴, f = 1/4 + (2x/L - 1)/4 h_x +
+        // (2z/B - 1)/4 h_z + τ t. Replacing the solved rigid components (good to the base
+        // solve's residual, ~1e-11) by the exact ones makes the soft-spring limits, which
+        // depend on them alone, exact to round-off.
+        let mesh = self.base.model().mesh();
+        let (xi, zeta) = (p.x / mesh.length(), p.z / mesh.width());
+        let tau = (0..4).map(|i| t[i] * f[i]).sum::<f64>() / 4.0;
+        let (hx, hz) = ([-1.0, 1.0, -1.0, 1.0], [-1.0, -1.0, 1.0, 1.0]);
+        let f = Vector4::from_fn(|i, _| {
+            0.25 + 0.25 * (2.0 * xi - 1.0) * hx[i] + 0.25 * (2.0 * zeta - 1.0) * hz[i] + tau * t[i]
+        });
+        let phi = |i: usize| match corners[i] {
+            CornerSupport::Fixed => 0.0,
+            CornerSupport::Spring(k) => 1.0 / k,
+            CornerSupport::Free => f64::INFINITY,
+        };
+        let free = (0..4).find(|&i| corners[i] == CornerSupport::Free);
+        // The twist force β and the spring part fᵀc of C.
+        let (beta, spring_part) = match free {
+            Some(fc) => {
+                // φ_f → ∞: the free corner's reaction f_f - t_f β vanishes.
+                let beta = t[fc] * f[fc];
+                let rest: f64 = (0..4)
+                    .filter(|&j| j != fc)
+                    .map(|j| {
+                        let r = f[j] - t[j] * beta;
+                        phi(j) * r * r
+                    })
+                    .sum();
+                (beta, f[fc] * f[fc] / s + rest)
+            }
+            None => {
+                let m = (0..4).map(phi).fold(0.0, f64::max);
+                if m == 0.0 {
+                    (0.0, 0.0)
+                } else {
+                    // ψ = φ/m ∈ [0, 1]; numerator and denominator divided by s m.
+                    let psi: Vec<f64> = (0..4).map(|i| phi(i) / m).collect();
+                    let a: f64 = psi.iter().sum();
+                    let b: f64 = (0..4).map(|i| t[i] * psi[i] * f[i]).sum();
+                    let q: f64 = (0..4).map(|i| psi[i] * f[i] * f[i]).sum();
+                    let mut lagrange = 0.0;
+                    for i in 0..4 {
+                        for j in i + 1..4 {
+                            let d = f[i] * t[j] - f[j] * t[i];
+                            lagrange += psi[i] * psi[j] * d * d;
+                        }
+                    }
+                    let den = 1.0 / (s * m) + a;
+                    (b / den, (q / s + m * lagrange) / den)
+                }
+            }
+        };
+        let mut out = [CornerResponse { reaction: 0.0, spring_compliance: 0.0 }; 4];
+        for i in 0..4 {
+            out[i] = match corners[i] {
+                CornerSupport::Free => CornerResponse { reaction: 0.0, spring_compliance: 0.0 },
+                CornerSupport::Fixed => CornerResponse { reaction: f[i] - t[i] * beta, spring_compliance: 0.0 },
+                CornerSupport::Spring(k) => {
+                    let r = f[i] - t[i] * beta;
+                    CornerResponse { reaction: r, spring_compliance: r * r / k }
+                }
+            };
+        }
+        let r = PointResponse {
+            x: p.x,
+            z: p.z,
+            compliance: c_fix + spring_part,
+            plate_compliance: c_fix + beta * beta / s,
+            corners: out,
+            residual: p.residual,
+        };
+        (r, Audit { scale: scale + spring_part, system: None })
     }
 }

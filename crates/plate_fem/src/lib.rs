@@ -11,7 +11,8 @@
 //! - [`supports`]: corners, edges, and the rigid-body check;
 //! - [`model`]: assembly with one symbolic Cholesky analysis per mesh, one numeric
 //!   factorization per support set (faer), and point probes by reciprocity;
-//! - [`corners`]: any corner stiffness set from one factorization, by a rank-4 update;
+//! - [`corners`]: any corner stiffness set from one factorization, by a rank-4 update
+//!   or, where that is ill conditioned, by condensation onto the corners;
 //! - [`classical`]: Navier and Lévy series, the references of the tests;
 //! - [`convergence`]: Richardson extrapolation and observed rates.
 
@@ -44,4 +45,8 @@ pub enum FemError {
     Property { name: &'static str, value: f64, allowed: &'static str },
     #[error("factorization failed: {0}")]
     Factorization(String),
+    /// A corner-update result that failed its a-posteriori check (see [`corners`]): the
+    /// corner set with its stiffnesses, the base spring stiffness, and what failed.
+    #[error("corner update to {corners} (base springs {k_base:e} N/m) failed its accuracy check: {what}")]
+    CornerUpdate { corners: String, k_base: f64, what: String },
 }
