@@ -6,7 +6,6 @@ use coupled::transient::TransientSettings;
 use coupled::{BeamModel, PlateModel};
 use impact::output::Artifacts;
 use impact::present::rows::{response_tables, slug, yield_tables};
-use impact::present::table::Table;
 use impact::report::studies::{BASE_MESH, LEVELS};
 use impact::report::Failure;
 use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
@@ -343,6 +342,9 @@ fn emit(c: &Common, scene: &Scene, results: Results) -> Result<(), Failure> {
         text.push_str(&format!("\n{status}\n"));
         out(&text)?;
     }
-    eprintln!("{status}");
+    if c.json {
+        // The JSON carries the status too; the terminal gets it as the last line.
+        eprintln!("{status}");
+    }
     Ok(())
 }

@@ -83,6 +83,7 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
             headers.extend(
                 ["iterations or steps", "residual or peak force (N)", "validity"].iter().map(|s| s.to_string()),
             );
+            let headers_len = headers.len();
             let mut t = Table { title: format!("{cond}: responses at maximum compression"), headers, rows: vec![] };
             for r in rows {
                 let mut row: Vec<Cell> = vec![
@@ -94,6 +95,9 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
                 ];
                 match &r.outcome {
                     RowOutcome::NotApplicable { reason } => {
+                        // Every value column empty, the reason where the validity goes.
+                        let values = headers_len - row.len() - 1;
+                        row.extend(std::iter::repeat_n(Cell::Empty, values));
                         row.push(Cell::Text(format!("not applicable: {reason}")));
                     }
                     RowOutcome::Computed(v) => {
@@ -165,7 +169,10 @@ pub fn yield_tables(results: &Results) -> Vec<Table> {
                 let mut row: Vec<Cell> =
                     vec![r.model.key().into(), r.body.clone().into(), (r.x * 1e3).into(), (r.z * 1e3).into()];
                 match &r.outcome {
-                    RowOutcome::NotApplicable { reason } => row.push(Cell::Text(format!("not applicable: {reason}"))),
+                    RowOutcome::NotApplicable { reason } => {
+                        row.extend(std::iter::repeat_n(Cell::Empty, 5));
+                        row.push(Cell::Text(format!("not applicable: {reason}")));
+                    }
                     RowOutcome::Computed(v) => {
                         row.extend([
                             opt(v.compliance),

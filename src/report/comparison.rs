@@ -402,11 +402,14 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let pb = progress(5, "plate FE at all points");
     // One plate model (one factorization per mesh) for the scene's points and the map grid.
     let mut points = scene_points(scene);
-    points.extend(map_points(scene));
+    let want_maps = scene.wants(Analysis::WidthMaps);
+    if want_maps {
+        points.extend(map_points(scene));
+    }
     let pr = pair_on(scene, PlateModel::compute(&scene.plate, &scene.conditions, &points, BASE_MESH, LEVELS)?)?;
     pb.inc(1);
     pb.set_message("compliance maps");
-    let mp = maps_from(scene, &pr.model)?;
+    let mp = if want_maps { Some(maps_from(scene, &pr.model)?) } else { None };
     pb.inc(1);
     let mut a = Artifacts::new();
     let mut md = String::new();
@@ -426,125 +429,140 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         let _ = writeln!(md, "\n## {}\n\n{}", t.title, t.to_markdown());
     }
 
-    // Maps and lines.
-    let _ = writeln!(md, "\n## Across the width\n\nThe beam cannot see z; the plate can. Maps of log10(C_plate/C_beam) over 0.1 L ≤ x ≤ 0.9 L ({} x {} points; towards the ends the beam's C falls to zero and the ratio diverges, see the lines), lines along the centreline and the free edge, and C_plate/C_beam across the width at the paper's Areas 1-7. All values are in maps.csv.\n", MAP_X, MAP_Z);
-    let mut map_csv = Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
-    for (ci, c) in scene.conditions.iter().enumerate() {
-        let ratio = |i: usize, j: usize| {
-            if mp.beam[ci][i] > 0.0 {
-                mp.plate[ci][i][j] / mp.beam[ci][i] - 1.0
-            } else {
-                f64::NAN
+    if let Some(mp) = &mp {
+        // Maps and lines.
+        let _ = writeln!(md, "\n## Across the width\n\nThe beam cannot see z; the plate can. Maps of log10(C_plate/C_beam) over 0.1 L ≤ x ≤ 0.9 L ({} x {} points; towards the ends the beam's C falls to zero and the ratio diverges, see the lines), lines along the centreline and the free edge, and C_plate/C_beam across the width at the paper's Areas 1-7. All values are in maps.csv.\n", MAP_X, MAP_Z);
+        let mut map_csv =
+            Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
+        for (ci, c) in scene.conditions.iter().enumerate() {
+            let ratio = |i: usize, j: usize| {
+                if mp.beam[ci][i] > 0.0 {
+                    mp.plate[ci][i][j] / mp.beam[ci][i] - 1.0
+                } else {
+                    f64::NAN
+                }
+            };
+            for (i, &x) in mp.xs.iter().enumerate() {
+                for (j, &z) in mp.zs.iter().enumerate() {
+                    map_csv.push(vec![
+                        c.name.clone().into(),
+                        (x * 1e3).into(),
+                        (z * 1e3).into(),
+                        mp.beam[ci][i].into(),
+                        mp.plate[ci][i][j].into(),
+                        mp.error[ci][i][j].into(),
+                        ratio(i, j).into(),
+                    ]);
+                }
             }
-        };
-        for (i, &x) in mp.xs.iter().enumerate() {
-            for (j, &z) in mp.zs.iter().enumerate() {
-                map_csv.push(vec![
-                    c.name.clone().into(),
-                    (x * 1e3).into(),
-                    (z * 1e3).into(),
-                    mp.beam[ci][i].into(),
-                    mp.plate[ci][i][j].into(),
-                    mp.error[ci][i][j].into(),
-                    ratio(i, j).into(),
-                ]);
-            }
-        }
-        let stem = format!("map-{}", slug(&c.name));
-        a.add(
-            format!("{stem}.svg"),
-            heat_map(
-                &format!("{}: log10(C_plate / C_beam), 0.1 L to 0.9 L", c.name),
-                &mp.xs,
-                &mp.zs,
-                |i, j| {
-                    if (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())) {
-                        (ratio(i, j) + 1.0).log10()
-                    } else {
-                        f64::NAN
-                    }
-                },
-                "log10 ratio",
-            ),
-        );
-        // Interior statistics (away from the ends, where the beam ratio is singular).
-        let inner: Vec<f64> = (0..mp.xs.len())
-            .filter(|&i| (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())))
-            .flat_map(|i| (0..mp.zs.len()).map(move |j| (i, j)))
-            .map(|(i, j)| ratio(i, j))
-            .filter(|v| v.is_finite())
-            .collect();
-        let (lo, hi) = inner.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-        let mid = nearest(&mp.xs, scene.plate.length() / 2.0);
-        let (zc, ze) = (nearest(&mp.zs, scene.plate.width() / 2.0), 0);
-        let _ = writeln!(
-            md,
-            "### {}\n\n![map]({stem}.svg)\n\nFor 0.1 L ≤ x ≤ 0.9 L the plate is {:+.1} % to {:+.1} % more compliant than the beam. At x = L/2: {:+.2} % on the centreline, {:+.2} % at the free edge.\n",
-            c.name,
-            100.0 * lo,
-            100.0 * hi,
-            100.0 * ratio(mid, zc),
-            100.0 * ratio(mid, ze)
-        );
-        let line = |j: usize| {
-            Series::new(
-                format!("plate, z = {:.0} mm", mp.zs[j] * 1e3),
-                mp.xs.iter().enumerate().map(|(i, x)| (x * 1e3, mp.plate[ci][i][j])).collect(),
-            )
-        };
-        let series = vec![
-            Series::new("beam", mp.xs.iter().enumerate().map(|(i, x)| (x * 1e3, mp.beam[ci][i])).collect()),
-            line(zc),
-            line(ze),
-        ];
-        a.add(
-            format!("{stem}-along.svg"),
-            line_plot(&format!("{}: compliance along the plate", c.name), "x (mm)", "C (m/N)", &series, Scale::Linear),
-        );
-        let across: Vec<Series> = AREAS
-            .iter()
-            .enumerate()
-            .map(|(k, f)| {
-                let i = nearest(&mp.xs, f * scene.plate.length());
+            let stem = format!("map-{}", slug(&c.name));
+            a.add(
+                format!("{stem}.svg"),
+                heat_map(
+                    &format!("{}: log10(C_plate / C_beam), 0.1 L to 0.9 L", c.name),
+                    &mp.xs,
+                    &mp.zs,
+                    |i, j| {
+                        if (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())) {
+                            (ratio(i, j) + 1.0).log10()
+                        } else {
+                            f64::NAN
+                        }
+                    },
+                    "log10 ratio",
+                ),
+            );
+            // Interior statistics (away from the ends, where the beam ratio is singular).
+            let inner: Vec<f64> = (0..mp.xs.len())
+                .filter(|&i| (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())))
+                .flat_map(|i| (0..mp.zs.len()).map(move |j| (i, j)))
+                .map(|(i, j)| ratio(i, j))
+                .filter(|v| v.is_finite())
+                .collect();
+            let (lo, hi) = inner.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+            let mid = nearest(&mp.xs, scene.plate.length() / 2.0);
+            let (zc, ze) = (nearest(&mp.zs, scene.plate.width() / 2.0), 0);
+            let _ = writeln!(
+                md,
+                "### {}\n\n![map]({stem}.svg)\n\nFor 0.1 L ≤ x ≤ 0.9 L the plate is {:+.1} % to {:+.1} % more compliant than the beam. At x = L/2: {:+.2} % on the centreline, {:+.2} % at the free edge.\n",
+                c.name,
+                100.0 * lo,
+                100.0 * hi,
+                100.0 * ratio(mid, zc),
+                100.0 * ratio(mid, ze)
+            );
+            let line = |j: usize| {
                 Series::new(
-                    format!("Area {} (x = {:.0} mm)", k + 1, mp.xs[i] * 1e3),
-                    mp.zs.iter().enumerate().map(|(j, z)| (z * 1e3, ratio(i, j) + 1.0)).collect(),
+                    format!("plate, z = {:.0} mm", mp.zs[j] * 1e3),
+                    mp.xs.iter().enumerate().map(|(i, x)| (x * 1e3, mp.plate[ci][i][j])).collect(),
                 )
-            })
-            .collect();
-        a.add(
-            format!("{stem}-across.svg"),
-            line_plot(
-                &format!("{}: C_plate/C_beam across the width", c.name),
-                "z (mm)",
-                "C_plate / C_beam (log)",
-                &across,
-                Scale::Log,
-            ),
-        );
-        let _ = writeln!(md, "![along]({stem}-along.svg)\n\n![across]({stem}-across.svg)\n");
+            };
+            let series = vec![
+                Series::new("beam", mp.xs.iter().enumerate().map(|(i, x)| (x * 1e3, mp.beam[ci][i])).collect()),
+                line(zc),
+                line(ze),
+            ];
+            a.add(
+                format!("{stem}-along.svg"),
+                line_plot(
+                    &format!("{}: compliance along the plate", c.name),
+                    "x (mm)",
+                    "C (m/N)",
+                    &series,
+                    Scale::Linear,
+                ),
+            );
+            let across: Vec<Series> = AREAS
+                .iter()
+                .enumerate()
+                .map(|(k, f)| {
+                    let i = nearest(&mp.xs, f * scene.plate.length());
+                    Series::new(
+                        format!("Area {} (x = {:.0} mm)", k + 1, mp.xs[i] * 1e3),
+                        mp.zs.iter().enumerate().map(|(j, z)| (z * 1e3, ratio(i, j) + 1.0)).collect(),
+                    )
+                })
+                .collect();
+            a.add(
+                format!("{stem}-across.svg"),
+                line_plot(
+                    &format!("{}: C_plate/C_beam across the width", c.name),
+                    "z (mm)",
+                    "C_plate / C_beam (log)",
+                    &across,
+                    Scale::Log,
+                ),
+            );
+            let _ = writeln!(md, "![along]({stem}-along.svg)\n\n![across]({stem}-across.svg)\n");
+        }
+        a.add("maps.csv", map_csv.to_csv());
     }
-    a.add("maps.csv", map_csv.to_csv());
     pb.inc(1);
 
     pb.set_message("width dependence");
-    let wd = width_dependence(scene)?;
-    a.add("width-dependence.csv", wd.to_csv());
-    let _ = writeln!(md, "\n## How the beam error depends on B/L\n\nCon 1, same length, thickness and material; the beam's I = B h³/12 grows with B like the plate's width. The beam is right only for a narrow plate; as the plate widens, a point load bends it locally and the corners carry it through twisting, which the beam has no term for.\n\n{}", wd.to_markdown());
+    if scene.wants(Analysis::AspectRatio) {
+        let wd = width_dependence(scene)?;
+        a.add("width-dependence.csv", wd.to_csv());
+        let _ = writeln!(md, "\n## How the beam error depends on B/L\n\nCon 1, same length, thickness and material; the beam's I = B h³/12 grows with B like the plate's width. The beam is right only for a narrow plate; as the plate widens, a point load bends it locally and the corners carry it through twisting, which the beam has no term for.\n\n{}", wd.to_markdown());
+    }
     pb.inc(1);
 
     pb.set_message("extreme cases");
-    let xt = extreme_cases(scene)?;
-    a.add("extreme-cases.csv", xt.to_csv());
-    let _ = writeln!(md, "\n## Stiff and extreme cases\n\nThe scene's first body at the centre, an end midpoint and an edge midpoint, with springs from 1 N/m to 1e15 N/m (Con 2), velocities over seven decades and plates from 0.5 mm to 80 mm thick. \"stable\" means finite results and a converged balance (its residuals shown); the FE error estimate is relative to C.\n\n{}", xt.to_markdown());
+    if scene.wants(Analysis::ExtremeCases) {
+        let xt = extreme_cases(scene)?;
+        a.add("extreme-cases.csv", xt.to_csv());
+        let _ = writeln!(md, "\n## Stiff and extreme cases\n\nThe scene's first body at the centre, an end midpoint and an edge midpoint, with springs from 1 N/m to 1e15 N/m (Con 2), velocities over seven decades and plates from 0.5 mm to 80 mm thick. \"stable\" means finite results and a converged balance (its residuals shown); the FE error estimate is relative to C.\n\n{}", xt.to_markdown());
+    }
 
     pb.set_message("error against run time");
-    let (et, recommended, err_svg) = error_vs_time(scene)?;
-    a.add("error-vs-time.csv", et.to_csv());
-    a.add("error-vs-time.svg", err_svg);
-    let timing = format!("# Error against run time: {}\n\nThe plate compliance at the scene's points for all its conditions, on a ladder of meshes, against the Richardson value of the two finest (80 x 64 and 160 x 128). Times are wall-clock on this machine (2 cores); this page is the only part of the report that changes between runs.\n\n{}\n![error vs time](error-vs-time.svg)\n\n{}\nThe whole comparison took {:.1} s.\n", scene.name, et.to_markdown(), recommended, t0.elapsed().as_secs_f64());
-    a.add("error-vs-time.md", timing);
-    let _ = writeln!(md, "\n## Error against run time\n\nSee [error-vs-time.md](error-vs-time.md): the plate FE error at the scene's points against run time on a ladder of meshes, and the mesh to use for a given tolerance. (Kept apart because timings differ between runs; everything on this page is deterministic.)");
+    if scene.wants(Analysis::ErrorVsTime) {
+        let (et, recommended, err_svg) = error_vs_time(scene)?;
+        a.add("error-vs-time.csv", et.to_csv());
+        a.add("error-vs-time.svg", err_svg);
+        let timing = format!("# Error against run time: {}\n\nThe plate compliance at the scene's points for all its conditions, on a ladder of meshes, against the Richardson value of the two finest (80 x 64 and 160 x 128). Times are wall-clock on this machine (2 cores); this page is the only part of the report that changes between runs.\n\n{}\n![error vs time](error-vs-time.svg)\n\n{}\nThe whole comparison took {:.1} s.\n", scene.name, et.to_markdown(), recommended, t0.elapsed().as_secs_f64());
+        a.add("error-vs-time.md", timing);
+        let _ = writeln!(md, "\n## Error against run time\n\nSee [error-vs-time.md](error-vs-time.md): the plate FE error at the scene's points against run time on a ladder of meshes, and the mesh to use for a given tolerance. (Kept apart because timings differ between runs; everything on this page is deterministic.)");
+    }
     pb.inc(1);
     pb.finish_and_clear();
 

@@ -4,8 +4,7 @@
 
 use crate::scene::{Scene, SupportSet};
 use coupled::discretisation::{mesh_for, plate_properties};
-use coupled::supports::corner_supports;
-use plate_fem::{FemError, Model, Supports};
+use plate_fem::{FemError, Model};
 use serde::Serialize;
 
 /// The JSON document.
