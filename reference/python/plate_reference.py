@@ -10,9 +10,14 @@ simply supported or clamped) with two independent triangular elements:
 Plate parameters come from the same TOML scenes as the Rust code. For each case and element
 the script solves a ladder of meshes and writes, per point, the compliance C = N^T K^-1 N
 (by reciprocity: the deflection under a unit point load at that point), with mesh sizes,
-DOFs, run times and package versions, to reference/data/<name>.json.
+DOFs, run times and package versions, to reference/data/<name>.json. Cases that ask for it
+(clamped-edge-two-springs) also get each corner spring's reaction and energy share per point.
 
-Usage: python plate_reference.py [--quick] [--scene FILE] [--out DIR]
+Before the cases, a self-check of the spring handling: four equal corner springs k and a
+load at the centre give C = C(four fixed corners) + 1/(4k) (each spring carries 1/4 by
+symmetry, and the plate shifts rigidly by 1/(4k) on top of the fixed-corner deflection).
+
+Usage: python plate_reference.py [--quick] [--scene FILE] [--out DIR] [--case NAME ...]
 """
 
 import argparse
@@ -83,7 +88,20 @@ def mesh_from_meshio(path):
 
 
 def constrained_dofs(basis, element, plate, supports):
-    """DOFs held at zero: fixed corners (u) and supported edges."""
+    """DOFs held at zero: fixed corners (u) and supported edges.
+
+    Argyris (vertex u, u_x, u_y, u_xx, u_xy, u_yy; u_n at edge midpoints; scikit-fem's y is
+    the plate's z). Along a straight edge the trace of w is the quintic fixed by u, u_t, u_tt
+    at its two ends, and the normal slope w_n is the quartic fixed by u_n, u_nt at its ends
+    and u_n at its midpoint. So:
+    - simple (w = 0 along the edge): u and its tangential derivatives u_t, u_tt at the
+      vertices make the trace of w vanish identically;
+    - clamped (w = 0 and w_n = 0 along the edge): in addition u_n (= ±u_x on x = const,
+      ±u_y on z = const) at the vertices and edge midpoints, and its tangential derivative
+      u_nt (u_xy); the slope then vanishes identically. u_nn (u_xx on x = const) stays free:
+      the clamping moment M_n = -D w_nn is not zero.
+    Both supports are thus imposed exactly (conforming). Morley (u at vertices, u_n at edge
+    midpoints) holds u (simple) and u, u_n (clamped), its usual nonconforming supports."""
     length, width = plate["length"], plate["width"]
     held = []
     corners = [(0.0, 0.0), (length, 0.0), (0.0, width), (length, width)]
@@ -129,12 +147,20 @@ def spring_dofs(basis, plate, supports):
     return out
 
 
-def compliances(mesh, element, plate, supports, points):
-    """C at each point: solve K w = N(p) and take N(p)·w."""
+def compliances(mesh, element, plate, supports, points, split=None):
+    """C at each point: solve K w = N(p) and take N(p)·w.
+
+    With `split` (a dict), also fills in per point each corner spring's reaction
+    R = k w(corner) (per unit load, positive when the spring pushes against the load) and its
+    energy share R²/k / C, and the bending share a(w, w) / C from the bending matrix alone
+    (C = a(w, w) + Σ R²/k: the shares sum to 1)."""
     t0 = time.perf_counter()
     basis = Basis(mesh, element)
     k = asm(bending_form(plate), basis).tocsr()
-    for dof, stiffness in spring_dofs(basis, plate, supports):
+    springs = spring_dofs(basis, plate, supports)
+    if split is not None:
+        k_bend = k.copy()
+    for dof, stiffness in springs:
         k[dof, dof] += stiffness
     held = constrained_dofs(basis, element, plate, supports)
     free = np.setdiff1d(np.arange(basis.N), held)
@@ -142,10 +168,19 @@ def compliances(mesh, element, plate, supports, points):
     t1 = time.perf_counter()
     lu = spla.splu(kff)
     out = []
+    if split is not None:
+        split.update(spring_reaction=[], spring_energy_share=[], bending_energy_share=[])
     for x, z in points:
         f = basis.point_source(np.array([x, z]))[free]
         w = lu.solve(f)
         out.append(float(f @ w))
+        if split is not None:
+            full = np.zeros(basis.N)
+            full[free] = w
+            c = out[-1]
+            split["spring_reaction"].append([float(s * full[d]) for d, s in springs])
+            split["spring_energy_share"].append([float(s * full[d] ** 2 / c) for d, s in springs])
+            split["bending_energy_share"].append(float(full @ (k_bend @ full) / c))
     t2 = time.perf_counter()
     return out, {"dofs": int(basis.N), "free_dofs": int(len(free)), "assembly_s": t1 - t0, "solve_s": t2 - t1}
 
@@ -153,8 +188,23 @@ def compliances(mesh, element, plate, supports, points):
 ELEMENTS = {"argyris": ElementTriArgyris, "morley": ElementTriMorley}
 
 
+# Spring stiffness of the general support case: soft enough (against the plate's corner
+# stiffness, ~D/L² x O(10)) that the springs carry a visible share of the energy.
+K_SOFT = 1.0e6
+
+# Argyris ladder of the general case: down to 160 x 128, so that the two finest meshes give a
+# Richardson error estimate below 1e-6 relative at its points (the point-load compliance
+# converges at O(h²)).
+FINE_ARGYRIS = [(5, 4), (10, 8), (20, 16), (40, 32), (80, 64), (160, 128)]
+
+
 def cases(plate, k_t):
-    """The cases of issue 4: the paper's three conditions and the classical edge checks."""
+    """The cases of issue 4: the paper's three conditions and the classical edge checks, then
+    a general support set (a clamped edge, two corner springs, free edges).
+
+    Each case is (name, supports, points, options); options may hold "ladders" (per
+    element, replacing the default ladder in full runs) and "split" (write the spring
+    reactions and energy shares)."""
     length, width = plate["length"], plate["width"]
     free_edges = {"left": "free", "right": "free", "near": "free", "far": "free"}
     pts = [(length / 2, width / 2), (length / 4, width / 4), (length / 2, 0.0), (0.0, width / 2), (0.1 * length, 0.1 * width)]
@@ -173,6 +223,53 @@ def cases(plate, k_t):
             pts[:3],
         ),
     ]
+    out = [(name, supports, points, {}) for name, supports, points in out]
+    # Left edge (x = 0) clamped; the two right corners (x = L, z = 0 and z = B: corners 1 and 3
+    # in the order (0, 0), (L, 0), (0, B), (L, B)) on springs; the other edges free. The left
+    # corners are held by the clamp, so "free" as corner supports. Points: centre, (3L/4, B/4),
+    # the middle of the free right edge between the springs, a point of the free near edge,
+    # then the script's (L/4, B/4) and near edge midpoint. (0, B/2) lies on the clamped edge
+    # (C = 0) and is left out.
+    out.append(
+        (
+            "clamped-edge-two-springs",
+            {
+                "corners": ["free", K_SOFT, "free", K_SOFT],
+                "edges": {"left": "clamped", "right": "free", "near": "free", "far": "free"},
+            },
+            [
+                (length / 2, width / 2),
+                (0.75 * length, width / 4),
+                (length, width / 2),
+                (length / 4, 0.0),
+                (length / 4, width / 4),
+                (length / 2, 0.0),
+            ],
+            {"ladders": {"argyris": FINE_ARGYRIS}, "split": True},
+        )
+    )
+    return out
+
+
+def spring_self_check(plate, nx, nz, k=K_SOFT):
+    """Four equal corner springs k, load at the centre: by symmetry each spring carries 1/4,
+    and the deflection is that with fixed corners plus the rigid shift 1/(4k), so
+    C = C(four fixed corners) + 1/(4k) exactly. Returns, per element, the deviation relative
+    to 1/(4k) and the spring reactions' largest deviation from 1/4."""
+    free_edges = {"left": "free", "right": "free", "near": "free", "far": "free"}
+    centre = [(plate["length"] / 2, plate["width"] / 2)]
+    mesh = rectangle_mesh(plate["length"], plate["width"], nx, nz)
+    out = {}
+    for elem, cls in ELEMENTS.items():
+        (fixed,), _ = compliances(mesh, cls(), plate, {"corners": ["fixed"] * 4, "edges": free_edges}, centre)
+        split = {}
+        (sprung,), _ = compliances(mesh, cls(), plate, {"corners": [k] * 4, "edges": free_edges}, centre, split)
+        out[elem] = {
+            "fixed": fixed,
+            "springs": sprung,
+            "deviation": (sprung - fixed - 0.25 / k) * 4.0 * k,
+            "reaction_deviation": max(abs(r - 0.25) for r in split["spring_reaction"][0]),
+        }
     return out
 
 
@@ -191,6 +288,7 @@ def main(argv=None):
     ap.add_argument("--scene", default=str(ROOT / "scenes" / "paper-table-1.toml"))
     ap.add_argument("--out", default=str(ROOT / "reference" / "data"))
     ap.add_argument("--quick", action="store_true", help="coarse meshes only (CI smoke run)")
+    ap.add_argument("--case", nargs="+", metavar="NAME", help="only these cases (default: all)")
     args = ap.parse_args(argv)
     plate, k_t = plate_from_scene(args.scene)
     # (nx, nz) ladders that halve h exactly and keep the centre on a node: the Rust ladder
@@ -203,7 +301,14 @@ def main(argv=None):
         ladders = {"argyris": [(5, 4), (10, 8)], "morley": [(10, 8), (20, 16)]}
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    for name, supports, points in cases(plate, k_t):
+    all_cases = cases(plate, k_t)
+    if args.case:
+        unknown = set(args.case) - {c[0] for c in all_cases}
+        if unknown:
+            ap.error(f"unknown case(s): {', '.join(sorted(unknown))}")
+    for name, supports, points, options in all_cases:
+        if args.case and name not in args.case:
+            continue
         record = {
             "case": name,
             "scene": str(Path(args.scene).relative_to(ROOT)) if Path(args.scene).is_relative_to(ROOT) else args.scene,
@@ -213,12 +318,26 @@ def main(argv=None):
             "versions": versions(),
             "results": {},
         }
-        for elem, ladder in ladders.items():
+        if options.get("split"):
+            # Which corner each entry of spring_reaction / spring_energy_share belongs to.
+            corner_points = [(0.0, 0.0), (plate["length"], 0.0), (0.0, plate["width"]), (plate["length"], plate["width"])]
+            record["springs"] = [
+                {"corner": i, "point": corner_points[i], "stiffness": float(kind)}
+                for i, kind in enumerate(supports["corners"])
+                if isinstance(kind, (int, float))
+            ]
+            record["results"] = record.pop("results")  # keep "results" last
+        case_ladders = ladders if args.quick else {**ladders, **options.get("ladders", {})}
+        for elem, ladder in case_ladders.items():
             runs = []
             for n, nz in ladder:
                 mesh = rectangle_mesh(plate["length"], plate["width"], n, nz)
-                c, info = compliances(mesh, ELEMENTS[elem](), plate, supports, points)
-                runs.append({"nx": n, "nz": nz, "h": plate["length"] / n, **info, "compliance": c})
+                split = {} if options.get("split") else None
+                c, info = compliances(mesh, ELEMENTS[elem](), plate, supports, points, split)
+                runs.append({"nx": n, "nz": nz, "h": plate["length"] / n, **info, "compliance": c, **(split or {})})
+                if split is not None:
+                    worst = max(abs(b + sum(s) - 1.0) for b, s in zip(split["bending_energy_share"], split["spring_energy_share"]))
+                    assert worst < 1e-8, f"{name} {elem} {n}x{nz}: energy shares sum to 1 ± {worst:e}"
                 print(f"{name} {elem} {n}x{nz}: dofs {info['dofs']}, C[0] = {c[0]:.10e}, {info['assembly_s'] + info['solve_s']:.2f} s", file=sys.stderr)
             record["results"][elem] = runs
         suffix = "-quick" if args.quick else ""
@@ -226,6 +345,15 @@ def main(argv=None):
         tmp = path.with_suffix(".json.tmp")
         tmp.write_text(json.dumps(record, indent=1))
         tmp.replace(path)
+    # Last, so that it is in the tail of CI's log.
+    nx, nz = (10, 8) if args.quick else (20, 16)
+    for elem, r in spring_self_check(plate, nx, nz).items():
+        print(
+            f"spring self-check {elem} {nx}x{nz}: C(4 springs k={K_SOFT:g}) - C(4 fixed) - 1/(4k) = {r['deviation']:.2e} x 1/(4k); "
+            f"reactions 1/4 ± {r['reaction_deviation']:.1e}",
+            file=sys.stderr,
+        )
+        assert abs(r["deviation"]) < 1e-8 and r["reaction_deviation"] < 1e-8, f"spring self-check failed: {elem} {r}"
 
 
 if __name__ == "__main__":
