@@ -552,7 +552,7 @@ impl OutputDir {
                     dirs.push(d.to_path_buf());
                 }
             }
-            write_synced(&p, bytes)?;
+            write_staged(&p, bytes, PER_FILE_SYNC)?;
             entries.push(ManifestEntry { path: rel.clone(), size: bytes.len() as u64, sha256: sha256_hex(bytes) });
         }
         entries.sort_by(|a, b| a.path.cmp(&b.path));
@@ -561,11 +561,23 @@ impl OutputDir {
         let mut json = serde_json::to_string_pretty(&manifest).expect("a manifest serializes");
         json.push('\n');
         // Written last: a stage with a manifest is complete.
-        write_synced(&stage.join(MANIFEST), json.as_bytes())?;
-        dirs.sort();
-        dirs.dedup();
-        for d in dirs.iter().rev() {
-            sync_dir(d).map_err(io_err(d, "syncing a staged directory"))?;
+        write_staged(&stage.join(MANIFEST), json.as_bytes(), PER_FILE_SYNC)?;
+        // Everything staged must be on disk before the swap is, or a power cut could leave
+        // the new name pointing at incomplete files.
+        #[cfg(target_os = "linux")]
+        {
+            // One syncfs costs one journal commit; an fsync per file costs one each (about
+            // 2 s instead of a few ms for 300 files on ext4).
+            let f = File::open(&stage).map_err(io_err(&stage, "opening the stage to sync it"))?;
+            rustix::fs::syncfs(&f).map_err(|e| io_err(&stage, "syncing the stage")(e.into()))?;
+        }
+        #[cfg(not(target_os = "linux"))]
+        {
+            dirs.sort();
+            dirs.dedup();
+            for d in dirs.iter().rev() {
+                sync_dir(d).map_err(io_err(d, "syncing a staged directory"))?;
+            }
         }
         // The target may have changed during the computation; check it again.
         check_replaceable_dir(&self.target)?;
@@ -586,8 +598,11 @@ impl Drop for OutputDir {
     }
 }
 
-/// Creates `path` (mode 0644 less the umask) with `bytes` and syncs it.
-fn write_synced(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+/// Whether staged files are synced one by one; on Linux the whole stage is synced at once.
+const PER_FILE_SYNC: bool = cfg!(not(target_os = "linux"));
+
+/// Creates `path` (mode 0644 less the umask) with `bytes`, and syncs it if `sync`.
+fn write_staged(path: &Path, bytes: &[u8], sync: bool) -> Result<(), OutputError> {
     let mut o = OpenOptions::new();
     o.write(true).create_new(true);
     #[cfg(unix)]
@@ -597,7 +612,10 @@ fn write_synced(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     }
     let mut f = o.open(path).map_err(io_err(path, "creating a staged file"))?;
     f.write_all(bytes).map_err(io_err(path, "writing a staged file"))?;
-    f.sync_all().map_err(io_err(path, "syncing a staged file"))
+    if sync {
+        f.sync_all().map_err(io_err(path, "syncing a staged file"))?;
+    }
+    Ok(())
 }
 
 /// Puts the complete stage at `target`: a rename if there is no target, else an atomic
