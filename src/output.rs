@@ -556,8 +556,7 @@ impl OutputDir {
             entries.push(ManifestEntry { path: rel.clone(), size: bytes.len() as u64, sha256: sha256_hex(bytes) });
         }
         entries.sort_by(|a, b| a.path.cmp(&b.path));
-        let manifest =
-            Manifest { program: "impact".into(), version: env!("CARGO_PKG_VERSION").into(), files: entries };
+        let manifest = Manifest { program: "impact".into(), version: env!("CARGO_PKG_VERSION").into(), files: entries };
         let mut json = serde_json::to_string_pretty(&manifest).expect("a manifest serializes");
         json.push('\n');
         // Written last: a stage with a manifest is complete.
