@@ -4,10 +4,11 @@
 //! one fresh factorization per condition with a single solve per point, on a coarser
 //! 21 x 11 grid of points to keep the bench short (compare per point).
 
+use coupled::discretisation::{mesh_for, plate_properties};
+use coupled::supports::corner_supports;
 use criterion::{criterion_group, criterion_main, Criterion};
-use impact::fem::{corner_supports, mesh_for, plate_properties};
-use impact::scene::{even_points, Scene};
-use plate_fem::{CornerFamily, EdgeSupport, Model, Supports};
+use impact::scene::{even_points, Scene, SceneSource};
+use plate_fem::{CornerFamily, EdgeSupport, Model};
 use std::hint::black_box;
 
 fn grid(l: f64, b: f64, nx: usize, nz: usize) -> Vec<(f64, f64)> {
@@ -16,7 +17,7 @@ fn grid(l: f64, b: f64, nx: usize, nz: usize) -> Vec<(f64, f64)> {
 
 fn fem_map(c: &mut Criterion) {
     let scene = Scene::default_scene();
-    let props = plate_properties(&scene);
+    let props = plate_properties(&scene.plate);
     let conds = [
         analytic::Condition::BothFixed,
         analytic::Condition::BothSprings { k_t: 5.11545e8 },
@@ -33,7 +34,7 @@ fn fem_map(c: &mut Criterion) {
             let base = fam.probe_map(black_box(&points)).unwrap();
             for cnd in conds {
                 for p in &base {
-                    black_box(fam.respond(p, corner_supports(cnd)).unwrap());
+                    black_box(fam.respond(p, corner_supports(cnd).corners).unwrap());
                 }
             }
         })
@@ -43,7 +44,7 @@ fn fem_map(c: &mut Criterion) {
         b.iter(|| {
             let model = Model::new(props, mesh_for(&props, 40).unwrap()).unwrap();
             for cnd in conds {
-                let f = model.factorize(&Supports::corners(corner_supports(cnd))).unwrap().with_refinement(0);
+                let f = model.factorize(&corner_supports(cnd)).unwrap().with_refinement(0);
                 for &(x, z) in &few {
                     black_box(f.respond(x, z).unwrap());
                 }

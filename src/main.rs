@@ -4,7 +4,7 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, Results};
 use coupled::transient::TransientSettings;
 use coupled::{BeamModel, PlateModel};
-use impact::output::Artifacts;
+use impact::output::{Artifacts, OutputDir, OutputFile};
 use impact::present::rows::{response_tables, slug, yield_tables};
 use impact::report::studies::{BASE_MESH, LEVELS};
 use impact::report::Failure;
@@ -136,7 +136,7 @@ enum Command {
         /// Elements along the longer side.
         #[arg(long, default_value_t = 40)]
         elements: usize,
-        /// Output file.
+        /// Output file (a regular file or a new one; `-` for standard output).
         #[arg(long, value_name = "FILE", default_value = "field.json")]
         out: PathBuf,
     },
@@ -198,33 +198,42 @@ fn execute(command: Command) -> Result<(), Failure> {
     match command {
         Command::Solve(c) => {
             let scene = load(&c.scene)?;
+            let target = prepare(c.out.as_deref())?;
             let r = results(&scene, &c.model.kinds())?;
-            emit(&c, &scene, r)
+            emit(&c, target, &scene, r)
         }
         Command::Sweep { common, count } => {
             let scene = load(&common.scene)?.with_sweep(count as usize);
+            let target = prepare(common.out.as_deref())?;
             let r = results(&scene, &common.model.kinds())?;
-            emit(&common, &scene, r)
+            emit(&common, target, &scene, r)
         }
         Command::Yield(c) => {
             let mut scene = load(&c.scene)?;
             scene.analyses = vec![Analysis::YieldVelocity];
+            let target = prepare(c.out.as_deref())?;
             let r = results(&scene, &c.model.kinds())?;
-            emit(&c, &scene, r)
+            emit(&c, target, &scene, r)
         }
-        Command::Paper { out } => write(&out, &impact::report::paper::reproduce()?),
+        Command::Paper { out } => {
+            let target = OutputDir::prepare(&out)?;
+            commit(target, &impact::report::paper::reproduce()?)
+        }
         Command::Dynamic { scene, out } => {
             let scene = load(&scene)?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(slug(&scene.name)).join("dynamic"));
+            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
+            let target = OutputDir::prepare(&dir)?;
             let points = scene.point_pairs();
-            write(&dir, &impact::report::transient::report(&scene, &points)?)
+            commit(target, &impact::report::transient::report(&scene, &points)?)
         }
         Command::Compare { scene, out } => {
             let scene = load(&scene)?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(slug(&scene.name)).join("compare"));
-            write(&dir, &impact::report::comparison::report(&scene)?)
+            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
+            let target = OutputDir::prepare(&dir)?;
+            commit(target, &impact::report::comparison::report(&scene)?)
         }
         Command::Report { out } => {
+            let target = OutputDir::prepare(&out)?;
             let mut all = Artifacts::new();
             all.nest("paper", impact::report::paper::reproduce()?);
             all.nest("fem", impact::report::fem_verification::report(&Scene::default_scene())?);
@@ -237,7 +246,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             let points = [(l / 4.0, b / 2.0), (l / 2.0, b / 2.0), (l / 2.0, 0.0), (0.0, b / 2.0)];
             cmp.nest("dynamic", impact::report::transient::report(&scene, &points)?);
             all.nest(&slug(&scene.name), cmp);
-            write(&out, &all)
+            commit(target, &all)
         }
         Command::FemBench { common, tolerance, nx, nz } => {
             let scene = load(&common.scene)?;
@@ -273,19 +282,33 @@ fn execute(command: Command) -> Result<(), Failure> {
             if !(0.0..=b).contains(&z_mm) {
                 return Err(format!("--z-mm {z_mm} is outside the plate: the allowed range is [0, {b}] mm").into());
             }
+            let target = OutputFile::prepare(&out)?;
             let f = impact::report::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
-            let mut a = Artifacts::new();
-            let name = out.file_name().ok_or("--out must name a file")?.to_owned();
-            a.add(PathBuf::from(&name), serde_json::to_string(&f)?);
-            let dir = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-            write(dir, &a)
+            let json = serde_json::to_string(&f)?;
+            if target.is_stdout() {
+                return self::out(&format!("{json}\n"));
+            }
+            if let Some(p) = target.commit(json.as_bytes())? {
+                eprintln!("wrote {}", p.display());
+            }
+            Ok(())
         }
         Command::DefaultScene => out(DEFAULT_SCENE),
     }
 }
 
-fn write(dir: &Path, artifacts: &Artifacts) -> Result<(), Failure> {
-    let written = artifacts.write_all(dir).map_err(|e| format!("writing into {}: {e}", dir.display()))?;
+/// Checks an output directory before any computation: a run that cannot write fails
+/// before it spends time, and a run that fails leaves earlier output as it was.
+fn prepare(dir: Option<&Path>) -> Result<Option<OutputDir>, Failure> {
+    Ok(match dir {
+        Some(d) => Some(OutputDir::prepare(d)?),
+        None => None,
+    })
+}
+
+fn commit(target: OutputDir, artifacts: &Artifacts) -> Result<(), Failure> {
+    let dir = target.path().to_path_buf();
+    let written = target.commit(artifacts)?;
     eprintln!("wrote {} files under {}", written.len(), dir.display());
     Ok(())
 }
@@ -308,7 +331,7 @@ fn status_line(results: &Results) -> String {
     format!("status: {}", parts.join("; "))
 }
 
-fn emit(c: &Common, scene: &Scene, results: Results) -> Result<(), Failure> {
+fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) -> Result<(), Failure> {
     let responses = response_tables(&results);
     let yields = yield_tables(&results);
     let status = status_line(&results);
@@ -320,7 +343,7 @@ fn emit(c: &Common, scene: &Scene, results: Results) -> Result<(), Failure> {
         "summary": results.summary(),
         "results": &results,
     }))?;
-    if let Some(dir) = &c.out {
+    if let Some(target) = target {
         let mut a = Artifacts::new();
         // File names from the support set's position in the scene (unique), not its name.
         for (kind, tables) in [("responses", &responses), ("yield", &yields)] {
@@ -329,7 +352,7 @@ fn emit(c: &Common, scene: &Scene, results: Results) -> Result<(), Failure> {
             }
         }
         a.add("results.json", json.clone());
-        write(dir, &a)?;
+        commit(target, &a)?;
     }
     if c.json {
         out(&format!("{json}\n"))?;

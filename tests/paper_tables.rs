@@ -7,7 +7,7 @@
 //! reports/paper/index.md), so the converged root must lie within half a unit of the last
 //! printed digit plus 3e-6·|value| (1e-6 x 3, the worst-case factor) of every printed cell.
 
-use impact::paper::*;
+use impact::report::paper::*;
 
 const TRUNCATION: f64 = 3.0 * PAPER_RECURSION_TOLERANCE;
 

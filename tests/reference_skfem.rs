@@ -7,7 +7,7 @@
 //! their error estimates; we allow twice that sum, plus 1e-9 relative for the floating-point
 //! noise of the solves. The result must also meet the aim of 1e-4.
 
-use impact::reference::{extrapolate, load, rust_runs, CASES};
+use impact::report::skfem::{extrapolate, load, rust_runs, CASES};
 use plate_fem::classical::{LevyPlate, YEdge};
 
 fn check_case(case: &str) {

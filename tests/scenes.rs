@@ -1,7 +1,8 @@
 //! Scene validation: every bad input is a clear error naming the field and its allowed
 //! range, never a panic; and the command line writes nothing when the scene is bad.
 
-use impact::scene::{Scene, DEFAULT_SCENE};
+use impact::scene::{Points, Scene, SceneSource, DEFAULT_SCENE};
+use plate_fem::{CornerSupport, EdgeSupport};
 use std::process::Command;
 
 fn with(from: &str, to: &str) -> String {
@@ -62,16 +63,19 @@ fn wrong_type() {
 
 #[test]
 fn nan_and_infinity() {
-    expect(&with("length_mm = 458.4", "length_mm = nan"), &["plate.length_mm", "(0, inf) mm"]);
-    expect(&with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = inf"), &["plate.youngs_modulus_gpa", "(0, inf)"]);
+    expect(&with("length_mm = 458.4", "length_mm = nan"), &["plate.length_mm = NaN", "[1, 100000] mm"]);
+    expect(
+        &with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = inf"),
+        &["plate.youngs_modulus_gpa", "[0.000001, 10000] GPa"],
+    );
 }
 
 #[test]
 fn zero_or_negative_sizes() {
-    expect(&with("thickness_mm = 8.0", "thickness_mm = 0.0"), &["plate.thickness_mm = 0", "(0, inf) mm"]);
-    expect(&with("width_mm = 360.0", "width_mm = -1.0"), &["plate.width_mm = -1", "(0, inf) mm"]);
-    expect(&with("radius_mm = 25.0", "radius_mm = 0.0"), &["bodies[0].radius_mm = 0", "(0, inf) mm"]);
-    expect(&with("density_kg_m3 = 1380.0", "density_kg_m3 = -5.0"), &["bodies[0].density_kg_m3", "(0, inf)"]);
+    expect(&with("thickness_mm = 8.0", "thickness_mm = 0.0"), &["plate.thickness_mm = 0", "[0.001, 10000] mm"]);
+    expect(&with("width_mm = 360.0", "width_mm = -1.0"), &["plate.width_mm = -1", "[1, 100000] mm"]);
+    expect(&with("radius_mm = 25.0", "radius_mm = 0.0"), &["bodies[0].radius_mm = 0", "[0.001, 10000] mm"]);
+    expect(&with("density_kg_m3 = 1380.0", "density_kg_m3 = -5.0"), &["bodies[0].density_kg_m3", "[1, 100000]"]);
 }
 
 #[test]
@@ -91,12 +95,12 @@ fn restitution_outside_half_open_interval() {
 fn impact_point_outside_plate() {
     expect(&with("x_mm = [0.0,", "x_mm = [-1.0,"), &["points.x_mm[0] = -1", "[0, 458.4] mm"]);
     expect(&with("458.4]", "458.5]"), &["points.x_mm[8] = 458.5", "[0, 458.4] mm"]);
-    expect(&with("[points]\n", "[points]\nz_mm = [400.0]\n"), &["points.z_mm[0] = 400", "[0, 360] mm"]);
+    expect(&with("x_mm = [0.0,", "pairs_mm = [[1.0, 400.0]]\n#"), &["points.pairs_mm[0][1] (z) = 400", "[0, 360] mm"]);
 }
 
 #[test]
 fn non_positive_velocity() {
-    expect(&with("m_per_s = [0.008,", "m_per_s = [0.0,"), &["velocities.m_per_s[0] = 0", "(0, inf) m/s"]);
+    expect(&with("m_per_s = [0.008,", "m_per_s = [0.0,"), &["velocities.m_per_s[0] = 0", "[1e-9, 1000] m/s"]);
     expect(&with("m_per_s = [0.008,", "m_per_s = [-0.008,"), &["velocities.m_per_s[0] = -0.008"]);
 }
 
@@ -113,7 +117,7 @@ fn friction_angle_outside_open_interval() {
 fn spring_stiffness_rules() {
     expect(
         &with("spring_stiffness_n_per_m = 5.11545e8", "spring_stiffness_n_per_m = 0.0"),
-        &["conditions[1].spring_stiffness_n_per_m = 0", "(0, inf) N/m"],
+        &["conditions[1].spring_stiffness_n_per_m = 0", "[0.000001, 1e18] N/m"],
     );
     expect(
         &with("spring_stiffness_n_per_m = 5.11545e8\n", ""),
@@ -124,18 +128,34 @@ fn spring_stiffness_rules() {
         &["conditions[0].spring_stiffness_n_per_m", "does not apply"],
     );
     expect(&with("supports = \"both-fixed\"", "supports = \"glued\""), &["supports", "unknown variant"]);
+    // A general set and a preset at once, and a set that leaves the plate free to move.
+    expect(
+        &with("supports = \"both-fixed\"", "supports = \"both-fixed\"\n[conditions.edges]\nleft = \"clamped\""),
+        &["conditions[0]", "not both"],
+    );
+    expect(
+        &with("supports = \"both-fixed\"", "[conditions.corners]\nleft_near = \"fixed\""),
+        &["conditions[0]", "rigid"],
+    );
 }
 
 #[test]
 fn points_need_exactly_one_of_list_or_count() {
-    expect(&with("[points]\n", "[points]\ncount = 5\n"), &["points", "not both"]);
-    expect(&with("[points]\n", "[points]\nz_mm = []\n"), &["points.z_mm", "empty"]);
+    expect(&with("[points]\n", "[points]\ncount = 5\n"), &["points", "exactly one of"]);
+    // z_mm beside x_mm used to form a grid silently; now the scene must say which it means.
+    expect(&with("[points]\n", "[points]\nz_mm = [90.0]\n"), &["points.z_mm", "pairs_mm", "[points.grid]"]);
+    expect(&with("x_mm = [0.0,", "count = 1e9\n#"), &["points.count = 1000000000", "[2, 100000]"]);
+    expect(&with("x_mm = [0.0,", "count = 2.5\n#"), &["points.count", "whole number"]);
 }
 
 #[test]
 fn empty_lists_are_rejected() {
     expect(&with("m_per_s = [0.008, 0.0025]", "m_per_s = []"), &["velocities.m_per_s", "empty"]);
-    expect(&with("analyses = [\"responses\", \"yield-velocity\"]", "analyses = []"), &["analyses", "empty"]);
+    let text = DEFAULT_SCENE.replace(
+        &DEFAULT_SCENE[DEFAULT_SCENE.find("analyses = [").unwrap()..DEFAULT_SCENE.find("]\n\n[plate]").unwrap() + 1],
+        "analyses = []",
+    );
+    expect(&text, &["analyses", "empty"]);
 }
 
 #[test]
@@ -180,11 +200,72 @@ fn command_line_writes_csv_and_json() {
     let dir = tempfile::tempdir().unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_impact")).args(["solve", "--out"]).arg(dir.path()).output().unwrap();
     assert!(o.status.success());
-    let json = std::fs::read_to_string(dir.path().join("paper-table-1.json")).unwrap();
+    let json = std::fs::read_to_string(dir.path().join("results.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
-    assert_eq!(v["responses"].as_array().unwrap().len(), 9 * 3 * 3 * 2);
-    assert!(dir.path().join("paper-table-1-responses-con-2.csv").exists());
+    assert_eq!(v["results"]["responses"].as_array().unwrap().len(), 9 * 3 * 3 * 2);
+    assert_eq!(v["version"], env!("CARGO_PKG_VERSION"));
+    // One CSV per support set, named by its position in the scene (names need not be
+    // file-name safe or unique after slugging).
+    assert!(dir.path().join("responses-2.csv").exists());
     // Con 1 has no springs: its table has no spring column.
-    let con1 = std::fs::read_to_string(dir.path().join("paper-table-1-responses-con-1.csv")).unwrap();
+    let con1 = std::fs::read_to_string(dir.path().join("responses-1.csv")).unwrap();
     assert!(!con1.lines().next().unwrap().contains("spring"));
+}
+
+/// Huge values that pass a "positive" check would overflow after conversion to SI (1e300 mm
+/// cubed); they are refused in the file's units with the field and the range.
+#[test]
+fn values_that_would_overflow_in_si_are_refused() {
+    expect(&with("length_mm = 458.4", "length_mm = 1e300"), &["plate.length_mm = 1e300", "[1, 100000] mm"]);
+    expect(&with("radius_mm = 25.0", "radius_mm = 1e-300"), &["bodies[0].radius_mm = 1e-300", "mm"]);
+    expect(
+        &with("spring_stiffness_n_per_m = 5.11545e8", "spring_stiffness_n_per_m = 5e-324"),
+        &["conditions[1].spring_stiffness_n_per_m = 5e-324"],
+    );
+    expect(&with("thickness_mm = 8.0", "thickness_mm = 400.0"), &["plate.thickness_mm", "not a plate"]);
+    expect(&with("m_per_s = [0.008,", "m_per_s = [1e9,"), &["velocities.m_per_s[0] = 1000000000", "1000] m/s"]);
+}
+
+/// A general support set: per-corner springs of their own stiffness, a clamped edge, and
+/// the beam's view of it.
+#[test]
+fn general_support_set_in_a_scene() {
+    let text = with(
+        "[[conditions]]\nname = \"Con 1\"\nsupports = \"both-fixed\"",
+        "[[conditions]]\nname = \"props\"\n[conditions.edges]\nleft = \"clamped\"\n[conditions.corners]\nright_near = { spring_n_per_m = 1e6 }\nright_far = { spring_n_per_m = 2e6 }",
+    );
+    let s = Scene::parse(&text, "t").unwrap();
+    let set = &s.conditions[0];
+    assert_eq!(set.name, "props");
+    assert_eq!(set.supports.edges, [EdgeSupport::Clamped, EdgeSupport::Free, EdgeSupport::Free, EdgeSupport::Free]);
+    assert_eq!(set.supports.corners[1], CornerSupport::Spring(1e6));
+    assert_eq!(set.supports.corners[3], CornerSupport::Spring(2e6));
+    assert_eq!(set.beam_condition(), None);
+    // The presets stay the paper's conditions.
+    assert!(s.conditions[1].beam_condition().is_some());
+}
+
+/// Points are explicit pairs, or a grid the scene names as a grid: the same positions in
+/// either form give the same points.
+#[test]
+fn pairs_and_grid() {
+    let pairs = with("x_mm = [0.0,", "pairs_mm = [[100.0, 0.0], [100.0, 90.0], [200.0, 0.0], [200.0, 90.0]]\n#");
+    let grid = with("x_mm = [0.0,", "[points.grid]\nx_mm = [100.0, 200.0]\nz_mm = [0.0, 90.0]\n#");
+    let (a, b) = (Scene::parse(&pairs, "p").unwrap(), Scene::parse(&grid, "g").unwrap());
+    assert!(matches!(a.points, Points::Pairs { .. }));
+    assert!(matches!(b.points, Points::Grid { .. }));
+    assert_eq!(a.point_pairs(), b.point_pairs());
+    assert_eq!(a.point_pairs().len(), 4);
+    // x_mm alone is the centreline.
+    let d = Scene::default_scene();
+    assert!(d.point_pairs().iter().all(|&(_, z)| z == d.plate.width() / 2.0));
+}
+
+/// A scene "file" that is a device, a FIFO or a directory is refused before it is read.
+#[test]
+fn non_regular_scene_files_are_refused() {
+    for path in ["/dev/zero", "/tmp"] {
+        let e = Scene::load(std::path::Path::new(path)).unwrap_err().to_string();
+        assert!(e.contains("not a regular file"), "{path}: {e}");
+    }
 }

@@ -43,18 +43,7 @@ impl fmt::Display for Range {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let l = if self.lo_closed { '[' } else { '(' };
         let r = if self.hi_closed { ']' } else { ')' };
-        let num = |v: f64| {
-            if v.is_infinite() {
-                if v > 0.0 {
-                    "inf".to_string()
-                } else {
-                    "-inf".to_string()
-                }
-            } else {
-                format!("{v}")
-            }
-        };
-        write!(f, "{l}{}, {}{r}", num(self.lo), num(self.hi))
+        write!(f, "{l}{}, {}{r}", compact(self.lo), compact(self.hi))
     }
 }
 
@@ -67,9 +56,21 @@ pub const RESTITUTION: Range = Range::open_closed(0.0, 1.0);
 /// Internal friction angle of the Drucker-Prager rock, degrees (eq. 51).
 pub const FRICTION_ANGLE_DEG: Range = Range::open(0.0, 90.0);
 
+/// A number as a person reads it: plain for moderate magnitudes, scientific beyond (1e300
+/// is "1e300", not three hundred digits), "inf" and "NaN" as such.
+pub fn compact(v: f64) -> String {
+    if v.is_infinite() {
+        if v > 0.0 { "inf" } else { "-inf" }.to_string()
+    } else if v == 0.0 || v.is_nan() || (1e-6..1e16).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 /// A parameter outside its allowed range, named as the caller knows it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{name} = {value} is outside the allowed range {allowed}{unit}", unit = unit_suffix(.unit))]
+#[error("{name} = {} is outside the allowed range {allowed}{unit}", compact(*.value), unit = unit_suffix(.unit))]
 pub struct InvalidParameter {
     pub name: String,
     pub value: f64,
