@@ -216,7 +216,7 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
     }
     let _ = writeln!(
         md,
-        "### Rigid target: Hertz\n\n{} on a rigid target, e = 1. Hertz: P_max = K(5mv²/4K)^{{3/5}}, t_c = {HERTZ_TIME:.5} (m²/K²v)^{{1/5}}. The constant is 2·0.4B(2/5, 1/2)·(5/4)^{{2/5}}; design.md's 3.2145 is 0.11 % low, which this integrator resolves (it converges to 3.2180, not to 3.2145). Errors fall 4x per halving of Δt (second order).\n\n{}",
+        "### Rigid target: Hertz\n\n{} on a rigid target, e = 1. Hertz: P_max = K(5mv²/4K)^{{3/5}}, t_c = {HERTZ_TIME:.5} (m²/K²v)^{{1/5}}. The constant is 2·0.4B(2/5, 1/2)·(5/4)^{{2/5}}; the rounded 3.2145 some texts give is 0.11 % low, which this integrator resolves (it converges to 3.2180, not to 3.2145). Errors fall 4x per halving of Δt (second order).\n\n{}",
         coal.name,
         h.to_markdown()
     );

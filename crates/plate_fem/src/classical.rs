@@ -32,7 +32,9 @@ type Derivs = [f64; 4];
 fn strip(alpha: f64, s: f64) -> Derivs {
     let t = s.abs();
     let e = (-alpha * t).exp();
-    let sign = if s < 0.0 { -1.0 } else { 1.0 };
+    // The sign of s, with the sign of zero: a load on an edge lies just inside the plate,
+    // so at the lower edge the strip is evaluated at s = -0 (see `harmonic`).
+    let sign = if s.is_sign_negative() { -1.0 } else { 1.0 };
     let a2 = alpha * alpha;
     [(1.0 + alpha * t) * e, -sign * a2 * t * e, -a2 * (1.0 - alpha * t) * e, sign * a2 * alpha * (2.0 - alpha * t) * e]
 }
@@ -68,7 +70,11 @@ fn harmonic(alpha: f64, b: f64, nu: f64, kind: YEdge, eta: f64, y: f64) -> f64 {
     let mut m = Matrix4::zeros();
     let mut r = Vector4::zeros();
     for (e, &ye) in edges.iter().enumerate() {
-        let g = strip(alpha, ye - eta);
+        // A load on the edge itself is inside the plate: seen from the lower edge it lies
+        // above (s = ye - η = -0), from the upper edge below (s = +0). Without this the
+        // shear jump of the point load would fall outside the lower edge and cancel.
+        let s = if ye == eta && ye < 0.0 { -0.0 } else { ye - eta };
+        let g = strip(alpha, s);
         let rows_g = edge_rows(kind, alpha, nu, &g);
         let h = homogeneous(alpha, b, ye);
         for k in 0..4 {

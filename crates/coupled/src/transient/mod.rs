@@ -13,7 +13,7 @@
 //! let tc = s.hertz_time();
 //! let o = simulate(&s, None, tc / 200.0, 3.0 * tc);
 //! assert!((o.force_max / s.hertz_force() - 1.0).abs() < 1e-4);
-//! assert!((o.contact_time / tc - 1.0).abs() < 1e-4);
+//! assert!((o.contact_time.unwrap() / tc - 1.0).abs() < 1e-4);
 //! ```
 
 pub mod case;
