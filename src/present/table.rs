@@ -61,6 +61,9 @@ impl Cell {
     fn show(&self) -> String {
         match self {
             Cell::Text(s) => s.clone(),
+            // No value (a ratio to zero, a contact that never ended) is shown as none, never
+            // as NaN or inf.
+            Cell::Num(v) if !v.is_finite() => "-".into(),
             Cell::Num(v) => sig(*v, 7),
             Cell::Int(i) => i.to_string(),
             Cell::Empty => "-".into(),
@@ -69,6 +72,7 @@ impl Cell {
     fn csv(&self) -> String {
         match self {
             Cell::Text(s) => s.clone(),
+            Cell::Num(v) if !v.is_finite() => String::new(),
             Cell::Num(v) => format!("{v:e}"),
             Cell::Int(i) => i.to_string(),
             Cell::Empty => String::new(),

@@ -265,7 +265,12 @@ pub fn maps_from(scene: &Scene, model: &PlateModel) -> Result<Maps, Failure> {
         let mut egrid = Vec::new();
         let mut brow = Vec::new();
         for &x in &xs {
-            brow.push(beam.compliance(c, x, 0.0)?.compliance.total());
+            // The beam describes only Con 1-3; the map's beam row is unused for other sets.
+            brow.push(match beam.compliance(c, x, 0.0) {
+                Ok(e) => e.compliance.total(),
+                Err(coupled::ModelError::NotApplicable { .. }) => 0.0,
+                Err(e) => return Err(e.into()),
+            });
             let (mut col, mut ecol) = (Vec::new(), Vec::new());
             for &z in &zs {
                 let v = model.get(&c.name, x, z).ok_or("map point missing")?;
@@ -435,6 +440,14 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         let mut map_csv =
             Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
         for (ci, c) in scene.conditions.iter().enumerate() {
+            if c.beam_condition().is_none() {
+                let _ = writeln!(
+                    md,
+                    "### {}\n\nThe beam describes only the paper's Con 1-3, so there is no C_plate/C_beam map for this support set; the plate's compliances at the scene's points are in the tables above.\n",
+                    c.name
+                );
+                continue;
+            }
             let ratio = |i: usize, j: usize| {
                 if mp.beam[ci][i] > 0.0 {
                     mp.plate[ci][i][j] / mp.beam[ci][i] - 1.0
