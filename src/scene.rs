@@ -22,6 +22,36 @@ pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 /// body, velocity and model; 1e5 points stay well inside this machine's memory).
 pub const MAX_POINTS: usize = 100_000;
 
+/// Longest name of a scene, body or support set, in characters: names title tables and
+/// plots, and a name is not a description.
+pub const MAX_NAME_CHARS: usize = 200;
+
+/// Checks a display name: not empty, not too long, and distinct from the names before it
+/// even after reduction to a file-name stem (reports name files after it: "A" and "a!"
+/// would write the same file).
+fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<(), Invalid> {
+    if name.trim().is_empty() {
+        return Err(other(field, "is empty; give it a name"));
+    }
+    let n = name.chars().count();
+    if n > MAX_NAME_CHARS {
+        return Err(other(field, format!("is {n} characters long; the allowed range is [1, {MAX_NAME_CHARS}]")));
+    }
+    let stem = crate::present::rows::slug(name);
+    if stem.is_empty() {
+        return Err(other(field, format!("'{name}' has no letter or digit; file names are made from it")));
+    }
+    if let Some(e) = earlier.iter().find(|e| crate::present::rows::slug(e) == stem) {
+        return Err(other(
+            field,
+            format!(
+                "'{name}' and '{e}' give the same file name '{stem}'; names must differ in their letters or digits"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Accepted ranges, in the file's units. Each is wide against any real plate, rock or
 /// support and narrow enough that the SI values, and the powers of them the models take
 /// (δ^{5/2}, h³, R³), stay far from overflow and underflow.
@@ -470,9 +500,7 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
 /// Checks every field against its range, in the units of the file, then converts to SI.
 fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, RESTITUTION, "")?;
-    if raw.name.trim().is_empty() {
-        return Err(other("name", "is empty; give the scene a name"));
-    }
+    check_name("name".into(), &raw.name, &[])?;
 
     let p = &raw.plate;
     let plate_material = Elastic::new(
@@ -515,12 +543,8 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         )?;
         let density = check(&f("density_kg_m3"), b.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?;
         let radius = check(&f("radius_mm"), b.radius_mm, limits::RADIUS_MM, "mm")? * MM;
-        if b.name.trim().is_empty() {
-            return Err(other(f("name"), "is empty; give every body a name"));
-        }
-        if bodies.iter().any(|s: &Sphere| s.name == b.name) {
-            return Err(other(f("name"), format!("'{}' names two bodies; names must be unique", b.name)));
-        }
+        let earlier: Vec<&str> = bodies.iter().map(|s: &Sphere| s.name.as_str()).collect();
+        check_name(f("name"), &b.name, &earlier)?;
         bodies.push(Sphere::new(b.name.clone(), density, radius, material, strength)?);
     }
 
@@ -530,15 +554,8 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let mut conditions: Vec<SupportSet> = Vec::with_capacity(raw.conditions.len());
     for (i, c) in raw.conditions.iter().enumerate() {
         let set = validate_condition(i, c, &plate)?;
-        if set.name.trim().is_empty() {
-            return Err(other(format!("conditions[{i}].name"), "is empty; give the support set a name"));
-        }
-        if conditions.iter().any(|n| n.name == set.name) {
-            return Err(other(
-                format!("conditions[{i}].name"),
-                format!("'{}' names two conditions; names must be unique", set.name),
-            ));
-        }
+        let earlier: Vec<&str> = conditions.iter().map(|n| n.name.as_str()).collect();
+        check_name(format!("conditions[{i}].name"), &set.name, &earlier)?;
         conditions.push(set);
     }
 

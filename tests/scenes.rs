@@ -269,3 +269,27 @@ fn non_regular_scene_files_are_refused() {
         assert!(e.contains("not a regular file"), "{path}: {e}");
     }
 }
+
+/// Names title tables and name files: empty, overlong, or equal after reduction to a file
+/// stem ("A" and "a!") are refused; a very long name would also have broken the table layout.
+#[test]
+fn names_are_checked() {
+    expect(&with("name = \"coal\"", "name = \"\""), &["bodies[0].name", "empty"]);
+    expect(
+        &with("name = \"coal\"", &format!("name = \"{}\"", "c".repeat(70_000))),
+        &["bodies[0].name", "70000 characters"],
+    );
+    expect(&with("name = \"gangue 1\"", "name = \"COAL!\""), &["bodies[1].name", "same file name"]);
+    expect(&with("name = \"Con 2\"", "name = \"con-1\""), &["conditions[1].name", "same file name"]);
+    expect(&with("name = \"coal\"", "name = \"!!\""), &["bodies[0].name", "no letter or digit"]);
+}
+
+/// A loose solver tolerance used to return the rigid-plate starting value marked converged;
+/// the tolerance is bounded to what a root means.
+#[test]
+fn solver_tolerance_is_bounded() {
+    let text = format!("{DEFAULT_SCENE}\n[solver]\ntolerance = 0.999999\n");
+    expect(&text, &["solver.tolerance = 0.999999", "[1e-15, 0.001]"]);
+    let text = format!("{DEFAULT_SCENE}\n[solver]\ntolerance = 1e-300\n");
+    expect(&text, &["solver.tolerance = 1e-300"]);
+}

@@ -115,7 +115,8 @@ impl Table {
             cells
                 .iter()
                 .zip(&width)
-                .map(|(c, w)| format!("{c:>w$}"))
+                // Padded by hand: a format width is limited to u16, and a cell may be longer.
+                .map(|(c, w)| format!("{}{c}", " ".repeat(w.saturating_sub(c.chars().count()))))
                 .collect::<Vec<_>>()
                 .join("  ")
                 .trim_end()

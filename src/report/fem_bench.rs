@@ -85,7 +85,13 @@ pub struct BenchReport {
 pub fn bench(scene: &Scene, tolerance: f64, nx_pts: usize, nz_pts: usize) -> Result<BenchReport, FemError> {
     let props = plate_properties(&scene.plate);
     let (ladder, extrapolated_centre, observed_rate) = centre_ladder(&props, 10, 5)?;
-    let chosen = ladder.iter().find(|r| r.error <= tolerance).unwrap_or(ladder.last().expect("non-empty"));
+    let Some(chosen) = ladder.iter().find(|r| r.error <= tolerance) else {
+        let best = ladder.iter().map(|r| r.error).fold(f64::INFINITY, f64::min);
+        return Err(FemError::Mesh(format!(
+            "--tolerance {tolerance:e} was not met: the finest mesh of the ladder ({}) reaches {best:.1e}; choose a tolerance of at least that",
+            ladder.last().map_or(String::new(), |r| format!("{} x {}", r.nx, r.nz))
+        )));
+    };
     let k_t = scene.conditions.iter().find_map(|c| c.spring_stiffnesses().next()).unwrap_or(5.11545e8);
     let conditions = [Condition::BothFixed, Condition::BothSprings { k_t }, Condition::FixedAndSprings { k_t }];
     let points: Vec<(f64, f64)> = coupled::scene::even_points(props.length, nx_pts)

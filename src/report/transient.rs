@@ -414,6 +414,10 @@ pub fn report(scene: &Scene, points: &[(f64, f64)]) -> Result<Artifacts, Failure
     let mut summary = String::new();
     for body in &scene.bodies {
         let rows: Vec<&Vec<Cell>> = t.rows.iter().filter(|r| r[ib] == Cell::from(body.name.as_str())).collect();
+        if rows.is_empty() {
+            // A range over no cases is no range: say nothing rather than "inf to -inf".
+            continue;
+        }
         let range = |i: usize| {
             rows.iter().map(|r| num(&r[i])).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
         };

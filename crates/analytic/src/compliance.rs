@@ -79,12 +79,13 @@ impl PointCompliance {
 
     /// C = Σ_s C_s (m/N).
     pub fn total(&self) -> f64 {
-        self.stores.iter().map(|s| s.compliance).sum()
+        // A fold from +0: an empty sum is 0, not the -0 that `Iterator::sum` gives for f64.
+        self.stores.iter().map(|s| s.compliance).fold(0.0, |a, c| a + c)
     }
 
     /// Σ of the compliances of one kind of store.
     pub fn of_kind(&self, kind: StoreKind) -> f64 {
-        self.stores.iter().filter(|s| s.kind == kind).map(|s| s.compliance).sum()
+        self.stores.iter().filter(|s| s.kind == kind).map(|s| s.compliance).fold(0.0, |a, c| a + c)
     }
 
     pub fn stores(&self) -> &[Store] {
