@@ -1,4 +1,4 @@
-//! The plate FE compliance map of issue 3: the paper's plate on the 40 x 32 mesh (the
+//! The plate FE compliance map: the paper's plate on the 40 x 32 mesh (the
 //! coarsest of the ladder within 1e-4 at the centre), 101 x 21 impact points, Con 1-3:
 //! one factorization, blocked solves, rank-4 updates. The reference in the same run is
 //! one fresh factorization per condition with a single solve per point, on a coarser

@@ -240,30 +240,17 @@ fn execute(command: Command) -> Result<(), Failure> {
             let scene = load(&scene)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            let points = scene.point_pairs();
-            commit(target, &impact::report::transient::report(&scene, &points)?)
+            commit(target, &impact::report::transient::report(&scene)?)
         }
         Command::Compare { scene, out } => {
             let scene = load(&scene)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            commit(target, &impact::report::comparison::report(&scene)?)
+            commit(target, &impact::report::scene_report(&scene)?)
         }
         Command::Report { out } => {
             let target = OutputDir::prepare(&out)?;
-            let mut all = Artifacts::new();
-            all.nest("paper", impact::report::paper::reproduce()?);
-            all.nest("fem", impact::report::fem_verification::report(&Scene::default_scene())?);
-            let scene = Scene::default_scene();
-            let mut cmp = impact::report::comparison::report(&scene)?;
-            impact::report::comparison::add_paper_studies(&mut cmp)?;
-            // The transient section at representative points: Area 2 and the midpoint on the
-            // centreline, the midpoint of a free edge and of an end.
-            let (l, b) = (scene.plate.length(), scene.plate.width());
-            let points = [(l / 4.0, b / 2.0), (l / 2.0, b / 2.0), (l / 2.0, 0.0), (0.0, b / 2.0)];
-            cmp.nest("dynamic", impact::report::transient::report(&scene, &points)?);
-            all.nest(&slug(&scene.name), cmp);
-            commit(target, &all)
+            commit(target, &impact::report::main_report(&Scene::default_scene())?)
         }
         Command::FemBench { common, tolerance, nx, nz } => {
             let scene = load(&common.scene)?;

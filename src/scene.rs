@@ -167,6 +167,15 @@ struct RawScene {
     analyses: Vec<Analysis>,
     #[serde(default)]
     solver: RawSolver,
+    #[serde(default)]
+    transient: Option<RawTransient>,
+}
+
+/// Where the transient study strikes, if not at the scene's points.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTransient {
+    pairs_mm: Vec<(f64, f64)>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -560,6 +569,24 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     }
 
     let points = validate_points(&raw.points, &plate, length_mm, width_mm)?;
+    let transient_points = match &raw.transient {
+        None => points.pairs(),
+        Some(t) => match validate_points(
+            &RawPoints { x_mm: None, count: None, pairs_mm: Some(t.pairs_mm.clone()), grid: None, z_mm: None },
+            &plate,
+            length_mm,
+            width_mm,
+        ) {
+            Ok(p) => p.pairs(),
+            Err(Invalid::Range(mut e)) => {
+                e.name = e.name.replacen("points.", "transient.", 1);
+                return Err(Invalid::Range(e));
+            }
+            Err(Invalid::Other { field, message }) => {
+                return Err(Invalid::Other { field: field.replacen("points.", "transient.", 1), message })
+            }
+        },
+    };
 
     if raw.analyses.is_empty() {
         let keys: Vec<&str> = Analysis::ALL.iter().map(|a| a.key()).collect();
@@ -613,6 +640,7 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         restitution,
         conditions,
         points,
+        transient_points,
         velocities,
         analyses,
         solver,

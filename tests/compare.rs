@@ -1,4 +1,4 @@
-//! The beam/plate comparison (issue 5): only what a scene asks for is computed and written,
+//! The beam/plate comparison: only what a scene asks for is computed and written,
 //! output is deterministic, and the plate side meets its references through the pipeline.
 
 use impact::report::comparison::{pair, report};
@@ -102,6 +102,13 @@ fn narrow_plate_approaches_the_beam() {
     assert!(paper > 1.1, "{paper}");
 }
 
+/// The scene text with its `analyses` list replaced.
+fn with_analyses(text: &str, analyses: &str) -> String {
+    let start = text.find("analyses = [").unwrap();
+    let end = start + text[start..].find("]\n").unwrap() + 1;
+    format!("{}{analyses}{}", &text[..start], &text[end..])
+}
+
 /// The command writes the report and refuses a bad scene without writing.
 #[test]
 fn command_line_compare() {
@@ -109,9 +116,12 @@ fn command_line_compare() {
     let scene = dir.path().join("s.toml");
     std::fs::write(
         &scene,
-        DEFAULT_SCENE.replace(
-            "x_mm = [0.0, 13.752, 114.6, 210.864, 229.2, 247.536, 343.8, 449.232, 458.4]",
-            "x_mm = [100.0, 229.2]",
+        with_analyses(
+            &DEFAULT_SCENE.replace(
+                "x_mm = [0.0, 13.752, 114.6, 210.864, 229.2, 247.536, 343.8, 449.232, 458.4]",
+                "x_mm = [100.0, 229.2]",
+            ),
+            "analyses = [\"responses\", \"width-maps\"]",
         ),
     )
     .unwrap();

@@ -1,4 +1,4 @@
-//! Transient impact (issue 6) against its references.
+//! Transient impact against its references.
 
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;

@@ -1,4 +1,4 @@
-//! The Rust plate elements against scikit-fem (issue 4), from the committed data in
+//! The Rust plate elements against scikit-fem, from the committed data in
 //! reference/data/*.json (written by reference/python/plate_reference.py; no Python needed).
 //!
 //! Tolerance: each code's value is Richardson-extrapolated from its two finest meshes, with

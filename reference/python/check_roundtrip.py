@@ -1,4 +1,4 @@
-"""Round trip Rust -> meshio -> scikit-fem on identical geometry (issue 4).
+"""Round trip Rust -> meshio -> scikit-fem on identical geometry.
 
 1. `impact field` writes the Rust mesh and deflection under a unit load (JSON);
 2. export_fields.py writes .vtu and .xdmf with meshio;

@@ -310,7 +310,7 @@ FINE_ARGYRIS = [(5, 4), (10, 8), (20, 16), (40, 32), (80, 64), (160, 128)]
 
 
 def cases(plate, k_t):
-    """The cases of issue 4: the paper's three conditions and the classical edge checks, then
+    """The reference cases: the paper's three conditions and the classical edge checks, then
     a general support set (a clamped edge, two corner springs, free edges).
 
     Each case is (name, supports, points, options); options may hold "ladders" (per

@@ -1,4 +1,4 @@
-"""Error against run time, Rust BFS beside scikit-fem Argyris and Morley (issue 4).
+"""Error against run time, Rust BFS beside scikit-fem Argyris and Morley.
 
 The problem: the paper's plate with four fixed corners (Con 1), compliance at the centre.
 Both codes run their mesh ladders on this machine in this run; the reference value is the

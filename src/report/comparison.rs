@@ -1,5 +1,5 @@
 //! `impact compare`: the paper's beam model and the plate FE model through the same energy
-//! balance and yield model, and where and by how much they differ (issue 5).
+//! balance and yield model, and where and by how much they differ.
 
 use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Scale, Series};
@@ -579,6 +579,12 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     pb.inc(1);
     pb.finish_and_clear();
 
+    if scene.wants(Analysis::PaperStudies) {
+        let _ = writeln!(md, "\n## The paper's own studies\n\nIts conclusions item by item, Tables 6-8 and 11 and its figures, each under both models: [paper-studies/index.md](paper-studies/index.md).");
+    }
+    if scene.wants(Analysis::Transient) {
+        let _ = writeln!(md, "\n## Is the quasi-static assumption right?\n\nBoth models here assume the plate deforms statically during contact. [dynamic/index.md](dynamic/index.md) integrates sphere, Flores contact and plate dynamics in time at the scene's transient points and sets them against both quasi-static models.");
+    }
     a.add("index.md", md);
     let levels: Vec<serde_json::Value> =
         pr.model.levels.iter().map(|c| serde_json::json!({ "nx": c.nx, "nz": c.nz, "dofs": c.dofs })).collect();
@@ -723,84 +729,4 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
         }
     }
     Ok(t)
-}
-
-/// The paper's conclusions under both models, appended to a report of the paper's scene.
-pub fn add_paper_studies(a: &mut Artifacts) -> Result<(), Failure> {
-    let checks = crate::report::conclusions::checks()?;
-    let t = crate::report::conclusions::table(&checks);
-    a.add("conclusions.csv", t.to_csv());
-    let held = |p: bool| checks.iter().filter(|c| if p { c.plate_holds } else { c.beam_holds }).count();
-    let mut md = String::from_utf8(a.get("index.md").map(|b| b.to_vec()).unwrap_or_default())?;
-    let _ = writeln!(
-        md,
-        "\n## Do the paper's conclusions hold under the plate model?\n\nSection V's items 1-5, each tested on the paper's scene with the beam and with the plate FE model, on the centreline (where the beam should be closest) and on a free edge z = 0. {} of {} statements hold under the beam, {} under the plate. Values are from the same energy balance; only C differs.\n\n{}",
-        held(false),
-        checks.len(),
-        held(true),
-        t.to_markdown()
-    );
-    // Tables 6-8 and 11 of the paper (midpoint, 0.0025 m/s, three spheres) under both models.
-    let paper = crate::report::paper::Paper::new();
-    let sc = &paper.scene;
-    let mid = (sc.plate.length() / 2.0, sc.plate.width() / 2.0);
-    let model = PlateModel::compute(&sc.plate, &sc.conditions, &[mid], BASE_MESH, LEVELS)?;
-    let beam = BeamModel { plate: &sc.plate };
-    let mut t68 = Table::new(
-        "",
-        &[
-            "condition",
-            "body",
-            "P_max beam (N)",
-            "P_max plate (N)",
-            "δ_max beam (1e-7 m)",
-            "δ_max plate (1e-7 m)",
-            "deflection beam (1e-7 m)",
-            "deflection plate (1e-7 m)",
-            "rock total beam",
-            "rock total plate",
-            "plate energy beam",
-            "plate energy plate",
-            "spring energy beam",
-            "spring energy plate",
-        ],
-    );
-    for cond in &sc.conditions {
-        for body in paper.bodies() {
-            let imp = coupled::plan::impact_of(sc, body, 0.0025);
-            let m = analytic::Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
-            let rb = analytic::respond(&imp, &beam.compliance(cond, mid.0, mid.1)?.compliance, m)?;
-            let rp = analytic::respond(&imp, &model.compliance(cond, mid.0, mid.1)?.compliance, m)?;
-            t68.push(vec![
-                cond.name.clone().into(),
-                body.name.clone().into(),
-                rb.contact_force.into(),
-                rp.contact_force.into(),
-                (rb.compression * 1e7).into(),
-                (rp.compression * 1e7).into(),
-                (rb.deflection * 1e7).into(),
-                (rp.deflection * 1e7).into(),
-                rb.rock_total_ratio.into(),
-                rp.rock_total_ratio.into(),
-                rb.plate_ratio.into(),
-                rp.plate_ratio.into(),
-                rb.spring_ratio.into(),
-                rp.spring_ratio.into(),
-            ]);
-        }
-    }
-    a.add("tables-6-8-11-both-models.csv", t68.to_csv());
-    let _ = writeln!(md, "\n### Tables 6-8 and 11 under both models\n\nThe paper's midpoint responses of the three spheres at 0.0025 m/s (Tables 6-8; spring energy of Table 11), with the beam (the paper's equations, converged) and with the plate FE compliance at the centre of the plate.\n\n{}", t68.to_markdown());
-
-    let _ = writeln!(md, "\n## Is the quasi-static assumption right?\n\nThe paper points to a dynamic FE model as future work. [dynamic/index.md](dynamic/index.md) integrates sphere, Flores contact and plate dynamics in time and sets them against both quasi-static models: for this plate the contact lasts about a tenth of the plate's fundamental period, and the quasi-static balance is off by the amounts summarized there.\n");
-    let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
-    for crate::report::conclusions::Figure { stem, title, y_label: ylabel, series } in
-        crate::report::conclusions::study_figures()?
-    {
-        a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
-        a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series));
-        let _ = writeln!(md, "![{title}]({stem}.svg)\n");
-    }
-    a.add("index.md", md);
-    Ok(())
 }

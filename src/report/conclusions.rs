@@ -1,5 +1,5 @@
 //! The paper's conclusions (section V, items 1-5) tested under the beam and the plate FE
-//! model, with the numbers behind each verdict (issue 5).
+//! model, with the numbers behind each verdict.
 
 use crate::present::table::{sig, Table};
 use crate::report::paper::Paper;

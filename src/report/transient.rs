@@ -1,4 +1,4 @@
-//! `impact dynamic` and the transient section of the main report (issue 6).
+//! `impact dynamic` and the transient section of the main report.
 
 use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Scale, Series};
@@ -320,7 +320,8 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
 }
 
 /// Everything `impact dynamic` writes for `scene` at `points`.
-pub fn report(scene: &Scene, points: &[(f64, f64)]) -> Result<Artifacts, Failure> {
+pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
+    let points = &scene.transient_points;
     let mut a = Artifacts::new();
     let mut md = String::new();
     let _ = writeln!(

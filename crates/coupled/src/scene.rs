@@ -134,6 +134,9 @@ pub struct Scene {
     pub conditions: Vec<SupportSet>,
     /// Impact points.
     pub points: Points,
+    /// Impact points of the transient study (`impact dynamic`): each is a time integration,
+    /// so a scene may name fewer than its points; by default the same points.
+    pub transient_points: Vec<(f64, f64)>,
     /// m/s; empty only when no analysis needs velocities.
     pub velocities: Vec<f64>,
     /// What to compute.
