@@ -1,4 +1,4 @@
-//! The paper's printed tables against the equations (issue 2).
+//! The paper's printed tables (src/report/data/paper_printed.toml) against the equations.
 //!
 //! Tolerances. The paper's values are its recursion stopped at a relative energy residual
 //! ğ (eq. 18). With f(δ) = aδ^{5/2} + bδ³ one has δf'/f ∈ [5/2, 3], so a residual ğ moves δ
@@ -16,9 +16,14 @@ fn within_truncation(c: &Comparison) -> bool {
     (c.equations - c.printed.value).abs() <= half + TRUNCATION * c.printed.value.abs().max(c.equations.abs())
 }
 
+/// The embedded printed tables; a parse error fails the test with its message.
+fn printed() -> PrintedTables {
+    PrintedTables::embedded().unwrap_or_else(|e| panic!("{e}"))
+}
+
 fn rows(table: &str) -> Vec<Comparison> {
     let paper = Paper::new();
-    comparisons(&paper).into_iter().filter(|c| c.table == table).collect()
+    comparisons(&paper, &printed()).unwrap().into_iter().filter(|c| c.table == table).collect()
 }
 
 /// Checks every cell of `table` except the (case, quantity) pairs tested on their own.
@@ -113,7 +118,7 @@ fn paper_recursion_reproduces_eight_decimal_tables_exactly() {
 #[test]
 fn table2_differs_only_through_delta_my() {
     let paper = Paper::new();
-    let inv = yield_inversion(&paper);
+    let inv = yield_inversion(&paper, &printed()).unwrap();
     assert_eq!(inv.len(), 2);
     for (name, ratios) in &inv {
         assert_eq!(ratios.len(), 21);
@@ -131,9 +136,48 @@ fn table2_differs_only_through_delta_my() {
 #[test]
 fn no_unexplained_deviation() {
     let paper = Paper::new();
-    let inv = yield_inversion(&paper);
-    let explain = explain(&paper, &inv);
-    for c in comparisons(&paper) {
+    let printed = printed();
+    let inv = yield_inversion(&paper, &printed).unwrap();
+    let explain = explain(&paper, &printed, &inv);
+    for c in comparisons(&paper, &printed).unwrap() {
         assert_ne!(c.verdict(&explain), Verdict::Unexplained, "{} {} {}", c.table, c.case, c.quantity);
     }
+}
+
+/// Table 2 has 42 printed cells and the data file keeps each as printed.
+#[test]
+fn table2_is_compared_cell_by_cell() {
+    let rows = rows("Table 2");
+    assert_eq!(rows.len(), 42);
+    let c = rows.iter().find(|c| c.case == "coal Con 1 Area 1").unwrap();
+    assert_eq!(c.printed_text, "0.00876323");
+    assert_eq!(c.printed.value, 0.00876323);
+    assert!((c.printed.half_ulp - 0.5e-8).abs() < 1e-20);
+}
+
+/// A trailing printed zero is part of the resolution, and survives the data file.
+#[test]
+fn printed_text_keeps_trailing_zeros() {
+    let c = rows("Table 6").into_iter().find(|c| c.case == "coal" && c.quantity.contains("total")).unwrap();
+    assert_eq!(c.printed_text, "0.80498950");
+    assert!((c.printed.half_ulp - 0.5e-8).abs() < 1e-20);
+}
+
+/// Malformed data is an error with a message, never a panic.
+#[test]
+fn malformed_printed_tables_are_errors() {
+    let bad_number = PRINTED_TABLES.replacen("\"0.00876323\"", "\"0.0087x\"", 1);
+    let e = PrintedTables::parse(&bad_number).unwrap_err().to_string();
+    assert!(e.contains("0.0087x"), "{e}");
+    for text in ["1e-3", "inf", "", "-", "1."] {
+        assert!(Printed::parse(text).is_err(), "{text:?} parsed");
+    }
+    let short_row = PRINTED_TABLES.replacen("\"0.00876323\", ", "", 1);
+    assert!(matches!(PrintedTables::parse(&short_row), Err(PrintedError::Shape { .. })));
+    let bad_condition = PRINTED_TABLES.replacen("condition = 1", "condition = 4", 1);
+    assert!(matches!(PrintedTables::parse(&bad_condition), Err(PrintedError::Shape { .. })));
+    let unknown_body = PRINTED_TABLES.replacen("body = \"coal\"", "body = \"granite\"", 1);
+    let t = PrintedTables::parse(&unknown_body).unwrap();
+    assert!(matches!(comparisons(&Paper::new(), &t), Err(PrintedError::UnknownBody(_))));
+    assert!(PrintedTables::parse("not toml = = 1").is_err());
 }
