@@ -13,6 +13,7 @@ pub mod paper;
 pub mod paper_studies;
 pub mod skfem;
 pub mod studies;
+pub mod template;
 pub mod transient;
 
 use crate::output::Artifacts;

@@ -22,8 +22,6 @@ use crate::report::Failure;
 
 // The renderer lives beside the reports that use it; it is declared here because this is
 // its only user so far.
-#[path = "template.rs"]
-pub mod template;
 
 /// The stopping residual ğ of eq. 18 that reproduces the printed responses (Tables 3-12).
 pub const PAPER_RECURSION_TOLERANCE: f64 = 1e-6;
@@ -1407,6 +1405,6 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
         ("c_paper", format!("{c_paper:e}")),
         ("solvers", solvers.to_markdown()),
     ];
-    a.add("index.md", template::render("paper.md", PAPER_TEMPLATE, &values)?);
+    a.add("index.md", crate::report::template::render("paper.md", PAPER_TEMPLATE, &values)?);
     Ok(a)
 }
