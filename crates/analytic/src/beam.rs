@@ -271,7 +271,8 @@ mod tests {
     fn unrepresentable_stores_are_errors() {
         let steel = Elastic::new(210e9, 0.3).unwrap();
         let huge = Plate::new(1e297, 1e297, 1e297, 7850.0, steel).unwrap();
-        for cond in [Condition::BothFixed, Condition::both_springs(1e6).unwrap(), Condition::fixed_and_springs(1e6).unwrap()]
+        for cond in
+            [Condition::BothFixed, Condition::both_springs(1e6).unwrap(), Condition::fixed_and_springs(1e6).unwrap()]
         {
             let e = beam_compliance(&huge, cond, 0.3e297).unwrap_err();
             assert!(matches!(e, BeamError::Compliance(_)), "{e}");

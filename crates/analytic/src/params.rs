@@ -76,7 +76,7 @@ pub fn compact(v: f64) -> String {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{name} = {} is outside the allowed range {allowed}{unit}", compact(*.value), unit = unit_suffix(.unit))]
 pub struct InvalidParameter {
-    /// The parameter as the caller names it ("velocity", "bodies[0].radius", ...).
+    /// The parameter as the caller names it (`velocity`, `bodies[0].radius`, ...).
     pub name: String,
     /// The refused value.
     pub value: f64,

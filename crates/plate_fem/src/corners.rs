@@ -232,7 +232,8 @@ impl<'m> CornerFamily<'m> {
     /// base (equal springs at all corners) is too.
     pub fn symmetry(&self) -> (bool, bool) {
         let mesh = self.base.model().mesh();
-        let mirrored = |v: &[f64], end: f64| v.iter().zip(v.iter().rev()).all(|(a, b)| (a + b - end).abs() <= 1e-12 * end);
+        let mirrored =
+            |v: &[f64], end: f64| v.iter().zip(v.iter().rev()).all(|(a, b)| (a + b - end).abs() <= 1e-12 * end);
         let [left, right, near, far] = self.edges;
         (mirrored(mesh.xs(), mesh.length()) && left == right, mirrored(mesh.zs(), mesh.width()) && near == far)
     }
