@@ -270,8 +270,8 @@ mod tests {
         assert_relative_eq!(bal.solve(Method::paper()).unwrap().delta, exact, max_relative = 1e-12);
     }
 
-    /// E₀ = 0 (v = 0) has no positive root: both solvers refuse it with a finite-evidence
-    /// error instead of a NaN residual, and say why.
+    /// E₀ = 0 (v = 0) has no positive root: both solvers refuse it, with an infinite residual
+    /// in the evidence instead of a NaN one, and say why.
     #[test]
     fn zero_energy_is_not_converged_not_nan() {
         for bal in [
