@@ -10,6 +10,37 @@
 //! with C the total compliance of the supported plate at the impact point. Write
 //! a = 2K/5e, b = ½CK², E₀ = ½mv²; the demand f(δ) = aδ^{5/2} + bδ³ is strictly increasing,
 //! so the root is unique.
+//!
+//! # Example
+//!
+//! The paper's coal sphere (R = 25 mm, ρ = 1380 kg/m³, E₁ = 2.26 GPa, μ₁ = 0.28) striking a
+//! rigid plate (C = 0) at 8 mm/s with e = 0.65: the balance reduces to
+//! ½mv² = (2K/5e)δ^{5/2}, so δ_max = (5e m v²/4K)^{2/5}.
+//!
+//! ```
+//! use analytic::{contact_stiffness, Elastic, EnergyBalance, Impact, Method, RockStrength, Sphere};
+//!
+//! let coal = Sphere::new(
+//!     "coal",
+//!     1380.0,
+//!     0.025,
+//!     Elastic::new(2.26e9, 0.28)?,
+//!     RockStrength::new(8.39e6, 25.0)?,
+//! )?;
+//! let steel = Elastic::new(210e9, 0.3)?;
+//! let k = contact_stiffness(&coal, steel); // K = 5.11545e8 N/m^{3/2} (section IV)
+//! assert!((k / 5.11545e8 - 1.0).abs() < 1e-5);
+//!
+//! let (e, v) = (0.65, 0.008);
+//! let impact = Impact::new(k, coal.mass(), e, v)?;
+//! let rigid = impact.balance(0.0); // C = 0: no plate store
+//! for method in [Method::paper(), Method::default()] {
+//!     let delta = rigid.solve(method)?.delta;
+//!     let closed_form = (5.0 * e * coal.mass() * v * v / (4.0 * k)).powf(0.4);
+//!     assert!((delta / closed_form - 1.0).abs() < 1e-11, "{delta} vs {closed_form}");
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use serde::Serialize;
 
@@ -30,9 +61,19 @@ pub struct EnergyBalance {
 pub enum Method {
     /// The paper's recursion (eqs. 15-19), stopped when the relative residual ğ of eq. 18
     /// falls to `tolerance`.
-    Recursion { tolerance: f64, max_iterations: u32 },
+    Recursion {
+        /// Largest accepted relative residual ğ = |f(δ) - E₀|/E₀ (eq. 18).
+        tolerance: f64,
+        /// Largest number of recursion steps N.
+        max_iterations: u32,
+    },
     /// Newton's method in u = √δ from a bracket, safeguarded by bisection.
-    Bracketed { tolerance: f64, max_iterations: u32 },
+    Bracketed {
+        /// Largest accepted relative residual |f(δ) - E₀|/E₀.
+        tolerance: f64,
+        /// Largest number of Newton or bisection steps.
+        max_iterations: u32,
+    },
 }
 
 impl Default for Method {
@@ -61,10 +102,27 @@ pub struct Solution {
     pub converged: bool,
 }
 
-/// The balance could not be solved to the requested tolerance.
+/// The balance could not be solved to the requested tolerance, or was not posed (E₀ or a
+/// not positive and finite, b negative or not finite), in which case no iteration was
+/// taken and the residual is infinite.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("energy balance did not converge: residual {} after {} iterations", .0.residual, .0.iterations)]
+#[error("{}", not_converged_message(.0))]
 pub struct NotConverged(pub Solution);
+
+fn not_converged_message(s: &Solution) -> String {
+    if s.iterations == 0 && s.residual.is_infinite() {
+        "energy balance not posed: it needs E₀ = ½mv² > 0, 2K/5e > 0 and ½CK² >= 0, all finite \
+         (check the velocity, mass, contact stiffness, restitution and compliance)"
+            .to_string()
+    } else {
+        format!("energy balance did not converge: residual {} after {} iterations", s.residual, s.iterations)
+    }
+}
+
+/// What a solver returns for a balance that is not posed: no root to look for (E₀ = 0 has
+/// the trivial δ = 0, where the relative residual 0/0 is undefined), so no iteration and
+/// an infinite residual instead of a NaN one.
+const NOT_POSED: Solution = Solution { delta: 0.0, iterations: 0, residual: f64::INFINITY, converged: false };
 
 impl EnergyBalance {
     /// The balance for contact stiffness `k`, restitution `e`, total compliance `c`, sphere
@@ -90,6 +148,13 @@ impl EnergyBalance {
         (self.e0 / (self.a + self.b * delta.sqrt())).powf(0.4)
     }
 
+    /// Whether the balance has one positive root that the solvers can find: E₀ > 0 and
+    /// a > 0 finite, b ≥ 0 finite.
+    pub fn is_posed(&self) -> bool {
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        positive(self.e0) && positive(self.a) && self.b.is_finite() && self.b >= 0.0
+    }
+
     /// Runs `method` and returns its last iterate, converged or not.
     pub fn attempt(&self, method: Method) -> Solution {
         match method {
@@ -98,7 +163,8 @@ impl EnergyBalance {
         }
     }
 
-    /// Solves by `method`; a result that missed its tolerance is an error carrying it.
+    /// Solves by `method`; a result that missed its tolerance, or a balance that is not
+    /// posed (see [`is_posed`](Self::is_posed)), is an error carrying the last iterate.
     pub fn solve(&self, method: Method) -> Result<Solution, NotConverged> {
         let s = self.attempt(method);
         if s.converged {
@@ -113,7 +179,12 @@ impl EnergyBalance {
     /// The map g(δ) = {E₀/[a + bδ^{1/2}]}^{2/5} is decreasing with |g'(δ*)| =
     /// ⅕ bδ*^{1/2}/(a + bδ*^{1/2}) < ⅕ at the root, so the iterates alternate around δ*
     /// and the error falls by at least 5x per step, for every valid input.
+    ///
+    /// A balance that is not posed returns without iterating, unconverged.
     pub fn recursion(&self, tolerance: f64, max_iterations: u32) -> Solution {
+        if !self.is_posed() {
+            return NOT_POSED;
+        }
         let mut delta = 0.0;
         let mut residual = f64::INFINITY;
         let mut n = 0;
@@ -138,7 +209,12 @@ impl EnergyBalance {
     /// at the lower end each is at most E₀/2. F is convex and increasing for u > 0, so
     /// Newton from the upper end decreases monotonically to the root; bisection guards
     /// against rounding. Convergence is quadratic.
+    ///
+    /// A balance that is not posed returns without iterating, unconverged.
     pub fn bracketed(&self, tolerance: f64, max_iterations: u32) -> Solution {
+        if !self.is_posed() {
+            return NOT_POSED;
+        }
         let ua = (self.e0 / self.a).powf(0.2);
         let ub = if self.b > 0.0 { (self.e0 / self.b).powf(1.0 / 6.0) } else { f64::INFINITY };
         let mut hi = ua.min(ub);
@@ -192,6 +268,23 @@ mod tests {
         let exact = (bal.e0 / bal.b).powf(1.0 / 3.0);
         assert_relative_eq!(bal.solve(Method::default()).unwrap().delta, exact, max_relative = 1e-12);
         assert_relative_eq!(bal.solve(Method::paper()).unwrap().delta, exact, max_relative = 1e-12);
+    }
+
+    /// E₀ = 0 (v = 0) has no positive root: both solvers refuse it, with an infinite residual
+    /// in the evidence instead of a NaN one, and say why.
+    #[test]
+    fn zero_energy_is_not_converged_not_nan() {
+        for bal in [
+            EnergyBalance::new(5.11545e8, 0.65, 1e-7, 0.09, 0.0),
+            EnergyBalance { a: 0.0, b: 1.0, e0: 1.0 },
+            EnergyBalance { a: 1.0, b: f64::NAN, e0: 1.0 },
+        ] {
+            for m in [Method::paper(), Method::default()] {
+                let e = bal.solve(m).unwrap_err();
+                assert!(!e.0.converged && e.0.residual == f64::INFINITY && e.0.delta == 0.0, "{e:?}");
+                assert!(e.to_string().contains("not posed"), "{e}");
+            }
+        }
     }
 
     /// The recursion gains at least log10(5) = 0.7 digits per step: ğ = 1e-12 in <= 25

@@ -1,8 +1,27 @@
 //! The paper's beam model of the supported plate (section II): the plate is a beam of
 //! bending stiffness E₂I₂ = E B h³/12 along its length L, loaded at x from the left end,
 //! y = L - x from the right end.
+//!
+//! # Example
+//!
+//! Con 1 at midspan: the simply supported beam's x²y²/(3EIL) with x = y = L/2 is the
+//! textbook L³/(48EI), all of it plate strain energy.
+//!
+//! ```
+//! use analytic::{beam_compliance, Condition, Elastic, Plate, StoreKind};
+//!
+//! // The paper's plate: 458.4 x 360 x 8 mm steel.
+//! let plate = Plate::new(0.4584, 0.36, 0.008, 7850.0, Elastic::new(210e9, 0.3)?)?;
+//! let (l, ei) = (plate.length(), plate.beam_bending_stiffness());
+//! let c = beam_compliance(&plate, Condition::BothFixed, l / 2.0)?;
+//! let expected = l.powi(3) / (48.0 * ei); // ≈ 1.04e-7 m/N
+//! assert!((c.total() / expected - 1.0).abs() < 1e-14);
+//! assert_eq!(c.of_kind(StoreKind::Plate), c.total());
+//! assert_eq!(c.deflection_per_unit_load(), c.total()); // eq. 11 at the load point
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
-use crate::compliance::{PointCompliance, SpringReaction, Store, StoreKind};
+use crate::compliance::{InvalidCompliance, PointCompliance, SpringReaction, Store, StoreKind};
 use crate::material::Plate;
 use crate::params::{check, InvalidParameter, POSITIVE};
 use serde::Serialize;
@@ -14,9 +33,15 @@ pub enum Condition {
     /// Con 1: both ends fixed (four fixed corners).
     BothFixed,
     /// Con 2: both ends on springs, two per end, each of stiffness `k_t` (N/m).
-    BothSprings { k_t: f64 },
+    BothSprings {
+        /// Stiffness k_T of each of the four springs (N/m), positive and finite.
+        k_t: f64,
+    },
     /// Con 3: left end fixed, right end on two springs of stiffness `k_t` each.
-    FixedAndSprings { k_t: f64 },
+    FixedAndSprings {
+        /// Stiffness k_T of each of the two right-end springs (N/m), positive and finite.
+        k_t: f64,
+    },
 }
 
 impl Condition {
@@ -36,6 +61,7 @@ impl Condition {
             Self::FixedAndSprings { .. } => "Con 3",
         }
     }
+    /// The spring stiffness k_T (N/m) of Con 2 and Con 3; `None` for Con 1.
     pub fn spring_stiffness(&self) -> Option<f64> {
         match *self {
             Self::BothFixed => None,
@@ -48,18 +74,36 @@ impl Condition {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("impact position x = {x} m is outside the plate [0, {length}] m")]
 pub struct OutsideBeam {
+    /// The requested impact position (m from the left end).
     pub x: f64,
+    /// The beam length L (m).
     pub length: f64,
 }
 
+/// Why the beam model has no compliance at a point.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BeamError {
+    /// The impact position is not on the beam.
+    #[error(transparent)]
+    Outside(#[from] OutsideBeam),
+    /// A store of eqs. 10-12, 23 or 43-44 is not a finite non-negative number in f64 for
+    /// this plate and support, although each parameter lies in its range: x²y²/(3EIL)
+    /// overflows for sizes near 1e77 m and beyond, and (x² + y²)/(2L²k_T) for a k_T near
+    /// the smallest subnormal. The values, not the model, are out of reach.
+    #[error("the beam model's compliance is not representable for this plate and support: {0}")]
+    Compliance(#[from] InvalidCompliance),
+}
+
 /// Bending compliance of a simply supported beam under its own load point,
-/// x²y²/(3EIL): eqs. 10-12 with L² - x² - y² = 2xy.
+/// x²y²/(3EIL): eqs. 10-12 with L² - x² - y² = 2xy. `ei` in N·m², lengths in m, result
+/// in m/N.
 pub fn simply_supported_compliance(ei: f64, length: f64, x: f64) -> f64 {
     let y = length - x;
     x * x * y * y / (3.0 * ei * length)
 }
 
-/// Compliance of the two end spring pairs of Con 2, (x² + y²)/(2L²k_T) (eq. 23).
+/// Compliance of the two end spring pairs of Con 2, (x² + y²)/(2L²k_T) (eq. 23), in m/N
+/// for `k_t` in N/m.
 pub fn spring_pairs_compliance(k_t: f64, length: f64, x: f64) -> f64 {
     let y = length - x;
     (x * x + y * y) / (2.0 * length * length * k_t)
@@ -80,7 +124,14 @@ impl Con3 {
         let s = 2.0 * k_t * length.powi(3);
         let t = 3.0 * ei;
         let d = s + t;
-        Self { spring_share: s / d, cantilever_share: t / d, d }
+        if s.is_infinite() && t.is_finite() {
+            // s = 2k_T L³ beyond f64 (stiff springs on a long beam): the right end is held
+            // like the fixed end, the springs carry all of F_T and the cantilever nothing.
+            // The limits of s/d and 3EI/d are taken here because inf/inf would be NaN.
+            Self { spring_share: 1.0, cantilever_share: t / s, d }
+        } else {
+            Self { spring_share: s / d, cantilever_share: t / d, d }
+        }
     }
     /// Spring store W_T = ½ [2k_T L⁴x²/d²] P² (eq. 43).
     fn springs(&self, length: f64, x: f64) -> f64 {
@@ -101,10 +152,20 @@ impl Con3 {
 }
 
 /// Compliance and stores of the beam model at impact position x (m from the left end).
-pub fn beam_compliance(plate: &Plate, condition: Condition, x: f64) -> Result<PointCompliance, OutsideBeam> {
+///
+/// - Con 1: C = x²y²/(3EIL) (eqs. 8-12), all plate bending.
+/// - Con 2: the same bending plus the two spring pairs, (x² + y²)/(2L²k_T) (eqs. 21-23);
+///   each spring carries half its end's reaction, y/(2L) and x/(2L) of P.
+/// - Con 3: the simply supported bending, the right-end springs 2k_T L⁴x²/d² and the
+///   cantilever 6EI x² L/d² with d = 2k_T L³ + 3EI (eqs. 31-44); the deflection per unit
+///   load adds the cantilever's x³(3L - x)/(2Ld) (eq. 41).
+///
+/// Errors: x outside [0, L] or not finite, or a store that is not representable in f64
+/// ([`BeamError::Compliance`]); never a panic.
+pub fn beam_compliance(plate: &Plate, condition: Condition, x: f64) -> Result<PointCompliance, BeamError> {
     let length = plate.length();
     if !(x.is_finite() && (0.0..=length).contains(&x)) {
-        return Err(OutsideBeam { x, length });
+        return Err(OutsideBeam { x, length }.into());
     }
     let ei = plate.beam_bending_stiffness();
     let y = length - x;
@@ -135,8 +196,7 @@ pub fn beam_compliance(plate: &Plate, condition: Condition, x: f64) -> Result<Po
             )
         }
     };
-    Ok(PointCompliance::new(stores, springs, deflection)
-        .expect("beam stores are finite and non-negative for valid inputs"))
+    Ok(PointCompliance::new(stores, springs, deflection)?)
 }
 
 #[cfg(test)]
@@ -202,6 +262,36 @@ mod tests {
         let p = plate();
         let c = beam_compliance(&p, Condition::fixed_and_springs(1e-300).unwrap(), 0.2).unwrap();
         assert!(c.total().is_finite());
+    }
+
+    /// Parameters that each pass their range check but whose stores overflow or divide by
+    /// an underflowed k_T L² are an error, not a panic: sizes of 1e300 mm make x²y²
+    /// infinite, a subnormal k_T makes (x² + y²)/(2L²k_T) infinite.
+    #[test]
+    fn unrepresentable_stores_are_errors() {
+        let steel = Elastic::new(210e9, 0.3).unwrap();
+        let huge = Plate::new(1e297, 1e297, 1e297, 7850.0, steel).unwrap();
+        for cond in
+            [Condition::BothFixed, Condition::both_springs(1e6).unwrap(), Condition::fixed_and_springs(1e6).unwrap()]
+        {
+            let e = beam_compliance(&huge, cond, 0.3e297).unwrap_err();
+            assert!(matches!(e, BeamError::Compliance(_)), "{e}");
+        }
+        let tiny = Plate::new(1e-6, 1e-6, 1e-6, 7850.0, steel).unwrap();
+        let denormal = Condition::both_springs(5e-324).unwrap();
+        assert!(matches!(beam_compliance(&tiny, denormal, 0.5e-6), Err(BeamError::Compliance(_))));
+    }
+
+    /// Stiff springs on a long beam overflow s = 2k_T L³; Con 3 then takes the limit of
+    /// held springs (Con 1's compliance) instead of inf/inf.
+    #[test]
+    fn con3_with_overflowing_spring_term_is_con1() {
+        let p = Plate::new(1e5, 1.0, 0.01, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap();
+        let x = 0.3e5;
+        let c1 = beam_compliance(&p, Condition::BothFixed, x).unwrap().total();
+        let c3 = beam_compliance(&p, Condition::fixed_and_springs(1e300).unwrap(), x).unwrap();
+        assert_eq!(c3.total(), c1);
+        assert_relative_eq!(c3.springs()[0].per_unit_load, x / (2.0 * p.length()), max_relative = 1e-15);
     }
 
     #[test]

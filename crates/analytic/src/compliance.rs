@@ -21,7 +21,9 @@ pub enum StoreKind {
 /// One energy store: it holds ½ `compliance` P² under the contact force P.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Store {
+    /// What stores the energy ("bending", "springs", ...), for reports.
     pub name: String,
+    /// Plate or spring, for the energy ratios.
     pub kind: StoreKind,
     /// m/N, finite and non-negative.
     pub compliance: f64,
@@ -30,6 +32,7 @@ pub struct Store {
 /// A support spring and its force per unit contact force.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SpringReaction {
+    /// Which spring ("left spring", ...).
     pub name: String,
     /// N/N: the spring force is `per_unit_load` · P.
     pub per_unit_load: f64,
@@ -39,7 +42,9 @@ pub struct SpringReaction {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("compliance of store '{name}' is {value}: it must be finite and non-negative")]
 pub struct InvalidCompliance {
+    /// The store, spring or "deflection" that holds the value.
     pub name: String,
+    /// The offending value (m/N, or N/N for a spring reaction).
     pub value: f64,
 }
 
@@ -88,14 +93,18 @@ impl PointCompliance {
         self.stores.iter().filter(|s| s.kind == kind).map(|s| s.compliance).fold(0.0, |a, c| a + c)
     }
 
+    /// The energy stores, each holding ½ C_s P².
     pub fn stores(&self) -> &[Store] {
         &self.stores
     }
 
+    /// The support springs and their forces per unit contact force.
     pub fn springs(&self) -> &[SpringReaction] {
         &self.springs
     }
 
+    /// The model's plate deflection at the impact point per unit force (m/N), see
+    /// [`new`](Self::new).
     pub fn deflection_per_unit_load(&self) -> f64 {
         self.deflection_per_unit_load
     }

@@ -22,6 +22,8 @@
 //!
 //! Everything is SI. No function here does I/O or knows which plate model produced C.
 
+#![warn(missing_docs)]
+
 pub mod balance;
 pub mod beam;
 pub mod compliance;
@@ -32,8 +34,8 @@ pub mod response;
 pub mod strength;
 
 pub use balance::{EnergyBalance, Method, NotConverged, Solution};
-pub use beam::{beam_compliance, Condition, OutsideBeam};
-pub use compliance::{PointCompliance, SpringReaction, Store, StoreKind};
+pub use beam::{beam_compliance, BeamError, Condition, OutsideBeam};
+pub use compliance::{InvalidCompliance, PointCompliance, SpringReaction, Store, StoreKind};
 pub use contact::contact_stiffness;
 pub use material::{Elastic, Plate, RockStrength, Sphere};
 pub use params::{check, InvalidParameter, Range};

@@ -18,9 +18,11 @@ impl Elastic {
             poisson_ratio: check("poisson_ratio", poisson_ratio, POISSON_RATIO, "")?,
         })
     }
+    /// Young's modulus E (Pa).
     pub fn youngs_modulus(&self) -> f64 {
         self.youngs_modulus
     }
+    /// Poisson's ratio μ (ν for the plate).
     pub fn poisson_ratio(&self) -> f64 {
         self.poisson_ratio
     }
@@ -38,15 +40,18 @@ pub struct RockStrength {
 }
 
 impl RockStrength {
+    /// `cohesion` ζ in Pa (positive), `friction_angle_deg` φ in degrees, in (0, 90).
     pub fn new(cohesion: f64, friction_angle_deg: f64) -> Result<Self, InvalidParameter> {
         Ok(Self {
             cohesion: check("cohesion", cohesion, POSITIVE, "Pa")?,
             friction_angle_deg: check("friction_angle", friction_angle_deg, FRICTION_ANGLE_DEG, "deg")?,
         })
     }
+    /// Cohesion ζ (Pa).
     pub fn cohesion(&self) -> f64 {
         self.cohesion
     }
+    /// Internal friction angle φ (degrees).
     pub fn friction_angle_deg(&self) -> f64 {
         self.friction_angle_deg
     }
@@ -55,6 +60,7 @@ impl RockStrength {
 /// A rock sphere (coal or gangue) of Table 1.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Sphere {
+    /// A label for reports ("coal", "gangue 1", ...).
     pub name: String,
     density: f64,
     radius: f64,
@@ -79,15 +85,19 @@ impl Sphere {
             strength,
         })
     }
+    /// Density ρ₁ (kg/m³).
     pub fn density(&self) -> f64 {
         self.density
     }
+    /// Radius R₁ (m).
     pub fn radius(&self) -> f64 {
         self.radius
     }
+    /// Elastic constants E₁, μ₁ of the rock.
     pub fn material(&self) -> Elastic {
         self.material
     }
+    /// Drucker-Prager strength ζ, φ of the rock.
     pub fn strength(&self) -> RockStrength {
         self.strength
     }
@@ -124,18 +134,23 @@ impl Plate {
             material,
         })
     }
+    /// Length L along the beam axis (m).
     pub fn length(&self) -> f64 {
         self.length
     }
+    /// Width B (m).
     pub fn width(&self) -> f64 {
         self.width
     }
+    /// Thickness h (m).
     pub fn thickness(&self) -> f64 {
         self.thickness
     }
+    /// Density ρ₂ (kg/m³).
     pub fn density(&self) -> f64 {
         self.density
     }
+    /// Elastic constants E₂, μ₂ of the plate.
     pub fn material(&self) -> Elastic {
         self.material
     }

@@ -8,9 +8,13 @@ use std::fmt;
 /// An interval of the real line, each end open or closed; infinite ends are open.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Range {
+    /// Lower end.
     pub lo: f64,
+    /// Upper end.
     pub hi: f64,
+    /// Whether `lo` itself is allowed.
     pub lo_closed: bool,
+    /// Whether `hi` itself is allowed.
     pub hi_closed: bool,
 }
 
@@ -72,9 +76,13 @@ pub fn compact(v: f64) -> String {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{name} = {} is outside the allowed range {allowed}{unit}", compact(*.value), unit = unit_suffix(.unit))]
 pub struct InvalidParameter {
+    /// The parameter as the caller names it (`velocity`, `bodies[0].radius`, ...).
     pub name: String,
+    /// The refused value.
     pub value: f64,
+    /// The range it had to lie in.
     pub allowed: Range,
+    /// SI unit of value and range ("" for dimensionless).
     pub unit: &'static str,
 }
 

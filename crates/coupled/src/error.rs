@@ -40,3 +40,13 @@ pub enum ModelError {
     #[error(transparent)]
     Parameter(#[from] analytic::InvalidParameter),
 }
+
+impl From<analytic::BeamError> for ModelError {
+    /// The beam's two failures map onto the variants that already name them.
+    fn from(e: analytic::BeamError) -> Self {
+        match e {
+            analytic::BeamError::Outside(e) => Self::Outside(e),
+            analytic::BeamError::Compliance(e) => Self::InvalidCompliance(e),
+        }
+    }
+}

@@ -20,8 +20,11 @@ use nalgebra::{Matrix4, Vector4};
 /// Boundary condition on the edges y = ±b/2.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum YEdge {
+    /// w = 0 and M_y = 0: Y = Y'' = 0.
     Simple,
+    /// w = 0 and w_y = 0: Y = Y' = 0.
     Clamped,
+    /// M_y = 0 and the Kirchhoff shear V_y = 0.
     Free,
 }
 
@@ -102,15 +105,20 @@ fn harmonic(alpha: f64, b: f64, nu: f64, kind: YEdge, eta: f64, y: f64) -> f64 {
 /// (y measured from the centreline), of flexural rigidity `d` and Poisson ratio `nu`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LevyPlate {
+    /// Span a between the simply supported edges x = 0 and x = a (m).
     pub a: f64,
+    /// Width b between the edges y = ±b/2 (m).
     pub b: f64,
+    /// Flexural rigidity D = E h³ / 12(1 - ν²) (N·m).
     pub d: f64,
+    /// Poisson's ratio ν (enters only through free edges).
     pub nu: f64,
+    /// Condition on both edges y = ±b/2.
     pub y_edges: YEdge,
 }
 
 impl LevyPlate {
-    /// Deflection at `at` = (x, y) under a unit load at `load` = (ξ, η), summed over
+    /// Deflection (m/N) at `at` = (x, y) under a unit load at `load` = (ξ, η), summed over
     /// `terms` harmonics. The omitted tail is O(terms⁻²) at the load point.
     pub fn deflection(&self, load: (f64, f64), at: (f64, f64), terms: usize) -> f64 {
         let (xi, eta) = load;

@@ -153,11 +153,14 @@ struct Audit {
 /// A point solved on the base: what every corner set needs of it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BasePoint {
+    /// Impact point x (m).
     pub x: f64,
+    /// Impact point z (m).
     pub z: f64,
     /// N ᵀ K_b⁻¹ N.
     pub compliance: f64,
-    /// Base deflections of the four corners under the unit load.
+    /// Base deflections of the four corners under the unit load (m/N), in
+    /// [`Corner::ALL`] order: u = Uᵀ K_b⁻¹ N.
     pub u: Vector4<f64>,
     /// Relative residual of the base solve.
     pub residual: f64,
@@ -207,9 +210,11 @@ impl<'m> CornerFamily<'m> {
         (s.is_finite() && s > 0.0).then_some(s)
     }
 
+    /// The base factorization (all corners on springs k_b).
     pub fn base(&self) -> &Factorization<'m> {
         &self.base
     }
+    /// The base spring stiffness k_b (N/m).
     pub fn k_base(&self) -> f64 {
         self.k_base
     }
@@ -227,12 +232,10 @@ impl<'m> CornerFamily<'m> {
     /// base (equal springs at all corners) is too.
     pub fn symmetry(&self) -> (bool, bool) {
         let mesh = self.base.model().mesh();
-        let mirrored = |v: &[f64]| {
-            let end = *v.last().expect("two lines");
-            v.iter().zip(v.iter().rev()).all(|(a, b)| (a + b - end).abs() <= 1e-12 * end)
-        };
+        let mirrored =
+            |v: &[f64], end: f64| v.iter().zip(v.iter().rev()).all(|(a, b)| (a + b - end).abs() <= 1e-12 * end);
         let [left, right, near, far] = self.edges;
-        (mirrored(mesh.xs()) && left == right, mirrored(mesh.zs()) && near == far)
+        (mirrored(mesh.xs(), mesh.length()) && left == right, mirrored(mesh.zs(), mesh.width()) && near == far)
     }
 
     /// Solves the base at `points`, once per class of mirror images: a point and its
@@ -350,15 +353,15 @@ impl<'m> CornerFamily<'m> {
         Supports { corners, edges: self.edges }.validate(model.props().length, model.props().width)?;
         let (r, audit) = match formulation {
             Formulation::Update => self.update(p, corners)?,
-            Formulation::Condensed => {
-                if !self.condensable(&corners) {
+            Formulation::Condensed => match self.twist {
+                Some(s) if self.condensable(&corners) => self.condensed(p, corners, s),
+                _ => {
                     return Err(self.failure(
                         &corners,
                         "condensation onto the corners needs free edges and at most one free corner".into(),
-                    ));
+                    ))
                 }
-                self.condensed(p, corners)
-            }
+            },
         };
         self.check(p, &corners, &r, &audit)?;
         Ok(r)
@@ -512,10 +515,9 @@ impl<'m> CornerFamily<'m> {
         Ok((c, Vector4::from_fn(|i, _| f[i]), scale))
     }
 
-    /// Condensation onto the corners (module docs). Needs free edges and at most one free
-    /// corner (checked by the caller).
-    fn condensed(&self, p: &BasePoint, corners: [CornerSupport; 4]) -> (PointResponse, Audit) {
-        let s = self.twist.expect("condensable");
+    /// Condensation onto the corners (module docs) with twist stiffness `s`. Needs free
+    /// edges and at most one free corner (checked by the caller).
+    fn condensed(&self, p: &BasePoint, corners: [CornerSupport; 4], s: f64) -> (PointResponse, Audit) {
         let (c_fix, f, scale) = match self.fixed_corners(p) {
             Ok(v) => v,
             Err(_) => (f64::NAN, Vector4::repeat(f64::NAN), f64::NAN),

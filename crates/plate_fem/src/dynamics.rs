@@ -35,8 +35,11 @@ pub struct Newmark<'m> {
 /// Energies of the plate (J).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PlateEnergy {
+    /// ½ ẇᵀ M ẇ.
     pub kinetic: f64,
+    /// ½ wᵀ K w without the springs: the plate's bending strain energy.
     pub strain: f64,
+    /// Σ ½ k_i w_i² over the corner springs.
     pub springs: f64,
 }
 
@@ -70,6 +73,7 @@ impl<'m> Newmark<'m> {
         })
     }
 
+    /// The time step Δt (s).
     pub fn dt(&self) -> f64 {
         self.dt
     }

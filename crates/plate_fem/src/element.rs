@@ -11,8 +11,9 @@
 
 use nalgebra::{SMatrix, SVector};
 
-/// Element matrices and vectors.
+/// An element matrix over the 16 local DOFs (four nodes x (w, w_x, w_z, w_xz)).
 pub type Mat16 = SMatrix<f64, 16, 16>;
+/// An element vector over the 16 local DOFs.
 pub type Vec16 = SVector<f64, 16>;
 
 /// Cubic Hermite functions on [0, 1] for a side of length `h`: value at 0, slope at 0,

@@ -19,9 +19,13 @@ pub struct Mesh {
 /// Where a point falls: the element and its local coordinates in [0, 1]².
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Location {
+    /// Element column (along x).
     pub ex: usize,
+    /// Element row (along z).
     pub ez: usize,
+    /// Local coordinate ξ = (x - x_ex)/a in [0, 1].
     pub xi: f64,
+    /// Local coordinate η = (z - z_ez)/b in [0, 1].
     pub eta: f64,
 }
 
@@ -53,30 +57,40 @@ impl Mesh {
         Ok(Self { xs, zs })
     }
 
+    /// The node lines x_i (m), from 0.
     pub fn xs(&self) -> &[f64] {
         &self.xs
     }
+    /// The node lines z_j (m), from 0.
     pub fn zs(&self) -> &[f64] {
         &self.zs
     }
+    /// Plate length L, the last x line (m).
     pub fn length(&self) -> f64 {
-        *self.xs.last().expect("at least two lines")
+        // The constructors keep at least two lines, so the last one exists.
+        self.xs.last().copied().unwrap_or(0.0)
     }
+    /// Plate width B, the last z line (m).
     pub fn width(&self) -> f64 {
-        *self.zs.last().expect("at least two lines")
+        self.zs.last().copied().unwrap_or(0.0)
     }
+    /// Elements along x.
     pub fn nx(&self) -> usize {
         self.xs.len() - 1
     }
+    /// Elements along z.
     pub fn nz(&self) -> usize {
         self.zs.len() - 1
     }
+    /// Number of nodes.
     pub fn nodes(&self) -> usize {
         self.xs.len() * self.zs.len()
     }
+    /// Number of degrees of freedom, four per node.
     pub fn dofs(&self) -> usize {
         DOFS_PER_NODE * self.nodes()
     }
+    /// Number of elements.
     pub fn elements(&self) -> usize {
         self.nx() * self.nz()
     }

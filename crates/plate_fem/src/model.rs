@@ -21,11 +21,17 @@ use std::collections::HashMap;
 /// The plate: geometry and an isotropic material (SI units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PlateProperties {
+    /// Length L along x (m).
     pub length: f64,
+    /// Width B along z (m).
     pub width: f64,
+    /// Thickness h (m).
     pub thickness: f64,
+    /// Young's modulus E (Pa).
     pub youngs_modulus: f64,
+    /// Poisson's ratio ν, in (-1, 0.5).
     pub poisson_ratio: f64,
+    /// Density ρ (kg/m³), for the consistent mass ρh.
     pub density: f64,
 }
 
@@ -49,7 +55,7 @@ impl PlateProperties {
         }
         Ok(())
     }
-    /// Flexural rigidity D = E h³ / 12(1 - ν²).
+    /// Kirchhoff flexural rigidity D = E h³ / 12(1 - ν²) (N·m).
     pub fn rigidity(&self) -> f64 {
         self.youngs_modulus * self.thickness.powi(3) / (12.0 * (1.0 - self.poisson_ratio * self.poisson_ratio))
     }
@@ -124,18 +130,21 @@ impl Model {
         entries.extend((0..n).map(|i| (i, i)));
         let pairs: Vec<Pair<usize, usize>> = entries.iter().map(|&(r, c)| Pair::new(r, c)).collect();
         let (pattern, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| FemError::Factorization(format!("pattern: {e:?}")))?;
+            .map_err(|e| FemError::sparse("sparsity pattern", n, e))?;
         let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Upper)
-            .map_err(|e| FemError::Factorization(format!("symbolic analysis: {e:?}")))?;
+            .map_err(|e| FemError::sparse("symbolic Cholesky analysis", n, e))?;
         Ok(Self { props, mesh, entries, element_values, mass_values, diagonal, pattern, argsort, symbolic })
     }
 
+    /// The plate.
     pub fn props(&self) -> &PlateProperties {
         &self.props
     }
+    /// The mesh.
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }
+    /// Number of degrees of freedom, four per node.
     pub fn dofs(&self) -> usize {
         self.mesh.dofs()
     }
@@ -187,7 +196,7 @@ impl Model {
         }
         values.extend(slots);
         SparseColMat::new_from_argsort(self.pattern.clone(), &self.argsort, &values)
-            .map_err(|e| FemError::Factorization(format!("values: {e:?}")))
+            .map_err(|e| FemError::sparse("filling the matrix values", n, e))
     }
 
     /// One numeric Cholesky factorization for `supports` (checked for rigid-body motion
@@ -207,9 +216,8 @@ impl Model {
         supports: &Supports,
         k: SparseColMat<usize, f64>,
     ) -> Result<Factorization<'_>, FemError> {
-        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), k.as_ref(), Side::Upper).map_err(|e| {
-            FemError::Factorization(format!("{e:?}: the stiffness is not positive definite (extreme stiffness ratio?)"))
-        })?;
+        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), k.as_ref(), Side::Upper)
+            .map_err(|e| FemError::sparse("numeric Cholesky factorization", self.dofs(), e))?;
         let held = supports.constrained_dofs(&self.mesh);
         Ok(Factorization { model: self, supports: *supports, llt, held, stiffness: k, refinement: 1 })
     }
@@ -222,6 +230,10 @@ impl Model {
     }
 
     /// Deflection of a field `w` at (x, z).
+    ///
+    /// # Panics
+    ///
+    /// If `w` has fewer than [`dofs`](Self::dofs) entries.
     pub fn evaluate(&self, w: &[f64], x: f64, z: f64) -> Result<f64, FemError> {
         let (dofs, n) = self.load(x, z)?;
         Ok(dofs.iter().zip(n.iter()).map(|(&d, &v)| w[d] * v).sum())
@@ -229,6 +241,10 @@ impl Model {
 
     /// Bending moments (M_x, M_z, M_xz) = -D κ per unit width at every element centre, for
     /// the field `w`; elements in row order (ex fastest).
+    ///
+    /// # Panics
+    ///
+    /// If `w` has fewer than [`dofs`](Self::dofs) entries.
     pub fn centre_moments(&self, w: &[f64]) -> Vec<[f64; 3]> {
         let dm = element::bending_matrix(self.props.rigidity(), self.props.poisson_ratio);
         let mut out = Vec::with_capacity(self.mesh.elements());
@@ -254,6 +270,10 @@ impl Model {
 }
 
 /// y = A x for a symmetric matrix stored as its upper triangle.
+///
+/// # Panics
+///
+/// If `x` is shorter than the matrix has columns.
 pub fn symmetric_upper_apply(a: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
     let a = a.as_ref();
     let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
@@ -286,7 +306,9 @@ pub struct CornerResponse {
 /// The compliance at one impact point and where its energy goes.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PointResponse {
+    /// Impact point x (m).
     pub x: f64,
+    /// Impact point z (m).
     pub z: f64,
     /// C = N ᵀ K⁻¹ N (m/N): deflection of the impact point per unit load, springs included.
     pub compliance: f64,
@@ -318,9 +340,11 @@ pub struct Factorization<'m> {
 }
 
 impl<'m> Factorization<'m> {
+    /// The model it factorizes.
     pub fn model(&self) -> &'m Model {
         self.model
     }
+    /// The support set it was factorized for.
     pub fn supports(&self) -> &Supports {
         &self.supports
     }
@@ -336,6 +360,10 @@ impl<'m> Factorization<'m> {
     }
 
     /// y = K x with the supported stiffness, column by column.
+    ///
+    /// # Panics
+    ///
+    /// If `x` does not have [`Model::dofs`] rows.
     pub fn apply(&self, x: faer::MatRef<'_, f64>) -> Mat<f64> {
         let mut y = Mat::<f64>::zeros(x.nrows(), x.ncols());
         for c in 0..x.ncols() {
@@ -349,6 +377,10 @@ impl<'m> Factorization<'m> {
 
     /// Solves K W = F in place for the columns of `rhs` (held DOFs are zeroed first), with
     /// the configured refinement; returns the relative residual ‖KW - F‖/‖F‖ of each column.
+    ///
+    /// # Panics
+    ///
+    /// If `rhs` does not have [`Model::dofs`] rows.
     pub fn solve_in_place(&self, rhs: &mut Mat<f64>) -> Vec<f64> {
         for &d in &self.held {
             for j in 0..rhs.ncols() {

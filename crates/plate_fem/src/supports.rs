@@ -20,10 +20,13 @@ pub enum Corner {
 }
 
 impl Corner {
+    /// The four corners in this crate's order.
     pub const ALL: [Corner; 4] = [Corner::LeftNear, Corner::RightNear, Corner::LeftFar, Corner::RightFar];
+    /// Position in [`Corner::ALL`], 0 to 3.
     pub fn index(self) -> usize {
         self as usize
     }
+    /// The corner's name in messages and reports, "corner (L, 0)" etc.
     pub fn name(self) -> &'static str {
         ["corner (0, 0)", "corner (L, 0)", "corner (0, B)", "corner (L, B)"][self.index()]
     }
@@ -36,6 +39,7 @@ impl Corner {
 /// What holds a corner.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum CornerSupport {
+    /// Nothing holds the corner.
     Free,
     /// w = 0, rotations free.
     Fixed,
@@ -46,6 +50,7 @@ pub enum CornerSupport {
 /// What holds an edge.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum EdgeSupport {
+    /// Nothing holds the edge.
     Free,
     /// w = 0 along the edge (so its tangential slope vanishes), normal slope free.
     Simple,
@@ -56,20 +61,27 @@ pub enum EdgeSupport {
 /// Edges in the order x = 0, x = L, z = 0, z = B.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum Edge {
+    /// x = 0.
     Left,
+    /// x = L.
     Right,
+    /// z = 0.
     Near,
+    /// z = B.
     Far,
 }
 
 impl Edge {
+    /// The four edges in this crate's order.
     pub const ALL: [Edge; 4] = [Edge::Left, Edge::Right, Edge::Near, Edge::Far];
 }
 
 /// A complete support set.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Supports {
+    /// Corners in [`Corner::ALL`] order.
     pub corners: [CornerSupport; 4],
+    /// Edges in [`Edge::ALL`] order.
     pub edges: [EdgeSupport; 4],
 }
 
