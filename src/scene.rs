@@ -4,7 +4,7 @@
 //! overflows or underflows after conversion to SI (a length of 1e300 mm is refused, not
 //! turned into inf).
 
-use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO, RESTITUTION};
+use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
 use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
 pub use coupled::scene::{even_points, Analysis, Points, Scene};
 pub use coupled::SupportSet;
@@ -69,13 +69,23 @@ pub mod limits {
     pub const DENSITY_KG_M3: Range = Range::closed(1.0, 1e5);
     /// Cohesion, MPa (1 Pa to 100 GPa).
     pub const COHESION_MPA: Range = Range::closed(1e-6, 1e5);
-    /// Corner spring stiffness, N/m.
-    pub const SPRING_N_PER_M: Range = Range::closed(1e-6, 1e18);
+    /// Corner spring stiffness, N/m. Below ~1e-5 N/m the plate on its springs no longer
+    /// factors for its fundamental period (rigid-body eigenvalues ~k against plate
+    /// eigenvalues beyond 1e12); 1e-3 N/m is still a spring a 25 g rock compresses by
+    /// metres, far below any prop or jack.
+    pub const SPRING_N_PER_M: Range = Range::closed(1e-3, 1e18);
+    /// Largest ratio of the plate's longer to its shorter side: beyond it the plate is a
+    /// strip (a beam), and its elements become needles that do not factor.
+    pub const MAX_ASPECT_RATIO: f64 = 100.0;
+    /// Restitution of the Flores law: below 0.01 its damping term 8(1-e)/(5e) exceeds 100
+    /// and the law (built as an expansion about e = 1) has no meaning left; a = 2K/(5e)
+    /// also overflows as e → 0.
+    pub const RESTITUTION: Range = Range::open_closed(0.01, 1.0);
     /// Impact velocity, m/s (above 1 km/s no contact law here has meaning).
     pub const VELOCITY_M_PER_S: Range = Range::closed(1e-9, 1e3);
-    /// Relative tolerance of the energy balance: below 1e-15 double precision cannot
-    /// reach it; above 1e-3 the "root" is not one (a loose stop returns the starting value).
-    pub const SOLVER_TOLERANCE: Range = Range::closed(1e-15, 1e-3);
+    /// Relative tolerance of the energy balance: below 1e-14 double precision cannot
+    /// reach it (the bracketed Newton's rounding floor is ~2e-15); above 1e-3 the "root" is not one (a loose stop returns the starting value).
+    pub const SOLVER_TOLERANCE: Range = Range::closed(1e-14, 1e-3);
 }
 
 /// An invalid scene, with where it came from.
@@ -508,7 +518,7 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
 
 /// Checks every field against its range, in the units of the file, then converts to SI.
 fn validate(raw: RawScene) -> Result<Scene, Invalid> {
-    let restitution = check("restitution", raw.restitution, RESTITUTION, "")?;
+    let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
     check_name("name".into(), &raw.name, &[])?;
 
     let p = &raw.plate;
@@ -519,6 +529,17 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let length_mm = check("plate.length_mm", p.length_mm, limits::PLATE_SIZE_MM, "mm")?;
     let width_mm = check("plate.width_mm", p.width_mm, limits::PLATE_SIZE_MM, "mm")?;
     let thickness_mm = check("plate.thickness_mm", p.thickness_mm, limits::THICKNESS_MM, "mm")?;
+    let aspect = length_mm.max(width_mm) / length_mm.min(width_mm);
+    if aspect > limits::MAX_ASPECT_RATIO {
+        return Err(other(
+            "plate.length_mm and plate.width_mm",
+            format!(
+                "{length_mm} mm by {width_mm} mm is an aspect ratio of {}; the allowed range is [1, {}] (a narrower plate is a strip: model it as the beam it is)",
+                analytic::params::compact(aspect),
+                limits::MAX_ASPECT_RATIO
+            ),
+        ));
+    }
     if thickness_mm > length_mm.min(width_mm) {
         return Err(other(
             "plate.thickness_mm",
