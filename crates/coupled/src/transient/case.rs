@@ -74,7 +74,7 @@ impl TransientCase {
             CornerSupport::Spring(k) => k,
             _ => 0.0,
         });
-        PlateFacts { static_compliance, corner_springs: Some(corner_springs) }
+        PlateFacts { static_compliance, corner_springs: Some(corner_springs), follow_unbounded: true }
     }
 
     /// The finite-element model.

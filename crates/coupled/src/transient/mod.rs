@@ -181,17 +181,24 @@ pub fn separated(started: bool, p: f64, delta: f64, prev_delta: f64) -> Option<f
 pub struct PlateFacts {
     /// C_p = Nᵀ K⁻¹ N, the supported plate's static compliance at the struck point, m/N.
     /// With it the run stops as soon as no further contact is possible (see [`simulate_with`]);
-    /// without it a run on a plate follows the free motion to the end of the window.
+    /// without it nothing bounds the plate's later excursions, and a run on a plate either
+    /// stops at the first separation or follows the free motion to the end of the window
+    /// (`follow_unbounded`).
     pub static_compliance: Option<f64>,
     /// Corner spring stiffnesses in [`plate_fem::Corner::ALL`] order, N/m (0 where the corner
     /// is free or held); used for the spring energy at the interpolated instant. Without
     /// them that energy is interpolated linearly within the step.
     pub corner_springs: Option<[f64; 4]>,
+    /// Without `static_compliance`: follow the free motion to the end of the window (true)
+    /// or stop at the first separation (false, the default).
+    pub follow_unbounded: bool,
 }
 
 /// Integrates the impact of `s` on `plate` (or a rigid target when None) with step `dt` up
-/// to `t_max`; the plate's static compliance and springs are unknown (see [`simulate_with`]),
-/// so on a plate the free motion after the first separation is followed to `t_max`.
+/// to `t_max`. The plate's static compliance is unknown here, so nothing proves a later
+/// contact impossible short of integrating to `t_max`: the run stops at the first
+/// separation (`left_at` None, `contacts` the first contact only) unless the target is
+/// rigid, where it has provably ended. [`simulate_with`] follows the whole sequence.
 pub fn simulate(s: &Striker, plate: Option<&mut Newmark<'_>>, dt: f64, t_max: f64) -> Outcome {
     simulate_with(s, plate, PlateFacts::default(), dt, t_max)
 }
@@ -239,8 +246,8 @@ impl StepEnd {
 /// (toward the plate, from the first touch) is linear in time once free. Contact needs
 /// δ = u - w_p > 0, so once u < -W with u̇ ≤ 0 no contact can ever occur again: the run
 /// stops there. A rigid target has W = 0, so it stops at the first separation. Without C_p
-/// ([`simulate`]) the free motion is followed to `t_max`, and the outcome says so
-/// ([`Outcome::left_at`] is None).
+/// the run stops at the first separation or, with [`PlateFacts::follow_unbounded`], follows
+/// the free motion to `t_max`; either way [`Outcome::left_at`] is None.
 ///
 /// The first-contact fields of [`Outcome`] (and its `history`) are exactly those of a run
 /// that stops at the first separation; the later samples go to `later_history`.
@@ -376,15 +383,19 @@ pub fn simulate_with<T: Target + ?Sized>(
         }
         prev = end;
         // The stopping rule (see the doc comment): free, moving away, beyond the plate's reach.
-        if first_done && current.is_none() && v <= 0.0 {
+        if first_done && current.is_none() {
             let reach = match (plate.is_some(), facts.static_compliance) {
                 (false, _) => Some(0.0),
                 (true, Some(c)) => Some((2.0 * end.plate_energy().max(0.0) * c).sqrt()),
                 (true, None) => None,
             };
-            if reach.is_some_and(|w| u < -w) {
-                left_at = Some(t);
-                break;
+            match reach {
+                Some(w) if v <= 0.0 && u < -w => {
+                    left_at = Some(t);
+                    break;
+                }
+                None if !facts.follow_unbounded => break,
+                _ => {}
             }
         }
     }
