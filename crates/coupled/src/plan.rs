@@ -489,10 +489,8 @@ pub fn transient_values(
     for c in Corner::ALL {
         let i = c.index();
         if let plate_fem::CornerSupport::Spring(k) = set.supports.corners[i] {
-            spring_forces.push(analytic::SpringForce {
-                name: format!("spring at {}", c.name()),
-                force: k * corners[i],
-            });
+            spring_forces
+                .push(analytic::SpringForce { name: format!("spring at {}", c.name()), force: k * corners[i] });
             support_plane += weights[i] * corners[i];
         }
     }
@@ -561,7 +559,16 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                             x,
                             z,
                             velocity: v,
-                            outcome: RowOutcome::Computed(transient_values(scene, set, body, o, &s, dt, (x, z), Some(&e))),
+                            outcome: RowOutcome::Computed(transient_values(
+                                scene,
+                                set,
+                                body,
+                                o,
+                                &s,
+                                dt,
+                                (x, z),
+                                Some(&e),
+                            )),
                         });
                     }
                 }

@@ -4,7 +4,9 @@ use analytic::{Elastic, Plate, RockStrength, Sphere};
 use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
 use coupled::transient::estimate::{choose, estimate, Budget, Quantities, DEFAULT_TOLERANCE};
-use coupled::transient::{simulate, simulate_with, Contact, Outcome, PlateFacts, SpringMass, Striker, TransientCase, TransientSettings};
+use coupled::transient::{
+    simulate, simulate_with, Contact, Outcome, PlateFacts, SpringMass, Striker, TransientCase, TransientSettings,
+};
 use plate_fem::Supports;
 
 fn plate() -> Plate {
@@ -67,7 +69,11 @@ fn explore_thin() {
             let p = Plate::new(0.4584 * scale, 0.360 * scale, h, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap();
             let case = TransientCase::new(&p, TransientSettings::default()).unwrap();
             for b in ["gangue 2", "coal"] {
-                for (ci, pt) in [(1, (p.length() / 2.0, p.width() / 2.0)), (1, (0.0, p.width() / 2.0)), (2, (p.length() / 2.0, 0.0))] {
+                for (ci, pt) in [
+                    (1, (p.length() / 2.0, p.width() / 2.0)),
+                    (1, (0.0, p.width() / 2.0)),
+                    (2, (p.length() / 2.0, 0.0)),
+                ] {
                     let s = striker(&p, &body(b), 0.65, 0.008);
                     let o = case.run_steps(&con(ci), &s, pt.0, pt.1, 200.0).unwrap();
                     println!(
@@ -139,9 +145,8 @@ impl Sdof {
         }
         // Error relative to the scales of displacement (δ-sized) and velocity (v₀-sized).
         let scale = [1e-5, self.v0, 1e-5, self.v0];
-        let err = (0..4)
-            .map(|i| (h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>() / scale[i]).abs())
-            .fold(0.0, f64::max);
+        let err =
+            (0..4).map(|i| (h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>() / scale[i]).abs()).fold(0.0, f64::max);
         (y5, err)
     }
     /// Free flight from `y` at t0 for τ: uniform sphere, harmonic mass.
@@ -252,7 +257,12 @@ fn explore_sdof() {
             let sd = coal_sdof(mr, pr);
             let (o, tc) = on_spring_mass(&sd, 400.0, 40.0 * strike("coal").hertz_time());
             let r = sd.sequence(40.0 * tc, 1e-10, tc / 1000.0);
-            println!("M/m {mr} T/tc {pr}: model {} contacts left {:?}; reference {}", o.contacts.len(), o.left_at.map(|t| t / tc), r.len());
+            println!(
+                "M/m {mr} T/tc {pr}: model {} contacts left {:?}; reference {}",
+                o.contacts.len(),
+                o.left_at.map(|t| t / tc),
+                r.len()
+            );
         }
     }
 }
@@ -344,7 +354,10 @@ fn interpolated_maxima_converge_faster_than_sampled_ones() {
             assert!(err[1] <= err[0] && err[3] <= err[2] && err[5] <= err[4], "{err:?}");
             if let Some(q) = prev {
                 let r: Vec<f64> = (0..6).map(|i| f64::log2(q[i] / err[i])).collect();
-                println!("   orders sampled/interpolated: δ_max {:.2}/{:.2}, peak {:.2}/{:.2}, instant {:.2}/{:.2}", r[0], r[1], r[2], r[3], r[4], r[5]);
+                println!(
+                    "   orders sampled/interpolated: δ_max {:.2}/{:.2}, peak {:.2}/{:.2}, instant {:.2}/{:.2}",
+                    r[0], r[1], r[2], r[3], r[4], r[5]
+                );
                 // The interpolated δ_max and its instant converge cleanly at the scheme's second
                 // order. The peak force on the plate carries the plate's high modes, which the
                 // step resolves only gradually: there it is still approaching that order.
@@ -384,8 +397,14 @@ fn coverage(b: &str, ci: usize, point: (f64, f64), n: usize, steps: f64) -> ([f6
     let p = plate();
     let s = strike(b);
     let t0 = std::time::Instant::now();
-    let e = estimate(&p, &con(ci), &s, point, TransientSettings { elements: n, steps_per_contact: steps, ..Default::default() })
-        .unwrap();
+    let e = estimate(
+        &p,
+        &con(ci),
+        &s,
+        point,
+        TransientSettings { elements: n, steps_per_contact: steps, ..Default::default() },
+    )
+    .unwrap();
     let secs = t0.elapsed().as_secs_f64();
     let fine_case = TransientCase::new(&p, TransientSettings { elements: n, ..Default::default() })
         .unwrap()
@@ -421,7 +440,12 @@ fn the_error_estimate_covers_the_error_on_cheap_cases() {
         let (est, actual, values, _) = coverage(b, ci, point, 10, 100.0);
         for i in 0..5 {
             // The reference (4n, 4N) has about 1/16 of the error, so it stands for the truth.
-            assert!(actual[i] <= est[i] + 1e-14 * values[i].abs(), "quantity {i}: estimate {} < actual {}", est[i], actual[i]);
+            assert!(
+                actual[i] <= est[i] + 1e-14 * values[i].abs(),
+                "quantity {i}: estimate {} < actual {}",
+                est[i],
+                actual[i]
+            );
         }
     }
 }
@@ -464,4 +488,52 @@ fn choose_reaches_the_default_tolerance() {
             t0.elapsed().as_secs_f64()
         );
     }
+}
+
+#[test]
+fn a_thin_plate_struck_near_its_end_is_struck_again() {
+    // The paper's plate at 2 mm, Con 1, the coal sphere at the middle of the end x = 0: the
+    // sphere still moves toward the plate when the first contact ends (apparent restitution
+    // below zero), and the plate comes back to strike it.
+    let p = Plate::new(0.4584, 0.360, 0.002, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap();
+    let s = striker(&p, &body("coal"), 0.65, 0.008);
+    let tc = s.hertz_time();
+    let (x, z) = (0.0, p.width() / 2.0);
+    let case = TransientCase::new(&p, TransientSettings::default()).unwrap();
+    let o = case.run(&con(1), &s, x, z).unwrap();
+    // The first contact is exactly that of a run stopping at the first separation.
+    let dt = tc / 200.0;
+    let mut nm = plate_fem::dynamics::Newmark::new(case.model(), con(1).supports, dt, x, z).unwrap();
+    let first = simulate(&s, Some(&mut nm), dt, 20.0 * tc);
+    assert_eq!(first.history, o.history);
+    assert_eq!(
+        (first.force_max, first.compression_max, first.contact_time, first.apparent_restitution, first.steps),
+        (o.force_max, o.compression_max, o.contact_time, o.apparent_restitution, o.steps)
+    );
+    assert_eq!(first.at_max_compression_interpolated, o.at_max_compression_interpolated);
+    assert!(first.left_at.is_none() && first.contacts.len() == 1);
+    assert!(o.apparent_restitution.unwrap() < 0.0);
+    let left = o.left_at.expect("the sphere leaves within the window");
+    assert!(o.contacts.len() >= 2 && o.unfinished_contact.is_none(), "{:?}", o.contacts);
+    assert!(o.final_velocity < 0.0 && left > o.contacts.last().map_or(0.0, |c| c.start + c.duration));
+    assert!((o.total_impulse - s.mass * (s.velocity - o.final_velocity)).abs() < 1e-12 * s.mass * s.velocity);
+    // The sequence against a run with half the step on a mesh with h halved.
+    let fine = case.refined(&p).unwrap().run_steps(&con(1), &s, x, z, 400.0).unwrap();
+    assert_eq!(fine.contacts.len(), o.contacts.len());
+    for (a, b) in o.contacts.iter().zip(&fine.contacts) {
+        println!(
+            "contact at {:.4} t_c for {:.4} t_c, peak {:.4} N, impulse {:.4e} N s (finer: {:.4}, {:.4}, {:.4}, {:.4e})",
+            a.start / tc,
+            a.duration / tc,
+            a.peak_force,
+            a.impulse,
+            b.start / tc,
+            b.duration / tc,
+            b.peak_force,
+            b.impulse
+        );
+        assert!((a.start - b.start).abs() < 0.02 * tc && (a.duration - b.duration).abs() < 0.02 * tc);
+        assert!((a.impulse - b.impulse).abs() < 0.02 * s.mass * s.velocity);
+    }
+    println!("left for good at {:.3} t_c, final velocity {:.4e} m/s", left / tc, o.final_velocity);
 }

@@ -70,7 +70,8 @@ fn state_at(s: &Striker, a: &StepEnd, b: &StepEnd, springs: Option<[f64; 4]>, dt
     let rate = linear(a.rate, b.rate, dt, tau);
     let v = linear(a.v, b.v, dt, tau);
     let wp = quadratic(a.wp, a.vp, b.vp, dt, tau);
-    let corners: [f64; 4] = std::array::from_fn(|i| quadratic(a.corners[i], a.corner_rates[i], b.corner_rates[i], dt, tau));
+    let corners: [f64; 4] =
+        std::array::from_fn(|i| quadratic(a.corners[i], a.corner_rates[i], b.corner_rates[i], dt, tau));
     let frac = tau / dt;
     let total = hermite(a.plate_energy(), a.force * a.vp, b.plate_energy(), b.force * b.vp, dt, tau);
     let spring_energy = match springs {

@@ -29,8 +29,8 @@ pub mod reference;
 pub mod target;
 
 pub use case::{TransientCase, TransientSettings};
-pub use estimate::{choose, estimate, Estimated, Quantities};
 pub use contact::{contact_force, Striker, HERTZ_TIME};
+pub use estimate::{choose, estimate, Estimated, Quantities};
 pub use reference::zener;
 pub use target::{SpringMass, Target};
 
