@@ -537,3 +537,53 @@ fn a_thin_plate_struck_near_its_end_is_struck_again() {
     }
     println!("left for good at {:.3} t_c, final velocity {:.4e} m/s", left / tc, o.final_velocity);
 }
+
+#[test]
+fn the_plan_reports_interpolated_values_with_their_errors() {
+    use coupled::plan::{run_transient, Evidence};
+    use coupled::scene::{Analysis, Points, Scene};
+    let p = plate();
+    let scene = Scene {
+        name: "one case".into(),
+        description: String::new(),
+        plate: p,
+        bodies: vec![body("coal")],
+        restitution: 0.65,
+        conditions: vec![con(2)],
+        points: Points::Pairs { pairs: vec![(p.length() / 2.0, p.width() / 2.0)] },
+        velocities: vec![0.008],
+        analyses: vec![Analysis::Responses],
+        solver: analytic::Method::default(),
+    };
+    let r = run_transient(&scene, TransientSettings::default()).unwrap();
+    let v = r.responses[0].values().unwrap();
+    let s = strike("coal");
+    let o = TransientCase::new(&p, TransientSettings::default())
+        .unwrap()
+        .run(&con(2), &s, p.length() / 2.0, p.width() / 2.0)
+        .unwrap();
+    assert_eq!(v.compression, o.compression_max_interpolated);
+    assert_eq!(v.contact_force, s.k * o.compression_max_interpolated.powf(1.5));
+    let (fe, ce) = (v.contact_force_error.unwrap(), v.compression_error.unwrap());
+    assert!(fe > 0.0 && fe < 1e-3 * v.contact_force && ce > 0.0 && ce < 1e-3 * v.compression);
+    match v.evidence {
+        Evidence::Transient {
+            contacts,
+            left_for_good,
+            peak_force,
+            peak_force_error,
+            contact_time_error,
+            restitution_error,
+            ..
+        } => {
+            assert!(contacts == 1 && left_for_good);
+            assert_eq!(peak_force, o.force_max_interpolated);
+            assert!(
+                peak_force_error.unwrap() > 0.0
+                    && contact_time_error.unwrap() > 0.0
+                    && restitution_error.unwrap() > 0.0
+            );
+        }
+        e => panic!("{e:?}"),
+    }
+}
