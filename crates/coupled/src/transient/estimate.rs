@@ -4,8 +4,12 @@
 //! law solved at the step ends), and the plate's point response converges at O(h²) (the
 //! point-load compliance of the BFS plate). With Q(n, N) a quantity on n elements along the
 //! longer side and N steps per Hertz time, Richardson's argument for order 2 gives the error
-//! of Q(n, N) in each direction as 4/3 of its change on halving: the estimate is
-//! (4/3)|Q(n, N) - Q(n, 2N)| + (4/3)|Q(n, N) - Q(2n, N)|. The quantities are the ones on the
+//! of Q(n, N) in each direction as 4/3 of its change on halving. Each is multiplied by
+//! Roache's safety factor 1.25 (his grid convergence index for a verified order: the
+//! order-2 behaviour in Δt is checked in the tests, but near free edges the mesh part is
+//! still short of its asymptotic order at n = 20 and the bare 4/3 falls up to 13 % short
+//! of the error measured against (4n, 4N)): the estimate is
+//! F(4/3)(|Q(n, N) - Q(n, 2N)| + |Q(n, N) - Q(2n, N)|), F = 1.25. The quantities are the ones on the
 //! in-step interpolant ([`super::interpolate`]), which vary smoothly with Δt; the sampled
 //! maxima jump with the phase of the steps and do not.
 
@@ -14,6 +18,9 @@ use crate::error::ModelError;
 use crate::supports::SupportSet;
 use analytic::Plate;
 use serde::Serialize;
+
+/// Roache's safety factor on the Richardson estimates.
+pub const SAFETY: f64 = 1.25;
 
 /// The transient numbers an estimate covers.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -76,9 +83,9 @@ pub struct Estimated {
     pub steps_per_contact: f64,
     /// The values, from the (n, N) run.
     pub values: Quantities,
-    /// Estimated absolute error from the time step, (4/3)|Q(n, N) - Q(n, 2N)|.
+    /// Estimated absolute error from the time step, F(4/3)|Q(n, N) - Q(n, 2N)|.
     pub time_error: Quantities,
-    /// Estimated absolute error from the mesh, (4/3)|Q(n, N) - Q(2n, N)|.
+    /// Estimated absolute error from the mesh, F(4/3)|Q(n, N) - Q(2n, N)|.
     pub mesh_error: Quantities,
     /// Their sum: the estimate of the absolute error of `values`.
     pub error: Quantities,
@@ -102,7 +109,7 @@ pub fn estimate_on(
     let q = Quantities::of(&o, s);
     let q_dt = Quantities::of(&base.run_steps(set, s, x, z, 2.0 * steps_per_contact)?, s);
     let q_h = Quantities::of(&fine.run_steps(set, s, x, z, steps_per_contact)?, s);
-    let richardson = |a: f64, b: f64| 4.0 / 3.0 * (a - b).abs();
+    let richardson = |a: f64, b: f64| SAFETY * 4.0 / 3.0 * (a - b).abs();
     let time_error = q.zip(q_dt, richardson);
     let mesh_error = q.zip(q_h, richardson);
     Ok(Estimated {
