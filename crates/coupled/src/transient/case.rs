@@ -93,7 +93,9 @@ impl TransientCase {
         Ok(2.0 * std::f64::consts::PI / w1)
     }
 
-    /// One impact of `s` at (x, z) on the plate held by `set`.
+    /// One impact of `s` at (x, z) on the plate held by `set`, followed through every
+    /// contact until the sphere has provably left or the window ends
+    /// ([`super::simulate_with`] with [`Self::facts`]).
     pub fn run(&self, set: &SupportSet, s: &Striker, x: f64, z: f64) -> Result<Outcome, ModelError> {
         self.run_steps(set, s, x, z, self.settings.steps_per_contact)
     }

@@ -18,7 +18,10 @@
 //! let tc = s.hertz_time();
 //! let o = simulate(&s, None, tc / 200.0, 3.0 * tc);
 //! assert!((o.force_max / s.hertz_force() - 1.0).abs() < 1e-4);
-//! assert!((o.contact_time / tc - 1.0).abs() < 1e-4);
+//! assert!((o.contact_time.unwrap() / tc - 1.0).abs() < 1e-4);
+//! // One contact, and on a rigid target the sphere has left for good at its end.
+//! assert_eq!(o.contacts.len(), 1);
+//! assert!(o.left_at.is_some());
 //! ```
 
 pub mod case;
