@@ -34,60 +34,22 @@ fn strike(name: &str) -> Striker {
 }
 
 #[test]
-#[ignore]
-fn explore_end_midpoint() {
+fn on_the_paper_plate_the_end_midpoint_is_struck_once() {
+    // The 8 mm plate, Con 1, the middle of the end x = 0, 0.008 m/s: every body rebounds
+    // (positive apparent restitution) and the plate never catches it again.
     let p = plate();
-    for (n, steps) in [(20, 200.0), (20, 400.0), (40, 200.0)] {
-        let case = TransientCase::new(&p, TransientSettings { elements: n, ..Default::default() }).unwrap();
-        for b in ["gangue 1", "gangue 2", "coal"] {
-            let s = strike(b);
-            let t0 = std::time::Instant::now();
-            let o = case.run_steps(&con(1), &s, 0.0, p.width() / 2.0, steps).unwrap();
-            println!(
-                "n {n} N {steps} {b}: t_c {:e} e {:?} contacts {} left {:?} final v {} impulse {} steps {} {:.2}s",
-                s.hertz_time(),
-                o.apparent_restitution,
-                o.contacts.len(),
-                o.left_at.map(|t| t / s.hertz_time()),
-                o.final_velocity,
-                o.total_impulse,
-                o.steps_total,
-                t0.elapsed().as_secs_f64()
-            );
-            for c in &o.contacts {
-                println!("   {:?}", c);
-            }
-        }
-    }
-}
-
-#[test]
-#[ignore]
-fn explore_thin() {
-    for h in [0.002, 0.004, 0.008] {
-        for scale in [1.0, 2.0] {
-            let p = Plate::new(0.4584 * scale, 0.360 * scale, h, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap();
-            let case = TransientCase::new(&p, TransientSettings::default()).unwrap();
-            for b in ["gangue 2", "coal"] {
-                for (ci, pt) in [
-                    (1, (p.length() / 2.0, p.width() / 2.0)),
-                    (1, (0.0, p.width() / 2.0)),
-                    (2, (p.length() / 2.0, 0.0)),
-                ] {
-                    let s = striker(&p, &body(b), 0.65, 0.008);
-                    let o = case.run_steps(&con(ci), &s, pt.0, pt.1, 200.0).unwrap();
-                    println!(
-                        "h {h} x{scale} {b} Con {ci} {:?}: e {:?} contacts {} unfinished {} left {:?} v {}",
-                        pt,
-                        o.apparent_restitution,
-                        o.contacts.len(),
-                        o.unfinished_contact.is_some(),
-                        o.left_at.map(|t| t / s.hertz_time()),
-                        o.final_velocity
-                    );
-                }
-            }
-        }
+    let case = TransientCase::new(&p, TransientSettings::default()).unwrap();
+    for b in ["coal", "gangue 1", "gangue 2"] {
+        let s = strike(b);
+        let o = case.run(&con(1), &s, 0.0, p.width() / 2.0).unwrap();
+        println!(
+            "{b}: apparent e {:.4}, {} contact(s), left for good at {:.3} t_c",
+            o.apparent_restitution.unwrap(),
+            o.contacts.len(),
+            o.left_at.unwrap() / s.hertz_time()
+        );
+        assert!(o.apparent_restitution.unwrap() > 0.3 && o.contacts.len() == 1 && o.left_at.is_some());
+        assert_eq!(o.final_velocity, o.rebound_velocity.unwrap());
     }
 }
 
@@ -247,24 +209,6 @@ fn coal_sdof(mass_ratio: f64, period_ratio: f64) -> Sdof {
     let period = period_ratio * s.hertz_time();
     let k = big_m * (2.0 * std::f64::consts::PI / period).powi(2);
     Sdof { m: s.mass, k_contact: s.k, e: 0.65, v0: s.velocity, big_m, k }
-}
-
-#[test]
-#[ignore]
-fn explore_sdof() {
-    for mr in [0.5, 1.0, 2.0, 4.0] {
-        for pr in [1.0, 2.0, 4.0, 8.0] {
-            let sd = coal_sdof(mr, pr);
-            let (o, tc) = on_spring_mass(&sd, 400.0, 40.0 * strike("coal").hertz_time());
-            let r = sd.sequence(40.0 * tc, 1e-10, tc / 1000.0);
-            println!(
-                "M/m {mr} T/tc {pr}: model {} contacts left {:?}; reference {}",
-                o.contacts.len(),
-                o.left_at.map(|t| t / tc),
-                r.len()
-            );
-        }
-    }
 }
 
 /// Largest relative deviation of the model's contacts from the reference's, per field
