@@ -535,11 +535,12 @@ pub fn transient_values(
 
 /// Runs the scene's responses with the transient model (yield velocities by the transient
 /// model are the velocity at which the transient δ_max reaches δ_my). Every response carries
-/// the error estimate of [`crate::transient::estimate`]: each case also runs at half the
-/// time step and on the mesh with h halved.
+/// the error estimate of [`crate::transient::estimate`]: each case also runs at half and
+/// twice the time step and on the meshes with h halved and doubled.
 pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Results, ModelError> {
     let case = TransientCase::new(&scene.plate, settings)?;
     let fine = case.refined(&scene.plate)?;
+    let coarse = case.coarsened(&scene.plate).transpose()?;
     let points = scene.point_pairs();
     let mut responses = Vec::new();
     let mut yields = Vec::new();
@@ -549,7 +550,8 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
                         let s = striker(&scene.plate, body, scene.restitution, v);
-                        let e = estimate_on(&case, &fine, set, &s, (x, z), settings.steps_per_contact)?;
+                        let e =
+                            estimate_on(&case, &fine, coarse.as_ref(), set, &s, (x, z), settings.steps_per_contact)?;
                         let o = &e.outcome;
                         let dt = s.hertz_time() / settings.steps_per_contact;
                         responses.push(ResponseRow {

@@ -374,6 +374,15 @@ fn coverage(b: &str, ci: usize, point: (f64, f64), n: usize, steps: f64) -> ([f6
         est[4] / e.values.restitution,
         actual[4] / e.values.restitution,
     );
+    println!(
+        "         observed orders (time, mesh): P_peak {:.2}, {:.2}; P(δmax) {:.2}, {:.2}; t_c {:.2}, {:.2}",
+        e.time_order.peak_force,
+        e.mesh_order.peak_force,
+        e.time_order.force_at_max_compression,
+        e.mesh_order.force_at_max_compression,
+        e.time_order.contact_time,
+        e.mesh_order.contact_time
+    );
     (est, actual, as_array(&e.values), secs)
 }
 

@@ -60,6 +60,17 @@ impl TransientCase {
         Self::on_mesh(plate, mesh, TransientSettings { elements: 2 * self.settings.elements, ..self.settings })
     }
 
+    /// The same plate on the mesh with h doubled, if every node line of that mesh (the
+    /// centre lines included) is one of this mesh's: None unless both counts are multiples
+    /// of 4. It gives the third level from which the mesh order is observed.
+    pub fn coarsened(&self, plate: &Plate) -> Option<Result<Self, ModelError>> {
+        let m = self.model.mesh();
+        (m.nx() % 4 == 0 && m.nz() % 4 == 0).then(|| {
+            let mesh = Mesh::uniform(plate.length(), plate.width(), m.nx() / 2, m.nz() / 2)?;
+            Self::on_mesh(plate, mesh, TransientSettings { elements: self.settings.elements / 2, ..self.settings })
+        })
+    }
+
     /// What the stopping rule and the interpolated spring energy need: the static
     /// compliance Nᵀ K⁻¹ N at (x, z) (None if the supports leave the plate free to move as a
     /// rigid body) and the corner springs.
