@@ -216,7 +216,8 @@ pub struct Budget {
 
 impl Default for Budget {
     fn default() -> Self {
-        Self { max_elements: 80, max_steps_per_contact: 3200.0 }
+        // The estimate at n = 40 runs the 80-element mesh (20k DOFs), tens of seconds a case.
+        Self { max_elements: 40, max_steps_per_contact: 1600.0 }
     }
 }
 
