@@ -12,6 +12,7 @@ use crate::compliance::{ComplianceModel, Estimate};
 use crate::error::ModelError;
 use crate::scene::{Analysis, Scene};
 use crate::supports::SupportSet;
+use crate::transient::estimate::{estimate_on, Estimated};
 use crate::transient::{case::striker, Outcome, TransientCase, TransientSettings};
 use crate::validity::{self, Validity};
 use analytic::{
@@ -76,13 +77,29 @@ pub enum Evidence {
         steps: usize,
         /// Time step, s.
         time_step: f64,
-        /// Largest contact force over the steps, N (it includes the Flores damping; the
-        /// paper's P_max is Kδ_max^{3/2}).
+        /// Largest contact force on the in-step interpolant, N (it includes the Flores
+        /// damping; the paper's P_max is Kδ_max^{3/2}).
         peak_force: f64,
-        /// Duration of the first contact, s.
+        /// Its estimated absolute error, N.
+        peak_force_error: Option<f64>,
+        /// Duration of the first contact, s (δ's zero crossings on the interpolant).
         contact_time: Option<f64>,
+        /// Its estimated absolute error, s.
+        contact_time_error: Option<f64>,
         /// -v_rebound/v₀ after the first contact.
         apparent_restitution: Option<f64>,
+        /// Its estimated absolute error.
+        restitution_error: Option<f64>,
+        /// Elements along the longer side of the plate mesh.
+        elements: usize,
+        /// Contacts until the sphere left for good (or the window ended).
+        contacts: usize,
+        /// The impulse of all of them, N·s.
+        total_impulse: f64,
+        /// Sphere velocity at the end of the run, m/s (negative: away from the plate).
+        final_velocity: f64,
+        /// Whether the run proved that no further contact can occur (else the window ended).
+        left_for_good: bool,
     },
 }
 
@@ -457,7 +474,9 @@ fn yield_values(scene: &Scene, body: &Sphere, dp: &DruckerPrager, est: &Estimate
     }
 }
 
-/// The transient responses of one case.
+/// The transient responses of one case, at the instant of maximum compression on the
+/// integrator's interpolant, with the error estimates of `errors` when given.
+#[allow(clippy::too_many_arguments)]
 pub fn transient_values(
     scene: &Scene,
     set: &SupportSet,
@@ -466,11 +485,13 @@ pub fn transient_values(
     s: &crate::transient::Striker,
     dt: f64,
     (x, z): (f64, f64),
+    errors: Option<&Estimated>,
 ) -> ResponseValues {
     let e0 = 0.5 * s.mass * s.velocity * s.velocity;
-    let m = o.at_max_compression;
+    let m = o.at_max_compression_interpolated;
+    let corners = o.corners_at_max_compression_interpolated;
     let (l, b) = (scene.plate.length(), scene.plate.width());
-    let delta = o.compression_max;
+    let delta = o.compression_max_interpolated;
     let p = s.k * delta.max(0.0).powf(1.5);
     let dp = DruckerPrager::of(body);
     let d_my = dp.yield_compression(body.radius(), s.k);
@@ -482,11 +503,9 @@ pub fn transient_values(
     for c in Corner::ALL {
         let i = c.index();
         if let plate_fem::CornerSupport::Spring(k) = set.supports.corners[i] {
-            spring_forces.push(analytic::SpringForce {
-                name: format!("spring at {}", c.name()),
-                force: k * o.corners_at_max_compression[i],
-            });
-            support_plane += weights[i] * o.corners_at_max_compression[i];
+            spring_forces
+                .push(analytic::SpringForce { name: format!("spring at {}", c.name()), force: k * corners[i] });
+            support_plane += weights[i] * corners[i];
         }
     }
     let recontact = o.rebound_velocity.map(|v| validity::Criterion::at_most("v_rebound/v₀", v / s.velocity, 0.0));
@@ -494,9 +513,9 @@ pub fn transient_values(
         compliance: None,
         compliance_error: None,
         contact_force: p,
-        contact_force_error: None,
+        contact_force_error: errors.map(|e| e.error.force_at_max_compression),
         compression: delta,
-        compression_error: None,
+        compression_error: errors.map(|e| e.error.compression),
         deflection: m.plate_displacement - support_plane,
         spring_forces,
         rock_total_ratio: (m.contact + m.dissipated) / e0,
@@ -507,9 +526,17 @@ pub fn transient_values(
         evidence: Evidence::Transient {
             steps: o.steps,
             time_step: dt,
-            peak_force: o.force_max,
-            contact_time: o.contact_time,
+            peak_force: o.force_max_interpolated,
+            peak_force_error: errors.map(|e| e.error.peak_force),
+            contact_time: o.contacts.first().map(|c| c.duration),
+            contact_time_error: errors.map(|e| e.error.contact_time),
             apparent_restitution: o.apparent_restitution,
+            restitution_error: errors.map(|e| e.error.restitution),
+            elements: errors.map_or(0, |e| e.elements),
+            contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
+            total_impulse: o.total_impulse,
+            final_velocity: o.final_velocity,
+            left_for_good: o.left_at.is_some(),
         },
         validity: Validity {
             elastic: Some(validity::elastic(delta, d_my)),
@@ -521,9 +548,13 @@ pub fn transient_values(
 }
 
 /// Runs the scene's responses with the transient model (yield velocities by the transient
-/// model are the velocity at which the transient δ_max reaches δ_my).
+/// model are the velocity at which the transient δ_max reaches δ_my). Every response carries
+/// the error estimate of [`crate::transient::estimate`]: each case also runs at half and
+/// twice the time step and on the meshes with h halved and doubled.
 pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Results, ModelError> {
     let case = TransientCase::new(&scene.plate, settings)?;
+    let fine = case.refined(&scene.plate)?;
+    let coarse = case.coarsened(&scene.plate).transpose()?;
     let points = scene.point_pairs();
     let mut responses = Vec::new();
     let mut yields = Vec::new();
@@ -533,7 +564,9 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
                         let s = striker(&scene.plate, body, scene.restitution, v);
-                        let o = case.run(set, &s, x, z)?;
+                        let e =
+                            estimate_on(&case, &fine, coarse.as_ref(), set, &s, (x, z), settings.steps_per_contact)?;
+                        let o = &e.outcome;
                         let dt = s.hertz_time() / settings.steps_per_contact;
                         responses.push(ResponseRow {
                             model: ModelKind::Transient,
@@ -542,7 +575,16 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                             x,
                             z,
                             velocity: v,
-                            outcome: RowOutcome::Computed(transient_values(scene, set, body, &o, &s, dt, (x, z))),
+                            outcome: RowOutcome::Computed(transient_values(
+                                scene,
+                                set,
+                                body,
+                                o,
+                                &s,
+                                dt,
+                                (x, z),
+                                Some(&e),
+                            )),
                         });
                     }
                 }

@@ -1,13 +1,13 @@
 //! One transient case on a scene's plate: the sphere, the support set, the point and the
 //! velocity, with the discretisation the transient study validated.
 
-use super::{simulate, Outcome, Striker};
+use super::{simulate_with, Outcome, PlateFacts, Striker};
 use crate::discretisation::{mesh_for, plate_properties};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
 use analytic::{contact_stiffness, Plate, Sphere};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
-use plate_fem::{Model, Supports};
+use plate_fem::{CornerSupport, Mesh, Model, Supports};
 use serde::Serialize;
 
 /// How finely the transient model is discretised.
@@ -43,8 +43,49 @@ impl TransientCase {
     /// Builds the mesh and the plate's matrices.
     pub fn new(plate: &Plate, settings: TransientSettings) -> Result<Self, ModelError> {
         let props = plate_properties(plate);
-        let model = Model::new(props, mesh_for(&props, settings.elements)?)?;
+        Self::on_mesh(plate, mesh_for(&props, settings.elements)?, settings)
+    }
+
+    /// The plate's transient model on a given mesh (`settings.elements` is then only a label).
+    pub fn on_mesh(plate: &Plate, mesh: Mesh, settings: TransientSettings) -> Result<Self, ModelError> {
+        let model = Model::new(plate_properties(plate), mesh)?;
         Ok(Self { model, settings })
+    }
+
+    /// The same plate on the mesh with every element split in four (h halved exactly, every
+    /// node kept), for the mesh part of the error estimate.
+    pub fn refined(&self, plate: &Plate) -> Result<Self, ModelError> {
+        let m = self.model.mesh();
+        let mesh = Mesh::uniform(plate.length(), plate.width(), 2 * m.nx(), 2 * m.nz())?;
+        Self::on_mesh(plate, mesh, TransientSettings { elements: 2 * self.settings.elements, ..self.settings })
+    }
+
+    /// The same plate on the mesh with h doubled, if every node line of that mesh (the
+    /// centre lines included) is one of this mesh's: None unless both counts are multiples
+    /// of 4. It gives the third level from which the mesh order is observed.
+    pub fn coarsened(&self, plate: &Plate) -> Option<Result<Self, ModelError>> {
+        let m = self.model.mesh();
+        (m.nx() % 4 == 0 && m.nz() % 4 == 0).then(|| {
+            let mesh = Mesh::uniform(plate.length(), plate.width(), m.nx() / 2, m.nz() / 2)?;
+            Self::on_mesh(plate, mesh, TransientSettings { elements: self.settings.elements / 2, ..self.settings })
+        })
+    }
+
+    /// What the stopping rule and the interpolated spring energy need: the static
+    /// compliance Nᵀ K⁻¹ N at (x, z) (None if the supports leave the plate free to move as a
+    /// rigid body) and the corner springs.
+    pub fn facts(&self, supports: &Supports, x: f64, z: f64) -> PlateFacts {
+        let static_compliance = self.model.factorize(supports).ok().and_then(|f| {
+            let n = f.load_vector(x, z).ok()?;
+            let w = f.deflection_field(x, z).ok()?;
+            let c: f64 = n.iter().zip(&w).map(|(a, b)| a * b).sum();
+            (c.is_finite() && c > 0.0).then_some(c)
+        });
+        let corner_springs = supports.corners.map(|c| match c {
+            CornerSupport::Spring(k) => k,
+            _ => 0.0,
+        });
+        PlateFacts { static_compliance, corner_springs: Some(corner_springs), follow_unbounded: true }
     }
 
     /// The finite-element model.
@@ -63,10 +104,25 @@ impl TransientCase {
         Ok(2.0 * std::f64::consts::PI / w1)
     }
 
-    /// One impact of `s` at (x, z) on the plate held by `set`.
+    /// One impact of `s` at (x, z) on the plate held by `set`, followed through every
+    /// contact until the sphere has provably left or the window ends
+    /// ([`super::simulate_with`] with [`Self::facts`]).
     pub fn run(&self, set: &SupportSet, s: &Striker, x: f64, z: f64) -> Result<Outcome, ModelError> {
-        let dt = s.hertz_time() / self.settings.steps_per_contact;
+        self.run_steps(set, s, x, z, self.settings.steps_per_contact)
+    }
+
+    /// One impact with `steps_per_contact` steps per Hertz time instead of the settings'.
+    pub fn run_steps(
+        &self,
+        set: &SupportSet,
+        s: &Striker,
+        x: f64,
+        z: f64,
+        steps_per_contact: f64,
+    ) -> Result<Outcome, ModelError> {
+        let dt = s.hertz_time() / steps_per_contact;
         let mut nm = Newmark::new(&self.model, set.supports, dt, x, z)?;
-        Ok(simulate(s, Some(&mut nm), dt, self.settings.window_contacts * s.hertz_time()))
+        let facts = self.facts(&set.supports, x, z);
+        Ok(simulate_with(s, Some(&mut nm), facts, dt, self.settings.window_contacts * s.hertz_time()))
     }
 }
