@@ -174,8 +174,9 @@ fn out(text: &str) -> Result<(), Failure> {
     Ok(())
 }
 
-/// Most transient runs one command may ask for: a run on the default 20-element mesh takes
-/// 0.05-0.1 s here, so this is a few minutes; a yield velocity costs about 25 runs (a
+/// Most transient runs one command may ask for, in runs on the default 20-element mesh
+/// (0.05-0.3 s each here), so a few minutes: a response costs about 10 (its error estimate
+/// runs the case at half and double the step and the mesh), a yield velocity about 25 (a
 /// bracketed root in v to 1e-6).
 const MAX_TRANSIENT_RUNS: usize = 2000;
 
@@ -183,12 +184,12 @@ const MAX_TRANSIENT_RUNS: usize = 2000;
 fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
     if models.contains(&ModelKind::Transient) {
         let cases = scene.bodies.len() * scene.conditions.len() * scene.points.len();
-        let responses = if scene.wants(Analysis::Responses) { cases * scene.velocities.len() } else { 0 };
+        let responses = if scene.wants(Analysis::Responses) { 10 * cases * scene.velocities.len() } else { 0 };
         let yields = if scene.wants(Analysis::YieldVelocity) { 25 * cases } else { 0 };
         let runs = responses + yields;
         if runs > MAX_TRANSIENT_RUNS {
             return Err(format!(
-                "--model transient: the scene asks for about {runs} transient runs ({cases} body-support-point cases; {responses} for responses, {yields} for yield velocities), more than the {MAX_TRANSIENT_RUNS} one command runs (a few minutes); use fewer points or the plate model for the sweep"
+                "--model transient: the scene asks for about {runs} transient runs ({cases} body-support-point cases; {responses} for responses with their error estimates, {yields} for yield velocities), more than the {MAX_TRANSIENT_RUNS} one command runs (a few minutes); use fewer points or the plate model for the sweep"
             )
             .into());
         }

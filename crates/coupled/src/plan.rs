@@ -508,7 +508,8 @@ pub fn transient_values(
             support_plane += weights[i] * corners[i];
         }
     }
-    let recontact = o.rebound_velocity.map(|v| validity::Criterion::at_most("v_rebound/v₀", v / s.velocity, 0.0));
+    // The first contact's numbers describe the whole impact only if there is no other.
+    let recontact = Some(validity::Criterion::at_most("contacts", o.contacts.len() as f64, 1.0));
     ResponseValues {
         compliance: None,
         compliance_error: None,

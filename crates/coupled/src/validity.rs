@@ -17,8 +17,9 @@
 //!   compliance under the load. Against shell and solid elements the paper's plate
 //!   (h/B = 0.022) is +1 % at the centre and +3 % at the middle of an end; the neglected
 //!   terms grow like (h/B)², so h/min(L, B) ≤ 0.05 keeps them to a few percent.
-//! - **Re-contact** (transient only): if the sphere still moves toward the plate when the
-//!   first contact ends, a second contact must follow.
+//! - **Re-contact** (transient only): the run follows the impact until the sphere has
+//!   provably left; if it struck more than once, the first contact's numbers (the paper's
+//!   quantities) do not describe the whole impact.
 
 use serde::Serialize;
 
@@ -60,8 +61,7 @@ pub struct Validity {
     pub quasi_static: Option<Criterion>,
     /// h/min(L, B) ≤ 0.05.
     pub thin_plate: Criterion,
-    /// The sphere moves away from the plate when contact ends (transient only): the
-    /// rebound velocity over v₀, valid while ≤ 0.
+    /// The number of contacts (transient only), valid while 1.
     pub recontact: Option<Criterion>,
 }
 
