@@ -74,6 +74,13 @@ fn rel(p: f64, b: f64) -> Cell {
     }
 }
 
+/// The row of `other` for the same case (support set, body, point and velocity) as `row`.
+fn same_case<'a>(other: &'a Results, row: &coupled::ResponseRow) -> Option<&'a coupled::ResponseRow> {
+    other.responses.iter().find(|b| {
+        b.condition == row.condition && b.body == row.body && b.x == row.x && b.z == row.z && b.velocity == row.velocity
+    })
+}
+
 /// Per condition: both models' responses and yield velocities at the scene's points.
 pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
     let mut out = Vec::new();
@@ -104,15 +111,7 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
             }
             let mut t = Table::new(format!("{}: responses, beam against plate FE", cond.name), &h);
             for pr in pair.plate.responses.iter().filter(|r| r.condition == cond.name) {
-                let Some(br) = pair.beam.responses.iter().find(|b| {
-                    b.condition == cond.name
-                        && b.body == pr.body
-                        && b.x == pr.x
-                        && b.z == pr.z
-                        && b.velocity == pr.velocity
-                }) else {
-                    continue;
-                };
+                let Some(br) = same_case(&pair.beam, pr) else { continue };
                 let z = pr.z;
                 let Some(p) = pr.values() else { continue };
                 let b = br.values();
@@ -164,15 +163,7 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                     ],
                 );
                 for pr in pair.plate.responses.iter().filter(|r| r.condition == cond.name) {
-                    let Some(br) = pair.beam.responses.iter().find(|b| {
-                        b.condition == cond.name
-                            && b.body == pr.body
-                            && b.x == pr.x
-                            && b.z == pr.z
-                            && b.velocity == pr.velocity
-                    }) else {
-                        continue;
-                    };
+                    let Some(br) = same_case(&pair.beam, pr) else { continue };
                     let Some(p) = pr.values() else { continue };
                     let bf = |n: &str| match br.values() {
                         None => Cell::Text("n/a".into()),

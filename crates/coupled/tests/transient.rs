@@ -504,6 +504,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         restitution: 0.65,
         conditions: vec![con(2)],
         points: Points::Pairs { pairs: vec![(p.length() / 2.0, p.width() / 2.0)] },
+        transient_points: vec![(p.length() / 2.0, p.width() / 2.0)],
         velocities: vec![0.008],
         analyses: vec![Analysis::Responses],
         solver: analytic::Method::default(),
