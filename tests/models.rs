@@ -176,3 +176,29 @@ fn scene_reports_do_not_land_in_committed_reports() {
     }
     assert_eq!(std::fs::read_dir(dir.path().join("reports")).unwrap().count(), 0);
 }
+
+/// A reader that stops early (`impact solve | head -1`) ends the program quietly: exit 0,
+/// no panic. The pipe is closed before the program writes.
+#[test]
+fn closed_stdout_is_a_normal_end() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["sweep", "--count", "2000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && !err.contains("panicked"), "{:?}: {err}", o.status);
+}
+
+/// A request beyond the memory budget is refused before any work, saying how big it is.
+#[test]
+fn oversized_requests_are_refused_with_their_size() {
+    let o = Command::new(env!("CARGO_BIN_EXE_impact")).args(["sweep", "--count", "100000"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("100000 points") && err.contains("GB") && err.contains("at most"), "{err}");
+}
