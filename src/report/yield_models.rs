@@ -46,6 +46,9 @@ const GRID: (usize, usize) = (11, 5);
 /// step of the root search.
 const HERTZ_SLOPE: f64 = 0.8;
 
+/// A v_y and where: (v, x, z).
+type Located = (f64, f64, f64);
+
 /// A transient yield velocity and how it was found.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TransientYield {
@@ -239,6 +242,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let (l, b) = (sc.plate.length(), sc.plate.width());
     let zc = b / 2.0;
     let studied: [&Sphere; 2] = [&paper.coal, &paper.gangue1];
+    let body_of = |name: &str| *paper.bodies().iter().find(|s| s.name == name).unwrap_or(&&paper.coal);
     let all_bodies = paper.bodies();
     let conds: Vec<SupportSet> = sc.conditions.clone();
     let cond_named = |n: usize| -> Result<&SupportSet, Failure> {
@@ -411,7 +415,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     // Per model: (v, body, condition, x, z) of the overall minimum.
     let mut overall: [(f64, String, String, f64, f64); 3] =
         std::array::from_fn(|_| (f64::INFINITY, String::new(), String::new(), 0.0, 0.0));
-    let mut minima_of: HashMap<(String, usize), [(f64, f64, f64); 3]> = HashMap::new();
+    let mut minima_of: HashMap<(String, usize), [Located; 3]> = HashMap::new();
     for body in all_bodies {
         for set in &conds {
             let mut mins: [(f64, f64, f64); 3] = [(f64::INFINITY, 0.0, 0.0); 3];
@@ -692,6 +696,19 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let (w_lo, w_hi) = rel_range(&|r| r.tr.width / r.tr.velocity);
     let (pe_lo, pe_hi) = rel_range(&|r| r.plate_err / r.plate);
     let runs_t2: usize = t2.iter().map(|r| r.tr.runs).sum();
+    let between =
+        t2.iter().filter(|r| r.tr.velocity > rigid_yield(&sc, body_of(&r.body)) && r.tr.velocity < r.plate).count();
+    let mut above_beam: Vec<usize> = t2.iter().filter(|r| r.tr.velocity > r.beam).map(|r| r.area).collect();
+    above_beam.sort_unstable();
+    above_beam.dedup();
+    let above_beam_cells = t2.iter().filter(|r| r.tr.velocity > r.beam).count();
+    // The transient v_y between conditions at one point, against its discretisation error.
+    let mut cond_spread: f64 = 0.0;
+    for r in &t2 {
+        if let Some(r1) = find(&r.body, 1, r.area) {
+            cond_spread = cond_spread.max((r.tr.velocity / r1.tr.velocity - 1.0).abs());
+        }
+    }
     let pct = |v: f64| sig(100.0 * v, 3);
     let models_held = |m: usize| held(m).to_string();
     let values: Vec<(&str, String)> = vec![
@@ -728,6 +745,19 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         ("disc_rel", sig(disc_rel, 2)),
         ("cells_t2", t2.len().to_string()),
         ("runs_t2", runs_t2.to_string()),
+        ("between", between.to_string()),
+        ("above_beam_cells", above_beam_cells.to_string()),
+        (
+            "above_beam_areas",
+            if above_beam.is_empty() {
+                "none".into()
+            } else {
+                above_beam.iter().map(|a| a.to_string()).collect::<Vec<_>>().join(", ")
+            },
+        ),
+        ("cond_spread", sig(cond_spread, 2)),
+        ("spread_vs_disc", (if cond_spread < disc_rel { "less than" } else { "not less than" }).to_string()),
+        ("resolves", (if cond_spread < disc_rel { "does not resolve" } else { "may resolve" }).to_string()),
         ("runs_per_cell", format!("{:.1}", runs_t2 as f64 / t2.len() as f64)),
         ("table2", t2t.to_markdown()),
         ("discretisation", disc.to_markdown()),
