@@ -15,6 +15,7 @@ pub mod skfem;
 pub mod studies;
 pub mod template;
 pub mod transient;
+pub mod yield_models;
 
 use crate::output::Artifacts;
 use coupled::{Analysis, Scene};
@@ -29,8 +30,9 @@ pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 /// beside it, each in its own folder, the paper's studies and the transient study when
 /// the scene names them.
 pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let studies: [(Analysis, &str, Report); 2] = [
+    let studies: [(Analysis, &str, Report); 3] = [
         (Analysis::PaperStudies, "paper-studies", paper_studies::report),
+        (Analysis::PaperStudies, "yield-three-models", yield_models::report),
         (Analysis::Transient, "dynamic", transient::report),
     ];
     let mut a = comparison::report(scene)?;

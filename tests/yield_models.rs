@@ -1,0 +1,147 @@
+//! The three-model yield study against independent references: the closed form on a rigid
+//! point, the root's own definition, the beam in the narrow-plate limit, and the report as a
+//! whole (it renders, and its deterministic pages do not carry the timing).
+
+use analytic::{contact_stiffness, yield_velocity, Condition, DruckerPrager, Plate};
+use coupled::plan::impact_of;
+use coupled::transient::{case::striker, simulate, TransientCase, TransientSettings};
+use coupled::{BeamModel, ComplianceModel, ModelError, PlateModel, SupportSet};
+use impact::report::paper::Paper;
+use impact::report::yield_models::{log_root, report, rigid_yield, transient_yield, ROOT_TOLERANCE};
+
+/// The root finder on a function with a known root: ln δ = (4/5) ln v + c, root at 0.01.
+#[test]
+fn log_root_closes_a_known_root_from_both_sides() {
+    for (root, slope) in [(0.01f64, 0.8), (3e-3, 0.6), (0.02, 1.1)] {
+        let mut n = 0;
+        let mut f = |lv: f64| -> Result<f64, ModelError> {
+            n += 1;
+            Ok(slope * (lv - root.ln()))
+        };
+        let (lo, hi) = log_root(&mut f, 0.0087f64.ln(), ROOT_TOLERANCE).unwrap();
+        assert!(lo < root.ln() && root.ln() <= hi, "bracket [{lo}, {hi}] misses ln {root}");
+        assert!(hi.exp() / lo.exp() - 1.0 <= ROOT_TOLERANCE);
+        assert!(n < 20, "{n} evaluations");
+    }
+}
+
+/// (a) At a fixed corner under Con 1 the plate FE node does not move: the target is rigid,
+/// and the transient v_y must be the closed form of eq. 14 with C = 0,
+/// v_y = sqrt(2/m · (2K/5e) δ_my^{5/2}), up to the Flores law's own deviation from eq. 7.
+///
+/// (The midpoint of the end x = 0, z = B/2, is not rigid in the plate: the end is held only
+/// at its corners, and the free edge between them bends. The corner is the point where the
+/// plate does not matter.)
+///
+/// Tolerance: eq. 7 is the energy estimate behind the Flores damping, exact only as e → 1;
+/// integrated in time at e = 0.65 on a rigid target the Flores law stops at a δ_max a little
+/// below eq. 14's at the same v (measured below, about 0.2 %). Since v_y ∝ δ_my^{5/4} on a
+/// rigid target, the root moves up by 5/4 of that, about 0.25 %: the tolerance is 5/4 of
+/// the measured deficit plus 1e-4 for the discretisation (the measured change from 20 to 40
+/// elements and 200 to 400 steps is smaller than that in the report). The sharper check is
+/// against the same Flores law with no plate at all: the plate's corner must not change the
+/// root beyond the discretisation (1e-4).
+#[test]
+fn transient_yield_on_a_fixed_corner_is_the_rigid_closed_form() {
+    let p = Paper::new();
+    let sc = &p.scene;
+    let case = TransientCase::new(&sc.plate, TransientSettings::default()).unwrap();
+    let con1 = SupportSet::preset("Con 1", Condition::BothFixed);
+    for body in [&p.coal, &p.gangue1] {
+        let closed = rigid_yield(sc, body);
+        // eq. 14 with C = 0 written out, independently of analytic::yield_velocity.
+        let k = contact_stiffness(body, sc.plate.material());
+        let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
+        let by_hand = (2.0 / body.mass() * (2.0 * k / (5.0 * sc.restitution)) * d_my.powf(2.5)).sqrt();
+        assert!((closed / by_hand - 1.0).abs() < 1e-12, "{closed} vs {by_hand}");
+
+        let t = transient_yield(sc, &case, &con1, body, 0.0, 0.0).unwrap();
+        // The Flores law with no plate, at the closed-form v_y: its δ_max deficit.
+        let s = striker(&sc.plate, body, sc.restitution, closed);
+        let tc = s.hertz_time();
+        let dt = tc / case.settings().steps_per_contact;
+        let deficit = 1.0 - simulate(&s, None, dt, 20.0 * tc).compression_max / d_my;
+        assert!(deficit > 0.0 && deficit < 5e-3, "Flores deficit {deficit}");
+        let tol = 1.25 * deficit + 1e-4;
+        let rel = t.velocity / closed - 1.0;
+        assert!(rel.abs() <= tol, "{}: transient {} vs closed form {closed}: {rel} > {tol}", body.name, t.velocity);
+
+        // The same Flores law on no plate: the corner adds nothing.
+        let mut f = |lv: f64| -> Result<f64, ModelError> {
+            let s = striker(&sc.plate, body, sc.restitution, lv.exp());
+            let tc = s.hertz_time();
+            Ok((simulate(&s, None, tc / case.settings().steps_per_contact, 20.0 * tc).compression_max / d_my).ln())
+        };
+        let (lo, hi) = log_root(&mut f, closed.ln(), ROOT_TOLERANCE).unwrap();
+        let free = (0.5 * (lo + hi)).exp();
+        assert!((t.velocity / free - 1.0).abs() <= 1e-4, "{}: corner {} vs no plate {free}", body.name, t.velocity);
+    }
+}
+
+/// (b) The root is a root: one transient run at the returned v_y reaches δ_my within what
+/// the bracket allows (|ln δ/δ_my| ≤ slope · half the bracket, slope ≤ 2).
+#[test]
+fn transient_yield_reaches_the_yield_compression() {
+    let p = Paper::new();
+    let sc = &p.scene;
+    let case = TransientCase::new(&sc.plate, TransientSettings::default()).unwrap();
+    let (l, b) = (sc.plate.length(), sc.plate.width());
+    for (body, set, x) in [(&p.coal, &sc.conditions[0], l / 2.0), (&p.gangue1, &sc.conditions[1], 0.25 * l)] {
+        let t = transient_yield(sc, &case, set, body, x, b / 2.0).unwrap();
+        assert!(t.width / t.velocity <= ROOT_TOLERANCE * 1.0001);
+        let s = striker(&sc.plate, body, sc.restitution, t.velocity);
+        let d = case.run(set, &s, x, b / 2.0).unwrap().compression_max;
+        let rel = (d / t.yield_compression).ln().abs();
+        assert!(rel <= ROOT_TOLERANCE, "{}: δ_max/δ_my - 1 = {rel}", body.name);
+        // and it is not the rigid value: the plate is there.
+        assert!(t.velocity > rigid_yield(sc, body) * 1.01);
+    }
+}
+
+/// (c) A narrow plate (B/L = 0.1) is a beam: the quasi-static plate v_y at the centre
+/// agrees with the beam's within 1 %.
+#[test]
+fn plate_and_beam_agree_on_a_narrow_plate() {
+    let p = Paper::new();
+    let wide = p.scene.plate;
+    let plate =
+        Plate::new(wide.length(), 0.1 * wide.length(), wide.thickness(), wide.density(), wide.material()).unwrap();
+    let con1 = SupportSet::preset("Con 1", Condition::BothFixed);
+    let centre = (plate.length() / 2.0, plate.width() / 2.0);
+    let fe = PlateModel::compute(&plate, std::slice::from_ref(&con1), &[centre], 20, 2).unwrap();
+    let beam = BeamModel { plate: &plate };
+    for body in [&p.coal, &p.gangue1] {
+        let k = contact_stiffness(body, plate.material());
+        let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
+        let imp = analytic::Impact { contact_stiffness: k, ..impact_of(&p.scene, body, 1.0) };
+        let vb =
+            yield_velocity(body, &imp, beam.compliance(&con1, centre.0, centre.1).unwrap().compliance.total(), d_my);
+        let vp = yield_velocity(body, &imp, fe.compliance(&con1, centre.0, centre.1).unwrap().compliance.total(), d_my);
+        assert!((vp / vb - 1.0).abs() < 0.01, "{}: plate {vp} vs beam {vb}", body.name);
+    }
+}
+
+/// The whole study renders (every placeholder filled), writes its figures and tables, and
+/// keeps the timing out of the deterministic pages.
+#[test]
+fn the_study_renders() {
+    let p = Paper::new();
+    let a = report(&p.scene).unwrap();
+    for f in [
+        "index.md",
+        "timing.md",
+        "table2-three-models.csv",
+        "table5-three-models.csv",
+        "statements.csv",
+        "transient-discretisation.csv",
+        "fig08-yield-coal-three-models.svg",
+        "fig09-yield-gangue-1-three-models.csv",
+    ] {
+        assert!(a.get(f).is_some(), "{f} missing");
+    }
+    let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
+    assert!(!index.contains("{{"));
+    assert!(!index.contains(" s |"));
+    println!("{index}");
+    println!("{}", String::from_utf8(a.get("timing.md").unwrap().to_vec()).unwrap());
+}
