@@ -630,6 +630,19 @@ pub fn dynamic_yield(
     let (mut lo, mut hi) = (v_rigid, v_rigid);
     let mut f_hi = reach(hi)?;
     let mut doublings = 0;
+    // The transient δ_max can exceed the balance's (the Flores law's own work differs from
+    // eq. 7 by a few tenths of a percent): then the root lies below, so bracket downward.
+    if f_hi >= 0.0 {
+        while reach(lo)? >= 0.0 {
+            hi = lo;
+            lo *= 0.5;
+            doublings += 1;
+            if doublings > 60 {
+                return Err(ModelError::Missing("the dynamic yield velocity could not be bracketed".into()));
+            }
+        }
+        f_hi = 0.0;
+    }
     while f_hi < 0.0 {
         lo = hi;
         hi *= 2.0;
