@@ -7,6 +7,7 @@
 use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
 use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
 pub use coupled::scene::{even_points, Analysis, Points, Scene};
+use coupled::transient::LawKind;
 pub use coupled::SupportSet;
 use plate_fem::{CornerSupport, EdgeSupport, Supports};
 use serde::Deserialize;
@@ -167,6 +168,8 @@ struct RawScene {
     #[serde(default)]
     description: String,
     restitution: f64,
+    #[serde(default)]
+    contact_law: Option<String>,
     plate: RawPlate,
     bodies: Vec<RawBody>,
     conditions: Vec<RawCondition>,
@@ -519,6 +522,14 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
 /// Checks every field against its range, in the units of the file, then converts to SI.
 fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
+    let laws = [LawKind::Flores, LawKind::Hertz, LawKind::Thornton];
+    let contact_law = match raw.contact_law.as_deref() {
+        None => LawKind::Flores,
+        Some(name) => laws.into_iter().find(|l| l.key() == name).ok_or_else(|| {
+            let keys: Vec<_> = laws.iter().map(|l| format!("\"{}\"", l.key())).collect();
+            other("contact_law", format!("'{name}' is not a contact law; allowed: {}", keys.join(", ")))
+        })?,
+    };
     check_name("name".into(), &raw.name, &[])?;
 
     let p = &raw.plate;
@@ -659,6 +670,7 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         plate,
         bodies,
         restitution,
+        contact_law,
         conditions,
         points,
         transient_points,

@@ -2,7 +2,7 @@
 
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
-use coupled::transient::{simulate, zener, Striker};
+use coupled::transient::{simulate, zener, ContactLaw, Striker};
 use impact::scene::{Scene, SceneSource};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
 use plate_fem::{Mesh, Model, PlateProperties, Supports};
@@ -10,7 +10,7 @@ use plate_fem::{Mesh, Model, PlateProperties, Supports};
 fn coal(v: f64, e: f64) -> Striker {
     let scene = Scene::default_scene();
     let imp = impact_of(&scene, &scene.bodies[0], v);
-    Striker { k: imp.contact_stiffness, restitution: e, mass: imp.mass, velocity: v }
+    Striker { k: imp.contact_stiffness, restitution: e, mass: imp.mass, velocity: v, law: ContactLaw::Flores }
 }
 
 /// Rigid target, e = 1: Hertz. Newmark's rule is second order, so the force error falls 4x

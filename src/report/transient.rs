@@ -7,7 +7,7 @@ use crate::scene::{Analysis, Scene, SupportSet};
 use analytic::{respond, Condition, Method, Sphere};
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
-use coupled::transient::{simulate, zener, Outcome, Striker, HERTZ_TIME};
+use coupled::transient::{simulate, zener, ContactLaw, Outcome, Striker, HERTZ_TIME};
 use coupled::PlateModel;
 use coupled::{BeamModel, ComplianceModel};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
@@ -26,7 +26,13 @@ const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200
 
 fn striker(scene: &Scene, body: &Sphere, v: f64) -> Striker {
     let imp = impact_of(scene, body, v);
-    Striker { k: imp.contact_stiffness, restitution: scene.restitution, mass: imp.mass, velocity: v }
+    Striker {
+        k: imp.contact_stiffness,
+        restitution: scene.restitution,
+        mass: imp.mass,
+        velocity: v,
+        law: scene.contact_law.law_for(body),
+    }
 }
 
 /// An optional number as a cell: empty where there is none (no separation in the window).
@@ -231,7 +237,13 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
     let mut md = String::new();
     let coal = scene.bodies.first().ok_or("no body")?;
     let imp = impact_of(scene, coal, 0.008);
-    let elastic = Striker { k: imp.contact_stiffness, restitution: 1.0, mass: imp.mass, velocity: 0.008 };
+    let elastic = Striker {
+        k: imp.contact_stiffness,
+        restitution: 1.0,
+        mass: imp.mass,
+        velocity: 0.008,
+        law: ContactLaw::Flores,
+    };
     let tc = elastic.hertz_time();
     let mut h =
         Table::new("", &["steps per t_c", "P_max/Hertz - 1", "t_c/Hertz - 1", "apparent e - 1", "max energy error"]);

@@ -13,7 +13,7 @@ use crate::error::ModelError;
 use crate::scene::{Analysis, Scene};
 use crate::supports::SupportSet;
 use crate::transient::estimate::{estimate_on, Estimated};
-use crate::transient::{case::striker, Outcome, TransientCase, TransientSettings};
+use crate::transient::{case::striker, Outcome, Striker, TransientCase, TransientSettings};
 use crate::validity::{self, Validity};
 use analytic::{
     contact_stiffness, respond, yield_velocity, DruckerPrager, Impact, Method, PointCompliance, Response, Sphere,
@@ -492,7 +492,9 @@ pub fn transient_values(
     let corners = o.corners_at_max_compression_interpolated;
     let (l, b) = (scene.plate.length(), scene.plate.width());
     let delta = o.compression_max_interpolated;
-    let p = s.k * delta.max(0.0).powf(1.5);
+    // δ̇ = 0 at maximum compression: Kδ^{3/2} for the elastic laws, the loading branch for
+    // Thornton's.
+    let p = if s.law.is_elastic() { s.k * delta.max(0.0).powf(1.5) } else { s.force(delta.max(0.0), 0.0) };
     let dp = DruckerPrager::of(body);
     let d_my = dp.yield_compression(body.radius(), s.k);
     // The plate's own deflection: w at the point minus the bilinear plane through the
@@ -540,7 +542,9 @@ pub fn transient_values(
             left_for_good: o.left_at.is_some(),
         },
         validity: Validity {
-            elastic: Some(validity::elastic(delta, d_my)),
+            // Compressions beyond δ_my leave an elastic law's range; Thornton's law describes
+            // the plastic contact beyond it (its yield onset is δ_my), so it carries no flag.
+            elastic: s.law.is_elastic().then(|| validity::elastic(delta, d_my)),
             quasi_static: None,
             thin_plate: thin_plate(scene),
             recontact,
@@ -564,7 +568,10 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
             for &(x, z) in &points {
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
-                        let s = striker(&scene.plate, body, scene.restitution, v);
+                        let s = Striker {
+                            law: scene.contact_law.law_for(body),
+                            ..striker(&scene.plate, body, scene.restitution, v)
+                        };
                         let e =
                             estimate_on(&case, &fine, coarse.as_ref(), set, &s, (x, z), settings.steps_per_contact)?;
                         let o = &e.outcome;
@@ -621,7 +628,7 @@ pub fn dynamic_yield(
     let k = contact_stiffness(body, scene.plate.material());
     let d_my = dp.yield_compression(body.radius(), k);
     let reach = |v: f64| -> Result<f64, ModelError> {
-        let s = striker(&scene.plate, body, scene.restitution, v);
+        let s = Striker { law: scene.contact_law.law_for(body), ..striker(&scene.plate, body, scene.restitution, v) };
         Ok(case.run(set, &s, x, z)?.compression_max - d_my)
     };
     // On a rigid target the balance gives the smallest v that reaches δ_my: start there.

@@ -3,6 +3,7 @@
 //! line's business; this type only holds what passed.
 
 use crate::supports::SupportSet;
+use crate::transient::LawKind;
 use analytic::{Method, Plate, Sphere};
 use serde::{Deserialize, Serialize};
 
@@ -130,6 +131,8 @@ pub struct Scene {
     pub bodies: Vec<Sphere>,
     /// Restitution e of the Flores law (eq. 1).
     pub restitution: f64,
+    /// The transient model's contact law (the quasi-static model is the paper's Flores law).
+    pub contact_law: LawKind,
     /// Support sets, names unique.
     pub conditions: Vec<SupportSet>,
     /// Impact points.

@@ -5,7 +5,8 @@ use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
 use coupled::transient::estimate::{choose, estimate, Budget, Quantities, DEFAULT_TOLERANCE};
 use coupled::transient::{
-    simulate, simulate_with, Contact, Outcome, PlateFacts, SpringMass, Striker, TransientCase, TransientSettings,
+    simulate, simulate_with, Contact, ContactLaw, Outcome, PlateFacts, SpringMass, Striker, TransientCase,
+    TransientSettings,
 };
 use plate_fem::Supports;
 
@@ -196,7 +197,7 @@ impl Sdof {
 
 /// The transient loop on the spring-mass target.
 fn on_spring_mass(sd: &Sdof, steps: f64, window: f64) -> (Outcome, f64) {
-    let s = Striker { k: sd.k_contact, restitution: sd.e, mass: sd.m, velocity: sd.v0 };
+    let s = Striker { k: sd.k_contact, restitution: sd.e, mass: sd.m, velocity: sd.v0, law: ContactLaw::Flores };
     let dt = s.hertz_time() / steps;
     let mut target = SpringMass::new(sd.big_m, sd.k, dt);
     let facts = PlateFacts { static_compliance: Some(target.static_compliance()), ..Default::default() };
@@ -502,6 +503,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         plate: p,
         bodies: vec![body("coal")],
         restitution: 0.65,
+        contact_law: coupled::transient::LawKind::Flores,
         conditions: vec![con(2)],
         points: Points::Pairs { pairs: vec![(p.length() / 2.0, p.width() / 2.0)] },
         transient_points: vec![(p.length() / 2.0, p.width() / 2.0)],

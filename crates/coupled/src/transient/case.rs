@@ -1,7 +1,7 @@
 //! One transient case on a scene's plate: the sphere, the support set, the point and the
 //! velocity, with the discretisation the transient study validated.
 
-use super::{simulate_with, Outcome, PlateFacts, Striker};
+use super::{simulate_with, ContactLaw, Outcome, PlateFacts, Striker};
 use crate::discretisation::{mesh_for, plate_properties};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
@@ -28,9 +28,16 @@ impl Default for TransientSettings {
     }
 }
 
-/// The sphere of `body` striking `plate` at `velocity` with restitution `restitution`.
+/// The sphere of `body` striking `plate` at `velocity` with the Flores law of restitution
+/// `restitution` (set `law` for another).
 pub fn striker(plate: &Plate, body: &Sphere, restitution: f64, velocity: f64) -> Striker {
-    Striker { k: contact_stiffness(body, plate.material()), restitution, mass: body.mass(), velocity }
+    Striker {
+        k: contact_stiffness(body, plate.material()),
+        restitution,
+        mass: body.mass(),
+        velocity,
+        law: ContactLaw::Flores,
+    }
 }
 
 /// The plate's transient model: one mesh, shared by every case on it.

@@ -1,14 +1,17 @@
-//! The contact between sphere and plate in the transient model: the Flores law (eqs. 1-2)
-//! and its solution within one Newmark step.
+//! The contact between sphere and plate in the transient model: the striker's contact law
+//! ([`super::law`]: Flores, eqs. 1-2, by default) and its solution within one Newmark step.
 //!
 //! Within a step the plate's point displacement and velocity are affine in the step-end
 //! force P, and so is the sphere's, so the compression δ and its rate δ̇ at the end of the
 //! step are δ(P) = δ̂ - (Δt²/4m + g)P and δ̇(P) = δ̇̂ - (Δt/2m + 2g/Δt)P. The contact law then
-//! reduces to one scalar equation h(P) = P - F(δ(P), δ̇(P)) = 0, F = max(0, Kδ^{3/2}(1 +
-//! 8(1-e)/(5e) δ̇/v₀)); h is increasing, so the root in [0, F(δ̂, δ̇̂)] is unique and is found
-//! by safeguarded secant steps.
+//! reduces to one scalar equation h(P) = P - F(δ(P), δ̇(P)) = 0, e.g. F = max(0, Kδ^{3/2}(1 +
+//! 8(1-e)/(5e) δ̇/v₀)) for Flores; every law's F is nondecreasing in δ and (Flores) in δ̇,
+//! both of which fall as P grows, so h is increasing and the root in [0, F(δ̂, δ̇̂)] is
+//! unique; it is found by safeguarded secant steps. A history-dependent law (Thornton's)
+//! enters with the largest compression before the step: within the step it is loading if
+//! δ(P) exceeds it and unloading otherwise, one continuous nondecreasing F either way.
 
-use analytic::contact::flores_force;
+use super::law::ContactLaw;
 use serde::Serialize;
 
 /// The Hertz time constant 2 · 0.4 B(2/5, 1/2) · (5/4)^{2/5} = 3.21800, from
@@ -31,6 +34,8 @@ pub struct Striker {
     pub mass: f64,
     /// Impact velocity v₀ > 0, m/s.
     pub velocity: f64,
+    /// The contact law (Flores by default).
+    pub law: ContactLaw,
 }
 
 impl Striker {
@@ -43,20 +48,34 @@ impl Striker {
     pub fn hertz_force(&self) -> f64 {
         self.k * (5.0 * self.mass * self.velocity.powi(2) / (4.0 * self.k)).powf(0.6)
     }
-    /// The Flores force at compression δ and rate δ̇, never negative (no adhesion).
+    /// The law's force at compression δ and rate δ̇ with δ the largest compression so far
+    /// (a plastic law on its loading branch), never negative (no adhesion).
     pub fn force(&self, delta: f64, rate: f64) -> f64 {
-        if delta <= 0.0 {
-            0.0
-        } else {
-            flores_force(self.k, self.restitution, delta, rate, self.velocity).max(0.0)
-        }
+        self.force_after(delta, rate, delta)
+    }
+    /// The law's force at δ, δ̇ after a largest compression `dmax` so far.
+    pub fn force_after(&self, delta: f64, rate: f64, dmax: f64) -> f64 {
+        self.law.force(self.k, self.restitution, self.velocity, delta, rate, dmax)
+    }
+    /// The elastic energy in the contact at δ after a largest compression `dmax`.
+    pub fn stored_energy(&self, delta: f64, dmax: f64) -> f64 {
+        self.law.stored_energy(self.k, delta, dmax)
+    }
+    /// The permanent compression after a largest compression `dmax` (zero if elastic).
+    pub fn permanent_set(&self, dmax: f64) -> f64 {
+        self.law.permanent_set(self.k, dmax)
     }
 }
 
 /// Solves h(P) = P - F(δ(P), δ̇(P)) = 0 for P ≥ 0 (h increasing): Illinois false position
-/// on the bracket [0, F(δ̂, δ̇̂)].
+/// on the bracket [0, F(δ̂, δ̇̂)], for a contact never compressed before.
 pub fn contact_force(s: &Striker, d0: f64, d1: f64, r0: f64, r1: f64) -> f64 {
-    let f = |p: f64| s.force(d0 - d1 * p, r0 - r1 * p);
+    contact_force_after(s, 0.0, d0, d1, r0, r1)
+}
+
+/// As [`contact_force`] after a largest compression `dmax` in earlier steps.
+pub fn contact_force_after(s: &Striker, dmax: f64, d0: f64, d1: f64, r0: f64, r1: f64) -> f64 {
+    let f = |p: f64| s.force_after(d0 - d1 * p, r0 - r1 * p, dmax);
     let hi0 = f(0.0);
     if hi0 <= 0.0 {
         return 0.0;

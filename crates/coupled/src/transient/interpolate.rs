@@ -80,7 +80,8 @@ fn state_at(s: &Striker, a: &StepEnd, b: &StepEnd, springs: Option<[f64; 4]>, dt
     };
     let kinetic = a.plate_kinetic + frac * (b.plate_kinetic - a.plate_kinetic);
     let strain = total - spring_energy - kinetic;
-    let contact = if delta > 0.0 { 0.4 * s.k * delta.powf(2.5) } else { 0.0 };
+    // Within the first contact up to its maximum δ is the largest compression so far.
+    let contact = s.stored_energy(delta, delta);
     let sphere_kinetic = 0.5 * s.mass * v * v;
     let sample = Sample {
         t: a.t + tau,

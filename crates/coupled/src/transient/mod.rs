@@ -1,5 +1,6 @@
-//! Transient impact: the sphere, the Flores contact force with its damping (eqs. 1-2) and
-//! the plate FE dynamics, integrated together in time. This tests the paper's
+//! Transient impact: the sphere, the contact force (by default the Flores law with its
+//! damping, eqs. 1-2; Hertz and Thornton's elastic-plastic law in [`law`]) and the plate FE
+//! dynamics, integrated together in time. This tests the paper's
 //! quasi-static assumption, that the plate deforms statically during contact.
 //!
 //! Both bodies use Newmark's average-acceleration rule (`plate_fem::dynamics`). Each step
@@ -12,9 +13,9 @@
 //! mass on a spring, for checks against an ODE solution.
 //!
 //! ```
-//! use coupled::transient::{simulate, Striker};
+//! use coupled::transient::{simulate, ContactLaw, Striker};
 //! // A coal sphere (Table 1) on a rigid target with e = 1 is Hertz's impact.
-//! let s = Striker { k: 5.11545e8, restitution: 1.0, mass: 0.0903, velocity: 0.008 };
+//! let s = Striker { k: 5.11545e8, restitution: 1.0, mass: 0.0903, velocity: 0.008, law: ContactLaw::Flores };
 //! let tc = s.hertz_time();
 //! let o = simulate(&s, None, tc / 200.0, 3.0 * tc);
 //! assert!((o.force_max / s.hertz_force() - 1.0).abs() < 1e-4);
@@ -28,12 +29,14 @@ pub mod case;
 pub mod contact;
 pub mod estimate;
 pub mod interpolate;
+pub mod law;
 pub mod reference;
 pub mod target;
 
 pub use case::{TransientCase, TransientSettings};
-pub use contact::{contact_force, Striker, HERTZ_TIME};
+pub use contact::{contact_force, contact_force_after, Striker, HERTZ_TIME};
 pub use estimate::{choose, estimate, Estimated, Quantities};
+pub use law::{thornton_restitution, ContactLaw, LawKind};
 pub use reference::zener;
 pub use target::{SpringMass, Target};
 
@@ -55,7 +58,8 @@ pub struct Sample {
     pub plate_displacement: f64,
     /// Kinetic energy of the sphere, J.
     pub sphere_kinetic: f64,
-    /// Elastic energy in the contact, (2/5)Kδ^{5/2}, J.
+    /// Elastic energy in the contact, (2/5)Kδ^{5/2} for an elastic law (what unloading would
+    /// return, [`ContactLaw::stored_energy`]), J.
     pub contact: f64,
     /// Kinetic energy of the plate, J.
     pub plate_kinetic: f64,
@@ -63,7 +67,8 @@ pub struct Sample {
     pub plate_strain: f64,
     /// Energy of the corner springs, J.
     pub springs: f64,
-    /// E₀ minus everything stored or moving: the Flores damping (and numerical) loss.
+    /// E₀ minus everything stored or moving: the Flores damping or the plastic work (and the
+    /// numerical) loss.
     pub dissipated: f64,
 }
 
@@ -148,12 +153,19 @@ pub struct Contact {
 /// The energy bookkeeping of one step: every store of the sphere, the contact and the
 /// plate, and E₀ minus their sum (the Flores damping and numerical loss). Returns the
 /// sample and the sum of the stores.
-fn energies<T: Target + ?Sized>(s: &Striker, plate: Option<&T>, t: f64, p: f64, delta: f64, v: f64) -> (Sample, f64) {
+fn energies<T: Target + ?Sized>(
+    s: &Striker,
+    plate: Option<&T>,
+    t: f64,
+    p: f64,
+    (delta, dmax): (f64, f64),
+    v: f64,
+) -> (Sample, f64) {
     let m = s.mass;
     let e0 = 0.5 * m * s.velocity * s.velocity;
     let en = plate.map(|p| p.energy());
     let (pk, ps, sp) = en.map_or((0.0, 0.0, 0.0), |e| (e.kinetic, e.strain, e.springs));
-    let contact = if delta > 0.0 { 0.4 * s.k * delta.powf(2.5) } else { 0.0 };
+    let contact = s.stored_energy(delta, dmax);
     let kin = 0.5 * m * v * v;
     let stored = kin + contact + pk + ps + sp;
     let sample = Sample {
@@ -293,13 +305,19 @@ pub fn simulate_with<T: Target + ?Sized>(
     let mut current: Option<Contact> = None;
     let mut first_steps = 0usize;
     let mut left_at = None;
+    // The largest compression so far and the permanent compression it left: a plastic
+    // contact opens at δ = δ_p, not at δ = 0, so the contact sequence is followed on δ - δ_p
+    // (δ_p = 0 for the elastic laws, which leaves every test unchanged).
+    let mut dmax: f64 = 0.0;
+    let shifted = |e: &StepEnd, set: f64| StepEnd { delta: e.delta - set, ..*e };
+    let conserves = s.law.conserves(s.restitution);
     while t < t_max {
         let (wp, vp) = plate.as_mut().map_or((0.0, 0.0), |p| p.predict());
         let u_hat = u + dt * v + 0.25 * dt * dt * a;
         let v_hat = v + 0.5 * dt * a;
         let (d0, d1) = (u_hat - wp, 0.25 * dt * dt / m + g);
         let (r0, r1) = (v_hat - vp, 0.5 * dt / m + 2.0 * g / dt);
-        let p = contact_force(s, d0, d1, r0, r1);
+        let p = contact_force_after(s, dmax, d0, d1, r0, r1);
         let a_new = -p / m;
         u = u_hat + 0.25 * dt * dt * a_new;
         v = v_hat + 0.5 * dt * a_new;
@@ -311,7 +329,9 @@ pub fn simulate_with<T: Target + ?Sized>(
         steps += 1;
         let delta = d0 - d1 * p;
         let rate = r0 - r1 * p;
-        let (sample, stored) = energies(s, plate.as_deref(), t, p, delta, v);
+        dmax = dmax.max(delta);
+        let set = s.permanent_set(dmax);
+        let (sample, stored) = energies(s, plate.as_deref(), t, p, (delta, dmax), v);
         let (wp_now, vp_now) = plate.as_ref().map_or((0.0, 0.0), |p| p.point_state());
         let corners = plate.as_ref().map_or([0.0; 4], |p| p.corner_displacements());
         // Trapezoidal rule: c_{n+1} - c_n = Δt/2 (ċ_n + ċ_{n+1}) gives the corner rates exactly.
@@ -331,13 +351,13 @@ pub fn simulate_with<T: Target + ?Sized>(
             plate_strain: sample.plate_strain,
             springs: sample.springs,
         };
-        if s.restitution >= 1.0 {
+        if conserves {
             max_err_total = max_err_total.max((stored - e0).abs() / e0);
         }
         // The contact sequence, with start and end on the in-step interpolant of δ.
         match current.as_mut() {
             None if p > 0.0 => {
-                let start = interpolate::crossing(&prev, &end, dt);
+                let start = interpolate::crossing(&shifted(&prev, set), &shifted(&end, set), dt);
                 current = Some(Contact {
                     start,
                     duration: 0.0,
@@ -352,8 +372,8 @@ pub fn simulate_with<T: Target + ?Sized>(
                 c.peak_force = c.peak_force.max(p);
                 c.impulse += 0.5 * dt * (prev.force + p);
                 c.steps += 1;
-                if separated(true, p, delta, prev.delta).is_some() {
-                    c.duration = interpolate::crossing(&prev, &end, dt) - c.start;
+                if separated(true, p, delta - set, prev.delta - set).is_some() {
+                    c.duration = interpolate::crossing(&shifted(&prev, set), &shifted(&end, set), dt) - c.start;
                     c.rebound_velocity = v;
                     contacts.extend(current.take());
                 }
@@ -362,7 +382,7 @@ pub fn simulate_with<T: Target + ?Sized>(
         if first_done {
             later_history.push(sample);
         } else {
-            if s.restitution >= 1.0 {
+            if conserves {
                 max_err = max_err.max((stored - e0).abs() / e0);
             }
             history.push(sample);
@@ -375,7 +395,7 @@ pub fn simulate_with<T: Target + ?Sized>(
             if p > 0.0 {
                 started = true;
             }
-            if let Some(frac) = separated(started, p, delta, prev_delta) {
+            if let Some(frac) = separated(started, p, delta - set, prev_delta - set) {
                 contact_time = Some(t - dt + frac * dt);
                 rebound = Some(v);
                 plate_velocity = plate.as_ref().map(|p| p.point_state().1).or(Some(0.0));
