@@ -293,3 +293,16 @@ fn solver_tolerance_is_bounded() {
     let text = format!("{DEFAULT_SCENE}\n[solver]\ntolerance = 1e-300\n");
     expect(&text, &["solver.tolerance = 1e-300"]);
 }
+
+/// The contact law is a scene choice: the paper's Flores law by default, Hertz and
+/// Thornton's elastic-plastic law by name, anything else refused naming the key.
+#[test]
+fn contact_law_is_a_scene_choice() {
+    use coupled::transient::law::LawKind;
+    assert_eq!(Scene::default_scene().contact_law, LawKind::Flores);
+    for (name, kind) in [("hertz", LawKind::Hertz), ("thornton", LawKind::Thornton), ("flores", LawKind::Flores)] {
+        let s = Scene::parse(&format!("contact_law = \"{name}\"\n{DEFAULT_SCENE}"), "t").unwrap();
+        assert_eq!(s.contact_law, kind);
+    }
+    expect(&format!("contact_law = \"glue\"\n{DEFAULT_SCENE}"), &["contact_law", "'glue' is not a contact law"]);
+}
