@@ -1,6 +1,6 @@
 //! The `impact` command line.
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, Results};
 use coupled::transient::TransientSettings;
 use coupled::{BeamModel, PlateModel};
@@ -39,6 +39,15 @@ struct Common {
     /// transient plate, or all three.
     #[arg(long, value_enum, default_value_t = ModelChoice::Beam)]
     model: ModelChoice,
+}
+
+/// The `impact field --format` choice.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum FieldFormat {
+    /// `impact-plate-field/1` JSON, per unit load (reference/README.md).
+    Json,
+    /// VTK XML UnstructuredGrid, with stresses and the near-load flag.
+    Vtu,
 }
 
 /// The `--model` choice.
@@ -118,8 +127,14 @@ enum Command {
         #[arg(long, default_value_t = 21)]
         nz: usize,
     },
-    /// Write the plate FE deflection field under a unit load (JSON for meshio; see
-    /// reference/README.md).
+    /// Write the plate FE deflection field under a point load: JSON for meshio (see
+    /// reference/README.md) or a .vtu that ParaView opens directly.
+    ///
+    /// The .vtu has point data `displacement` (0, 0, w) for "Warp By Vector" and w, w_x, w_z;
+    /// cell data the element-centre moments M_x, M_z, M_xz, the surface bending stresses
+    /// sigma = 6M/h², and `near_load` = 1 on the elements touching the load point. There the
+    /// Kirchhoff moment of a point load is singular and the values grow with refinement: read
+    /// stress maxima from the other elements.
     Field {
         /// Scene file; default: the paper's Table 1.
         #[arg(long, value_name = "FILE")]
@@ -136,9 +151,23 @@ enum Command {
         /// Elements along the longer side.
         #[arg(long, default_value_t = 40)]
         elements: usize,
-        /// Output file (a regular file or a new one; `-` for standard output).
-        #[arg(long, value_name = "FILE", default_value = "field.json")]
-        out: PathBuf,
+        /// Output file (a regular file or a new one; `-` for standard output); default
+        /// field.json or field.vtu by --format.
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+        /// File format.
+        #[arg(long, value_enum, default_value_t = FieldFormat::Json)]
+        format: FieldFormat,
+        /// Load, N, that scales every value in the .vtu (fields are linear in it); the JSON
+        /// is always per unit load.
+        #[arg(long, default_value_t = 1.0, value_name = "F")]
+        force_n: f64,
+    },
+    /// Print a shell completion script to standard output (e.g. `impact completions bash >
+    /// ~/.local/share/bash-completion/completions/impact`).
+    Completions {
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
     },
     /// Print the embedded default scene (a template for your own).
     DefaultScene,
@@ -294,7 +323,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Field { scene, condition, x_mm, z_mm, elements, out } => {
+        Command::Field { scene, condition, x_mm, z_mm, elements, out, format, force_n } => {
             let scene = load(&scene)?;
             let cond = scene.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
                 let names: Vec<&str> = scene.conditions.iter().map(|c| c.name.as_str()).collect();
@@ -312,18 +341,44 @@ fn execute(command: Command) -> Result<(), Failure> {
             if !(0.0..=b).contains(&z_mm) {
                 return Err(format!("--z-mm {z_mm} is outside the plate: the allowed range is [0, {b}] mm").into());
             }
+            if !(force_n.is_finite() && force_n > 0.0) {
+                return Err(format!("--force-n {force_n} must be a positive number of newtons").into());
+            }
+            // The JSON format is defined per unit load; a scaled JSON would read as one.
+            if format == FieldFormat::Json && force_n != 1.0 {
+                return Err("--force-n scales the .vtu only; add --format vtu (the JSON is per unit load)".into());
+            }
+            let out = out.unwrap_or_else(|| {
+                PathBuf::from(match format {
+                    FieldFormat::Json => "field.json",
+                    FieldFormat::Vtu => "field.vtu",
+                })
+            });
             let target = OutputFile::prepare(&out)?;
             let f = impact::report::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
-            let json = serde_json::to_string(&f)?;
+            let bytes = match format {
+                FieldFormat::Json => format!("{}\n", serde_json::to_string(&f)?).into_bytes(),
+                FieldFormat::Vtu => impact::present::vtk::to_vtu(&f, force_n)?,
+            };
             if target.is_stdout() {
-                return self::out(&format!("{json}\n"));
+                let mut o = std::io::stdout().lock();
+                o.write_all(&bytes)?;
+                o.flush()?;
+                return Ok(());
             }
-            if let Some(p) = target.commit(json.as_bytes())? {
+            if let Some(p) = target.commit(&bytes)? {
                 eprintln!("wrote {}", p.display());
             }
             Ok(())
         }
         Command::DefaultScene => out(DEFAULT_SCENE),
+        Command::Completions { shell } => {
+            // Into a buffer first: clap_complete panics on a write error, and a closed pipe
+            // (`impact completions bash | head`) should end quietly like every other command.
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "impact", &mut script);
+            out(&String::from_utf8(script)?)
+        }
     }
 }
 

@@ -5,7 +5,11 @@
 3. meshio reads both back: points, cells and every field must equal the JSON exactly;
 4. scikit-fem reads the same .vtu mesh through meshio, triangulates its quads, and solves
    the same plate (Argyris) on those nodes: its compliance at the load point must agree
-   with the Rust deflection there to the discretization error of the mesh.
+   with the Rust deflection there to the discretization error of the mesh;
+5. `impact field --format vtu` (the .vtu written by Rust itself, with vtkio) read by meshio:
+   the same points, quads and fields as the JSON, displacement = (0, 0, w), the stresses
+   6M/h², the near-load flag on the elements touching the load, and --force-n scaling
+   every value.
 
 Prints one line per check and a closing 'N passed, N failed'; exits non-zero on failure.
 Usage: python check_roundtrip.py [--impact PATH_TO_BINARY]
@@ -26,6 +30,41 @@ import export_fields  # noqa: E402
 import plate_reference as pr  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
+
+
+def check_rust_vtu(check, path, doc, force, h, load):
+    """meshio reads `impact field --format vtu` back with the JSON's values times `force`.
+    Rust writes binary f64 and the JSON holds shortest round-trip decimals, so the same
+    multiplication gives the same bits: equality is exact except for 6M/h², whose factors
+    Rust and numpy may group differently."""
+    tag = f".vtu from Rust (F = {force} N)"
+    m = meshio.read(path)
+
+    def scalar(a):
+        # vtkio writes NumberOfComponents="1" on scalars, which meshio keeps as a column.
+        a = np.asarray(a)
+        return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
+
+    pts = np.asarray(doc["points"])
+    check(f"{tag} points", np.array_equal(m.points, np.column_stack([pts, np.zeros(len(pts))])))
+    check(f"{tag} quads", list(m.cells_dict) == ["quad"] and np.array_equal(m.cells_dict["quad"], np.asarray(doc["quads"])))
+    for k in ("w", "w_x", "w_z"):
+        check(f"{tag} point_data {k}", np.array_equal(scalar(m.point_data[k]), np.asarray(doc["point_data"][k]) * force))
+    w = np.asarray(doc["point_data"]["w"]) * force
+    disp = m.point_data["displacement"]
+    check(f"{tag} displacement = (0, 0, w)", disp.shape == (len(w), 3) and np.array_equal(disp, np.column_stack([0 * w, 0 * w, w])))
+    for k, s in (("M_x", "sigma_x"), ("M_z", "sigma_z"), ("M_xz", "sigma_xz")):
+        moment = np.asarray(doc["cell_data"][k]) * force
+        check(f"{tag} cell_data {k}", np.array_equal(scalar(m.cell_data[k][0]), moment))
+        check(f"{tag} cell_data {s} = 6M/h^2", np.allclose(scalar(m.cell_data[s][0]), 6.0 * moment / h**2, rtol=1e-14, atol=0.0))
+    # The flag marks exactly the elements whose rectangle holds the load point.
+    quads = np.asarray(doc["quads"])
+    lo, hi = pts[quads[:, 0]], pts[quads[:, 2]]
+    tol = 1e-9 * np.abs(pts).max()
+    touching = np.all((lo - tol <= load) & (np.asarray(load) <= hi + tol), axis=1)
+    near = scalar(m.cell_data["near_load"][0])
+    check(f"{tag} near_load on the elements at the load", np.array_equal(near.astype(bool), touching) and touching.sum() >= 1,
+          f"({int(near.sum())} elements)")
 
 
 def main(argv=None):
@@ -70,6 +109,16 @@ def main(argv=None):
         rel = abs(c_skfem - c_rust) / c_rust
         # On 20 x 16 both elements are within ~1.5e-4 (BFS) and ~3e-5 (Argyris) of the limit.
         check("Argyris on the Rust mesh vs Rust BFS compliance", rel < 5e-4, f"(rel. difference {rel:.2e})")
+
+        # The .vtu Rust writes itself, read by meshio, against the JSON.
+        for force in (1.0, 2.5):
+            rust_vtu = Path(tmp) / f"rust-{force}.vtu"
+            subprocess.run(
+                [args.impact, "field", "--condition", "Con 1", "--x-mm", str(x_mm), "--z-mm", str(z_mm), "--elements", "20",
+                 "--format", "vtu", "--force-n", str(force), "--out", str(rust_vtu)],
+                check=True,
+            )
+            check_rust_vtu(check, rust_vtu, doc, force, plate["thickness"], (x, z))
 
     passed = sum(results)
     failed = len(results) - passed

@@ -3,3 +3,4 @@
 pub mod plot;
 pub mod rows;
 pub mod table;
+pub mod vtk;

@@ -1,6 +1,12 @@
 //! Deflection fields for viewing: the mesh and fields in a simple documented JSON form
 //! (`impact-plate-field/1`, see reference/README.md) that reference/python/export_fields.py
-//! turns into .vtu and .xdmf with meshio.
+//! turns into .vtu and .xdmf with meshio; `crate::present::vtk` writes the same field as
+//! .vtu directly, with the bending stresses and the elements at the load marked.
+//!
+//! Near the load the moments are not converged: under a point load the Kirchhoff moment is
+//! logarithmically singular, so the element-centre moments (and stresses) of the elements
+//! touching the load point grow without bound as the mesh is refined. `near_load` marks those
+//! elements; deflections and the moments away from the load converge.
 
 use crate::scene::{Scene, SupportSet};
 use coupled::discretisation::{mesh_for, plate_properties};
@@ -25,6 +31,38 @@ pub struct FieldFile {
     pub cell_data: CellData,
     /// Relative residual of the solve.
     pub residual: f64,
+    /// Plate thickness h, m, for the bending stress σ = 6M/h². Left out of the JSON, whose
+    /// format `impact-plate-field/1` is fixed; the scene carries it.
+    #[serde(skip)]
+    pub thickness: f64,
+}
+
+impl FieldFile {
+    /// Surface bending stresses per unit load, σ = 6M/h² for M_x, M_z, M_xz (Pa per N), the
+    /// stress of a linear distribution through the thickness at the faces.
+    pub fn stresses(&self) -> [Vec<f64>; 3] {
+        let s = 6.0 / (self.thickness * self.thickness);
+        let c = &self.cell_data;
+        [&c.m_x, &c.m_z, &c.m_xz].map(|m| m.iter().map(|v| s * v).collect())
+    }
+
+    /// Per element: whether it touches the load point (the closed rectangle contains it).
+    /// Their moments are those of a logarithmic singularity sampled at the element centre,
+    /// so they grow with refinement; one to four elements, by where the load falls.
+    pub fn near_load(&self) -> Vec<bool> {
+        let [x, z] = self.load;
+        // A load on a node or an element edge touches every element sharing it; the
+        // tolerance keeps a load typed in millimetres on a node from missing by rounding.
+        let extent = self.points.iter().fold(0.0f64, |a, p| a.max(p[0].abs()).max(p[1].abs()));
+        let tol = 1e-9 * extent;
+        self.quads
+            .iter()
+            .map(|q| {
+                let (lo, hi) = (self.points[q[0]], self.points[q[2]]);
+                (lo[0] - tol..=hi[0] + tol).contains(&x) && (lo[1] - tol..=hi[1] + tol).contains(&z)
+            })
+            .collect()
+    }
 }
 
 #[derive(Debug, Serialize)]
@@ -83,5 +121,6 @@ pub fn field(scene: &Scene, condition: &SupportSet, x: f64, z: f64, n: usize) ->
             m_xz: moments.iter().map(|m| m[2]).collect(),
         },
         residual,
+        thickness: scene.plate.thickness(),
     })
 }
