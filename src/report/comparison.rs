@@ -445,7 +445,13 @@ pub fn width_table(rows: &[WidthRow]) -> Table {
         ],
     );
     for r in rows {
-        t.push(vec![r.width_ratio.into(), r.centre.into(), r.free_edge.into(), r.quarter_span.into(), r.fe_error.into()]);
+        t.push(vec![
+            r.width_ratio.into(),
+            r.centre.into(),
+            r.free_edge.into(),
+            r.quarter_span.into(),
+            r.fe_error.into(),
+        ]);
     }
     t
 }

@@ -302,10 +302,8 @@ fn size_map_findings(series: &[Series]) -> String {
             coupled::validity::QUASI_STATIC_MIN_RATIO,
             100.0 * e
         )),
-        None => out.push_str(&format!(
-            " no plate of the map reaches t_c/T₁ ≥ {};",
-            coupled::validity::QUASI_STATIC_MIN_RATIO
-        )),
+        None => out
+            .push_str(&format!(" no plate of the map reaches t_c/T₁ ≥ {};", coupled::validity::QUASI_STATIC_MIN_RATIO)),
     }
     if let Some((r, e)) = fastest {
         out.push_str(&format!(" at the fastest contact, t_c/T₁ = {r:.3}, it is off by {:.0} %.", 100.0 * e));
@@ -468,11 +466,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     md.push_str(&render(
         "transient/head.md",
         HEAD,
-        &[
-            ("scene", scene.name.clone()),
-            ("mesh", DYNAMIC_MESH.to_string()),
-            ("steps", STEPS_PER_CONTACT.to_string()),
-        ],
+        &[("scene", scene.name.clone()), ("mesh", DYNAMIC_MESH.to_string()), ("steps", STEPS_PER_CONTACT.to_string())],
     )?);
     if scene.wants(Analysis::Verification) {
         md.push_str(&verification(scene)?);
