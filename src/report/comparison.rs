@@ -16,6 +16,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write as _;
 use std::time::Instant;
 
+use crate::report::template::render;
 use crate::report::Failure;
 
 /// Mesh ladder of the comparison: 20 x 16 and 40 x 32 elements for the paper's plate
@@ -27,6 +28,36 @@ pub const MAP_X: usize = 101;
 pub const MAP_Z: usize = 21;
 /// The paper's Areas 1-7 (Table 2), as fractions of L.
 pub const AREAS: [f64; 7] = [0.03, 0.25, 0.46, 0.5, 0.54, 0.75, 0.98];
+/// The part of the length the maps and their statistics cover, as fractions of L: towards
+/// the ends the beam's compliance falls to zero and the ratio to it diverges.
+pub const INNER: (f64, f64) = (0.1, 0.9);
+/// The spring stiffnesses (N/m), velocities (m/s) and thicknesses (m) of the extreme cases.
+pub const EXTREME_SPRINGS: [f64; 4] = [1.0, 5e4, 5.11545e8, 1e15];
+pub const EXTREME_VELOCITIES: [f64; 4] = [1e-6, 1e-3, 1.0, 10.0];
+pub const EXTREME_THICKNESSES: [f64; 2] = [0.5e-3, 80e-3];
+
+// The report's prose, one template per section (sections are written only when the scene
+// asks for them; the map section repeats per support set).
+const HEAD: &str = include_str!("templates/comparison/head.md");
+const ACROSS: &str = include_str!("templates/comparison/across.md");
+const NO_MAP: &str = include_str!("templates/comparison/no-map.md");
+const MAP: &str = include_str!("templates/comparison/map.md");
+const WIDTH: &str = include_str!("templates/comparison/width.md");
+const EXTREME: &str = include_str!("templates/comparison/extreme.md");
+const ERROR_PAGE: &str = include_str!("templates/comparison/error-vs-time-page.md");
+const ERROR_LINK: &str = include_str!("templates/comparison/error-vs-time.md");
+const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
+const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
+
+/// A round number as the prose writes it: small integers as they are, the rest in
+/// exponent form (`1e15`).
+fn short(v: f64) -> String {
+    if v.fract() == 0.0 && v.abs() < 100.0 {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
 
 fn progress(len: u64, what: &str) -> ProgressBar {
     let pb = ProgressBar::new(len);
@@ -356,21 +387,30 @@ fn nearest(v: &[f64], x: f64) -> usize {
     v.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs())).map_or(0, |(i, _)| i)
 }
 
+/// The widths of the width study, as B/L.
+pub const WIDTH_RATIOS: [f64; 7] = [0.1, 0.25, 0.5, 0.785, 1.0, 1.5, 2.0];
+
+/// One width of the width study: C_plate/C_beam (Con 1) at three points.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WidthRow {
+    /// B/L.
+    pub width_ratio: f64,
+    /// At x = L/2 on the centreline.
+    pub centre: f64,
+    /// At x = L/2 on the free edge z = 0.
+    pub free_edge: f64,
+    /// At Area 2 (x = L/4) on the centreline.
+    pub quarter_span: f64,
+    /// The FE error estimate of the centre compliance, relative to it.
+    pub fe_error: f64,
+}
+
 /// Ratio C_plate/C_beam at x = L/2 on the centreline and the free edge, Con 1, for a range
 /// of widths (the beam is the same B-proportional stiffness at every width).
-pub fn width_dependence(scene: &Scene) -> Result<Table, Failure> {
-    let mut t = Table::new(
-        "",
-        &[
-            "B/L",
-            "C_plate/C_beam centre (x = L/2)",
-            "at the free edge (z = 0)",
-            "at Area 2 (x = L/4), centre",
-            "FE ± (rel.)",
-        ],
-    );
+pub fn width_dependence(scene: &Scene) -> Result<Vec<WidthRow>, Failure> {
     let l = scene.plate.length();
-    for bl in [0.1, 0.25, 0.5, 0.785, 1.0, 1.5, 2.0] {
+    let mut rows = Vec::new();
+    for bl in WIDTH_RATIOS {
         let plate = scene.plate.with_width(bl * l)?;
         let s = Scene { plate, ..scene.clone() };
         let cond = SupportSet::preset("Con 1", Condition::BothFixed);
@@ -386,10 +426,34 @@ pub fn width_dependence(scene: &Scene) -> Result<Table, Failure> {
                 fe.error_estimate / fe.compliance.total(),
             ))
         };
-        let (c, e) = r(pts[0])?;
-        t.push(vec![bl.into(), c.into(), r(pts[1])?.0.into(), r(pts[2])?.0.into(), e.into()]);
+        let (centre, fe_error) = r(pts[0])?;
+        rows.push(WidthRow { width_ratio: bl, centre, free_edge: r(pts[1])?.0, quarter_span: r(pts[2])?.0, fe_error });
     }
-    Ok(t)
+    Ok(rows)
+}
+
+/// The width study as the report prints it.
+pub fn width_table(rows: &[WidthRow]) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "B/L",
+            "C_plate/C_beam centre (x = L/2)",
+            "at the free edge (z = 0)",
+            "at Area 2 (x = L/4), centre",
+            "FE ± (rel.)",
+        ],
+    );
+    for r in rows {
+        t.push(vec![
+            r.width_ratio.into(),
+            r.centre.into(),
+            r.free_edge.into(),
+            r.quarter_span.into(),
+            r.fe_error.into(),
+        ]);
+    }
+    t
 }
 
 /// Everything `impact compare` writes for `scene`.
@@ -411,13 +475,15 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let mut md = String::new();
     let levels: Vec<String> =
         pr.model.levels.iter().map(|c| format!("{} x {} ({} DOFs)", c.nx, c.nz, c.dofs)).collect();
-    let _ = writeln!(
-        md,
-        "# Beam against plate: {}\n\n{}\n\nGenerated by `impact compare` (and `impact report` for the default scene). Both models feed\nthe same energy balance ½mv² = (2K/5e)δ^{{5/2}} + ½CK²δ³ and the same Drucker-Prager yield\nmodel; only the compliance C of the supported plate at the impact point differs:\n\n- **beam**: the paper's closed forms (section II), which ignore the width coordinate z;\n- **plate FE**: Kirchhoff plate, Bogner-Fox-Schmit elements on meshes {}, Richardson-extrapolated,\n  with corner point supports (fixed or springs k_T) at the four corners. \"FE ±\" is the\n  estimated discretization error of C (reports/fem shows how it was validated).\n\nRelative differences are plate/beam - 1. The plate's deflection is w at the impact point\nminus the plane through the corner deflections (the analogue of eq. 11, which leaves out the\nrigid motion on the springs); the beam's is eq. 11 (eq. 41 in Con 3).\n",
-        scene.name,
-        scene.description,
-        levels.join(" and ")
-    );
+    md.push_str(&render(
+        "comparison/head.md",
+        HEAD,
+        &[
+            ("scene", scene.name.clone()),
+            ("description", scene.description.clone()),
+            ("mesh_levels", levels.join(" and ")),
+        ],
+    )?);
 
     for t in pair_tables(scene, &pr) {
         let stem = format!("table-{}", slug(&t.title));
@@ -427,16 +493,22 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
 
     if let Some(mp) = &mp {
         // Maps and lines.
-        let _ = writeln!(md, "\n## Across the width\n\nThe beam cannot see z; the plate can. Maps of log10(C_plate/C_beam) over 0.1 L ≤ x ≤ 0.9 L ({} x {} points; towards the ends the beam's C falls to zero and the ratio diverges, see the lines), lines along the centreline and the free edge, and C_plate/C_beam across the width at the paper's Areas 1-7. All values are in maps.csv.\n", MAP_X, MAP_Z);
+        md.push_str(&render(
+            "comparison/across.md",
+            ACROSS,
+            &[
+                ("inner_from", INNER.0.to_string()),
+                ("inner_to", INNER.1.to_string()),
+                ("map_x", MAP_X.to_string()),
+                ("map_z", MAP_Z.to_string()),
+                ("areas", AREAS.len().to_string()),
+            ],
+        )?);
         let mut map_csv =
             Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
         for (ci, c) in scene.conditions.iter().enumerate() {
             if c.beam_condition().is_none() {
-                let _ = writeln!(
-                    md,
-                    "### {}\n\nThe beam describes only the paper's Con 1-3, so there is no C_plate/C_beam map for this support set; the plate's compliances at the scene's points are in the tables above.\n",
-                    c.name
-                );
+                md.push_str(&render("comparison/no-map.md", NO_MAP, &[("condition", c.name.clone())])?);
                 continue;
             }
             let ratio = |i: usize, j: usize| {
@@ -463,11 +535,11 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             a.add(
                 format!("{stem}.svg"),
                 heat_map(
-                    &format!("{}: log10(C_plate / C_beam), 0.1 L to 0.9 L", c.name),
+                    &format!("{}: log10(C_plate / C_beam), {} L to {} L", c.name, INNER.0, INNER.1),
                     &mp.xs,
                     &mp.zs,
                     |i, j| {
-                        if (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())) {
+                        if (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length())) {
                             (ratio(i, j) + 1.0).log10()
                         } else {
                             f64::NAN
@@ -478,7 +550,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             );
             // Interior statistics (away from the ends, where the beam ratio is singular).
             let inner: Vec<f64> = (0..mp.xs.len())
-                .filter(|&i| (0.1..=0.9).contains(&(mp.xs[i] / scene.plate.length())))
+                .filter(|&i| (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length())))
                 .flat_map(|i| (0..mp.zs.len()).map(move |j| (i, j)))
                 .map(|(i, j)| ratio(i, j))
                 .filter(|v| v.is_finite())
@@ -486,15 +558,16 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             let (lo, hi) = inner.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
             let mid = nearest(&mp.xs, scene.plate.length() / 2.0);
             let (zc, ze) = (nearest(&mp.zs, scene.plate.width() / 2.0), 0);
-            let _ = writeln!(
-                md,
-                "### {}\n\n![map]({stem}.svg)\n\nFor 0.1 L ≤ x ≤ 0.9 L the plate is {:+.1} % to {:+.1} % more compliant than the beam. At x = L/2: {:+.2} % on the centreline, {:+.2} % at the free edge.\n",
-                c.name,
-                100.0 * lo,
-                100.0 * hi,
-                100.0 * ratio(mid, zc),
-                100.0 * ratio(mid, ze)
-            );
+            let map_values = [
+                ("condition", c.name.clone()),
+                ("stem", stem.clone()),
+                ("inner_from", INNER.0.to_string()),
+                ("inner_to", INNER.1.to_string()),
+                ("lowest", format!("{:+.1}", 100.0 * lo)),
+                ("highest", format!("{:+.1}", 100.0 * hi)),
+                ("centre", format!("{:+.2}", 100.0 * ratio(mid, zc))),
+                ("edge", format!("{:+.2}", 100.0 * ratio(mid, ze))),
+            ];
             let line = |j: usize| {
                 Series::new(
                     format!("plate, z = {:.0} mm", mp.zs[j] * 1e3),
@@ -537,7 +610,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                     Scale::Log,
                 ),
             );
-            let _ = writeln!(md, "![along]({stem}-along.svg)\n\n![across]({stem}-across.svg)\n");
+            md.push_str(&render("comparison/map.md", MAP, &map_values)?);
         }
         a.add("maps.csv", map_csv.to_csv());
     }
@@ -545,9 +618,9 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
 
     pb.set_message("width dependence");
     if scene.wants(Analysis::AspectRatio) {
-        let wd = width_dependence(scene)?;
+        let wd = width_table(&width_dependence(scene)?);
         a.add("width-dependence.csv", wd.to_csv());
-        let _ = writeln!(md, "\n## How the beam error depends on B/L\n\nCon 1, same length, thickness and material; the beam's I = B h³/12 grows with B like the plate's width. The beam is right only for a narrow plate; as the plate widens, a point load bends it locally and the corners carry it through twisting, which the beam has no term for.\n\n{}", wd.to_markdown());
+        md.push_str(&render("comparison/width.md", WIDTH, &[("table", wd.to_markdown())])?);
     }
     pb.inc(1);
 
@@ -555,26 +628,48 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     if scene.wants(Analysis::ExtremeCases) {
         let xt = extreme_cases(scene)?;
         a.add("extreme-cases.csv", xt.to_csv());
-        let _ = writeln!(md, "\n## Stiff and extreme cases\n\nThe scene's first body at the centre, an end midpoint and an edge midpoint, with springs from 1 N/m to 1e15 N/m (Con 2), velocities over seven decades and plates from 0.5 mm to 80 mm thick. \"stable\" means finite results and a converged balance (its residuals shown); the FE error estimate is relative to C.\n\n{}", xt.to_markdown());
+        let decades = (EXTREME_VELOCITIES[EXTREME_VELOCITIES.len() - 1] / EXTREME_VELOCITIES[0]).log10();
+        md.push_str(&render(
+            "comparison/extreme.md",
+            EXTREME,
+            &[
+                ("k_min", short(EXTREME_SPRINGS[0])),
+                ("k_max", short(EXTREME_SPRINGS[EXTREME_SPRINGS.len() - 1])),
+                ("decades", format!("{decades:.0}")),
+                ("h_min", (EXTREME_THICKNESSES[0] * 1e3).to_string()),
+                ("h_max", (EXTREME_THICKNESSES[EXTREME_THICKNESSES.len() - 1] * 1e3).to_string()),
+                ("table", xt.to_markdown()),
+            ],
+        )?);
     }
 
     pb.set_message("error against run time");
     if scene.wants(Analysis::ErrorVsTime) {
-        let (et, recommended, err_svg) = error_vs_time(scene)?;
-        a.add("error-vs-time.csv", et.to_csv());
-        a.add("error-vs-time.svg", err_svg);
-        let timing = format!("# Error against run time: {}\n\nThe plate compliance at the scene's points for all its conditions, on a ladder of meshes, against the Richardson value of the two finest (80 x 64 and 160 x 128). Times are wall-clock on this machine (2 cores); this page is the only part of the report that changes between runs.\n\n{}\n![error vs time](error-vs-time.svg)\n\n{}\nThe whole comparison took {:.1} s.\n", scene.name, et.to_markdown(), recommended, t0.elapsed().as_secs_f64());
+        let ev = error_vs_time(scene)?;
+        a.add("error-vs-time.csv", ev.table.to_csv());
+        a.add("error-vs-time.svg", ev.svg);
+        let timing = render(
+            "comparison/error-vs-time-page.md",
+            ERROR_PAGE,
+            &[
+                ("scene", scene.name.clone()),
+                ("reference_meshes", ev.reference_meshes.join(" and ")),
+                ("table", ev.table.to_markdown()),
+                ("recommended", ev.recommended),
+                ("seconds", format!("{:.1}", t0.elapsed().as_secs_f64())),
+            ],
+        )?;
         a.add("error-vs-time.md", timing);
-        let _ = writeln!(md, "\n## Error against run time\n\nSee [error-vs-time.md](error-vs-time.md): the plate FE error at the scene's points against run time on a ladder of meshes, and the mesh to use for a given tolerance. (Kept apart because timings differ between runs; everything on this page is deterministic.)");
+        md.push_str(&render("comparison/error-vs-time.md", ERROR_LINK, &[])?);
     }
     pb.inc(1);
     pb.finish_and_clear();
 
     if scene.wants(Analysis::PaperStudies) {
-        let _ = writeln!(md, "\n## The paper's own studies\n\nIts conclusions item by item, Tables 6-8 and 11 and its figures, each under both models: [paper-studies/index.md](paper-studies/index.md).");
+        md.push_str(&render("comparison/paper-studies.md", PAPER_STUDIES, &[])?);
     }
     if scene.wants(Analysis::Transient) {
-        let _ = writeln!(md, "\n## Is the quasi-static assumption right?\n\nBoth models here assume the plate deforms statically during contact. [dynamic/index.md](dynamic/index.md) integrates sphere, Flores contact and plate dynamics in time at the scene's transient points and sets them against both quasi-static models.");
+        md.push_str(&render("comparison/transient.md", TRANSIENT, &[])?);
     }
     a.add("index.md", md);
     let levels: Vec<serde_json::Value> =
@@ -584,9 +679,19 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     Ok(a)
 }
 
+/// The error-against-run-time study.
+pub struct ErrorVsTime {
+    pub table: Table,
+    /// The coarsest mesh for each tolerance, as a Markdown list.
+    pub recommended: String,
+    pub svg: String,
+    /// The two finest meshes, whose Richardson value is the reference.
+    pub reference_meshes: [String; 2],
+}
+
 /// Error of the plate compliances at the scene's points against run time, for a ladder of
 /// meshes; the text recommends the coarsest mesh for each tolerance.
-pub fn error_vs_time(scene: &Scene) -> Result<(Table, String, String), Failure> {
+pub fn error_vs_time(scene: &Scene) -> Result<ErrorVsTime, Failure> {
     let pts = scene_points(scene);
     let mut runs: Vec<(usize, usize, usize, f64, Vec<f64>)> = Vec::new();
     for mesh in coupled::discretisation::ladder_meshes(&coupled::discretisation::plate_properties(&scene.plate), 10, 5)?
@@ -641,7 +746,8 @@ pub fn error_vs_time(scene: &Scene) -> Result<(Table, String, String), Failure> 
         &[Series::new("BFS ladder", pts_plot)],
         Scale::Log,
     );
-    Ok((t, rec, svg))
+    let mesh = |r: &(usize, usize, usize, f64, Vec<f64>)| format!("{} x {}", r.0, r.1);
+    Ok(ErrorVsTime { table: t, recommended: rec, svg, reference_meshes: [mesh(&runs[n - 2]), mesh(&runs[n - 1])] })
 }
 
 /// The paper as seen through both models: a checker of section V's conclusions.
@@ -668,7 +774,7 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
     let (l, b) = (scene.plate.length(), scene.plate.width());
     let points = [("centre", (l / 2.0, b / 2.0)), ("end (0, B/2)", (0.0, b / 2.0)), ("edge (L/2, 0)", (l / 2.0, 0.0))];
     let mut cases: Vec<(String, Scene, SupportSet, f64)> = Vec::new();
-    for k in [1.0, 5e4, 5.11545e8, 1e15] {
+    for k in EXTREME_SPRINGS {
         cases.push((
             format!("Con 2, k_T = {k:e} N/m, v = 0.008"),
             scene.clone(),
@@ -677,10 +783,10 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
         ));
     }
     let con1 = SupportSet::preset("Con 1", Condition::BothFixed);
-    for v in [1e-6, 1e-3, 1.0, 10.0] {
+    for v in EXTREME_VELOCITIES {
         cases.push((format!("Con 1, v = {v:e} m/s"), scene.clone(), con1.clone(), v));
     }
-    for h in [0.5e-3, 80e-3] {
+    for h in EXTREME_THICKNESSES {
         let plate = analytic::Plate::new(l, b, h, scene.plate.density(), scene.plate.material())?;
         cases.push((
             format!("Con 1, h = {} mm, v = 0.008", h * 1e3),

@@ -8,7 +8,11 @@ use crate::report::studies::{BASE_MESH, LEVELS};
 use crate::report::Failure;
 use crate::scene::Scene;
 use coupled::{BeamModel, ComplianceModel, PlateModel};
-use std::fmt::Write as _;
+
+/// The report's prose, every number in it a placeholder.
+const TEMPLATE: &str = include_str!("templates/paper_studies.md");
+/// The impact velocity of the paper's Tables 6-8 and 11, m/s.
+const TABLES_VELOCITY: f64 = 0.0025;
 
 /// The paper's conclusions item by item, Tables 6-8 and 11 and the paper's figures, each
 /// under both models (the paper's own scene, whatever `scene` is).
@@ -18,15 +22,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let t = crate::report::conclusions::table(&checks);
     a.add("conclusions.csv", t.to_csv());
     let held = |p: bool| checks.iter().filter(|c| if p { c.plate_holds } else { c.beam_holds }).count();
-    let mut md = String::from("# The paper's own studies under both models\n\nThe paper's scene (Table 1), whatever scene asked for these studies: its conclusions, its Tables 6-8 and 11 and its figures, each with the beam and with the plate FE compliance through the same balance.\n");
-    let _ = writeln!(
-        md,
-        "\n## Do the paper's conclusions hold under the plate model?\n\nSection V's items 1-5, each tested on the paper's scene with the beam and with the plate FE model, on the centreline (where the beam should be closest) and on a free edge z = 0. {} of {} statements hold under the beam, {} under the plate. Values are from the same energy balance; only C differs.\n\n{}",
-        held(false),
-        checks.len(),
-        held(true),
-        t.to_markdown()
-    );
+    let items = checks.iter().filter_map(|c| c.item.parse::<u32>().ok()).max().ok_or("no numbered item")?;
     // Tables 6-8 and 11 of the paper (midpoint, 0.0025 m/s, three spheres) under both models.
     let paper = crate::report::paper::Paper::new();
     let sc = &paper.scene;
@@ -54,7 +50,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     );
     for cond in &sc.conditions {
         for body in paper.bodies() {
-            let imp = coupled::plan::impact_of(sc, body, 0.0025);
+            let imp = coupled::plan::impact_of(sc, body, TABLES_VELOCITY);
             let m = analytic::Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
             let rb = analytic::respond(&imp, &beam.compliance(cond, mid.0, mid.1)?.compliance, m)?;
             let rp = analytic::respond(&imp, &model.compliance(cond, mid.0, mid.1)?.compliance, m)?;
@@ -77,16 +73,30 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         }
     }
     a.add("tables-6-8-11-both-models.csv", t68.to_csv());
-    let _ = writeln!(md, "\n### Tables 6-8 and 11 under both models\n\nThe paper's midpoint responses of the three spheres at 0.0025 m/s (Tables 6-8; spring energy of Table 11), with the beam (the paper's equations, converged) and with the plate FE compliance at the centre of the plate.\n\n{}", t68.to_markdown());
-
-    let _ = writeln!(md, "\n### The paper's figures redone with both models (centreline)\n\nBeam curves are the paper's equations; plate curves the same balance with the plate FE compliance on the centreline z = B/2. CSV of every curve beside each SVG.\n");
+    let mut figures = String::new();
     for crate::report::conclusions::Figure { stem, title, y_label: ylabel, series } in
         crate::report::conclusions::study_figures()?
     {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
         a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series));
-        let _ = writeln!(md, "![{title}]({stem}.svg)\n");
+        figures.push_str(&format!("![{title}]({stem}.svg)\n\n"));
     }
+    // The template ends the last figure's line itself.
+    figures.pop();
+    let md = crate::report::template::render(
+        "paper_studies.md",
+        TEMPLATE,
+        &[
+            ("items", items.to_string()),
+            ("beam_held", held(false).to_string()),
+            ("statements", checks.len().to_string()),
+            ("plate_held", held(true).to_string()),
+            ("conclusions_table", t.to_markdown()),
+            ("velocity", TABLES_VELOCITY.to_string()),
+            ("tables_6_8_11", t68.to_markdown()),
+            ("figures", figures),
+        ],
+    )?;
     a.add("index.md", md);
     Ok(a)
 }
