@@ -1,4 +1,4 @@
-//! Verification of the plate elements against classical plate theory (issue 3).
+//! Verification of the plate elements against classical plate theory.
 //!
 //! Tolerances: the point compliance of the conforming BFS element converges at O(h²)
 //! (measured: 2.000 on Navier's plate). Richardson extrapolation of meshes n and 2n then
