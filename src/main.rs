@@ -205,8 +205,8 @@ fn out(text: &str) -> Result<(), Failure> {
 
 /// Most transient runs one command may ask for, in runs on the default 20-element mesh
 /// (0.05-0.3 s each here), so a few minutes: a response costs about 10 (its error estimate
-/// runs the case at half and double the step and the mesh), a yield velocity about 25 (a
-/// bracketed root in v to 1e-6).
+/// runs the case at half and double the step and the mesh), a yield velocity at most 25
+/// (a bracketed root in v to 1e-6, usually 5-10 runs; counted at the most).
 const MAX_TRANSIENT_RUNS: usize = 2000;
 
 /// Memory a result row takes, bytes, through to its JSON: measured 3.7 KB on a 10,000-point

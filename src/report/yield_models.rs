@@ -18,6 +18,7 @@ use crate::report::template::render;
 use crate::report::Failure;
 use crate::scene::Scene;
 use analytic::{contact_stiffness, yield_velocity, DruckerPrager, Sphere};
+pub use coupled::plan::log_root;
 use coupled::plan::{self, impact_of, ModelKind, YieldRow, YieldValues};
 use coupled::scene::even_points;
 use coupled::transient::{case::striker, TransientCase, TransientSettings};
@@ -33,7 +34,7 @@ pub const PLATE_BASE_MESH: usize = 20;
 /// Meshes on the ladder (the finest two give the Richardson value and its error).
 pub const PLATE_LEVELS: u32 = 2;
 /// Relative width of the bracket that closes each transient root: hi/lo - 1.
-pub const ROOT_TOLERANCE: f64 = 1e-6;
+pub const ROOT_TOLERANCE: f64 = coupled::plan::YIELD_ROOT_TOLERANCE;
 /// The finer transient discretisation that estimates the default one's error.
 pub const FINE: TransientSettings = TransientSettings { elements: 40, steps_per_contact: 400.0, window_contacts: 20.0 };
 /// Points of the beam and plate curves (L in 100 parts, as section IV-A).
@@ -42,9 +43,6 @@ const SWEEP: usize = 101;
 const TRANSIENT_SWEEP: usize = 13;
 /// The quasi-static plate's search grid for Table 5: x and z points, edges included.
 const GRID: (usize, usize) = (11, 5);
-/// d ln δ_max / d ln v of Hertz's contact on a rigid target (δ_max ∝ v^{4/5}): the first
-/// step of the root search.
-const HERTZ_SLOPE: f64 = 0.8;
 
 /// A v_y and where: (v, x, z).
 type Located = (f64, f64, f64);
@@ -60,64 +58,6 @@ pub struct TransientYield {
     pub runs: usize,
     /// δ_my of eq. 51, m.
     pub yield_compression: f64,
-}
-
-/// The root of an increasing f(ln v) from `start`: (ln lo, ln hi) with f(lo) < 0 ≤ f(hi)
-/// and hi/lo - 1 ≤ `tol`. Bracketed by secant steps from the slope [`HERTZ_SLOPE`], closed
-/// by Illinois false position kept at least ~tol/2 inside the bracket (so the bracket
-/// closes from both sides).
-pub fn log_root(
-    f: &mut impl FnMut(f64) -> Result<f64, ModelError>,
-    start: f64,
-    tol: f64,
-) -> Result<(f64, f64), ModelError> {
-    let width = tol.ln_1p();
-    let lost = || ModelError::Missing("the transient yield velocity could not be bracketed".into());
-    let (mut a, mut fa) = (start, f(start)?);
-    let mut b = a - fa / HERTZ_SLOPE;
-    let mut fb = f(b)?;
-    let mut n = 0;
-    while (fa < 0.0) == (fb < 0.0) {
-        n += 1;
-        if n > 60 || !fb.is_finite() {
-            return Err(lost());
-        }
-        let slope = (fb - fa) / (b - a);
-        let slope = if slope.is_finite() && slope > 0.1 { slope } else { HERTZ_SLOPE };
-        let step = (-fb / slope).clamp(-std::f64::consts::LN_2, std::f64::consts::LN_2);
-        // Overshoot a little so that the next point straddles the root.
-        let step = step * 1.001 + step.signum() * width;
-        (a, fa) = (b, fb);
-        b += step;
-        fb = f(b)?;
-    }
-    let (mut lo, mut flo, mut hi, mut fhi) = if fa < 0.0 { (a, fa, b, fb) } else { (b, fb, a, fa) };
-    let mut side = 0;
-    while hi - lo > width {
-        n += 1;
-        if n > 200 {
-            return Err(lost());
-        }
-        let gap = (0.45 * width).min(0.5 * (hi - lo));
-        let c = (lo * fhi - hi * flo) / (fhi - flo);
-        let c = if c.is_finite() { c } else { 0.5 * (lo + hi) };
-        let c = c.clamp(lo + gap, hi - gap);
-        let fc = f(c)?;
-        if fc < 0.0 {
-            (lo, flo) = (c, fc);
-            if side == -1 {
-                fhi *= 0.5;
-            }
-            side = -1;
-        } else {
-            (hi, fhi) = (c, fc);
-            if side == 1 {
-                flo *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    Ok((lo, hi))
 }
 
 /// The transient yield velocity of `body` at (x, z) on the plate held by `set`: the v at

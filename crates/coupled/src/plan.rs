@@ -612,10 +612,74 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
     Ok(Results { scene: scene.name.clone(), responses, yields })
 }
 
+/// Relative width to which the transient yield velocity is found.
+pub const YIELD_ROOT_TOLERANCE: f64 = 1e-6;
+
+/// d ln δ_max / d ln v of Hertz's contact on a rigid target (δ_max ∝ v^{4/5}): the first
+/// step of the root search.
+pub const HERTZ_SLOPE: f64 = 0.8;
+
+/// The root of an increasing f(ln v) from `start`: (ln lo, ln hi) with f(lo) < 0 ≤ f(hi)
+/// and hi/lo - 1 ≤ `tol`. Bracketed by secant steps from the slope [`HERTZ_SLOPE`], closed
+/// by Illinois false position kept at least ~tol/2 inside the bracket (so the bracket
+/// closes from both sides).
+pub fn log_root(
+    f: &mut impl FnMut(f64) -> Result<f64, ModelError>,
+    start: f64,
+    tol: f64,
+) -> Result<(f64, f64), ModelError> {
+    let width = tol.ln_1p();
+    let lost = || ModelError::Missing("the transient yield velocity could not be bracketed".into());
+    let (mut a, mut fa) = (start, f(start)?);
+    let mut b = a - fa / HERTZ_SLOPE;
+    let mut fb = f(b)?;
+    let mut n = 0;
+    while (fa < 0.0) == (fb < 0.0) {
+        n += 1;
+        if n > 60 || !fb.is_finite() {
+            return Err(lost());
+        }
+        let slope = (fb - fa) / (b - a);
+        let slope = if slope.is_finite() && slope > 0.1 { slope } else { HERTZ_SLOPE };
+        let step = (-fb / slope).clamp(-std::f64::consts::LN_2, std::f64::consts::LN_2);
+        // Overshoot a little so that the next point straddles the root.
+        let step = step * 1.001 + step.signum() * width;
+        (a, fa) = (b, fb);
+        b += step;
+        fb = f(b)?;
+    }
+    let (mut lo, mut flo, mut hi, mut fhi) = if fa < 0.0 { (a, fa, b, fb) } else { (b, fb, a, fa) };
+    let mut side = 0;
+    while hi - lo > width {
+        n += 1;
+        if n > 200 {
+            return Err(lost());
+        }
+        let gap = (0.45 * width).min(0.5 * (hi - lo));
+        let c = (lo * fhi - hi * flo) / (fhi - flo);
+        let c = if c.is_finite() { c } else { 0.5 * (lo + hi) };
+        let c = c.clamp(lo + gap, hi - gap);
+        let fc = f(c)?;
+        if fc < 0.0 {
+            (lo, flo) = (c, fc);
+            if side == -1 {
+                fhi *= 0.5;
+            }
+            side = -1;
+        } else {
+            (hi, fhi) = (c, fc);
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Ok((lo, hi))
+}
+
 /// The dynamic yield velocity: the v at which the transient δ_max reaches δ_my of eq. 51.
-/// δ_max grows monotonically with v, so the root is bracketed by doubling from the
-/// quasi-static plate-free (rigid) value and found by bisection in log v to a relative
-/// width of 1e-6.
+/// ln(δ_max/δ_my) increases with ln v; [`log_root`] brackets it from the rigid-target
+/// value of the balance and closes the bracket to [`YIELD_ROOT_TOLERANCE`].
 pub fn dynamic_yield(
     scene: &Scene,
     case: &TransientCase,
@@ -624,56 +688,24 @@ pub fn dynamic_yield(
     x: f64,
     z: f64,
 ) -> Result<YieldValues, ModelError> {
-    let dp = DruckerPrager::of(body);
     let k = contact_stiffness(body, scene.plate.material());
-    let d_my = dp.yield_compression(body.radius(), k);
-    let reach = |v: f64| -> Result<f64, ModelError> {
-        let s = Striker { law: scene.contact_law.law_for(body), ..striker(&scene.plate, body, scene.restitution, v) };
-        Ok(case.run(set, &s, x, z)?.compression_max - d_my)
+    let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
+    let mut reach = |lv: f64| -> Result<f64, ModelError> {
+        let s = Striker {
+            law: scene.contact_law.law_for(body),
+            ..striker(&scene.plate, body, scene.restitution, lv.exp())
+        };
+        Ok((case.run(set, &s, x, z)?.compression_max / d_my).ln())
     };
     // On a rigid target the balance gives the smallest v that reaches δ_my: start there.
-    let imp = impact_of(scene, body, 1.0);
-    let v_rigid = yield_velocity(body, &imp, 0.0, d_my);
-    let (mut lo, mut hi) = (v_rigid, v_rigid);
-    let mut f_hi = reach(hi)?;
-    let mut doublings = 0;
-    // The transient δ_max can exceed the balance's (the Flores law's own work differs from
-    // eq. 7 by a few tenths of a percent): then the root lies below, so bracket downward.
-    if f_hi >= 0.0 {
-        while reach(lo)? >= 0.0 {
-            hi = lo;
-            lo *= 0.5;
-            doublings += 1;
-            if doublings > 60 {
-                return Err(ModelError::Missing("the dynamic yield velocity could not be bracketed".into()));
-            }
-        }
-        f_hi = 0.0;
-    }
-    while f_hi < 0.0 {
-        lo = hi;
-        hi *= 2.0;
-        f_hi = reach(hi)?;
-        doublings += 1;
-        if doublings > 60 {
-            return Err(ModelError::Missing("the dynamic yield velocity could not be bracketed".into()));
-        }
-    }
-    while hi / lo - 1.0 > 1e-6 {
-        let mid = (lo * hi).sqrt();
-        if reach(mid)? < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let v_y = 0.5 * (lo + hi);
+    let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
+    let (lo, hi) = log_root(&mut reach, v_rigid.ln(), YIELD_ROOT_TOLERANCE)?;
     Ok(YieldValues {
         compliance: None,
         compliance_error: None,
         yield_compression: d_my,
-        yield_velocity: v_y,
-        yield_velocity_error: Some(hi - lo),
+        yield_velocity: (0.5 * (lo + hi)).exp(),
+        yield_velocity_error: Some(hi.exp() - lo.exp()),
         validity: Validity { elastic: None, quasi_static: None, thin_plate: thin_plate(scene), recontact: None },
     })
 }
