@@ -102,6 +102,20 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Sensor signals of the scene's impacts by the reduced-order model (its `[signals]`
+    /// table): every support set, body, transient point and velocity; the time series as CSV
+    /// (default out: impact-out/<scene name>-signals), the first-contact numbers with their
+    /// truncation errors on the terminal.
+    Signals {
+        /// Scene file; default: the paper's Table 1.
+        #[arg(long, value_name = "FILE")]
+        scene: Option<PathBuf>,
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print the summary as JSON instead of tables.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         #[arg(long, value_name = "DIR", default_value = "impact-out/paper")]
@@ -294,6 +308,19 @@ fn execute(command: Command) -> Result<(), Failure> {
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
             commit(target, &impact::report::transient::report(&scene)?)
+        }
+        Command::Signals { scene, out: dir, json } => {
+            let scene = load(&scene)?;
+            let dir = dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-signals", slug(&scene.name))));
+            let target = OutputDir::prepare(&dir)?;
+            let (run, tables, artifacts) = impact::report::signals::signals(&scene)?;
+            commit(target, &artifacts)?;
+            if json {
+                out(&format!("{}\n", serde_json::to_string_pretty(&run)?))
+            } else {
+                let text: Vec<String> = tables.iter().map(|t| t.to_text()).collect();
+                out(&format!("scene: {} ({})\n\n{}", scene.name, scene.description, text.join("\n")))
+            }
         }
         Command::Compare { scene, out } => {
             let scene = load(&scene)?;

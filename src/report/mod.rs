@@ -11,6 +11,7 @@ pub mod fem_verification;
 pub mod field;
 pub mod paper;
 pub mod paper_studies;
+pub mod signals;
 pub mod skfem;
 pub mod studies;
 pub mod template;

@@ -2,6 +2,7 @@
 //! the velocities and what to compute. Reading and checking scene files is the command
 //! line's business; this type only holds what passed.
 
+use crate::reduced::SignalSettings;
 use crate::supports::SupportSet;
 use crate::transient::LawKind;
 use analytic::{Method, Plate, Sphere};
@@ -146,6 +147,9 @@ pub struct Scene {
     pub analyses: Vec<Analysis>,
     /// How to solve the energy balance.
     pub solver: Method,
+    /// The reduced model and the sensor signals of an impact (`[signals]`; defaults when
+    /// the scene has none).
+    pub signals: SignalSettings,
 }
 
 impl Scene {

@@ -1,0 +1,714 @@
+//! The reduced-order transient model: the supported plate's lowest N modes plus the static
+//! correction of the rest, struck by the sphere with the full model's contact laws and
+//! contact sequence, and the sensor signals of the impact.
+//!
+//! **Model.** The plate FE model of [`crate::transient`] (same mesh rule, same supports) is
+//! projected on its lowest N modes (plate_fem::modes, shift-invert Krylov on the support
+//! set's factorization, computed once per plate and support set in [`ReducedModel::new`]).
+//! The modes left out answer the contact force quasi-statically through their residual
+//! flexibility R = K⁻¹ - Σ_{i≤N} φᵢφᵢᵀ/ωᵢ² (the static correction): at the struck point
+//! C_res(p) = N(p)ᵀRN(p), between the struck point and a sensor or corner N(p)ᵀR f. Every
+//! mode carries the modal damping ratio ζ of the settings.
+//!
+//! **Impact.** The modal plate is a [`crate::transient::Target`] ([`target`]), so
+//! [`crate::transient::simulate_with`] runs it: the same contact law solve per step, the same
+//! contact sequence, the same stopping rule (with the full FE static compliance at p, which
+//! bounds the modal point deflection too). While a force acts each mode takes Newmark's step,
+//! as the full model does; while none acts each mode is propagated exactly. The step is
+//! Δt = T_s/m, the largest divisor of the sample interval T_s = 1/rate not above
+//! t_c/`steps_per_contact` (t_c the rigid-target Hertz time), so samples fall on step ends.
+//! Once the sphere has provably left, the rest of the window is exact free vibration at the
+//! sample times ([`signals::free_map`]): nothing is time-stepped there.
+//!
+//! **Damping.** The full model is undamped; the default modal damping ratio is
+//! [`ReducedSettings::DEFAULT_DAMPING_RATIO`] = 0.5 %, the structural damping of a bolted
+//! steel structure (Eurocode EN 1991-1-4, Table F.2: logarithmic decrement 0.03 for bolted
+//! steel, 0.02 welded, i.e. ζ = δ/2π = 0.48 % and 0.32 %). Comparisons with the full model
+//! use ζ = 0.
+//!
+//! ```
+//! use analytic::{Elastic, Plate, RockStrength, Sphere};
+//! use coupled::reduced::{ReducedModel, ReducedSettings, SignalSpec};
+//! use coupled::transient::case::striker;
+//! use coupled::SupportSet;
+//! use plate_fem::Supports;
+//! let plate = Plate::new(0.4584, 0.36, 0.008, 7850.0, Elastic::new(210e9, 0.3)?)?;
+//! let settings = ReducedSettings { modes: 20, elements: 8, ..ReducedSettings::default() };
+//! let model = ReducedModel::new(&plate, &SupportSet::new("Con 1", Supports::con1()), settings)?;
+//! let coal = Sphere::new("coal", 1380.0, 0.025, Elastic::new(2.26e9, 0.28)?, RockStrength::new(8.39e6, 25.0)?)?;
+//! let probes = model.probes(&SignalSpec::new(vec![(0.1, 0.1)]))?;
+//! let hit = model.impact(&striker(&plate, &coal, 0.65, 0.008), 0.2292, 0.18, &probes)?;
+//! assert_eq!(hit.outcome.contacts.len(), 1);
+//! // 20 ms at 20 kHz: 400 samples per channel; 3 sensor channels and 4 corner reactions.
+//! assert_eq!(hit.signals.channels.len(), 7);
+//! assert!(hit.signals.channels.iter().all(|c| c.samples.len() == 400));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod plan;
+pub mod signals;
+pub mod target;
+
+pub use signals::{free_map, Channel, ChannelKind, Probes, Quantity, SignalSpec, Signals};
+
+pub use target::FreeSteps;
+
+use crate::discretisation::{mesh_for, plate_properties};
+use crate::error::ModelError;
+use crate::supports::SupportSet;
+use crate::transient::{simulate_with, Outcome, PlateFacts, Striker};
+use analytic::params::{check, Range};
+use analytic::Plate;
+use plate_fem::modes::shape_at;
+use plate_fem::{element, Corner, CornerSupport, Mesh, Model, Modes, ResidualFlexibility};
+use serde::Serialize;
+use signals::{dot, ChannelRows, FreeMaps};
+use target::{CornerPoint, ModalTarget, Recording};
+
+/// How the truncated modes enter.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Correction {
+    /// Quasi-statically, w_res = C_res(p)P: the static correction (mode acceleration).
+    #[default]
+    Static,
+    /// As one more mode: the residual shape ψ = RN(p) with its stiffness and mass
+    /// (plate_fem::ResidualFlexibility), which keeps the static compliance and adds the
+    /// truncated modes' inertia.
+    ResidualMode,
+}
+
+/// How the reduced model is built.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ReducedSettings {
+    /// N, the modes kept.
+    pub modes: usize,
+    /// Modal damping ratio ζ of every mode.
+    pub damping_ratio: f64,
+    /// Elements along the longer side of the plate (the full model's mesh rule).
+    pub elements: usize,
+    /// The time step in contact is at most the Hertz time over this.
+    pub steps_per_contact: f64,
+    /// How the truncated modes enter.
+    pub correction: Correction,
+}
+
+impl ReducedSettings {
+    /// Default N.
+    pub const DEFAULT_MODES: usize = 80;
+    /// Default steps per Hertz contact time: 100. Newmark's rule is second order with the
+    /// full model's error near 4e-5 in the peak force at 200 steps, so 100 steps put it near
+    /// 1.6e-4, inside the 1e-3 the reduced model is held to, at half the cost of the
+    /// contact phase (which dominates an impact's cost).
+    pub const DEFAULT_STEPS_PER_CONTACT: f64 = 100.0;
+    /// Default ζ (see the module documentation).
+    pub const DEFAULT_DAMPING_RATIO: f64 = 0.005;
+    /// Allowed ζ: the exact free-vibration map needs ζ < 1; beyond half of critical a mode
+    /// no longer rings, and no plate structure is damped that much.
+    pub const DAMPING_RATIO: Range = Range::closed(0.0, 0.5);
+    /// Allowed N (the plate's free DOFs are a further bound, checked on the mesh).
+    pub const MODES: Range = Range::closed(1.0, 2000.0);
+}
+
+impl Default for ReducedSettings {
+    /// N = [`Self::DEFAULT_MODES`], ζ = 0.5 %, the full model's 20 elements,
+    /// [`Self::DEFAULT_STEPS_PER_CONTACT`] steps per contact time, the static correction.
+    fn default() -> Self {
+        Self {
+            modes: Self::DEFAULT_MODES,
+            damping_ratio: Self::DEFAULT_DAMPING_RATIO,
+            elements: 20,
+            steps_per_contact: Self::DEFAULT_STEPS_PER_CONTACT,
+            correction: Correction::default(),
+        }
+    }
+}
+
+/// What a scene asks of the reduced model and its signals (validated, SI units).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignalSettings {
+    /// Window from first touch, s.
+    pub window: f64,
+    /// Sampling rate, Hz.
+    pub rate_hz: f64,
+    /// Modal damping ratio ζ.
+    pub damping_ratio: f64,
+    /// N, the modes kept.
+    pub modes: usize,
+    /// Sensor points (x, z), m.
+    pub sensors: Vec<(f64, f64)>,
+}
+
+impl Default for SignalSettings {
+    /// 20 ms at 20 kHz, ζ = 0.5 %, N = 80, no sensors (corner channels only).
+    fn default() -> Self {
+        Self {
+            window: SignalSpec::DEFAULT_WINDOW,
+            rate_hz: SignalSpec::DEFAULT_RATE_HZ,
+            damping_ratio: ReducedSettings::DEFAULT_DAMPING_RATIO,
+            modes: ReducedSettings::DEFAULT_MODES,
+            sensors: Vec::new(),
+        }
+    }
+}
+
+impl SignalSettings {
+    /// The signal spec: every quantity at every sensor, and the corner channels.
+    pub fn spec(&self) -> SignalSpec {
+        SignalSpec { window: self.window, rate_hz: self.rate_hz, ..SignalSpec::new(self.sensors.clone()) }
+    }
+    /// The reduced model's settings (the other fields at their defaults).
+    pub fn reduced(&self) -> ReducedSettings {
+        ReducedSettings { modes: self.modes, damping_ratio: self.damping_ratio, ..ReducedSettings::default() }
+    }
+}
+
+/// One corner's data: its support, its modal rows and its residual fields.
+#[derive(Debug, Clone)]
+struct CornerData {
+    corner: Corner,
+    support: CornerSupport,
+    /// The corner's w DOF.
+    dof: usize,
+    /// Spring or free corner: φᵢ(c); fixed corner: (Kφᵢ)_c, its stiffness row on the mode.
+    row: Vec<f64>,
+    /// Fixed corner: (Mφᵢ)_c, its mass row on the mode.
+    mass_row: Option<Vec<f64>>,
+    /// Spring or free corner: R e_c; fixed corner: R k_c (k_c its stiffness row).
+    field: Vec<f64>,
+    /// Fixed corner: R m_c (m_c its mass row).
+    mass_field: Option<Vec<f64>>,
+}
+
+/// The reduced model of one plate on one support set.
+pub struct ReducedModel {
+    set: SupportSet,
+    settings: ReducedSettings,
+    model: Model,
+    modes: Modes,
+    omega: Vec<f64>,
+    /// φ by DOF: `phi[d * N + i]` is mode i at DOF d.
+    phi: Vec<f64>,
+    residual: ResidualFlexibility,
+    corners: Vec<CornerData>,
+}
+
+/// The outcome of one reduced impact.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ReducedOutcome {
+    /// The contact sequence and first-contact numbers, as the full model reports them.
+    pub outcome: Outcome,
+    /// The sensor and corner signals.
+    pub signals: Signals,
+    /// The time step used in contact, s.
+    pub dt: f64,
+    /// The FE static compliance at the struck point, m/N.
+    pub static_compliance: f64,
+    /// Its part carried by the truncated modes, C_res(p), m/N.
+    pub residual_compliance: f64,
+    /// The residual mode's frequency ω_ψ/2π, Hz (None with the static correction, or when
+    /// the kept modes carry the whole compliance).
+    pub residual_mode_hz: Option<f64>,
+}
+
+/// What the modes and the truncated modes give at one impact point.
+struct Point {
+    dofs: [usize; 16],
+    shape: plate_fem::element::Vec16,
+    phi: Vec<f64>,
+    c_res: f64,
+    /// m_ψ, the residual shape's mass.
+    m_res: f64,
+}
+
+impl ReducedModel {
+    /// Meshes the plate, finds its lowest `settings.modes` modes on `set` and the residual
+    /// flexibility of the rest.
+    pub fn new(plate: &Plate, set: &SupportSet, settings: ReducedSettings) -> Result<Self, ModelError> {
+        check("reduced.modes", settings.modes as f64, ReducedSettings::MODES, "")?;
+        check("reduced.damping_ratio", settings.damping_ratio, ReducedSettings::DAMPING_RATIO, "")?;
+        check("reduced.elements", settings.elements as f64, Range::closed(2.0, 400.0), "")?;
+        check("reduced.steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
+        let props = plate_properties(plate);
+        let model = Model::new(props, mesh_for(&props, settings.elements)?)?;
+        let fact = model.factorize(&set.supports)?;
+        let free = model.dofs() - fact.held().len();
+        let modes = if free <= plate_fem::modes::DENSE_LIMIT {
+            Modes::dense(&model, &set.supports, settings.modes)?
+        } else {
+            Modes::krylov(&fact, settings.modes)?
+        };
+        let residual = ResidualFlexibility::new(&fact, &modes)?;
+        let n = modes.count();
+        let ndof = model.dofs();
+        let shapes = modes.shapes();
+        let mut phi = vec![0.0; ndof * n];
+        for d in 0..ndof {
+            for i in 0..n {
+                phi[d * n + i] = shapes[(d, i)];
+            }
+        }
+        let omega = modes.omegas().to_vec();
+        let mesh = model.mesh().clone();
+        let mut corners = Vec::new();
+        for c in Corner::ALL {
+            let support = set.supports.corners[c.index()];
+            let dof = mesh.corner_w_dof(c.index());
+            if fact.held().contains(&dof) && support != CornerSupport::Fixed {
+                // Held by an edge: no channel, no deflection.
+                continue;
+            }
+            let entry = match support {
+                CornerSupport::Fixed => {
+                    // The held DOF's rows of the unsupported K and M: the corner node belongs to
+                    // one element, whose matrices give them.
+                    let (ex, ez, local) = corner_element(&mesh, c);
+                    let (a, b) = mesh.element_size(ex, ez);
+                    let ke = element::stiffness(a, b, props.rigidity(), props.poisson_ratio);
+                    let me = element::mass(a, b, props.density * props.thickness);
+                    let dofs = mesh.element_dofs(ex, ez);
+                    let (mut kc, mut mc) = (vec![0.0; ndof], vec![0.0; ndof]);
+                    for k in 0..16 {
+                        if dofs[k] != dof {
+                            kc[dofs[k]] += ke[(local, k)];
+                            mc[dofs[k]] += me[(local, k)];
+                        }
+                    }
+                    let on_modes = |r: &[f64]| -> Vec<f64> {
+                        (0..n).map(|i| (0..16).map(|k| r[dofs[k]] * phi[dofs[k] * n + i]).sum()).collect()
+                    };
+                    CornerData {
+                        corner: c,
+                        support,
+                        dof,
+                        row: on_modes(&kc),
+                        mass_row: Some(on_modes(&mc)),
+                        field: modes.residual_field(&fact, &kc),
+                        mass_field: Some(modes.residual_field(&fact, &mc)),
+                    }
+                }
+                CornerSupport::Spring(_) | CornerSupport::Free => {
+                    let mut e = vec![0.0; ndof];
+                    e[dof] = 1.0;
+                    CornerData {
+                        corner: c,
+                        support,
+                        dof,
+                        row: phi[dof * n..(dof + 1) * n].to_vec(),
+                        mass_row: None,
+                        field: modes.residual_field(&fact, &e),
+                        mass_field: None,
+                    }
+                }
+            };
+            corners.push(entry);
+        }
+        drop(fact);
+        Ok(Self { set: set.clone(), settings, model, modes, omega, phi, residual, corners })
+    }
+
+    /// The settings it was built with.
+    pub fn settings(&self) -> ReducedSettings {
+        self.settings
+    }
+    /// The support set.
+    pub fn support_set(&self) -> &SupportSet {
+        &self.set
+    }
+    /// The modes (frequencies, shapes, residuals).
+    pub fn modes(&self) -> &Modes {
+        &self.modes
+    }
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        self.model.mesh()
+    }
+
+    fn point(&self, x: f64, z: f64) -> Result<Point, ModelError> {
+        let mesh = self.model.mesh();
+        let loc = mesh.locate(x, z)?;
+        let (dofs, shape) = shape_at(mesh, x, z)?;
+        let n = self.omega.len();
+        let mut phi = vec![0.0; n];
+        for k in 0..16 {
+            let row = &self.phi[dofs[k] * n..(dofs[k] + 1) * n];
+            let s = shape[k];
+            for (p, r) in phi.iter_mut().zip(row) {
+                *p += s * r;
+            }
+        }
+        let e = loc.ez * mesh.nx() + loc.ex;
+        let c_res = self.residual.quadratic(e, &shape).max(0.0);
+        let m_res = self.residual.mass_quadratic(e, &shape).max(0.0);
+        Ok(Point { dofs, shape, phi, c_res, m_res })
+    }
+
+    /// φᵢ(p) for every mode and C_res(p), at p = (x, z).
+    pub fn at(&self, x: f64, z: f64) -> Result<(Vec<f64>, f64), ModelError> {
+        let p = self.point(x, z)?;
+        Ok((p.phi, p.c_res))
+    }
+
+    /// The FE static compliance C(p) = Σφᵢ(p)²/ωᵢ² + C_res(p), m/N.
+    pub fn static_compliance(&self, x: f64, z: f64) -> Result<f64, ModelError> {
+        let (phi_p, c_res) = self.at(x, z)?;
+        Ok(modal_compliance(&phi_p, &self.omega) + c_res)
+    }
+
+    /// Prepares `spec` on this model: every channel's coefficient rows (one solve per
+    /// sensor, for its residual field) and the exact map over one sample interval.
+    pub fn probes(&self, spec: &SignalSpec) -> Result<Probes, ModelError> {
+        check("signals.window", spec.window, Range::open_closed(0.0, 10.0), "s")?;
+        check("signals.rate_hz", spec.rate_hz, Range::closed(10.0, 1e7), "Hz")?;
+        check("signals.samples", spec.window * spec.rate_hz, Range::closed(1.0, 1e7), "")?;
+        let n = self.omega.len();
+        let zeta = self.settings.damping_ratio;
+        let fact = self.model.factorize(&self.set.supports)?;
+        let mut rows = Vec::new();
+        let mut fields = Vec::new();
+        let w2 = |i: usize| self.omega[i] * self.omega[i];
+        for (s, &(x, z)) in spec.sensors.iter().enumerate() {
+            let phi_s = self.point(x, z)?.phi;
+            let f = fields.len();
+            fields.push(self.modes.residual_field(&fact, &fact.load_vector(x, z)?));
+            for q in &spec.quantities {
+                rows.push(match q {
+                    Quantity::Displacement => ChannelRows {
+                        kind: ChannelKind::Displacement { sensor: s },
+                        a: phi_s.clone(),
+                        b: vec![0.0; n],
+                        c: None,
+                        direct: None,
+                        res: [Some((f, 1.0)), None, None],
+                        damped_inertia: false,
+                    },
+                    Quantity::Velocity => ChannelRows {
+                        kind: ChannelKind::Velocity { sensor: s },
+                        a: vec![0.0; n],
+                        b: phi_s.clone(),
+                        c: None,
+                        direct: None,
+                        res: [None, Some((f, 1.0)), None],
+                        damped_inertia: false,
+                    },
+                    Quantity::Acceleration => ChannelRows {
+                        kind: ChannelKind::Acceleration { sensor: s },
+                        a: (0..n).map(|i| -w2(i) * phi_s[i]).collect(),
+                        b: (0..n).map(|i| -2.0 * zeta * self.omega[i] * phi_s[i]).collect(),
+                        c: Some(phi_s.clone()),
+                        direct: None,
+                        res: [None, None, Some((f, 1.0))],
+                        damped_inertia: false,
+                    },
+                });
+            }
+        }
+        if spec.corners {
+            for c in &self.corners {
+                match (c.support, &c.mass_row, &c.mass_field) {
+                    (CornerSupport::Spring(k), _, _) => {
+                        let f = fields.len();
+                        fields.push(c.field.clone());
+                        rows.push(ChannelRows {
+                            kind: ChannelKind::SpringForce { corner: c.corner },
+                            a: c.row.iter().map(|r| k * r).collect(),
+                            b: vec![0.0; n],
+                            c: None,
+                            direct: None,
+                            res: [Some((f, k)), None, None],
+                            damped_inertia: false,
+                        });
+                    }
+                    // R_c = N_c(p)P - k_cᵀw - m_cᵀ(ẅ + modal damping): ℓ_d = -k_c, ℓ_a = -m_c.
+                    (CornerSupport::Fixed, Some(mass_row), Some(mass_field)) => {
+                        let (fk, fm) = (fields.len(), fields.len() + 1);
+                        fields.push(c.field.clone());
+                        fields.push(mass_field.clone());
+                        rows.push(ChannelRows {
+                            kind: ChannelKind::Reaction { corner: c.corner },
+                            a: (0..n).map(|i| w2(i) * mass_row[i] - c.row[i]).collect(),
+                            b: vec![0.0; n],
+                            c: Some(mass_row.iter().map(|m| -m).collect()),
+                            direct: Some(c.dof),
+                            res: [Some((fk, -1.0)), None, Some((fm, -1.0))],
+                            damped_inertia: true,
+                        });
+                    }
+                    _ => {}
+                }
+            }
+        }
+        Ok(Probes::new(spec, rows, fields, &self.omega, zeta))
+    }
+
+    /// One impact of `striker` at (x, z) with the signals of `probes` (see the module).
+    pub fn impact(&self, striker: &Striker, x: f64, z: f64, probes: &Probes) -> Result<ReducedOutcome, ModelError> {
+        self.impact_with(striker, x, z, probes, FreeSteps::Exact)
+    }
+
+    /// As [`Self::impact`], with the free steps propagated as `free` says.
+    pub fn impact_with(
+        &self,
+        striker: &Striker,
+        x: f64,
+        z: f64,
+        probes: &Probes,
+        free: FreeSteps,
+    ) -> Result<ReducedOutcome, ModelError> {
+        let ts = probes.spec.interval();
+        let dt_max = striker.hertz_time() / self.settings.steps_per_contact;
+        let every = (ts / dt_max).ceil().max(1.0) as usize;
+        let dt = ts / every as f64;
+        let map = (free == FreeSteps::Exact).then(|| probes.step_map(every));
+        self.run(striker, x, z, probes, map, dt, every)
+    }
+
+    /// As [`Self::impact_with`] with the time step `dt` given (the sample interval is then
+    /// rounded to a whole number of steps), for comparisons at the full model's step.
+    pub fn impact_with_step(
+        &self,
+        striker: &Striker,
+        x: f64,
+        z: f64,
+        probes: &Probes,
+        free: FreeSteps,
+        dt: f64,
+    ) -> Result<ReducedOutcome, ModelError> {
+        check("dt", dt, Range::open(0.0, f64::INFINITY), "s")?;
+        let every = (probes.spec.interval() / dt).round().max(1.0) as usize;
+        let map = (free == FreeSteps::Exact).then(|| FreeMaps::new(&self.omega, self.settings.damping_ratio, dt));
+        self.run(striker, x, z, probes, map, dt, every)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &self,
+        striker: &Striker,
+        x: f64,
+        z: f64,
+        probes: &Probes,
+        mut map: Option<FreeMaps>,
+        dt: f64,
+        every: usize,
+    ) -> Result<ReducedOutcome, ModelError> {
+        let pt = self.point(x, z)?;
+        let zeta = self.settings.damping_ratio;
+        let static_compliance = modal_compliance(&pt.phi, &self.omega) + pt.c_res;
+        // The truncated modes: one more mode (ω_ψ² = C_res/m_ψ, ψ̂ = ψ/√m_ψ, ψ̂ᵀN = C_res/√m_ψ)
+        // or the static correction. Without compliance or mass left to carry (all modes
+        // kept, to rounding) there is neither.
+        let carried = pt.c_res > 1e-12 * static_compliance && pt.m_res > 0.0;
+        let residual_mode = (self.settings.correction == Correction::ResidualMode && carried)
+            .then(|| ((pt.c_res / pt.m_res).sqrt(), pt.m_res.sqrt()));
+        let at_p = |f: &[f64]| -> f64 { (0..16).map(|k| pt.shape[k] * f[pt.dofs[k]]).sum() };
+        let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_p(f)).collect();
+        let (mut omega, mut phi_p) = (self.omega.clone(), pt.phi.clone());
+        let c_res = match residual_mode {
+            Some((w, root_m)) => {
+                omega.push(w);
+                phi_p.push(pt.c_res / root_m);
+                if let Some(m) = map.as_mut() {
+                    m.push(w, zeta, dt);
+                }
+                0.0
+            }
+            None if self.settings.correction == Correction::Static => pt.c_res,
+            None => 0.0,
+        };
+        // Channels on the (extended) modes.
+        let n_ext = omega.len();
+        let mut rec = Recording { a: Vec::new(), b: Vec::new(), d: Vec::new(), every, samples: probes.spec.samples() };
+        // Free of force, every channel is one row on one state: q (deflections, forces),
+        // q̇ (velocities) or the modal accelerations q̈ = -ω²q - 2ζωq̇ (accelerations).
+        let mut free_rows: Vec<(Vec<f64>, FreeState)> = Vec::with_capacity(probes.rows.len());
+        for r in &probes.rows {
+            let ell = |k: usize| r.res[k].map_or(0.0, |(f, s)| s * field_at_p[f]);
+            let mut a = r.a.clone();
+            let mut b = r.b.clone();
+            let mut d = r.c.as_ref().map_or(0.0, |c| dot(c, &pt.phi))
+                + r.direct.map_or(0.0, |dof| (0..16).filter(|&k| pt.dofs[k] == dof).map(|k| pt.shape[k]).sum());
+            let mut c = r.c.clone();
+            match residual_mode {
+                Some((w, root_m)) => {
+                    let (ld, lv, la) = (ell(0) / root_m, ell(1) / root_m, ell(2) / root_m);
+                    a.push(ld - w * w * la);
+                    b.push(if r.damped_inertia { lv } else { lv - 2.0 * zeta * w * la });
+                    if let Some(c) = c.as_mut() {
+                        c.push(la);
+                    }
+                    d += la * phi_p[n_ext - 1];
+                }
+                // The static correction: a displacement, no rate.
+                None => d += if c_res > 0.0 { ell(0) } else { 0.0 },
+            }
+            free_rows.push(match (r.kind, c) {
+                (ChannelKind::Velocity { .. }, _) => (b.clone(), FreeState::Rate),
+                (ChannelKind::Acceleration { .. }, Some(c)) => (c, FreeState::Acceleration),
+                _ => (a.clone(), FreeState::Deflection),
+            });
+            let b = (b.iter().any(|&x| x != 0.0)).then_some(b);
+            rec.a.push(a);
+            rec.b.push(b);
+            rec.d.push(d);
+        }
+        let mut corner_points: [Option<CornerPoint>; 4] = Default::default();
+        for c in &self.corners {
+            if c.support != CornerSupport::Fixed {
+                let spring = if let CornerSupport::Spring(k) = c.support { k } else { 0.0 };
+                let mut row = c.row.clone();
+                let d = match residual_mode {
+                    Some((_, root_m)) => {
+                        row.push(at_p(&c.field) / root_m);
+                        0.0
+                    }
+                    None => {
+                        if c_res > 0.0 {
+                            at_p(&c.field)
+                        } else {
+                            0.0
+                        }
+                    }
+                };
+                corner_points[c.corner.index()] = Some(CornerPoint { row, d, spring });
+            }
+        }
+        let facts = PlateFacts {
+            static_compliance: Some(static_compliance),
+            corner_springs: Some(self.set.supports.corners.map(|c| match c {
+                CornerSupport::Spring(k) => k,
+                _ => 0.0,
+            })),
+            follow_unbounded: true,
+        };
+        let mut sample_map = probes.sample_map.clone();
+        if let Some((w, _)) = residual_mode {
+            sample_map.push(w, zeta, probes.spec.interval());
+        }
+        let omega2: Vec<f64> = omega.iter().map(|w| w * w).collect();
+        let damping: Vec<f64> = omega.iter().map(|w| 2.0 * zeta * w).collect();
+        let mut target = ModalTarget::new(omega, zeta, phi_p, c_res, dt, map, corner_points, Some(rec));
+        let window = probes.spec.window;
+        let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
+        // The rest of the window: on to the next sample step (or, time-stepped, to the end),
+        // then exact free vibration from sample to sample.
+        let want = probes.spec.samples();
+        if !probes.rows.is_empty() && target.recorded() < want {
+            if target.exact() {
+                let gap = (target.recorded() * every).saturating_sub(target.steps());
+                target.advance_free(gap);
+            } else {
+                while target.recorded() < want {
+                    target.advance_free(1);
+                }
+            }
+        }
+        let recorded = target.recorded();
+        let mut out = std::mem::take(&mut target.out);
+        if recorded < want && recorded > 0 {
+            let (q, v) = target.state();
+            let accel = Acceleration { omega2: &omega2, damping: &damping };
+            free_window(&sample_map, q, v, &accel, &free_rows, &mut out, want - recorded);
+        }
+        let channels = probes.rows.iter().zip(out).map(|(r, samples)| Channel { kind: r.kind, samples }).collect();
+        Ok(ReducedOutcome {
+            outcome,
+            signals: Signals { rate_hz: probes.spec.rate_hz, channels },
+            dt,
+            static_compliance,
+            residual_compliance: pt.c_res,
+            residual_mode_hz: residual_mode.map(|(w, _)| w / (2.0 * std::f64::consts::PI)),
+        })
+    }
+}
+
+/// Samples to come in blocks of this many: the modal states of a block are computed first,
+/// then every channel's samples as y[c][k] = Σᵢ A[c][i] q[i][k] + B[c][i] q̇[i][k], with the
+/// block as the vector dimension (no horizontal sums).
+const BLOCK: usize = 16;
+
+/// Which modal state a channel reads while no force acts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FreeState {
+    /// qᵢ.
+    Deflection,
+    /// q̇ᵢ.
+    Rate,
+    /// q̈ᵢ = -ωᵢ²qᵢ - 2ζωᵢq̇ᵢ.
+    Acceleration,
+}
+
+/// ωᵢ² and 2ζωᵢ of the (extended) modes.
+struct Acceleration<'a> {
+    omega2: &'a [f64],
+    damping: &'a [f64],
+}
+
+/// Appends `count` samples to every channel of `out`, the modes propagated exactly by
+/// `map` from the state (`q`, `v`) one sample interval per sample; channel c reads
+/// rows[c].0 · (its state).
+fn free_window(
+    map: &FreeMaps,
+    q: &[f64],
+    v: &[f64],
+    accel: &Acceleration<'_>,
+    rows: &[(Vec<f64>, FreeState)],
+    out: &mut [Vec<f64>],
+    count: usize,
+) {
+    let n = q.len();
+    let (mut qk, mut vk) = (q.to_vec(), v.to_vec());
+    let (mut qp, mut vp) = (vec![0.0; n], vec![0.0; n]);
+    let needs_acc = rows.iter().any(|r| r.1 == FreeState::Acceleration);
+    // Mode-major blocks of states: qs[i * BLOCK + j] is mode i at the block's sample j.
+    let (mut qs, mut vs, mut acc) = (vec![0.0; n * BLOCK], vec![0.0; n * BLOCK], vec![0.0; n * BLOCK]);
+    let (om2, damp) = (&accel.omega2[..n], &accel.damping[..n]);
+    let mut done = 0;
+    while done < count {
+        let m = BLOCK.min(count - done);
+        for j in 0..m {
+            std::mem::swap(&mut qk, &mut qp);
+            std::mem::swap(&mut vk, &mut vp);
+            map.apply(&qp, &vp, &mut qk, &mut vk);
+            for i in 0..n {
+                qs[i * BLOCK + j] = qk[i];
+                vs[i * BLOCK + j] = vk[i];
+            }
+            if needs_acc {
+                for i in 0..n {
+                    acc[i * BLOCK + j] = -om2[i] * qk[i] - damp[i] * vk[i];
+                }
+            }
+        }
+        for ((row, state), o) in rows.iter().zip(out.iter_mut()) {
+            let states = match state {
+                FreeState::Deflection => &qs,
+                FreeState::Rate => &vs,
+                FreeState::Acceleration => &acc,
+            };
+            let mut y = [0.0f64; BLOCK];
+            for (i, &coef) in row.iter().enumerate().take(n) {
+                let s = &states[i * BLOCK..(i + 1) * BLOCK];
+                for j in 0..BLOCK {
+                    y[j] += coef * s[j];
+                }
+            }
+            o.extend_from_slice(&y[..m]);
+        }
+        done += m;
+    }
+}
+
+/// Σ φᵢ(p)²/ωᵢ²: the modes' part of the static compliance.
+fn modal_compliance(phi_p: &[f64], omega: &[f64]) -> f64 {
+    phi_p.iter().zip(omega).map(|(f, w)| f * f / (w * w)).sum()
+}
+
+/// The element holding a corner node and the corner's local w DOF in it.
+fn corner_element(mesh: &Mesh, c: Corner) -> (usize, usize, usize) {
+    match c {
+        Corner::LeftNear => (0, 0, 0),
+        Corner::RightNear => (mesh.nx() - 1, 0, 4),
+        Corner::LeftFar => (0, mesh.nz() - 1, 8),
+        Corner::RightFar => (mesh.nx() - 1, mesh.nz() - 1, 12),
+    }
+}

@@ -1,0 +1,312 @@
+//! Sensor signals: what is sampled, where, how often, and the time series that come out.
+//!
+//! Every channel is a linear functional of the modal state and the contact force,
+//! y(t) = Σᵢ Aᵢ qᵢ(t) + Σᵢ Bᵢ q̇ᵢ(t) + D(p) P(t): the coefficient rows A, B belong to the
+//! channel (its sensor or corner), and D(p), the direct term of the static correction and
+//! of the force itself, to the impact point p. A [`Probes`] holds the rows for one
+//! [`SignalSpec`] on one [`super::ReducedModel`], so an impact only evaluates D(p).
+//!
+//! Between samples, after the contacts, every mode is propagated exactly: the damped free
+//! vibration over one sample interval T_s is a fixed 2 x 2 map of (qᵢ, q̇ᵢ) per mode
+//! ([`free_map`]), computed once per `Probes`.
+
+use plate_fem::Corner;
+use serde::Serialize;
+
+/// The sampled window and the sensor points of an impact's signals (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignalSpec {
+    /// Length of the window from first touch, s (default 20 ms).
+    pub window: f64,
+    /// Sampling rate, Hz (default 20 kHz).
+    pub rate_hz: f64,
+    /// Sensor points (x, z), m.
+    pub sensors: Vec<(f64, f64)>,
+    /// Which plate quantities each sensor records (default all three).
+    pub quantities: Vec<Quantity>,
+    /// Whether to record the corner channels: spring forces at spring corners, reactions at
+    /// fixed corners (default true).
+    pub corners: bool,
+}
+
+impl SignalSpec {
+    /// Default window, s: 20 ms, about 1.6 fundamental periods of the paper's plate (80 Hz)
+    /// and 20 or more contact times.
+    pub const DEFAULT_WINDOW: f64 = 0.020;
+    /// Default sampling rate, Hz: 20 kHz, whose Nyquist frequency (10 kHz) lies above the
+    /// contact's spectrum (its main lobe ends near 1/t_c, 1-6 kHz for the paper's rocks at
+    /// 0.008-3 m/s) and at the top of the default modes.
+    pub const DEFAULT_RATE_HZ: f64 = 20_000.0;
+
+    /// The default window and rate, every quantity at `sensors`, the corners included.
+    pub fn new(sensors: Vec<(f64, f64)>) -> Self {
+        Self {
+            window: Self::DEFAULT_WINDOW,
+            rate_hz: Self::DEFAULT_RATE_HZ,
+            sensors,
+            quantities: Quantity::ALL.to_vec(),
+            corners: true,
+        }
+    }
+
+    /// Number of samples, at t_k = k/rate for k = 0, 1, ... while t_k < window (the first at
+    /// the first touch).
+    pub fn samples(&self) -> usize {
+        (self.window * self.rate_hz - 1e-9).ceil().max(1.0) as usize
+    }
+
+    /// The sample interval 1/rate, s.
+    pub fn interval(&self) -> f64 {
+        1.0 / self.rate_hz
+    }
+}
+
+/// A plate quantity at a sensor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Quantity {
+    /// Deflection w, m (positive along the impact).
+    Displacement,
+    /// ẇ, m/s.
+    Velocity,
+    /// ẅ, m/s².
+    Acceleration,
+}
+
+impl Quantity {
+    /// All three, in this order.
+    pub const ALL: [Quantity; 3] = [Quantity::Displacement, Quantity::Velocity, Quantity::Acceleration];
+}
+
+/// What a channel records.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum ChannelKind {
+    /// Plate deflection at sensor `sensor` (index into [`SignalSpec::sensors`]), m.
+    Displacement {
+        /// Sensor index.
+        sensor: usize,
+    },
+    /// Plate velocity at a sensor, m/s.
+    Velocity {
+        /// Sensor index.
+        sensor: usize,
+    },
+    /// Plate acceleration at a sensor, m/s².
+    Acceleration {
+        /// Sensor index.
+        sensor: usize,
+    },
+    /// Force in the spring (prop or jack) at a corner, k·w_c, N (positive in compression,
+    /// i.e. pushing against the impact).
+    SpringForce {
+        /// The corner.
+        corner: Corner,
+    },
+    /// Reaction of a fixed corner, N (positive against the impact).
+    Reaction {
+        /// The corner.
+        corner: Corner,
+    },
+}
+
+impl ChannelKind {
+    /// SI unit of the samples.
+    pub fn unit(&self) -> &'static str {
+        match self {
+            ChannelKind::Displacement { .. } => "m",
+            ChannelKind::Velocity { .. } => "m/s",
+            ChannelKind::Acceleration { .. } => "m/s^2",
+            ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => "N",
+        }
+    }
+
+    /// A short label, e.g. "acceleration s1" or "spring force corner (L, 0)".
+    pub fn label(&self) -> String {
+        match self {
+            ChannelKind::Displacement { sensor } => format!("displacement s{}", sensor + 1),
+            ChannelKind::Velocity { sensor } => format!("velocity s{}", sensor + 1),
+            ChannelKind::Acceleration { sensor } => format!("acceleration s{}", sensor + 1),
+            ChannelKind::SpringForce { corner } => format!("spring force {}", corner.name()),
+            ChannelKind::Reaction { corner } => format!("reaction {}", corner.name()),
+        }
+    }
+}
+
+/// One sampled time series.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Channel {
+    /// What it records.
+    pub kind: ChannelKind,
+    /// Samples at t_k = k/rate, in the unit of `kind`.
+    pub samples: Vec<f64>,
+}
+
+/// The signals of one impact.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Signals {
+    /// Sampling rate, Hz.
+    pub rate_hz: f64,
+    /// The channels, in the order of [`Probes::kinds`].
+    pub channels: Vec<Channel>,
+}
+
+impl Signals {
+    /// The sample times t_k = k/rate, s.
+    pub fn times(&self) -> Vec<f64> {
+        let n = self.channels.first().map_or(0, |c| c.samples.len());
+        (0..n).map(|k| k as f64 / self.rate_hz).collect()
+    }
+
+    /// The channel of `kind`, if recorded.
+    pub fn channel(&self, kind: ChannelKind) -> Option<&Channel> {
+        self.channels.iter().find(|c| c.kind == kind)
+    }
+}
+
+/// One channel as linear functionals of the plate's fields: y = ℓ_d(w) + ℓ_v(ẇ) + ℓ_a(ẅ)
+/// (+ the load carried straight into a fixed corner). On the modes this is
+/// y = A·q + B·q̇ + C·φ(p) P with Aᵢ = ℓ_d(φᵢ) - ωᵢ²ℓ_a(φᵢ), Bᵢ = ℓ_v(φᵢ) - 2ζωᵢℓ_a(φᵢ),
+/// Cᵢ = ℓ_a(φᵢ) (from q̈ᵢ = φᵢ(p)P - ωᵢ²qᵢ - 2ζωᵢq̇ᵢ). The truncated modes enter through the
+/// residual fields Rℓ (by reciprocity ℓ(RN(p)) = N(p)ᵀRℓ), as a static correction or as the
+/// residual mode.
+#[derive(Debug, Clone)]
+pub(crate) struct ChannelRows {
+    pub kind: ChannelKind,
+    pub a: Vec<f64>,
+    pub b: Vec<f64>,
+    /// Cᵢ = ℓ_a(φᵢ), if the channel has an acceleration part.
+    pub c: Option<Vec<f64>>,
+    /// A DOF whose shape function at p enters with weight 1 (the load carried straight into
+    /// a fixed corner of the struck element).
+    pub direct: Option<usize>,
+    /// ℓ_d, ℓ_v, ℓ_a as residual fields (indices into [`Probes::fields`]) with scales.
+    pub res: [Option<(usize, f64)>; 3],
+    /// A reaction: its inertia functional carries the modal damping force too, so that B = 0.
+    pub damped_inertia: bool,
+}
+
+/// A [`SignalSpec`] prepared on one reduced model: every channel's rows and the exact
+/// free-vibration map over one sample interval.
+#[derive(Debug, Clone)]
+pub struct Probes {
+    pub(crate) spec: SignalSpec,
+    pub(crate) rows: Vec<ChannelRows>,
+    /// Residual fields Rℓ of the channels' functionals (DOFs).
+    pub(crate) fields: Vec<Vec<f64>>,
+    /// The exact map of (q, q̇) over one sample interval, by mode ([`FreeMaps`]).
+    pub(crate) sample_map: FreeMaps,
+    /// The maps over T_s/m for m = 1, 2, ..., built when first needed (the step of every
+    /// impact whose contact needs m steps per sample).
+    pub(crate) step_maps: Vec<std::sync::OnceLock<FreeMaps>>,
+    pub(crate) omega: Vec<f64>,
+    pub(crate) zeta: f64,
+}
+
+impl Probes {
+    /// Most steps per sample whose maps are cached.
+    const CACHED: usize = 512;
+
+    pub(crate) fn new(
+        spec: &SignalSpec,
+        rows: Vec<ChannelRows>,
+        fields: Vec<Vec<f64>>,
+        omega: &[f64],
+        zeta: f64,
+    ) -> Self {
+        Self {
+            spec: spec.clone(),
+            rows,
+            fields,
+            sample_map: FreeMaps::new(omega, zeta, spec.interval()),
+            step_maps: (0..Self::CACHED).map(|_| std::sync::OnceLock::new()).collect(),
+            omega: omega.to_vec(),
+            zeta,
+        }
+    }
+
+    /// The exact map over T_s/`every` for the model's modes, cached.
+    pub(crate) fn step_map(&self, every: usize) -> FreeMaps {
+        match self.step_maps.get(every.saturating_sub(1)) {
+            Some(slot) if every > 0 => {
+                slot.get_or_init(|| FreeMaps::new(&self.omega, self.zeta, self.spec.interval() / every as f64)).clone()
+            }
+            _ => FreeMaps::new(&self.omega, self.zeta, self.spec.interval() / every.max(1) as f64),
+        }
+    }
+
+    /// The spec these probes record.
+    pub fn spec(&self) -> &SignalSpec {
+        &self.spec
+    }
+    /// The channels in recording order.
+    pub fn kinds(&self) -> Vec<ChannelKind> {
+        self.rows.iter().map(|r| r.kind).collect()
+    }
+}
+
+/// The exact free-vibration maps of all modes over one interval, stored by entry (four
+/// arrays over the modes) so that stepping every mode is a vector operation.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct FreeMaps {
+    m: [Vec<f64>; 4],
+}
+
+impl FreeMaps {
+    /// The maps over τ for the modes `omega`, damping ratio ζ.
+    pub(crate) fn new(omega: &[f64], zeta: f64, tau: f64) -> Self {
+        let maps: Vec<[f64; 4]> = omega.iter().map(|&w| free_map(w, zeta, tau)).collect();
+        Self { m: std::array::from_fn(|k| maps.iter().map(|m| m[k]).collect()) }
+    }
+
+    /// Appends the map of one more mode.
+    pub(crate) fn push(&mut self, omega: f64, zeta: f64, tau: f64) {
+        let m = free_map(omega, zeta, tau);
+        for (v, x) in self.m.iter_mut().zip(m) {
+            v.push(x);
+        }
+    }
+
+    /// (q, q̇) ← map (q, q̇), written to (`q_out`, `v_out`).
+    pub(crate) fn apply(&self, q: &[f64], v: &[f64], q_out: &mut [f64], v_out: &mut [f64]) {
+        let [m0, m1, m2, m3] = &self.m;
+        let n = q.len();
+        let (m0, m1, m2, m3, v, q_out, v_out) =
+            (&m0[..n], &m1[..n], &m2[..n], &m3[..n], &v[..n], &mut q_out[..n], &mut v_out[..n]);
+        for i in 0..n {
+            q_out[i] = m0[i] * q[i] + m1[i] * v[i];
+            v_out[i] = m2[i] * q[i] + m3[i] * v[i];
+        }
+    }
+}
+
+/// Σ aᵢbᵢ with eight independent partial sums, so that the compiler can vectorize it (a
+/// plain sum fixes the order of the additions and cannot be).
+#[inline]
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..8 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[4]) + (acc[1] + acc[5]) + (acc[2] + acc[6]) + (acc[3] + acc[7]) + tail
+}
+
+/// The exact map of (q, q̇) over τ for q̈ + 2ζωq̇ + ω²q = 0, ζ < 1, row-major [[q←q, q←q̇],
+/// [q̇←q, q̇←q̇]]: with ω_d = ω√(1 - ζ²),
+/// q(τ) = e^{-ζωτ}[q₀(cos ω_dτ + ζω/ω_d sin ω_dτ) + q̇₀ sin(ω_dτ)/ω_d],
+/// q̇(τ) = e^{-ζωτ}[-q₀ ω²/ω_d sin ω_dτ + q̇₀(cos ω_dτ - ζω/ω_d sin ω_dτ)]
+/// (e.g. Craig & Kurdila 2006, §5.2).
+pub fn free_map(omega: f64, zeta: f64, tau: f64) -> [f64; 4] {
+    let wd = omega * (1.0 - zeta * zeta).sqrt();
+    let e = (-zeta * omega * tau).exp();
+    let (s, c) = (wd * tau).sin_cos();
+    let r = zeta * omega / wd;
+    [e * (c + r * s), e * s / wd, -e * omega * omega / wd * s, e * (c - r * s)]
+}
