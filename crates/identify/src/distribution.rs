@@ -82,7 +82,7 @@ pub enum Distribution {
 /// A distribution whose parameters do not fit together.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum InvalidDistribution {
-    /// A parameter outside its range; its name is the parameter's ("min", "values[2]").
+    /// A parameter outside its range; its name is the parameter's (`min`, `values[2]`).
     #[error(transparent)]
     Range(#[from] InvalidParameter),
     /// Parameters that contradict each other.
