@@ -33,11 +33,13 @@ pub enum Analysis {
     /// The paper's own studies: its conclusions item by item and its figures redone with
     /// both models (the paper's plate only).
     PaperStudies,
+    /// Coal-gangue identification over the scene's random-impact ensemble (`[ensemble]`).
+    Identify,
 }
 
 impl Analysis {
     /// Every analysis, in the order reports present them.
-    pub const ALL: [Analysis; 10] = [
+    pub const ALL: [Analysis; 11] = [
         Analysis::Responses,
         Analysis::YieldVelocity,
         Analysis::WidthMaps,
@@ -48,6 +50,7 @@ impl Analysis {
         Analysis::Transient,
         Analysis::SizeMap,
         Analysis::PaperStudies,
+        Analysis::Identify,
     ];
 
     /// The name used in scene files.
@@ -63,6 +66,7 @@ impl Analysis {
             Analysis::Transient => "transient",
             Analysis::SizeMap => "size-map",
             Analysis::PaperStudies => "paper-studies",
+            Analysis::Identify => "identify",
         }
     }
 }
@@ -146,6 +150,9 @@ pub struct Scene {
     pub analyses: Vec<Analysis>,
     /// How to solve the energy balance.
     pub solver: Method,
+    /// The random-impact ensemble of the identification study; present exactly when the
+    /// scene asks for [`Analysis::Identify`].
+    pub ensemble: Option<identify::Study>,
 }
 
 impl Scene {

@@ -124,6 +124,69 @@ pub struct Held {
 impl Held {
     /// Nothing held: the scene's full variability.
     pub const NONE: Held = Held { position: false, size: false, speed: false, material: false };
+
+    /// Only `variable` held.
+    pub fn only(variable: Variable) -> Held {
+        let mut h = Held::NONE;
+        match variable {
+            Variable::Position => h.position = true,
+            Variable::Size => h.size = true,
+            Variable::Speed => h.speed = true,
+            Variable::Material => h.material = true,
+        }
+        h
+    }
+}
+
+/// A variable of the ensemble that can be held at its median, to see how much of the
+/// classes' overlap it causes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Variable {
+    /// The impact point.
+    Position,
+    /// The radius.
+    Size,
+    /// The impact speed.
+    Speed,
+    /// Density, modulus, Poisson ratio and strength.
+    Material,
+}
+
+impl Variable {
+    /// Every variable, in the order reports list them.
+    pub const ALL: [Variable; 4] = [Variable::Position, Variable::Size, Variable::Speed, Variable::Material];
+
+    /// The name used in scene files.
+    pub fn key(self) -> &'static str {
+        match self {
+            Variable::Position => "position",
+            Variable::Size => "size",
+            Variable::Speed => "speed",
+            Variable::Material => "material",
+        }
+    }
+}
+
+/// An identification study: the ensemble, the candidate sensor points of the placement
+/// maps (every x with every z, m), and the variables to hold one at a time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Study {
+    /// The random impacts.
+    pub ensemble: Ensemble,
+    /// Candidate sensor positions along the length, m.
+    pub candidates_x: Vec<f64>,
+    /// Candidate sensor positions across the width, m.
+    pub candidates_z: Vec<f64>,
+    /// Variables held at their medians, one per extra run.
+    pub hold: Vec<Variable>,
+}
+
+impl Study {
+    /// The candidate sensor points, x-major.
+    pub fn candidates(&self) -> Vec<(f64, f64)> {
+        self.candidates_x.iter().flat_map(|&x| self.candidates_z.iter().map(move |&z| (x, z))).collect()
+    }
 }
 
 /// One impact of the ensemble, SI units.

@@ -74,6 +74,6 @@ pub mod placement;
 pub mod roc;
 
 pub use distribution::Distribution;
-pub use ensemble::{Class, Draw, Ensemble, Family, Held, Region, Speed};
+pub use ensemble::{Class, Draw, Ensemble, Family, Held, Region, Speed, Study, Variable};
 pub use features::{Extractor, Feature, Features};
 pub use roc::Auc;
