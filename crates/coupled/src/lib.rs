@@ -15,6 +15,8 @@
 //!   finite elements with Richardson error estimates ([`PlateModel`]);
 //! - [`validity`]: elastic range, quasi-static validity, thin-plate range, re-contact;
 //! - [`transient`]: the sphere, the Flores contact and the plate dynamics in time;
+//! - [`reduced`]: the same impact on the plate's lowest modes plus a static correction,
+//!   fast enough for ensembles, with sensor signals;
 //! - [`plan`]: every model filling one row schema for a scene.
 //!
 //! No function here reads or writes files or knows of terminals.
@@ -43,6 +45,7 @@ pub mod compliance;
 pub mod discretisation;
 pub mod error;
 pub mod plan;
+pub mod reduced;
 pub mod scene;
 pub mod supports;
 pub mod transient;

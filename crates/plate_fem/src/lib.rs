@@ -57,6 +57,7 @@ pub mod dynamics;
 pub mod element;
 pub mod mesh;
 pub mod model;
+pub mod modes;
 pub mod supports;
 
 /// faer, re-exported: [`Factorization::solve_in_place`] takes a `faer::Mat<f64>`,
@@ -72,6 +73,7 @@ pub use nalgebra;
 pub use corners::CornerFamily;
 pub use mesh::Mesh;
 pub use model::{Factorization, Model, PlateProperties, PointResponse};
+pub use modes::{Modes, ResidualFlexibility};
 pub use supports::{Corner, CornerSupport, Edge, EdgeSupport, Supports};
 
 /// Everything that can go wrong, each with what to change.
@@ -122,6 +124,10 @@ pub enum FemError {
         #[source]
         source: SparseError,
     },
+    /// An eigenvalue request that cannot be met: more modes than degrees of freedom, or a
+    /// subspace iteration that did not reach its residual tolerance.
+    #[error("modes: {0}")]
+    Modes(String),
     /// A corner-update result that failed its a-posteriori check (see [`corners`]): the
     /// corner set with its stiffnesses, the base spring stiffness, and what failed.
     #[error("corner update to {corners} (base springs {k_base:e} N/m) failed its accuracy check: {what}")]

@@ -349,6 +349,26 @@ impl<'m> Factorization<'m> {
         &self.supports
     }
 
+    /// The DOFs the supports hold at zero, sorted.
+    pub fn held(&self) -> &[usize] {
+        &self.held
+    }
+
+    /// Solves K W = F in place without refinement or residuals (held DOFs zeroed first):
+    /// for inner loops whose results are checked by their own residuals.
+    ///
+    /// # Panics
+    ///
+    /// If `rhs` does not have [`Model::dofs`] rows.
+    pub fn solve_unchecked(&self, rhs: &mut Mat<f64>) {
+        for &d in &self.held {
+            for j in 0..rhs.ncols() {
+                rhs[(d, j)] = 0.0;
+            }
+        }
+        self.llt.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+    }
+
     /// Sets the number of iterative-refinement steps after each solve (default 1).
     ///
     /// The condition number of K grows like (L/h)⁴ and, with very soft springs, like the
