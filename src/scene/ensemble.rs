@@ -92,7 +92,13 @@ fn number(field: &str, v: &toml::Value) -> Result<f64, Invalid> {
 
 /// A number (fixed) or a law table, checked against `allowed` in the file's unit and
 /// scaled by `to_si`.
-fn distribution(field: &str, v: &toml::Value, allowed: Range, unit: &'static str, to_si: f64) -> Result<Distribution, Invalid> {
+fn distribution(
+    field: &str,
+    v: &toml::Value,
+    allowed: Range,
+    unit: &'static str,
+    to_si: f64,
+) -> Result<Distribution, Invalid> {
     let law = match v {
         toml::Value::Float(_) | toml::Value::Integer(_) => Distribution::Fixed { value: number(field, v)? },
         toml::Value::Table(t) => {
@@ -123,12 +129,17 @@ fn distribution(field: &str, v: &toml::Value, allowed: Range, unit: &'static str
             let get = |k: &str| -> Result<f64, Invalid> {
                 match t.get(k) {
                     Some(v) => number(&format!("{field}.{k}"), v),
-                    None => Err(other(format!("{field}.{k}"), format!("is required by the {kind} law ({})", keys.join(", ")))),
+                    None => Err(other(
+                        format!("{field}.{k}"),
+                        format!("is required by the {kind} law ({})", keys.join(", ")),
+                    )),
                 }
             };
             match kind {
                 "uniform" => Distribution::Uniform { min: get("min")?, max: get("max")? },
-                "normal" => Distribution::Normal { mean: get("mean")?, sd: get("sd")?, min: get("min")?, max: get("max")? },
+                "normal" => {
+                    Distribution::Normal { mean: get("mean")?, sd: get("sd")?, min: get("min")?, max: get("max")? }
+                }
                 "lognormal" => Distribution::LogNormal {
                     median: get("median")?,
                     sigma_log: get("sigma_log")?,
@@ -143,7 +154,10 @@ fn distribution(field: &str, v: &toml::Value, allowed: Range, unit: &'static str
                 },
                 _ => {
                     let Some(toml::Value::Array(list)) = t.get("values") else {
-                        return Err(other(format!("{field}.values"), "is required by the choice law: a list of numbers"));
+                        return Err(other(
+                            format!("{field}.values"),
+                            "is required by the choice law: a list of numbers",
+                        ));
                     };
                     let values = list
                         .iter()
@@ -215,17 +229,32 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
         let n = count(&key("count"), f.count, 1, MAX_IMPACTS)?;
         total += n;
         if total > MAX_IMPACTS {
-            return Err(other(key("count"), format!("the families' counts add up to {total}; at most {MAX_IMPACTS} impacts")));
+            return Err(other(
+                key("count"),
+                format!("the families' counts add up to {total}; at most {MAX_IMPACTS} impacts"),
+            ));
         }
         families.push(Family {
             name: f.name.clone(),
             class,
             count: n,
             density: distribution(&key("density_kg_m3"), &f.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3", 1.0)?,
-            youngs_modulus: distribution(&key("youngs_modulus_gpa"), &f.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa", 1e9)?,
+            youngs_modulus: distribution(
+                &key("youngs_modulus_gpa"),
+                &f.youngs_modulus_gpa,
+                limits::MODULUS_GPA,
+                "GPa",
+                1e9,
+            )?,
             poisson_ratio: distribution(&key("poisson_ratio"), &f.poisson_ratio, POISSON_RATIO, "", 1.0)?,
             cohesion: distribution(&key("cohesion_mpa"), &f.cohesion_mpa, limits::COHESION_MPA, "MPa", 1e6)?,
-            friction_angle_deg: distribution(&key("friction_angle_deg"), &f.friction_angle_deg, FRICTION_ANGLE_DEG, "deg", 1.0)?,
+            friction_angle_deg: distribution(
+                &key("friction_angle_deg"),
+                &f.friction_angle_deg,
+                FRICTION_ANGLE_DEG,
+                "deg",
+                1.0,
+            )?,
             radius: distribution(&key("radius_mm"), &f.radius_mm, limits::RADIUS_MM, "mm", MM)?,
         });
     }
@@ -244,7 +273,10 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
             for (j, name) in list.iter().enumerate() {
                 let v = Variable::ALL.into_iter().find(|v| v.key() == name).ok_or_else(|| {
                     let keys: Vec<&str> = Variable::ALL.iter().map(|v| v.key()).collect();
-                    other(format!("ensemble.hold[{j}]"), format!("'{name}' is not a variable; allowed: {}", keys.join(", ")))
+                    other(
+                        format!("ensemble.hold[{j}]"),
+                        format!("'{name}' is not a variable; allowed: {}", keys.join(", ")),
+                    )
                 })?;
                 if !out.contains(&v) {
                     out.push(v);

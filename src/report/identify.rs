@@ -1,0 +1,993 @@
+//! `impact identify`: the scene's random-impact ensemble on every support set, the features'
+//! separability of coal from gangue, sensor-placement maps, which variability hides the
+//! difference, and the validity of the ensemble, written up as a report.
+//!
+//! The physics is in `coupled::identification` and the statistics in crate `identify`;
+//! this module streams the feature rows to the output directory, draws the maps and
+//! histograms, and fills the templates.
+
+use crate::output::{Artifacts, OutputDir, StreamedFile};
+use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::table::{sig, Cell, Table};
+use crate::report::comparison::heat_map;
+use crate::report::template::render;
+use crate::report::Failure;
+use coupled::identification::{
+    run_condition, ConditionRun, EnsembleValidity, ImpactRecord, Instrument, RunError, CHUNK,
+};
+use coupled::reduced::{ChannelKind, Quantity, ReducedModel, ReducedSettings, SignalSpec};
+use coupled::{Scene, SupportSet};
+use identify::classify::{CrossValidated, FOLDS, RIDGE};
+use identify::distribution::Distribution;
+use identify::placement::{best, classifier, map, separabilities, Separability};
+use identify::roc::{auc_with_error, bootstrap_interval, Auc, BOOTSTRAP_RESAMPLES};
+use identify::{Class, Feature, Held, Speed, Study};
+use serde::Serialize;
+use std::time::Instant;
+
+const HEAD: &str = include_str!("templates/identify/head.md");
+const FINDING: &str = include_str!("templates/identify/finding.md");
+const CONDITION: &str = include_str!("templates/identify/condition.md");
+const METHOD: &str = include_str!("templates/identify/method.md");
+
+/// Entries of the ranking that get a bootstrap interval (the rest carry DeLong's error).
+const TOP: usize = 10;
+/// Histogram bins.
+const BINS: usize = 30;
+/// The confidence level of every interval.
+const LEVEL: f64 = 0.95;
+
+/// The signals an identification records: window, rate, the reduced model's settings and
+/// the named sensors (SI).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignalSettings {
+    /// The reduced model.
+    pub reduced: ReducedSettings,
+    /// Window after first touch, s.
+    pub window: f64,
+    /// Sampling rate, Hz.
+    pub rate_hz: f64,
+    /// Named sensor points (x, z), m.
+    pub sensors: Vec<(f64, f64)>,
+}
+
+/// The scene's signal settings.
+pub fn signal_settings(_scene: &Scene) -> SignalSettings {
+    SignalSettings {
+        reduced: ReducedSettings::default(),
+        window: SignalSpec::DEFAULT_WINDOW,
+        rate_hz: SignalSpec::DEFAULT_RATE_HZ,
+        sensors: vec![],
+    }
+}
+
+/// Channels an identification records per impact on `set`: three quantities at every named
+/// and candidate sensor, and the held or sprung corners.
+pub fn channels_per_impact(scene: &Scene, study: &Study, set: &SupportSet) -> usize {
+    let sensors = signal_settings(scene).sensors.len() + study.candidates_x.len() * study.candidates_z.len();
+    let corners = set.supports.corners.iter().filter(|c| !matches!(c, plate_fem::CornerSupport::Free)).count();
+    3 * sensors + corners
+}
+
+/// Bytes of features one run holds: 6 features of 8 bytes per impact and channel.
+pub fn feature_bytes(impacts: usize, channels: usize) -> usize {
+    impacts.saturating_mul(channels).saturating_mul(6 * 8)
+}
+
+// ---------------------------------------------------------------- results
+
+/// One ranked feature of one channel with its intervals.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// The channel, e.g. "acceleration at (229.2, 180) mm".
+    pub channel: String,
+    /// The feature.
+    pub feature: Feature,
+    /// AUC (P(gangue > coal)) with DeLong's standard error.
+    pub auc: Auc,
+    /// The 95 % percentile bootstrap interval.
+    pub interval: (f64, f64),
+}
+
+/// One classifier's cross-validated accuracy.
+#[derive(Debug, Clone, Serialize)]
+pub struct Accuracy {
+    /// Which features it sees.
+    pub features: String,
+    /// Its accuracy.
+    pub result: CrossValidated,
+}
+
+/// One run of the variability study.
+#[derive(Debug, Clone, Serialize)]
+pub struct Held1 {
+    /// What was held ("size", "position, size and speed", ...).
+    pub held: String,
+    /// The reference feature's AUC.
+    pub reference: Auc,
+    /// The best feature of the run.
+    pub best: Ranked,
+    /// P_max's AUC.
+    pub force_max: Auc,
+    /// The classifier on every channel of the run.
+    pub accuracy: CrossValidated,
+}
+
+/// The identification on one support set.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConditionResult {
+    /// Support set name.
+    pub condition: String,
+    /// The supported plate's fundamental frequency, Hz.
+    pub fundamental_hz: f64,
+    /// Validity counts.
+    pub validity: EnsembleValidity,
+    /// The most separating features, best first.
+    pub ranking: Vec<Ranked>,
+    /// The best sensor point (x, z), mm, and its best feature.
+    pub best_sensor: Option<((f64, f64), Ranked)>,
+    /// P_max and the first contact's duration: the paper's quantities.
+    pub force_max: Ranked,
+    /// The contact time.
+    pub contact_time: Ranked,
+    /// Classifiers.
+    pub classifiers: Vec<Accuracy>,
+    /// The variability study.
+    pub held: Vec<Held1>,
+    /// Seconds for the reduced model's set-up (modes, residual flexibility).
+    pub setup_seconds: f64,
+    /// Seconds for the main ensemble run (impacts, features, rows to disk).
+    pub run_seconds: f64,
+    /// Impacts per second of that run.
+    pub impacts_per_second: f64,
+    /// Bytes of features held in memory for the run.
+    pub feature_bytes: usize,
+}
+
+/// What `impact identify` found, for the terminal and the JSON.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Scene name.
+    pub scene: String,
+    /// Impacts per support set.
+    pub impacts: usize,
+    /// Coal and gangue impacts.
+    pub classes: (usize, usize),
+    /// The contact law.
+    pub contact_law: &'static str,
+    /// The signals.
+    pub signals: SignalSettings,
+    /// Per support set.
+    pub conditions: Vec<ConditionResult>,
+}
+
+// ---------------------------------------------------------------- labels
+
+fn mm(v: f64) -> String {
+    sig(v * 1e3, 4)
+}
+
+fn quantity_name(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Displacement => "displacement",
+        Quantity::Velocity => "velocity",
+        Quantity::Acceleration => "acceleration",
+    }
+}
+
+/// What a channel is and where, in words and as CSV fields.
+#[derive(Debug, Clone)]
+struct ChannelInfo {
+    kind: ChannelKind,
+    quantity: &'static str,
+    /// (x, z) of the sensor or corner, m.
+    at: (f64, f64),
+    /// The sensor's index among the run's sensors (None for corners).
+    sensor: Option<usize>,
+    unit: &'static str,
+}
+
+impl ChannelInfo {
+    fn new(kind: ChannelKind, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Self {
+        let (quantity, sensor) = match kind {
+            ChannelKind::Displacement { sensor } => ("displacement", Some(sensor)),
+            ChannelKind::Velocity { sensor } => ("velocity", Some(sensor)),
+            ChannelKind::Acceleration { sensor } => ("acceleration", Some(sensor)),
+            ChannelKind::SpringForce { .. } => ("spring force", None),
+            ChannelKind::Reaction { .. } => ("reaction", None),
+        };
+        let at = match kind {
+            ChannelKind::SpringForce { corner } | ChannelKind::Reaction { corner } => {
+                corner.position(plate.length(), plate.width())
+            }
+            _ => sensors[sensor.unwrap_or(0)],
+        };
+        Self { kind, quantity, at, sensor, unit: kind.unit() }
+    }
+
+    fn label(&self) -> String {
+        format!("{} at ({}, {}) mm", self.quantity, mm(self.at.0), mm(self.at.1))
+    }
+}
+
+fn feature_label(f: Feature) -> &'static str {
+    match f {
+        Feature::Peak => "peak",
+        Feature::Rms => "RMS",
+        Feature::Energy => "energy",
+        Feature::Duration => "duration",
+        Feature::DominantFrequency => "dominant frequency",
+        Feature::SpectralCentroid => "spectral centroid",
+    }
+}
+
+fn describe(d: &Distribution, unit: &str, scale: f64) -> String {
+    let v = |x: f64| sig(x * scale, 4);
+    match d {
+        Distribution::Fixed { value } => format!("{} {unit}", v(*value)),
+        Distribution::Uniform { min, max } => format!("uniform on [{}, {}] {unit}", v(*min), v(*max)),
+        Distribution::Normal { mean, sd, min, max } => {
+            format!("normal, mean {} sd {}, in [{}, {}] {unit}", v(*mean), v(*sd), v(*min), v(*max))
+        }
+        Distribution::LogNormal { median, sigma_log, min, max } => format!(
+            "lognormal, median {} σ_ln {}, in [{}, {}] {unit}",
+            v(*median),
+            sig(*sigma_log, 3),
+            v(*min),
+            v(*max)
+        ),
+        Distribution::RosinRammler { scale: s, shape, min, max } => {
+            format!("Rosin-Rammler, x₆₃ {} n {}, in [{}, {}] {unit}", v(*s), sig(*shape, 3), v(*min), v(*max))
+        }
+        Distribution::Choice { values } => {
+            format!("one of {} {unit}", values.iter().map(|x| v(*x)).collect::<Vec<_>>().join(", "))
+        }
+    }
+}
+
+fn held_label(h: Held) -> String {
+    let mut parts = Vec::new();
+    for (on, name) in [(h.position, "position"), (h.size, "size"), (h.speed, "speed"), (h.material, "material")] {
+        if on {
+            parts.push(name);
+        }
+    }
+    match parts.len() {
+        0 => "nothing".into(),
+        1 => parts[0].into(),
+        n => format!("{} and {}", parts[..n - 1].join(", "), parts[n - 1]),
+    }
+}
+
+// ---------------------------------------------------------------- rows on disk
+
+/// The two streamed files: one row per impact, one row per impact and channel.
+struct Rows {
+    impacts: csv::Writer<StreamedFile>,
+    features: csv::Writer<StreamedFile>,
+}
+
+const IMPACT_HEADERS: [&str; 19] = [
+    "condition",
+    "impact",
+    "family",
+    "class",
+    "x_mm",
+    "z_mm",
+    "radius_mm",
+    "velocity_m_per_s",
+    "density_kg_m3",
+    "youngs_modulus_gpa",
+    "poisson_ratio",
+    "cohesion_mpa",
+    "friction_angle_deg",
+    "force_max_n",
+    "contact_time_s",
+    "contacts",
+    "compression_over_yield",
+    "hertz_time_over_t1",
+    "mass_kg",
+];
+
+const FEATURE_HEADERS: [&str; 13] = [
+    "condition",
+    "impact",
+    "class",
+    "quantity",
+    "x_mm",
+    "z_mm",
+    "unit",
+    "peak_unit",
+    "rms_unit",
+    "energy_unit2_s",
+    "duration_s",
+    "dominant_frequency_hz",
+    "spectral_centroid_hz",
+];
+
+fn num(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v:e}")
+    } else {
+        String::new()
+    }
+}
+
+impl Rows {
+    fn open(out: &mut OutputDir) -> Result<Self, Failure> {
+        let mut impacts = csv::Writer::from_writer(out.stream("impacts.csv")?);
+        impacts.write_record(IMPACT_HEADERS)?;
+        let mut features = csv::Writer::from_writer(out.stream("features.csv")?);
+        features.write_record(FEATURE_HEADERS)?;
+        Ok(Self { impacts, features })
+    }
+
+    fn write(
+        &mut self,
+        condition: &str,
+        r: &ImpactRecord,
+        family: &str,
+        channels: &[ChannelInfo],
+    ) -> Result<(), Failure> {
+        let d = &r.draw;
+        let mass = d.density * 4.0 / 3.0 * std::f64::consts::PI * d.radius.powi(3);
+        self.impacts.write_record([
+            condition.to_string(),
+            d.index.to_string(),
+            family.to_string(),
+            d.class.key().to_string(),
+            num(d.x * 1e3),
+            num(d.z * 1e3),
+            num(d.radius * 1e3),
+            num(d.velocity),
+            num(d.density),
+            num(d.youngs_modulus / 1e9),
+            num(d.poisson_ratio),
+            num(d.cohesion / 1e6),
+            num(d.friction_angle_deg),
+            num(r.force_max),
+            r.contact_time.map_or(String::new(), num),
+            r.contacts.to_string(),
+            num(r.compression_ratio),
+            num(r.hertz_time_ratio),
+            num(mass),
+        ])?;
+        for (c, f) in channels.iter().zip(&r.features) {
+            self.features.write_record([
+                condition.to_string(),
+                d.index.to_string(),
+                d.class.key().to_string(),
+                c.quantity.to_string(),
+                num(c.at.0 * 1e3),
+                num(c.at.1 * 1e3),
+                c.unit.to_string(),
+                num(f.peak),
+                num(f.rms),
+                num(f.energy),
+                num(f.duration),
+                num(f.dominant_frequency),
+                num(f.spectral_centroid),
+            ])?;
+        }
+        Ok(())
+    }
+
+    fn finish(self, out: &mut OutputDir) -> Result<(), Failure> {
+        for w in [self.impacts, self.features] {
+            let file = w.into_inner().map_err(|e| e.into_error())?;
+            out.finish_stream(file)?;
+        }
+        Ok(())
+    }
+}
+
+// ---------------------------------------------------------------- the runs
+
+fn progress(len: usize, message: String) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(len as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg:30} [{bar:30}] {pos}/{len} impacts, {per_sec}, eta {eta}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(message);
+    bar
+}
+
+fn spec(settings: &SignalSettings, sensors: Vec<(f64, f64)>) -> SignalSpec {
+    SignalSpec {
+        window: settings.window,
+        rate_hz: settings.rate_hz,
+        sensors,
+        quantities: Quantity::ALL.to_vec(),
+        corners: true,
+    }
+}
+
+fn ranked(channel: String, feature: Feature, coal: &[f64], gangue: &[f64], seed: u64) -> Ranked {
+    Ranked {
+        channel,
+        feature,
+        auc: auc_with_error(coal, gangue),
+        interval: bootstrap_interval(coal, gangue, BOOTSTRAP_RESAMPLES, LEVEL, seed),
+    }
+}
+
+fn split(values: &[f64], classes: &[Class]) -> (Vec<f64>, Vec<f64>) {
+    let mut c = Vec::new();
+    let mut g = Vec::new();
+    for (v, k) in values.iter().zip(classes) {
+        match k {
+            Class::Coal => c.push(*v),
+            Class::Gangue => g.push(*v),
+        }
+    }
+    (c, g)
+}
+
+/// The histogram of coal and gangue values of one column as two curves of the fraction of
+/// each class per bin; scale features on log10 axes when all values are positive.
+fn histogram(title: &str, label: &str, coal: &[f64], gangue: &[f64], log: bool) -> String {
+    let log = log && coal.iter().chain(gangue).all(|v| *v > 0.0);
+    let t = |v: f64| if log { v.log10() } else { v };
+    let (lo, hi) =
+        coal.iter().chain(gangue).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(t(v)), b.max(t(v))));
+    let (lo, hi) = if lo.is_finite() && hi > lo { (lo, hi) } else { (lo.min(0.0), lo.max(0.0) + 1.0) };
+    let width = (hi - lo) / BINS as f64;
+    let curve = |vals: &[f64]| -> Vec<(f64, f64)> {
+        let mut counts = vec![0.0; BINS];
+        for &v in vals {
+            let k = (((t(v) - lo) / width) as usize).min(BINS - 1);
+            counts[k] += 1.0;
+        }
+        let n = vals.len().max(1) as f64;
+        counts.iter().enumerate().map(|(k, c)| (lo + (k as f64 + 0.5) * width, c / n)).collect()
+    };
+    let x_label = if log { format!("log10 {label}") } else { label.to_string() };
+    line_plot(
+        title,
+        &x_label,
+        "fraction of the class per bin",
+        &[Series::new("coal", curve(coal)), Series::new("gangue", curve(gangue))],
+        Scale::Linear,
+    )
+}
+
+/// What one support set gives besides its files: its results and its report section.
+struct ConditionOutput {
+    result: ConditionResult,
+    markdown: String,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_set(
+    scene: &Scene,
+    study: &Study,
+    settings: &SignalSettings,
+    set: &SupportSet,
+    index: usize,
+    rows: &mut Rows,
+    artifacts: &mut Artifacts,
+) -> Result<ConditionOutput, Failure> {
+    let plate = &scene.plate;
+    let e = &study.ensemble;
+    let started = Instant::now();
+    let model = ReducedModel::new(plate, set, settings.reduced)?;
+    let setup_seconds = started.elapsed().as_secs_f64();
+
+    // The main run: named sensors, then the candidate grid, every quantity, the corners.
+    let named = settings.sensors.len();
+    let candidates = study.candidates();
+    let sensors: Vec<(f64, f64)> = settings.sensors.iter().copied().chain(candidates.iter().copied()).collect();
+    let instrument =
+        Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
+    let infos: Vec<ChannelInfo> =
+        instrument.channels().into_iter().map(|k| ChannelInfo::new(k, &sensors, plate)).collect();
+    let bar = progress(e.len(), format!("{}: ensemble", set.name));
+    let t0 = Instant::now();
+    let run: ConditionRun = run_condition(study, Held::NONE, &instrument, |r: &ImpactRecord| -> Result<(), Failure> {
+        rows.write(&set.name, r, &e.families[r.draw.family].name, &infos)?;
+        bar.inc(1);
+        Ok(())
+    })
+    .map_err(|err| -> Failure {
+        match err {
+            RunError::Model { index, source } => format!("{}: impact {index}: {source}", set.name).into(),
+            RunError::Sink(f) => f,
+        }
+    })?;
+    let run_seconds = t0.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let held_bytes = run.table.bytes() + CHUNK * infos.len() * 6 * 8;
+
+    let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    let all = separabilities(&run.table);
+    let mut order: Vec<&Separability> = all.iter().collect();
+    order.sort_by(|a, b| b.auc.separability().total_cmp(&a.auc.separability()).then(a.channel.cmp(&b.channel)));
+    let classes = run.table.classes().to_vec();
+    let rank_of = |s: &Separability, k: usize| {
+        let (c, g) = run.table.split(s.channel, s.feature);
+        ranked(infos[s.channel].label(), s.feature, &c, &g, seed.wrapping_add(k as u64))
+    };
+    let ranking: Vec<Ranked> = order.iter().take(TOP).enumerate().map(|(k, s)| rank_of(s, k)).collect();
+    let (fc, fg) = split(&run.force_max, &classes);
+    let force_max = ranked("contact force P_max".into(), Feature::Peak, &fc, &fg, seed ^ 1);
+    let (tc, tg) = split(&run.contact_time, &classes);
+    let contact_time = ranked("contact time t_c".into(), Feature::Duration, &tc, &tg, seed ^ 2);
+
+    // The best sensor: the sensor channel with the most separating feature.
+    let sensor_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_some()).collect();
+    let best_sensor_entry = if sensor_channels.is_empty() { None } else { best(&all, &sensor_channels) };
+    let best_sensor =
+        best_sensor_entry.map(|s| ((infos[s.channel].at.0 * 1e3, infos[s.channel].at.1 * 1e3), rank_of(&s, TOP + 1)));
+
+    let stem = format!("c{}", index + 1);
+
+    // Placement maps: per quantity, the feature whose best grid value is highest.
+    let mut maps_md = String::new();
+    if !candidates.is_empty() {
+        for q in Quantity::ALL {
+            let chans: Vec<usize> = (0..infos.len())
+                .filter(|&c| infos[c].sensor.is_some_and(|s| s >= named) && infos[c].quantity == quantity_name(q))
+                .collect();
+            let Some(top) = best(&all, &chans) else { continue };
+            let values = map(&all, &chans, top.feature);
+            let nz = study.candidates_z.len();
+            let svg = heat_map(
+                &format!("{}: separability of {} {}", set.name, quantity_name(q), feature_label(top.feature)),
+                &study.candidates_x,
+                &study.candidates_z,
+                |i, j| values[i * nz + j].separability(),
+                "max(AUC, 1-AUC)",
+            );
+            let file = format!("{stem}-map-{}.svg", quantity_name(q));
+            maps_md.push_str(&format!("![{} map]({file})\n\n", quantity_name(q)));
+            artifacts.add(file, svg);
+        }
+    }
+
+    // Histograms: the best feature overall and P_max.
+    let mut hist_md = String::new();
+    if let Some(top) = order.first() {
+        let (c, g) = run.table.split(top.channel, top.feature);
+        let label = format!(
+            "{} {} ({})",
+            infos[top.channel].label(),
+            feature_label(top.feature),
+            top.feature.unit(infos[top.channel].unit)
+        );
+        let file = format!("{stem}-hist-best.svg");
+        artifacts.add(&file, histogram(&format!("{}: best feature", set.name), &label, &c, &g, top.feature.is_scale()));
+        hist_md.push_str(&format!("![best feature]({file})\n\n"));
+    }
+    let file = format!("{stem}-hist-force.svg");
+    artifacts.add(&file, histogram(&format!("{}: contact force", set.name), "P_max (N)", &fc, &fg, true));
+    hist_md.push_str(&format!("![contact force]({file})\n\n"));
+
+    // Classifiers on the main run.
+    let mut classifiers = Vec::new();
+    if let Some(s) = best_sensor_entry {
+        let sensor = infos[s.channel].sensor;
+        let chans: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
+        classifiers.push(Accuracy {
+            features: format!(
+                "the best sensor's 3 quantities × 6 features, at ({}, {}) mm",
+                mm(infos[s.channel].at.0),
+                mm(infos[s.channel].at.1)
+            ),
+            result: classifier(&run.table, &chans, seed ^ 3)?,
+        });
+    }
+    let corner_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_none()).collect();
+    if !corner_channels.is_empty() {
+        classifiers.push(Accuracy {
+            features: format!("the {} corner channels (spring forces, reactions) × 6 features", corner_channels.len()),
+            result: classifier(&run.table, &corner_channels, seed ^ 4)?,
+        });
+    }
+
+    // The variability study, on the reference instrument: the named sensors, the best
+    // sensor, the corners.
+    let mut reference_sensors = settings.sensors.clone();
+    let mut reference = best_sensor_entry.map(|s| (infos[s.channel].kind, s.feature));
+    if let Some((kind, feature)) = reference {
+        if let Some(s) = infos.iter().find(|i| i.kind == kind).and_then(|i| i.sensor) {
+            if s >= named {
+                reference_sensors.push(sensors[s]);
+                let moved = match kind {
+                    ChannelKind::Displacement { .. } => ChannelKind::Displacement { sensor: named },
+                    ChannelKind::Velocity { .. } => ChannelKind::Velocity { sensor: named },
+                    ChannelKind::Acceleration { .. } => ChannelKind::Acceleration { sensor: named },
+                    other => other,
+                };
+                reference = Some((moved, feature));
+            }
+        }
+    }
+    let reference_instrument = Instrument::new(
+        &model,
+        plate,
+        &spec(settings, reference_sensors.clone()),
+        scene.restitution,
+        scene.contact_law,
+    )?;
+    let ref_infos: Vec<ChannelInfo> =
+        reference_instrument.channels().into_iter().map(|k| ChannelInfo::new(k, &reference_sensors, plate)).collect();
+    let mut variants: Vec<Held> = study.hold.iter().map(|v| Held::only(*v)).collect();
+    if !study.hold.is_empty() {
+        variants.push(Held { position: true, size: true, speed: true, material: false });
+    }
+    let all_channels: Vec<usize> = (0..ref_infos.len()).collect();
+    let mut held = Vec::new();
+    for (k, h) in variants.into_iter().enumerate() {
+        let bar = progress(e.len(), format!("{}: {} held", set.name, held_label(h)));
+        let r = run_condition(study, h, &reference_instrument, |_: &ImpactRecord| -> Result<(), Failure> {
+            bar.inc(1);
+            Ok(())
+        })
+        .map_err(|err| -> Failure {
+            match err {
+                RunError::Model { index, source } => format!("{}: impact {index}: {source}", set.name).into(),
+                RunError::Sink(f) => f,
+            }
+        })?;
+        bar.finish_and_clear();
+        let seps = separabilities(&r.table);
+        let reference_auc = reference
+            .and_then(|(kind, f)| ref_infos.iter().position(|i| i.kind == kind).map(|c| (c, f)))
+            .map_or(Auc { auc: 0.5, standard_error: 0.0 }, |(c, f)| {
+                let (a, b) = r.table.split(c, f);
+                auc_with_error(&a, &b)
+            });
+        let top = best(&seps, &[]).expect("a run has channels");
+        let (a, b) = r.table.split(top.channel, top.feature);
+        let (pc, pg) = split(&r.force_max, r.table.classes());
+        held.push(Held1 {
+            held: held_label(h),
+            reference: reference_auc,
+            best: ranked(ref_infos[top.channel].label(), top.feature, &a, &b, seed ^ (100 + k as u64)),
+            force_max: auc_with_error(&pc, &pg),
+            accuracy: classifier(&r.table, &all_channels, seed ^ (200 + k as u64))?,
+        });
+    }
+    let everything = classifier(
+        &run.table,
+        &(0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect::<Vec<_>>(),
+        seed ^ 5,
+    );
+    if named > 0 {
+        classifiers.push(Accuracy {
+            features: format!(
+                "every named sensor and corner channel ({} channels) × 6 features",
+                named * 3 + corner_channels.len()
+            ),
+            result: everything?,
+        });
+    }
+
+    let result = ConditionResult {
+        condition: set.name.clone(),
+        fundamental_hz: run.fundamental_hz,
+        validity: run.validity,
+        ranking,
+        best_sensor,
+        force_max,
+        contact_time,
+        classifiers,
+        held,
+        setup_seconds,
+        run_seconds,
+        impacts_per_second: e.len() as f64 / run_seconds.max(1e-9),
+        feature_bytes: held_bytes,
+    };
+    let markdown = condition_markdown(
+        &result,
+        &maps_md,
+        &hist_md,
+        reference.map(|(k, f)| {
+            let i = ref_infos.iter().find(|i| i.kind == k).map_or_else(|| "-".to_string(), |i| i.label());
+            format!("{i}, {}", feature_label(f))
+        }),
+    )?;
+    Ok(ConditionOutput { result, markdown })
+}
+
+// ---------------------------------------------------------------- the report
+
+fn ci(r: &Ranked) -> String {
+    format!("{}-{}", sig(r.interval.0, 3), sig(r.interval.1, 3))
+}
+
+fn direction(a: &Auc) -> &'static str {
+    if a.gangue_higher() {
+        "gangue higher"
+    } else {
+        "coal higher"
+    }
+}
+
+fn percent(n: usize, of: usize) -> String {
+    format!("{} %", sig(100.0 * n as f64 / of.max(1) as f64, 3))
+}
+
+fn condition_markdown(
+    r: &ConditionResult,
+    maps: &str,
+    hists: &str,
+    reference: Option<String>,
+) -> Result<String, Failure> {
+    let mut ranking = Table::new("", &["channel", "feature", "AUC", "DeLong SE", "95 % bootstrap CI", "direction"]);
+    for x in std::iter::once(&r.force_max).chain([&r.contact_time]).chain(&r.ranking) {
+        ranking.push(vec![
+            x.channel.clone().into(),
+            feature_label(x.feature).into(),
+            Cell::Text(sig(x.auc.auc, 3)),
+            Cell::Text(sig(x.auc.standard_error, 2)),
+            ci(x).into(),
+            direction(&x.auc).into(),
+        ]);
+    }
+    let mut acc = Table::new("", &["features", "accuracy", "SE"]);
+    for a in &r.classifiers {
+        acc.push(vec![
+            a.features.clone().into(),
+            Cell::Text(sig(a.result.accuracy, 3)),
+            Cell::Text(sig(a.result.standard_error, 2)),
+        ]);
+    }
+    let mut held = Table::new(
+        "",
+        &[
+            "held at the median",
+            "reference AUC",
+            "best feature of the run",
+            "its AUC (95 % CI)",
+            "P_max AUC",
+            "classifier accuracy",
+        ],
+    );
+    for h in &r.held {
+        held.push(vec![
+            h.held.clone().into(),
+            Cell::Text(format!("{} ± {}", sig(h.reference.auc, 3), sig(h.reference.standard_error, 2))),
+            format!("{} {}", h.best.channel, feature_label(h.best.feature)).into(),
+            Cell::Text(format!("{} ({})", sig(h.best.auc.auc, 3), ci(&h.best))),
+            Cell::Text(sig(h.force_max.auc, 3)),
+            Cell::Text(format!("{} ± {}", sig(h.accuracy.accuracy, 3), sig(h.accuracy.standard_error, 2))),
+        ]);
+    }
+    let v = &r.validity;
+    let held_md = if r.held.is_empty() {
+        "No variable held (the scene's `hold = []`).".to_string()
+    } else {
+        format!(
+            "Reference: {}. Each row reruns the same impacts (the same random numbers) with one variable at its median.\n\n{}",
+            reference.unwrap_or_else(|| "-".into()),
+            held.to_markdown()
+        )
+    };
+    Ok(render(
+        "identify/condition.md",
+        CONDITION,
+        &[
+            ("condition", r.condition.clone()),
+            ("fundamental_hz", sig(r.fundamental_hz, 4)),
+            ("ranking", ranking.to_markdown()),
+            ("classifiers", acc.to_markdown()),
+            (
+                "maps",
+                if maps.is_empty() {
+                    "No candidate grid in the scene ([ensemble.placement]).\n".into()
+                } else {
+                    maps.to_string()
+                },
+            ),
+            ("histograms", hists.to_string()),
+            ("held", held_md),
+            ("impacts", v.impacts.to_string()),
+            ("beyond_elastic", percent(v.beyond_elastic, v.impacts)),
+            ("not_quasi_static", percent(v.not_quasi_static, v.impacts)),
+            ("recontact", percent(v.recontact, v.impacts)),
+            ("unfinished", percent(v.unfinished, v.impacts)),
+        ],
+    )?)
+}
+
+fn finding(r: &ConditionResult) -> Result<String, Failure> {
+    let top = r.ranking.first();
+    let (best_text, best_auc) = top.map_or(("-".to_string(), "-".to_string()), |t| {
+        (
+            format!("{} of the {}", feature_label(t.feature), t.channel),
+            format!("{} (95 % CI {})", sig(t.auc.auc, 3), ci(t)),
+        )
+    });
+    let best_accuracy = r
+        .classifiers
+        .iter()
+        .max_by(|a, b| a.result.accuracy.total_cmp(&b.result.accuracy))
+        .map_or("-".to_string(), |a| {
+            format!("{} ± {} ({})", sig(a.result.accuracy, 3), sig(a.result.standard_error, 2), a.features)
+        });
+    let most = r
+        .held
+        .iter()
+        .filter(|h| !h.held.contains(" and "))
+        .max_by(|a, b| a.reference.separability().total_cmp(&b.reference.separability()));
+    let held_text = most.map_or("no variable was held".to_string(), |h| {
+        format!(
+            "holding the {} at its median moves the reference feature's AUC to {} ± {}",
+            h.held,
+            sig(h.reference.auc, 3),
+            sig(h.reference.standard_error, 2)
+        )
+    });
+    Ok(render(
+        "identify/finding.md",
+        FINDING,
+        &[
+            ("condition", r.condition.clone()),
+            ("best", best_text),
+            ("best_auc", best_auc),
+            ("force_auc", format!("{} (95 % CI {})", sig(r.force_max.auc.auc, 3), ci(&r.force_max))),
+            ("accuracy", best_accuracy),
+            ("held", held_text),
+        ],
+    )?)
+}
+
+/// Runs the identification of `scene` (which must carry an ensemble), streaming the rows
+/// into `out`, and returns the report's files and the summary.
+pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary), Failure> {
+    let study = scene.ensemble.as_ref().ok_or("the scene has no [ensemble] table (the identify analysis)")?;
+    let settings = signal_settings(scene);
+    let mut rows = Rows::open(out)?;
+    let mut artifacts = Artifacts::new();
+    let mut conditions = Vec::new();
+    let mut sections = String::new();
+    for (i, set) in scene.conditions.iter().enumerate() {
+        let c = run_set(scene, study, &settings, set, i, &mut rows, &mut artifacts)?;
+        sections.push_str(&c.markdown);
+        conditions.push(c.result);
+    }
+    rows.finish(out)?;
+    let e = &study.ensemble;
+    let summary = Summary {
+        scene: scene.name.clone(),
+        impacts: e.len(),
+        classes: e.class_counts(),
+        contact_law: scene.contact_law.key(),
+        signals: settings.clone(),
+        conditions,
+    };
+    let mut findings = String::new();
+    for c in &summary.conditions {
+        findings.push_str(&finding(c)?);
+    }
+    let mut families = Table::new(
+        "",
+        &[
+            "family",
+            "class",
+            "count",
+            "radius",
+            "density",
+            "Young's modulus",
+            "Poisson ratio",
+            "cohesion",
+            "friction angle",
+        ],
+    );
+    for f in &e.families {
+        families.push(vec![
+            f.name.clone().into(),
+            f.class.key().into(),
+            f.count.into(),
+            describe(&f.radius, "mm", 1e3).into(),
+            describe(&f.density, "kg/m³", 1.0).into(),
+            describe(&f.youngs_modulus, "GPa", 1e-9).into(),
+            describe(&f.poisson_ratio, "", 1.0).into(),
+            describe(&f.cohesion, "MPa", 1e-6).into(),
+            describe(&f.friction_angle_deg, "°", 1.0).into(),
+        ]);
+    }
+    let speed = match &e.speed {
+        Speed::FallHeight(h) => format!("free fall from rest, v = √(2gh), fall height h {}", describe(h, "m", 1.0)),
+        Speed::Velocity(v) => format!("velocity {}", describe(v, "m/s", 1.0)),
+    };
+    let sensors = if settings.sensors.is_empty() {
+        "none named".to_string()
+    } else {
+        settings.sensors.iter().map(|(x, z)| format!("({}, {}) mm", mm(*x), mm(*z))).collect::<Vec<_>>().join(", ")
+    };
+    let candidates = if study.candidates_x.is_empty() {
+        "none".to_string()
+    } else {
+        format!("{} x {} points from (0, 0) to (L, B)", study.candidates_x.len(), study.candidates_z.len())
+    };
+    let mut timing =
+        Table::new("", &["support set", "model set-up (s)", "ensemble run (s)", "impacts/s", "features held (MB)"]);
+    for c in &summary.conditions {
+        timing.push(vec![
+            c.condition.clone().into(),
+            Cell::Text(sig(c.setup_seconds, 3)),
+            Cell::Text(sig(c.run_seconds, 3)),
+            Cell::Text(sig(c.impacts_per_second, 3)),
+            Cell::Text(sig(c.feature_bytes as f64 / 1e6, 3)),
+        ]);
+    }
+    let head = render(
+        "identify/head.md",
+        HEAD,
+        &[
+            ("scene", scene.name.clone()),
+            ("findings", findings),
+            ("impacts", e.len().to_string()),
+            ("coal", summary.classes.0.to_string()),
+            ("gangue", summary.classes.1.to_string()),
+            ("seed", e.seed.to_string()),
+            (
+                "region",
+                format!(
+                    "x in [{}, {}] mm, z in [{}, {}] mm",
+                    mm(e.region.x.0),
+                    mm(e.region.x.1),
+                    mm(e.region.z.0),
+                    mm(e.region.z.1)
+                ),
+            ),
+            ("speed", speed),
+            ("families", families.to_markdown()),
+            ("window_ms", sig(settings.window * 1e3, 3)),
+            ("rate_hz", sig(settings.rate_hz, 3)),
+            ("modes", settings.reduced.modes.to_string()),
+            ("damping", sig(settings.reduced.damping_ratio * 100.0, 3)),
+            ("contact_law", scene.contact_law.key().to_string()),
+            ("restitution", sig(scene.restitution, 3)),
+            ("sensors", sensors),
+            ("candidates", candidates),
+        ],
+    )?;
+    let method = render(
+        "identify/method.md",
+        METHOD,
+        &[
+            ("resamples", BOOTSTRAP_RESAMPLES.to_string()),
+            ("folds", FOLDS.to_string()),
+            ("ridge", sig(RIDGE, 3)),
+            ("top", TOP.to_string()),
+            ("timing", timing.to_markdown()),
+            ("threshold", sig(identify::features::DURATION_THRESHOLD * 100.0, 3)),
+            ("taper", sig(identify::features::TAPER_FRACTION * 100.0, 3)),
+            ("chunk", CHUNK.to_string()),
+        ],
+    )?;
+    artifacts.add("index.md", format!("{head}{sections}{method}"));
+    artifacts.add("summary.json", serde_json::to_string_pretty(&summary)? + "\n");
+    Ok((artifacts, summary))
+}
+
+/// The summary as tables for the terminal.
+pub fn summary_tables(s: &Summary) -> Vec<Table> {
+    let mut t = Table::new(
+        format!(
+            "{}: coal against gangue over {} impacts per support set ({} coal, {} gangue)",
+            s.scene, s.impacts, s.classes.0, s.classes.1
+        ),
+        &["support set", "best feature", "AUC", "95 % CI", "P_max AUC", "best accuracy", "beyond elastic", "impacts/s"],
+    );
+    for c in &s.conditions {
+        let top = c.ranking.first();
+        let acc = c.classifiers.iter().map(|a| a.result.accuracy).fold(f64::NAN, f64::max);
+        t.push(vec![
+            c.condition.clone().into(),
+            top.map_or(Cell::Empty, |r| format!("{} {}", r.channel, feature_label(r.feature)).into()),
+            top.map_or(Cell::Empty, |r| Cell::Text(sig(r.auc.auc, 3))),
+            top.map_or(Cell::Empty, |r| ci(r).into()),
+            Cell::Text(sig(c.force_max.auc.auc, 3)),
+            if acc.is_finite() { Cell::Text(sig(acc, 3)) } else { Cell::Empty },
+            percent(c.validity.beyond_elastic, c.validity.impacts).into(),
+            Cell::Text(sig(c.impacts_per_second, 3)),
+        ]);
+    }
+    vec![t]
+}
