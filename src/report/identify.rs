@@ -27,6 +27,7 @@ use std::time::Instant;
 
 const HEAD: &str = include_str!("templates/identify/head.md");
 const FINDING: &str = include_str!("templates/identify/finding.md");
+const FINDING_HELD: &str = include_str!("templates/identify/finding-held.md");
 const CONDITION: &str = include_str!("templates/identify/condition.md");
 const METHOD: &str = include_str!("templates/identify/method.md");
 
@@ -101,7 +102,9 @@ pub struct Accuracy {
 /// One run of the variability study.
 #[derive(Debug, Clone, Serialize)]
 pub struct Held1 {
-    /// What was held ("size", "position, size and speed", ...).
+    /// What was held.
+    pub which: Held,
+    /// It in words ("size", "position, size and speed", ...).
     pub held: String,
     /// The reference feature's AUC.
     pub reference: Auc,
@@ -163,8 +166,10 @@ pub struct Summary {
 
 // ---------------------------------------------------------------- labels
 
+/// A position in m as mm to 0.1 mm, without trailing zeros ("229.2", "0", "90").
 fn mm(v: f64) -> String {
-    sig(v * 1e3, 4)
+    let t = format!("{:.1}", v * 1e3);
+    t.strip_suffix(".0").map_or(t.clone(), str::to_string)
 }
 
 fn quantity_name(q: Quantity) -> &'static str {
@@ -222,7 +227,8 @@ fn feature_label(f: Feature) -> &'static str {
 }
 
 fn describe(d: &Distribution, unit: &str, scale: f64) -> String {
-    let v = |x: f64| sig(x * scale, 4);
+    // Values as the scene wrote them (to rounding of the unit conversion).
+    let v = |x: f64| analytic::params::compact(format!("{:.6e}", x * scale).parse::<f64>().unwrap_or(x * scale));
     match d {
         Distribution::Fixed { value } => format!("{} {unit}", v(*value)),
         Distribution::Uniform { min, max } => format!("uniform on [{}, {}] {unit}", v(*min), v(*max)),
@@ -232,7 +238,7 @@ fn describe(d: &Distribution, unit: &str, scale: f64) -> String {
         Distribution::LogNormal { median, sigma_log, min, max } => format!(
             "lognormal, median {} σ_ln {}, in [{}, {}] {unit}",
             v(*median),
-            sig(*sigma_log, 3),
+            analytic::params::compact(*sigma_log),
             v(*min),
             v(*max)
         ),
@@ -643,6 +649,7 @@ fn run_set(
         let (a, b) = r.table.split(top.channel, top.feature);
         let (pc, pg) = split(&r.force_max, r.table.classes());
         held.push(Held1 {
+            which: h,
             held: held_label(h),
             reference: reference_auc,
             best: ranked(ref_infos[top.channel].label(), top.feature, &a, &b, seed ^ (100 + k as u64)),
@@ -794,43 +801,45 @@ fn condition_markdown(
 }
 
 fn finding(r: &ConditionResult) -> Result<String, Failure> {
+    let dash = || "-".to_string();
     let top = r.ranking.first();
-    let (best_text, best_auc) = top.map_or(("-".to_string(), "-".to_string()), |t| {
-        (
-            format!("{} of the {}", feature_label(t.feature), t.channel),
-            format!("{} (95 % CI {})", sig(t.auc.auc, 3), ci(t)),
-        )
-    });
-    let best_accuracy = r
-        .classifiers
-        .iter()
-        .max_by(|a, b| a.result.accuracy.total_cmp(&b.result.accuracy))
-        .map_or("-".to_string(), |a| {
-            format!("{} ± {} ({})", sig(a.result.accuracy, 3), sig(a.result.standard_error, 2), a.features)
-        });
-    let most = r
-        .held
-        .iter()
-        .filter(|h| !h.held.contains(" and "))
-        .max_by(|a, b| a.reference.separability().total_cmp(&b.reference.separability()));
-    let held_text = most.map_or("no variable was held".to_string(), |h| {
-        format!(
-            "holding the {} at its median moves the reference feature's AUC to {} ± {}",
-            h.held,
-            sig(h.reference.auc, 3),
-            sig(h.reference.standard_error, 2)
-        )
-    });
+    let best_classifier = r.classifiers.iter().max_by(|a, b| a.result.accuracy.total_cmp(&b.result.accuracy));
+    let single = |h: &&Held1| {
+        [h.which.position, h.which.size, h.which.speed, h.which.material].iter().filter(|x| **x).count() == 1
+    };
+    let most =
+        r.held.iter().filter(single).max_by(|a, b| a.reference.separability().total_cmp(&b.reference.separability()));
+    let paper = r.held.iter().find(|h| h.which.position && h.which.size && h.which.speed && !h.which.material);
+    let held = match (most, paper, &r.best_sensor) {
+        (Some(m), Some(p), Some((_, reference))) => render(
+            "identify/finding-held.md",
+            FINDING_HELD,
+            &[
+                ("variable", m.held.clone()),
+                ("free", sig(reference.auc.auc, 3)),
+                ("auc", sig(m.reference.auc, 3)),
+                ("se", sig(m.reference.standard_error, 2)),
+                ("paper_auc", sig(p.reference.auc, 3)),
+                ("paper_se", sig(p.reference.standard_error, 2)),
+            ],
+        )?,
+        _ => String::new(),
+    };
     Ok(render(
         "identify/finding.md",
         FINDING,
         &[
             ("condition", r.condition.clone()),
-            ("best", best_text),
-            ("best_auc", best_auc),
-            ("force_auc", format!("{} (95 % CI {})", sig(r.force_max.auc.auc, 3), ci(&r.force_max))),
-            ("accuracy", best_accuracy),
-            ("held", held_text),
+            ("feature", top.map_or_else(dash, |t| feature_label(t.feature).to_string())),
+            ("channel", top.map_or_else(dash, |t| t.channel.clone())),
+            ("best_auc", top.map_or_else(dash, |t| sig(t.auc.auc, 3))),
+            ("best_ci", top.map_or_else(dash, ci)),
+            ("force_auc", sig(r.force_max.auc.auc, 3)),
+            ("force_ci", ci(&r.force_max)),
+            ("classifier", best_classifier.map_or_else(dash, |a| a.features.clone())),
+            ("accuracy", best_classifier.map_or_else(dash, |a| sig(a.result.accuracy, 3))),
+            ("accuracy_se", best_classifier.map_or_else(dash, |a| sig(a.result.standard_error, 2))),
+            ("held", held.trim_end().to_string()),
         ],
     )?)
 }
