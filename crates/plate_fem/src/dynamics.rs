@@ -145,6 +145,17 @@ impl<'m> Newmark<'m> {
     pub fn field(&self) -> &[f64] {
         &self.w
     }
+
+    /// The velocity field ẇ now.
+    pub fn velocity_field(&self) -> &[f64] {
+        &self.v
+    }
+
+    /// The acceleration field ẅ now (the rule's step-end acceleration, which satisfies the
+    /// equation of motion there).
+    pub fn acceleration_field(&self) -> &[f64] {
+        &self.a
+    }
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

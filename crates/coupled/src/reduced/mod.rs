@@ -49,6 +49,7 @@ pub mod signals;
 pub mod target;
 
 pub use signals::{free_map, Channel, ChannelKind, Probes, Quantity, SignalSpec, Signals};
+
 pub use target::FreeSteps;
 
 use crate::discretisation::{mesh_for, plate_properties};
@@ -60,8 +61,21 @@ use analytic::Plate;
 use plate_fem::modes::shape_at;
 use plate_fem::{element, Corner, CornerSupport, Mesh, Model, Modes, ResidualFlexibility};
 use serde::Serialize;
-use signals::ChannelRows;
-use target::{CornerPoint, ModalTarget};
+use signals::{dot, ChannelRows, FreeMaps};
+use target::{CornerPoint, ModalTarget, Recording};
+
+/// How the truncated modes enter.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Correction {
+    /// Quasi-statically, w_res = C_res(p)P: the static correction (mode acceleration).
+    #[default]
+    Static,
+    /// As one more mode: the residual shape ψ = RN(p) with its stiffness and mass
+    /// (plate_fem::ResidualFlexibility), which keeps the static compliance and adds the
+    /// truncated modes' inertia.
+    ResidualMode,
+}
 
 /// How the reduced model is built.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -74,11 +88,13 @@ pub struct ReducedSettings {
     pub elements: usize,
     /// The time step in contact is at most the Hertz time over this.
     pub steps_per_contact: f64,
+    /// How the truncated modes enter.
+    pub correction: Correction,
 }
 
 impl ReducedSettings {
     /// Default N.
-    pub const DEFAULT_MODES: usize = 60;
+    pub const DEFAULT_MODES: usize = 80;
     /// Default ζ (see the module documentation).
     pub const DEFAULT_DAMPING_RATIO: f64 = 0.005;
     /// Allowed ζ: the exact free-vibration map needs ζ < 1; beyond half of critical a mode
@@ -89,31 +105,34 @@ impl ReducedSettings {
 }
 
 impl Default for ReducedSettings {
-    /// N = 60, ζ = 0.5 %, the full model's 20 elements and 200 steps per contact time.
+    /// N = [`Self::DEFAULT_MODES`], ζ = 0.5 %, the full model's 20 elements and 200 steps per
+    /// contact time, the static correction.
     fn default() -> Self {
         Self {
             modes: Self::DEFAULT_MODES,
             damping_ratio: Self::DEFAULT_DAMPING_RATIO,
             elements: 20,
             steps_per_contact: 200.0,
+            correction: Correction::default(),
         }
     }
 }
 
-/// One corner's data: its support and what it contributes to channels and energies.
+/// One corner's data: its support, its modal rows and its residual fields.
 #[derive(Debug, Clone)]
 struct CornerData {
     corner: Corner,
     support: CornerSupport,
     /// The corner's w DOF.
     dof: usize,
-    /// Spring or free corner: φᵢ(c). Fixed corner: the reaction's coefficients on qᵢ,
-    /// ωᵢ²(Mφᵢ)_c - (Kφᵢ)_c.
+    /// Spring or free corner: φᵢ(c); fixed corner: (Kφᵢ)_c, its stiffness row on the mode.
     row: Vec<f64>,
-    /// Fixed corner: -(Mφᵢ)_c, the coefficients of φᵢ(p) in the reaction's direct term.
-    direct_modal: Option<Vec<f64>>,
-    /// R e_c (spring or free corner) or R k_c (fixed corner, k_c its stiffness row).
+    /// Fixed corner: (Mφᵢ)_c, its mass row on the mode.
+    mass_row: Option<Vec<f64>>,
+    /// Spring or free corner: R e_c; fixed corner: R k_c (k_c its stiffness row).
     field: Vec<f64>,
+    /// Fixed corner: R m_c (m_c its mass row).
+    mass_field: Option<Vec<f64>>,
 }
 
 /// The reduced model of one plate on one support set.
@@ -142,6 +161,19 @@ pub struct ReducedOutcome {
     pub static_compliance: f64,
     /// Its part carried by the truncated modes, C_res(p), m/N.
     pub residual_compliance: f64,
+    /// The residual mode's frequency ω_ψ/2π, Hz (None with the static correction, or when
+    /// the kept modes carry the whole compliance).
+    pub residual_mode_hz: Option<f64>,
+}
+
+/// What the modes and the truncated modes give at one impact point.
+struct Point {
+    dofs: [usize; 16],
+    shape: plate_fem::element::Vec16,
+    phi: Vec<f64>,
+    c_res: f64,
+    /// m_ψ, the residual shape's mass.
+    m_res: f64,
 }
 
 impl ReducedModel {
@@ -155,7 +187,8 @@ impl ReducedModel {
         let props = plate_properties(plate);
         let model = Model::new(props, mesh_for(&props, settings.elements)?)?;
         let fact = model.factorize(&set.supports)?;
-        let modes = if model.dofs() <= plate_fem::modes::DENSE_LIMIT {
+        let free = model.dofs() - fact.held().len();
+        let modes = if free <= plate_fem::modes::DENSE_LIMIT {
             Modes::dense(&model, &set.supports, settings.modes)?
         } else {
             Modes::krylov(&fact, settings.modes)?
@@ -180,31 +213,33 @@ impl ReducedModel {
                 // Held by an edge: no channel, no deflection.
                 continue;
             }
-            let (ex, ez, local) = corner_element(&mesh, c);
             let entry = match support {
                 CornerSupport::Fixed => {
+                    // The held DOF's rows of the unsupported K and M: the corner node belongs to
+                    // one element, whose matrices give them.
+                    let (ex, ez, local) = corner_element(&mesh, c);
                     let (a, b) = mesh.element_size(ex, ez);
                     let ke = element::stiffness(a, b, props.rigidity(), props.poisson_ratio);
                     let me = element::mass(a, b, props.density * props.thickness);
                     let dofs = mesh.element_dofs(ex, ez);
-                    let row_of = |mat: &element::Mat16, i: usize| -> f64 {
-                        (0..16).map(|k| mat[(local, k)] * phi[dofs[k] * n + i]).sum()
-                    };
-                    let row = (0..n).map(|i| omega[i] * omega[i] * row_of(&me, i) - row_of(&ke, i)).collect();
-                    let direct = (0..n).map(|i| -row_of(&me, i)).collect();
-                    let mut kc = vec![0.0; ndof];
+                    let (mut kc, mut mc) = (vec![0.0; ndof], vec![0.0; ndof]);
                     for k in 0..16 {
                         if dofs[k] != dof {
                             kc[dofs[k]] += ke[(local, k)];
+                            mc[dofs[k]] += me[(local, k)];
                         }
                     }
+                    let on_modes = |r: &[f64]| -> Vec<f64> {
+                        (0..n).map(|i| (0..16).map(|k| r[dofs[k]] * phi[dofs[k] * n + i]).sum()).collect()
+                    };
                     CornerData {
                         corner: c,
                         support,
                         dof,
-                        row,
-                        direct_modal: Some(direct),
+                        row: on_modes(&kc),
+                        mass_row: Some(on_modes(&mc)),
                         field: modes.residual_field(&fact, &kc),
+                        mass_field: Some(modes.residual_field(&fact, &mc)),
                     }
                 }
                 CornerSupport::Spring(_) | CornerSupport::Free => {
@@ -215,8 +250,9 @@ impl ReducedModel {
                         support,
                         dof,
                         row: phi[dof * n..(dof + 1) * n].to_vec(),
-                        direct_modal: None,
+                        mass_row: None,
                         field: modes.residual_field(&fact, &e),
+                        mass_field: None,
                     }
                 }
             };
@@ -243,21 +279,29 @@ impl ReducedModel {
         self.model.mesh()
     }
 
-    /// φᵢ(p) for every mode and C_res(p), at p = (x, z).
-    pub fn at(&self, x: f64, z: f64) -> Result<(Vec<f64>, f64), ModelError> {
-        let (dofs, nv) = shape_at(self.model.mesh(), x, z)?;
+    fn point(&self, x: f64, z: f64) -> Result<Point, ModelError> {
+        let mesh = self.model.mesh();
+        let loc = mesh.locate(x, z)?;
+        let (dofs, shape) = shape_at(mesh, x, z)?;
         let n = self.omega.len();
-        let mut phi_p = vec![0.0; n];
+        let mut phi = vec![0.0; n];
         for k in 0..16 {
             let row = &self.phi[dofs[k] * n..(dofs[k] + 1) * n];
-            let s = nv[k];
-            for (p, r) in phi_p.iter_mut().zip(row) {
+            let s = shape[k];
+            for (p, r) in phi.iter_mut().zip(row) {
                 *p += s * r;
             }
         }
-        let loc = self.model.mesh().locate(x, z)?;
-        let e = loc.ez * self.model.mesh().nx() + loc.ex;
-        Ok((phi_p, self.residual.quadratic(e, &nv).max(0.0)))
+        let e = loc.ez * mesh.nx() + loc.ex;
+        let c_res = self.residual.quadratic(e, &shape).max(0.0);
+        let m_res = self.residual.mass_quadratic(e, &shape).max(0.0);
+        Ok(Point { dofs, shape, phi, c_res, m_res })
+    }
+
+    /// φᵢ(p) for every mode and C_res(p), at p = (x, z).
+    pub fn at(&self, x: f64, z: f64) -> Result<(Vec<f64>, f64), ModelError> {
+        let p = self.point(x, z)?;
+        Ok((p.phi, p.c_res))
     }
 
     /// The FE static compliance C(p) = Σφᵢ(p)²/ωᵢ² + C_res(p), m/N.
@@ -267,7 +311,7 @@ impl ReducedModel {
     }
 
     /// Prepares `spec` on this model: every channel's coefficient rows (one solve per
-    /// sensor, for its static correction) and the exact map over one sample interval.
+    /// sensor, for its residual field) and the exact map over one sample interval.
     pub fn probes(&self, spec: &SignalSpec) -> Result<Probes, ModelError> {
         check("signals.window", spec.window, Range::open_closed(0.0, 10.0), "s")?;
         check("signals.rate_hz", spec.rate_hz, Range::closed(10.0, 1e7), "Hz")?;
@@ -276,13 +320,12 @@ impl ReducedModel {
         let zeta = self.settings.damping_ratio;
         let fact = self.model.factorize(&self.set.supports)?;
         let mut rows = Vec::new();
+        let mut fields = Vec::new();
+        let w2 = |i: usize| self.omega[i] * self.omega[i];
         for (s, &(x, z)) in spec.sensors.iter().enumerate() {
-            let phi_s = self.at(x, z)?.0;
-            let field = if spec.quantities.contains(&Quantity::Displacement) {
-                Some(self.modes.residual_field(&fact, &fact.load_vector(x, z)?))
-            } else {
-                None
-            };
+            let phi_s = self.point(x, z)?.phi;
+            let f = fields.len();
+            fields.push(self.modes.residual_field(&fact, &fact.load_vector(x, z)?));
             for q in &spec.quantities {
                 rows.push(match q {
                     Quantity::Displacement => ChannelRows {
@@ -290,55 +333,67 @@ impl ReducedModel {
                         a: phi_s.clone(),
                         b: vec![0.0; n],
                         c: None,
-                        field: field.clone().map(|f| (f, 1.0)),
                         direct: None,
+                        res: [Some((f, 1.0)), None, None],
+                        damped_inertia: false,
                     },
                     Quantity::Velocity => ChannelRows {
                         kind: ChannelKind::Velocity { sensor: s },
                         a: vec![0.0; n],
                         b: phi_s.clone(),
                         c: None,
-                        field: None,
                         direct: None,
+                        res: [None, Some((f, 1.0)), None],
+                        damped_inertia: false,
                     },
-                    // ẅ_s = Σφᵢ(s)q̈ᵢ, q̈ᵢ = φᵢ(p)P - ωᵢ²qᵢ - 2ζωᵢq̇ᵢ.
                     Quantity::Acceleration => ChannelRows {
                         kind: ChannelKind::Acceleration { sensor: s },
-                        a: (0..n).map(|i| -self.omega[i] * self.omega[i] * phi_s[i]).collect(),
+                        a: (0..n).map(|i| -w2(i) * phi_s[i]).collect(),
                         b: (0..n).map(|i| -2.0 * zeta * self.omega[i] * phi_s[i]).collect(),
                         c: Some(phi_s.clone()),
-                        field: None,
                         direct: None,
+                        res: [None, None, Some((f, 1.0))],
+                        damped_inertia: false,
                     },
                 });
             }
         }
         if spec.corners {
             for c in &self.corners {
-                match c.support {
-                    CornerSupport::Spring(k) => rows.push(ChannelRows {
-                        kind: ChannelKind::SpringForce { corner: c.corner },
-                        a: c.row.iter().map(|r| k * r).collect(),
-                        b: vec![0.0; n],
-                        c: None,
-                        field: Some((c.field.clone(), k)),
-                        direct: None,
-                    }),
-                    CornerSupport::Fixed => rows.push(ChannelRows {
-                        kind: ChannelKind::Reaction { corner: c.corner },
-                        a: c.row.clone(),
-                        b: vec![0.0; n],
-                        c: c.direct_modal.clone(),
-                        field: Some((c.field.clone(), -1.0)),
-                        direct: Some(c.dof),
-                    }),
-                    CornerSupport::Free => {}
+                match (c.support, &c.mass_row, &c.mass_field) {
+                    (CornerSupport::Spring(k), _, _) => {
+                        let f = fields.len();
+                        fields.push(c.field.clone());
+                        rows.push(ChannelRows {
+                            kind: ChannelKind::SpringForce { corner: c.corner },
+                            a: c.row.iter().map(|r| k * r).collect(),
+                            b: vec![0.0; n],
+                            c: None,
+                            direct: None,
+                            res: [Some((f, k)), None, None],
+                            damped_inertia: false,
+                        });
+                    }
+                    // R_c = N_c(p)P - k_cᵀw - m_cᵀ(ẅ + modal damping): ℓ_d = -k_c, ℓ_a = -m_c.
+                    (CornerSupport::Fixed, Some(mass_row), Some(mass_field)) => {
+                        let (fk, fm) = (fields.len(), fields.len() + 1);
+                        fields.push(c.field.clone());
+                        fields.push(mass_field.clone());
+                        rows.push(ChannelRows {
+                            kind: ChannelKind::Reaction { corner: c.corner },
+                            a: (0..n).map(|i| w2(i) * mass_row[i] - c.row[i]).collect(),
+                            b: vec![0.0; n],
+                            c: Some(mass_row.iter().map(|m| -m).collect()),
+                            direct: Some(c.dof),
+                            res: [Some((fk, -1.0)), None, Some((fm, -1.0))],
+                            damped_inertia: true,
+                        });
+                    }
+                    _ => {}
                 }
             }
         }
-        let ts = spec.interval();
-        let sample_map = self.omega.iter().map(|&w| free_map(w, zeta, ts)).collect();
-        Ok(Probes { spec: spec.clone(), rows, sample_map })
+        Ok(Probes::new(spec, rows, fields, &self.omega, zeta))
     }
 
     /// One impact of `striker` at (x, z) with the signals of `probes` (see the module).
@@ -359,7 +414,8 @@ impl ReducedModel {
         let dt_max = striker.hertz_time() / self.settings.steps_per_contact;
         let every = (ts / dt_max).ceil().max(1.0) as usize;
         let dt = ts / every as f64;
-        self.run(striker, x, z, probes, free, dt, every)
+        let map = (free == FreeSteps::Exact).then(|| probes.step_map(every));
+        self.run(striker, x, z, probes, map, dt, every)
     }
 
     /// As [`Self::impact_with`] with the time step `dt` given (the sample interval is then
@@ -375,7 +431,8 @@ impl ReducedModel {
     ) -> Result<ReducedOutcome, ModelError> {
         check("dt", dt, Range::open(0.0, f64::INFINITY), "s")?;
         let every = (probes.spec.interval() / dt).round().max(1.0) as usize;
-        self.run(striker, x, z, probes, free, dt, every)
+        let map = (free == FreeSteps::Exact).then(|| FreeMaps::new(&self.omega, self.settings.damping_ratio, dt));
+        self.run(striker, x, z, probes, map, dt, every)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -385,32 +442,79 @@ impl ReducedModel {
         x: f64,
         z: f64,
         probes: &Probes,
-        free: FreeSteps,
+        mut map: Option<FreeMaps>,
         dt: f64,
         every: usize,
     ) -> Result<ReducedOutcome, ModelError> {
-        let (phi_p, c_res) = self.at(x, z)?;
-        let (dofs, nv) = shape_at(self.model.mesh(), x, z)?;
-        let eval_field = |f: &[f64]| -> f64 { (0..16).map(|k| nv[k] * f[dofs[k]]).sum() };
-        let direct: Vec<f64> = probes
-            .rows
-            .iter()
-            .map(|r| {
-                let modal = r.c.as_ref().map_or(0.0, |c| c.iter().zip(&phi_p).map(|(c, f)| c * f).sum());
-                let res = r.field.as_ref().map_or(0.0, |(f, s)| s * eval_field(f));
-                let own = r.direct.map_or(0.0, |d| (0..16).filter(|&k| dofs[k] == d).map(|k| nv[k]).sum());
-                modal + res + own
-            })
-            .collect();
+        let pt = self.point(x, z)?;
+        let zeta = self.settings.damping_ratio;
+        let static_compliance = modal_compliance(&pt.phi, &self.omega) + pt.c_res;
+        // The truncated modes: one more mode (ω_ψ² = C_res/m_ψ, ψ̂ = ψ/√m_ψ, ψ̂ᵀN = C_res/√m_ψ)
+        // or the static correction. Without compliance or mass left to carry (all modes
+        // kept, to rounding) there is neither.
+        let carried = pt.c_res > 1e-12 * static_compliance && pt.m_res > 0.0;
+        let residual_mode = (self.settings.correction == Correction::ResidualMode && carried)
+            .then(|| ((pt.c_res / pt.m_res).sqrt(), pt.m_res.sqrt()));
+        let at_p = |f: &[f64]| -> f64 { (0..16).map(|k| pt.shape[k] * f[pt.dofs[k]]).sum() };
+        let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_p(f)).collect();
+        let (mut omega, mut phi_p) = (self.omega.clone(), pt.phi.clone());
+        let c_res = match residual_mode {
+            Some((w, root_m)) => {
+                omega.push(w);
+                phi_p.push(pt.c_res / root_m);
+                if let Some(m) = map.as_mut() {
+                    m.push(w, zeta, dt);
+                }
+                0.0
+            }
+            None if self.settings.correction == Correction::Static => pt.c_res,
+            None => 0.0,
+        };
+        // Channels on the (extended) modes.
+        let n_ext = omega.len();
+        let mut rec = Recording { a: Vec::new(), b: Vec::new(), d: Vec::new(), every, samples: probes.spec.samples() };
+        for r in &probes.rows {
+            let ell = |k: usize| r.res[k].map_or(0.0, |(f, s)| s * field_at_p[f]);
+            let mut a = r.a.clone();
+            let mut b = r.b.clone();
+            let mut d = r.c.as_ref().map_or(0.0, |c| dot(c, &pt.phi))
+                + r.direct.map_or(0.0, |dof| (0..16).filter(|&k| pt.dofs[k] == dof).map(|k| pt.shape[k]).sum());
+            match residual_mode {
+                Some((w, root_m)) => {
+                    let (ld, lv, la) = (ell(0) / root_m, ell(1) / root_m, ell(2) / root_m);
+                    a.push(ld - w * w * la);
+                    b.push(if r.damped_inertia { lv } else { lv - 2.0 * zeta * w * la });
+                    d += la * phi_p[n_ext - 1];
+                }
+                // The static correction: a displacement, no rate.
+                None => d += if c_res > 0.0 { ell(0) } else { 0.0 },
+            }
+            let b = (b.iter().any(|&x| x != 0.0)).then_some(b);
+            rec.a.push(a);
+            rec.b.push(b);
+            rec.d.push(d);
+        }
         let mut corner_points: [Option<CornerPoint>; 4] = Default::default();
         for c in &self.corners {
             if c.support != CornerSupport::Fixed {
                 let spring = if let CornerSupport::Spring(k) = c.support { k } else { 0.0 };
-                corner_points[c.corner.index()] =
-                    Some(CornerPoint { row: c.row.clone(), d: eval_field(&c.field), spring });
+                let mut row = c.row.clone();
+                let d = match residual_mode {
+                    Some((_, root_m)) => {
+                        row.push(at_p(&c.field) / root_m);
+                        0.0
+                    }
+                    None => {
+                        if c_res > 0.0 {
+                            at_p(&c.field)
+                        } else {
+                            0.0
+                        }
+                    }
+                };
+                corner_points[c.corner.index()] = Some(CornerPoint { row, d, spring });
             }
         }
-        let static_compliance = modal_compliance(&phi_p, &self.omega) + c_res;
         let facts = PlateFacts {
             static_compliance: Some(static_compliance),
             corner_springs: Some(self.set.supports.corners.map(|c| match c {
@@ -419,44 +523,39 @@ impl ReducedModel {
             })),
             follow_unbounded: true,
         };
-        let zeta = self.settings.damping_ratio;
-        let mut target =
-            ModalTarget::new(&self.omega, zeta, phi_p, c_res, dt, free, corner_points, Some((probes, direct, every)));
+        let mut sample_map = probes.sample_map.clone();
+        if let Some((w, _)) = residual_mode {
+            sample_map.push(w, zeta, probes.spec.interval());
+        }
+        let mut target = ModalTarget::new(omega, zeta, phi_p, c_res, dt, map, corner_points, Some(rec));
         let window = probes.spec.window;
         let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
-        // The rest of the window: exact free vibration at the sample times.
+        // The rest of the window: on to the next sample step (or, time-stepped, to the end),
+        // then exact free vibration from sample to sample.
         let want = probes.spec.samples();
-        let steps = target.steps();
-        let (q, v, force) = target.state();
-        let (mut q, mut v) = (q.to_vec(), v.to_vec());
-        let mut out = std::mem::take(&mut target.out);
-        let recorded = out.first().map_or(0, |c| c.len());
-        if recorded < want {
-            // The next sample after the last step, k·every ≥ steps.
-            let k0 = recorded;
-            let gap = (k0 * every).saturating_sub(steps) as f64 * dt;
-            let n = q.len();
-            for i in 0..n {
-                let m = free_map(self.omega[i], zeta, gap);
-                let (qi, vi) = (q[i], v[i]);
-                q[i] = m[0] * qi + m[1] * vi;
-                v[i] = m[2] * qi + m[3] * vi;
-            }
-            // A contact may still be on at the end of a window: its force is not carried on.
-            let _ = force;
-            for k in k0..want {
-                if k > k0 {
-                    for i in 0..n {
-                        let m = &probes.sample_map[i];
-                        let (qi, vi) = (q[i], v[i]);
-                        q[i] = m[0] * qi + m[1] * vi;
-                        v[i] = m[2] * qi + m[3] * vi;
-                    }
+        if !probes.rows.is_empty() && target.recorded() < want {
+            if target.exact() {
+                let gap = (target.recorded() * every).saturating_sub(target.steps());
+                target.advance_free(gap);
+            } else {
+                while target.recorded() < want {
+                    target.advance_free(1);
                 }
-                for (c, r) in probes.rows.iter().enumerate() {
-                    let y = r.a.iter().zip(&q).map(|(a, q)| a * q).sum::<f64>()
-                        + r.b.iter().zip(&v).map(|(b, v)| b * v).sum::<f64>();
-                    out[c].push(y);
+            }
+        }
+        let recorded = target.recorded();
+        let mut out = std::mem::take(&mut target.out);
+        if recorded < want && recorded > 0 {
+            let (q, v) = target.state();
+            let (mut qk, mut vk) = (q.to_vec(), v.to_vec());
+            let (mut qp, mut vp) = (vec![0.0; n_ext], vec![0.0; n_ext]);
+            let Recording { a, b, .. } = target.recording();
+            for _ in recorded..want {
+                std::mem::swap(&mut qk, &mut qp);
+                std::mem::swap(&mut vk, &mut vp);
+                sample_map.apply(&qp, &vp, &mut qk, &mut vk);
+                for (c, o) in out.iter_mut().enumerate() {
+                    o.push(dot(&a[c], &qk) + b[c].as_ref().map_or(0.0, |b| dot(b, &vk)));
                 }
             }
         }
@@ -466,7 +565,8 @@ impl ReducedModel {
             signals: Signals { rate_hz: probes.spec.rate_hz, channels },
             dt,
             static_compliance,
-            residual_compliance: c_res,
+            residual_compliance: pt.c_res,
+            residual_mode_hz: residual_mode.map(|(w, _)| w / (2.0 * std::f64::consts::PI)),
         })
     }
 }

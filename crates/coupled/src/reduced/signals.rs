@@ -164,20 +164,26 @@ impl Signals {
     }
 }
 
-/// One channel's coefficients: y = A·q + B·q̇ + D(p) P with
-/// D(p) = C·φ(p) + s·N(p)ᵀf + N_c(p).
+/// One channel as linear functionals of the plate's fields: y = ℓ_d(w) + ℓ_v(ẇ) + ℓ_a(ẅ)
+/// (+ the load carried straight into a fixed corner). On the modes this is
+/// y = A·q + B·q̇ + C·φ(p) P with Aᵢ = ℓ_d(φᵢ) - ωᵢ²ℓ_a(φᵢ), Bᵢ = ℓ_v(φᵢ) - 2ζωᵢℓ_a(φᵢ),
+/// Cᵢ = ℓ_a(φᵢ) (from q̈ᵢ = φᵢ(p)P - ωᵢ²qᵢ - 2ζωᵢq̇ᵢ). The truncated modes enter through the
+/// residual fields Rℓ (by reciprocity ℓ(RN(p)) = N(p)ᵀRℓ), as a static correction or as the
+/// residual mode.
 #[derive(Debug, Clone)]
 pub(crate) struct ChannelRows {
     pub kind: ChannelKind,
     pub a: Vec<f64>,
     pub b: Vec<f64>,
-    /// Coefficients of φᵢ(p) in D (the modal accelerations' direct response to P).
+    /// Cᵢ = ℓ_a(φᵢ), if the channel has an acceleration part.
     pub c: Option<Vec<f64>>,
-    /// A residual field f (R times a load, DOFs) and its scale s: the static correction.
-    pub field: Option<(Vec<f64>, f64)>,
-    /// A DOF whose shape function at p enters D with weight 1 (the load carried straight
-    /// into a fixed corner of the struck element).
+    /// A DOF whose shape function at p enters with weight 1 (the load carried straight into
+    /// a fixed corner of the struck element).
     pub direct: Option<usize>,
+    /// ℓ_d, ℓ_v, ℓ_a as residual fields (indices into [`Probes::fields`]) with scales.
+    pub res: [Option<(usize, f64)>; 3],
+    /// A reaction: its inertia functional carries the modal damping force too, so that B = 0.
+    pub damped_inertia: bool,
 }
 
 /// A [`SignalSpec`] prepared on one reduced model: every channel's rows and the exact
@@ -186,11 +192,49 @@ pub(crate) struct ChannelRows {
 pub struct Probes {
     pub(crate) spec: SignalSpec,
     pub(crate) rows: Vec<ChannelRows>,
-    /// Per mode, the exact map of (q, q̇) over one sample interval.
-    pub(crate) sample_map: Vec<[f64; 4]>,
+    /// Residual fields Rℓ of the channels' functionals (DOFs).
+    pub(crate) fields: Vec<Vec<f64>>,
+    /// The exact map of (q, q̇) over one sample interval, by mode ([`FreeMaps`]).
+    pub(crate) sample_map: FreeMaps,
+    /// The maps over T_s/m for m = 1, 2, ..., built when first needed (the step of every
+    /// impact whose contact needs m steps per sample).
+    pub(crate) step_maps: Vec<std::sync::OnceLock<FreeMaps>>,
+    pub(crate) omega: Vec<f64>,
+    pub(crate) zeta: f64,
 }
 
 impl Probes {
+    /// Most steps per sample whose maps are cached.
+    const CACHED: usize = 512;
+
+    pub(crate) fn new(
+        spec: &SignalSpec,
+        rows: Vec<ChannelRows>,
+        fields: Vec<Vec<f64>>,
+        omega: &[f64],
+        zeta: f64,
+    ) -> Self {
+        Self {
+            spec: spec.clone(),
+            rows,
+            fields,
+            sample_map: FreeMaps::new(omega, zeta, spec.interval()),
+            step_maps: (0..Self::CACHED).map(|_| std::sync::OnceLock::new()).collect(),
+            omega: omega.to_vec(),
+            zeta,
+        }
+    }
+
+    /// The exact map over T_s/`every` for the model's modes, cached.
+    pub(crate) fn step_map(&self, every: usize) -> FreeMaps {
+        match self.step_maps.get(every.saturating_sub(1)) {
+            Some(slot) if every > 0 => {
+                slot.get_or_init(|| FreeMaps::new(&self.omega, self.zeta, self.spec.interval() / every as f64)).clone()
+            }
+            _ => FreeMaps::new(&self.omega, self.zeta, self.spec.interval() / every.max(1) as f64),
+        }
+    }
+
     /// The spec these probes record.
     pub fn spec(&self) -> &SignalSpec {
         &self.spec
@@ -199,6 +243,59 @@ impl Probes {
     pub fn kinds(&self) -> Vec<ChannelKind> {
         self.rows.iter().map(|r| r.kind).collect()
     }
+}
+
+/// The exact free-vibration maps of all modes over one interval, stored by entry (four
+/// arrays over the modes) so that stepping every mode is a vector operation.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct FreeMaps {
+    m: [Vec<f64>; 4],
+}
+
+impl FreeMaps {
+    /// The maps over τ for the modes `omega`, damping ratio ζ.
+    pub(crate) fn new(omega: &[f64], zeta: f64, tau: f64) -> Self {
+        let maps: Vec<[f64; 4]> = omega.iter().map(|&w| free_map(w, zeta, tau)).collect();
+        Self { m: std::array::from_fn(|k| maps.iter().map(|m| m[k]).collect()) }
+    }
+
+    /// Appends the map of one more mode.
+    pub(crate) fn push(&mut self, omega: f64, zeta: f64, tau: f64) {
+        let m = free_map(omega, zeta, tau);
+        for (v, x) in self.m.iter_mut().zip(m) {
+            v.push(x);
+        }
+    }
+
+    /// (q, q̇) ← map (q, q̇), written to (`q_out`, `v_out`).
+    pub(crate) fn apply(&self, q: &[f64], v: &[f64], q_out: &mut [f64], v_out: &mut [f64]) {
+        let [m0, m1, m2, m3] = &self.m;
+        let n = q.len();
+        let (m0, m1, m2, m3, v, q_out, v_out) =
+            (&m0[..n], &m1[..n], &m2[..n], &m3[..n], &v[..n], &mut q_out[..n], &mut v_out[..n]);
+        for i in 0..n {
+            q_out[i] = m0[i] * q[i] + m1[i] * v[i];
+            v_out[i] = m2[i] * q[i] + m3[i] * v[i];
+        }
+    }
+}
+
+/// Σ aᵢbᵢ with eight independent partial sums, so that the compiler can vectorize it (a
+/// plain sum fixes the order of the additions and cannot be).
+#[inline]
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..8 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[4]) + (acc[1] + acc[5]) + (acc[2] + acc[6]) + (acc[3] + acc[7]) + tail
 }
 
 /// The exact map of (q, q̇) over τ for q̈ + 2ζωq̇ + ω²q = 0, ζ < 1, row-major [[q←q, q←q̇],

@@ -18,7 +18,7 @@
 //! contact's first step, where P is smallest). Between contacts nothing is time-stepped in
 //! the Newmark sense, so no period error accumulates there.
 
-use super::signals::{free_map, Probes};
+use super::signals::{dot, FreeMaps};
 use crate::transient::Target;
 use plate_fem::dynamics::PlateEnergy;
 
@@ -31,7 +31,7 @@ pub enum FreeSteps {
     Newmark,
 }
 
-/// What a corner contributes: its deflection is Σ rowᵢ qᵢ + d P.
+/// What a corner contributes: its deflection is row·q + d P.
 #[derive(Debug, Clone)]
 pub(crate) struct CornerPoint {
     pub row: Vec<f64>,
@@ -39,15 +39,25 @@ pub(crate) struct CornerPoint {
     pub spring: f64,
 }
 
+/// The channels of one impact: y = A·q + B·q̇ + D P, recorded every `every` steps.
+pub(crate) struct Recording {
+    pub a: Vec<Vec<f64>>,
+    pub b: Vec<Option<Vec<f64>>>,
+    pub d: Vec<f64>,
+    pub every: usize,
+    pub samples: usize,
+}
+
 /// The modal plate struck at one point.
-pub(crate) struct ModalTarget<'a> {
-    omega: &'a [f64],
+pub(crate) struct ModalTarget {
+    omega: Vec<f64>,
+    omega2: Vec<f64>,
     zeta: f64,
     phi_p: Vec<f64>,
     c_res: f64,
     dt: f64,
     h: Vec<f64>,
-    step_map: Vec<[f64; 4]>,
+    step_map: Option<FreeMaps>,
     q: Vec<f64>,
     v: Vec<f64>,
     qh: Vec<f64>,
@@ -56,41 +66,36 @@ pub(crate) struct ModalTarget<'a> {
     res_v: f64,
     res_vh: f64,
     g: f64,
-    free: FreeSteps,
     corners: [Option<CornerPoint>; 4],
-    // Recording: a sample every `every` steps.
-    probes: Option<&'a Probes>,
-    direct: Vec<f64>,
-    every: usize,
+    /// The corner deflections at the last step end (zero where held).
+    corner_w: [f64; 4],
+    recording: Option<Recording>,
     step: usize,
     pub(crate) out: Vec<Vec<f64>>,
 }
 
-impl<'a> ModalTarget<'a> {
+impl ModalTarget {
+    /// Modes `omega` (with φᵢ(p) in `phi_p`), a static correction `c_res`, step `dt`; free
+    /// steps by `step_map` (the exact maps over `dt`) or, when None, by Newmark's rule.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
-        omega: &'a [f64],
+        omega: Vec<f64>,
         zeta: f64,
         phi_p: Vec<f64>,
         c_res: f64,
         dt: f64,
-        free: FreeSteps,
+        step_map: Option<FreeMaps>,
         corners: [Option<CornerPoint>; 4],
-        recording: Option<(&'a Probes, Vec<f64>, usize)>,
+        recording: Option<Recording>,
     ) -> Self {
         let n = omega.len();
         let h: Vec<f64> = omega.iter().map(|&w| 1.0 / (w * w + 4.0 * zeta * w / dt + 4.0 / (dt * dt))).collect();
         let g = h.iter().zip(&phi_p).map(|(h, f)| h * f * f).sum::<f64>() + c_res;
-        let step_map = match free {
-            FreeSteps::Exact => omega.iter().map(|&w| free_map(w, zeta, dt)).collect(),
-            FreeSteps::Newmark => Vec::new(),
-        };
-        let (probes, direct, every) = match recording {
-            Some((p, d, e)) => (Some(p), d, e.max(1)),
-            None => (None, Vec::new(), 1),
-        };
+        let omega2 = omega.iter().map(|w| w * w).collect();
+        let out = recording.as_ref().map_or(Vec::new(), |r| vec![Vec::with_capacity(r.samples); r.a.len()]);
         let mut t = Self {
             omega,
+            omega2,
             zeta,
             phi_p,
             c_res,
@@ -105,18 +110,13 @@ impl<'a> ModalTarget<'a> {
             res_v: 0.0,
             res_vh: 0.0,
             g,
-            free,
             corners,
-            probes,
-            direct,
-            every,
+            corner_w: [0.0; 4],
+            recording,
             step: 0,
-            out: Vec::new(),
+            out,
         };
-        if let Some(p) = t.probes {
-            t.out = vec![Vec::with_capacity(p.spec.samples()); p.rows.len()];
-            t.record();
-        }
+        t.record();
         t
     }
 
@@ -125,104 +125,134 @@ impl<'a> ModalTarget<'a> {
         self.step
     }
 
-    /// The modal state (q, q̇) and the force now.
-    pub(crate) fn state(&self) -> (&[f64], &[f64], f64) {
-        (&self.q, &self.v, self.force)
+    /// Propagates the free plate `steps` steps on, recording as in contact (exactly, or by
+    /// Newmark's rule when the target has no exact maps); the force must be zero.
+    pub(crate) fn advance_free(&mut self, steps: usize) {
+        for _ in 0..steps {
+            self.predict();
+            self.commit(0.0);
+        }
+    }
+
+    /// Whether free steps are exact.
+    pub(crate) fn exact(&self) -> bool {
+        self.step_map.is_some()
+    }
+
+    /// Samples recorded so far.
+    pub(crate) fn recorded(&self) -> usize {
+        self.out.first().map_or(0, |o| o.len())
+    }
+
+    /// The channels it records.
+    pub(crate) fn recording(&self) -> &Recording {
+        // Only called by the owner that gave one.
+        self.recording.as_ref().expect("a recording target")
+    }
+
+    /// The modal state (q, q̇).
+    pub(crate) fn state(&self) -> (&[f64], &[f64]) {
+        (&self.q, &self.v)
     }
 
     /// Appends one sample of every channel: y = A·q + B·q̇ + D P.
     fn record(&mut self) {
-        let Some(p) = self.probes else { return };
-        let want = p.spec.samples();
-        for (c, rows) in p.rows.iter().enumerate() {
-            if self.out[c].len() >= want {
-                return;
-            }
-            let y = rows.a.iter().zip(&self.q).map(|(a, q)| a * q).sum::<f64>()
-                + rows.b.iter().zip(&self.v).map(|(b, v)| b * v).sum::<f64>()
-                + self.direct[c] * self.force;
-            self.out[c].push(y);
+        let Some(r) = self.recording.as_ref() else { return };
+        if self.out.first().is_some_and(|o| o.len() >= r.samples) {
+            return;
         }
+        for (c, o) in self.out.iter_mut().enumerate() {
+            let b = r.b[c].as_ref().map_or(0.0, |b| dot(b, &self.v));
+            o.push(dot(&r.a[c], &self.q) + b + r.d[c] * self.force);
+        }
+    }
+
+    /// The step end with force `f`, without recording.
+    fn commit_state(&mut self, f: f64) {
+        let c1 = 2.0 / self.dt;
+        let n = self.q.len();
+        let (h, phi, qh, vh) = (&self.h[..n], &self.phi_p[..n], &self.qh[..n], &self.vh[..n]);
+        let (q, v) = (&mut self.q[..n], &mut self.v[..n]);
+        for i in 0..n {
+            let dq = h[i] * phi[i] * f;
+            q[i] = qh[i] + dq;
+            v[i] = vh[i] + c1 * dq;
+        }
+        self.res_v = self.res_vh + c1 * self.c_res * f;
+        self.force = f;
+        for (w, c) in self.corner_w.iter_mut().zip(&self.corners) {
+            if let Some(c) = c {
+                *w = dot(&c.row, &self.q) + c.d * f;
+            }
+        }
+        self.step += 1;
     }
 }
 
-impl Target for ModalTarget<'_> {
+impl Target for ModalTarget {
     fn point_flexibility(&self) -> f64 {
         self.g
     }
 
     fn predict(&mut self) -> (f64, f64) {
         let dt = self.dt;
-        if self.force == 0.0 && self.free == FreeSteps::Exact {
-            for i in 0..self.q.len() {
-                let m = &self.step_map[i];
-                self.qh[i] = m[0] * self.q[i] + m[1] * self.v[i];
-                self.vh[i] = m[2] * self.q[i] + m[3] * self.v[i];
-            }
+        if let (0.0, Some(map)) = (self.force, self.step_map.as_ref()) {
+            map.apply(&self.q, &self.v, &mut self.qh, &mut self.vh);
             self.res_vh = 0.0;
         } else {
             let (c0, c1) = (4.0 / (dt * dt), 2.0 / dt);
-            for i in 0..self.q.len() {
-                let w = self.omega[i];
-                let (q, v) = (self.q[i], self.v[i]);
-                let a = self.phi_p[i] * self.force - w * w * q - 2.0 * self.zeta * w * v;
-                let qh = self.h[i] * (c0 * (q + dt * v) + a + 2.0 * self.zeta * w * (c1 * q + v));
-                self.qh[i] = qh;
-                self.vh[i] = c1 * (qh - q) - v;
+            let n = self.q.len();
+            let (om, om2, h, phi) = (&self.omega[..n], &self.omega2[..n], &self.h[..n], &self.phi_p[..n]);
+            let (q, v, qh, vh) = (&self.q[..n], &self.v[..n], &mut self.qh[..n], &mut self.vh[..n]);
+            let (f, z2) = (self.force, 2.0 * self.zeta);
+            for i in 0..n {
+                let a = phi[i] * f - om2[i] * q[i] - z2 * om[i] * v[i];
+                let qhi = h[i] * (c0 * (q[i] + dt * v[i]) + a + z2 * om[i] * (c1 * q[i] + v[i]));
+                qh[i] = qhi;
+                vh[i] = c1 * (qhi - q[i]) - v[i];
             }
             // The residual's trapezoidal velocity: v₊ = (2/Δt)C_res(P₊ - P) - v.
             self.res_vh = if self.force == 0.0 { 0.0 } else { -c1 * self.c_res * self.force - self.res_v };
         }
-        let wp = self.qh.iter().zip(&self.phi_p).map(|(q, f)| q * f).sum::<f64>();
-        let vp = self.vh.iter().zip(&self.phi_p).map(|(v, f)| v * f).sum::<f64>() + self.res_vh;
+        let wp = dot(&self.qh, &self.phi_p);
+        let vp = dot(&self.vh, &self.phi_p) + self.res_vh;
         (wp, vp)
     }
 
     fn commit(&mut self, f: f64) {
-        let c1 = 2.0 / self.dt;
-        for i in 0..self.q.len() {
-            let dq = self.h[i] * self.phi_p[i] * f;
-            self.q[i] = self.qh[i] + dq;
-            self.v[i] = self.vh[i] + c1 * dq;
-        }
-        self.res_v = self.res_vh + c1 * self.c_res * f;
-        self.force = f;
-        self.step += 1;
-        if self.probes.is_some() && self.step % self.every == 0 {
+        self.commit_state(f);
+        if self.recording.as_ref().is_some_and(|r| self.step % r.every == 0) {
             self.record();
         }
     }
 
     fn point_state(&self) -> (f64, f64) {
-        let w = self.q.iter().zip(&self.phi_p).map(|(q, f)| q * f).sum::<f64>() + self.c_res * self.force;
-        let v = self.v.iter().zip(&self.phi_p).map(|(v, f)| v * f).sum::<f64>() + self.res_v;
+        let w = dot(&self.q, &self.phi_p) + self.c_res * self.force;
+        let v = dot(&self.v, &self.phi_p) + self.res_v;
         (w, v)
     }
 
     /// ½Σq̇ᵢ² (kinetic), ½Σωᵢ²qᵢ² + ½C_res P² (potential: the modes and the truncated modes'
     /// static energy, which are K-orthogonal), split into the springs' ½Σk w_c² and the rest.
     fn energy(&self) -> PlateEnergy {
-        let kinetic = 0.5 * self.v.iter().map(|v| v * v).sum::<f64>();
-        let potential = 0.5 * self.q.iter().zip(self.omega).map(|(q, w)| w * w * q * q).sum::<f64>()
-            + 0.5 * self.c_res * self.force * self.force;
+        let kinetic = 0.5 * dot(&self.v, &self.v);
+        let n = self.q.len();
+        let (q, om2) = (&self.q[..n], &self.omega2[..n]);
+        let mut acc = [0.0f64; 4];
+        for i in 0..n {
+            acc[i % 4] += om2[i] * q[i] * q[i];
+        }
+        let potential = 0.5 * (acc[0] + acc[1] + acc[2] + acc[3]) + 0.5 * self.c_res * self.force * self.force;
         let springs: f64 = self
             .corners
             .iter()
-            .flatten()
-            .filter(|c| c.spring > 0.0)
-            .map(|c| {
-                let w = c.row.iter().zip(&self.q).map(|(r, q)| r * q).sum::<f64>() + c.d * self.force;
-                0.5 * c.spring * w * w
-            })
+            .zip(&self.corner_w)
+            .filter_map(|(c, w)| c.as_ref().map(|c| 0.5 * c.spring * w * w))
             .sum();
         PlateEnergy { kinetic, strain: potential - springs, springs }
     }
 
     fn corner_displacements(&self) -> [f64; 4] {
-        std::array::from_fn(|i| {
-            self.corners[i]
-                .as_ref()
-                .map_or(0.0, |c| c.row.iter().zip(&self.q).map(|(r, q)| r * q).sum::<f64>() + c.d * self.force)
-        })
+        self.corner_w
     }
 }
