@@ -145,6 +145,24 @@ pub struct ConditionResult {
     pub impacts_per_second: f64,
     /// Bytes of features held in memory for the run.
     pub feature_bytes: usize,
+    /// The reference impact (every variable at its median, the first family) on the full
+    /// Newmark model of the same mesh and step rule: seconds, and the reduced model's P_max
+    /// relative to it.
+    pub full_model: FullModelCheck,
+}
+
+/// One impact on the full transient model beside the reduced one, in the same run.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct FullModelCheck {
+    /// Seconds for the full model's run (set-up and factorization included, no signals).
+    pub seconds: f64,
+    /// Its P_max, N.
+    pub force_max: f64,
+    /// The reduced model's P_max over it, minus 1.
+    pub force_difference: f64,
+    /// The reduced model's first-contact time over the full model's, minus 1 (0 if either
+    /// contact did not end).
+    pub contact_time_difference: f64,
 }
 
 /// What `impact identify` found, for the terminal and the JSON.
@@ -504,6 +522,7 @@ fn run_set(
     })?;
     let run_seconds = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
+    let full_model = full_model_check(scene, study, settings, set, &instrument)?;
     let held_bytes = run.table.bytes() + CHUNK * infos.len() * 6 * 8;
 
     let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
@@ -686,6 +705,7 @@ fn run_set(
         run_seconds,
         impacts_per_second: e.len() as f64 / run_seconds.max(1e-9),
         feature_bytes: held_bytes,
+        full_model,
     };
     let markdown = condition_markdown(
         &result,
@@ -697,6 +717,52 @@ fn run_set(
         }),
     )?;
     Ok(ConditionOutput { result, markdown })
+}
+
+/// The median impact of the first family on the full Newmark model and on `instrument`.
+fn full_model_check(
+    scene: &Scene,
+    study: &Study,
+    settings: &SignalSettings,
+    set: &SupportSet,
+    instrument: &Instrument<'_>,
+) -> Result<FullModelCheck, Failure> {
+    let e = &study.ensemble;
+    let all = Held { position: true, size: true, speed: true, material: true };
+    let draw = e.draw(0, all).ok_or("the ensemble is empty")?;
+    let name = &e.families[draw.family].name;
+    let sphere = draw.sphere(name)?;
+    let striker = coupled::transient::Striker {
+        k: analytic::contact_stiffness(&sphere, scene.plate.material()),
+        restitution: scene.restitution,
+        mass: sphere.mass(),
+        velocity: draw.velocity,
+        law: scene.contact_law.law_for(&sphere),
+    };
+    let reduced = instrument.impact(draw.clone(), name)?;
+    let t = Instant::now();
+    let props = coupled::discretisation::plate_properties(&scene.plate);
+    let fe = plate_fem::Model::new(props, coupled::discretisation::mesh_for(&props, settings.reduced.elements)?)?;
+    let full = crate::report::transient::transient(
+        &fe,
+        set.supports,
+        &striker,
+        draw.x,
+        draw.z,
+        settings.reduced.steps_per_contact,
+    )?;
+    let seconds = t.elapsed().as_secs_f64();
+    let full_force = full.force_max_interpolated.max(full.force_max);
+    let contact_time_difference = match (reduced.contact_time, full.contact_time) {
+        (Some(a), Some(b)) if b > 0.0 => a / b - 1.0,
+        _ => 0.0,
+    };
+    Ok(FullModelCheck {
+        seconds,
+        force_max: full_force,
+        force_difference: reduced.force_max / full_force - 1.0,
+        contact_time_difference,
+    })
 }
 
 // ---------------------------------------------------------------- the report
@@ -913,14 +979,31 @@ pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary)
     } else {
         format!("{} x {} points from (0, 0) to (L, B)", study.candidates_x.len(), study.candidates_z.len())
     };
-    let mut timing =
-        Table::new("", &["support set", "model set-up (s)", "ensemble run (s)", "impacts/s", "features held (MB)"]);
+    let mut timing = Table::new(
+        "",
+        &[
+            "support set",
+            "model set-up (s)",
+            "ensemble run (s)",
+            "impacts/s",
+            "one full Newmark impact (s)",
+            "speed-up per impact",
+            "reduced/full P_max - 1",
+            "reduced/full t_c - 1",
+            "features held (MB)",
+        ],
+    );
     for c in &summary.conditions {
+        let per_impact = c.run_seconds / summary.impacts.max(1) as f64;
         timing.push(vec![
             c.condition.clone().into(),
             Cell::Text(sig(c.setup_seconds, 3)),
             Cell::Text(sig(c.run_seconds, 3)),
             Cell::Text(sig(c.impacts_per_second, 3)),
+            Cell::Text(sig(c.full_model.seconds, 3)),
+            Cell::Text(sig(c.full_model.seconds / per_impact.max(1e-12), 3)),
+            Cell::Text(sig(c.full_model.force_difference, 2)),
+            Cell::Text(sig(c.full_model.contact_time_difference, 2)),
             Cell::Text(sig(c.feature_bytes as f64 / 1e6, 3)),
         ]);
     }
