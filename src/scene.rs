@@ -6,6 +6,7 @@
 
 use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
 use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
+use coupled::reduced::SignalSettings;
 pub use coupled::scene::{even_points, Analysis, Points, Scene};
 use coupled::transient::LawKind;
 pub use coupled::SupportSet;
@@ -87,6 +88,20 @@ pub mod limits {
     pub const RESTITUTION: Range = Range::open_closed(0.01, 1.0);
     /// Impact velocity, m/s (above 1 km/s no contact law here has meaning).
     pub const VELOCITY_M_PER_S: Range = Range::closed(1e-9, 1e3);
+    /// Signal window, ms (0.1 ms to 1 s: from a few contact times to far beyond the plate's
+    /// ring-down at the default damping).
+    pub const SIGNAL_WINDOW_MS: Range = Range::closed(0.1, 1000.0);
+    /// Sampling rate, Hz (100 Hz to 10 MHz: Nyquist frequencies from below a plate's first
+    /// modes to far beyond any mesh's).
+    pub const SAMPLE_RATE_HZ: Range = Range::closed(100.0, 1e7);
+    /// Most samples per channel of one impact (8 MB a channel).
+    pub const MAX_SAMPLES: f64 = 1e6;
+    /// Most modes of the reduced model: the transient model's 20-element mesh has at least
+    /// 1100 free DOFs on any support set of a plate of aspect ratio up to 1.3, and a mode
+    /// count near the DOF count is no longer a reduced model.
+    pub const MAX_MODES: usize = 1000;
+    /// Most sensors.
+    pub const MAX_SENSORS: usize = 64;
     /// Relative tolerance of the energy balance: below 1e-14 double precision cannot
     /// reach it (the bracketed Newton's rounding floor is ~2e-15); above 1e-3 the "root" is not one (a loose stop returns the starting value).
     pub const SOLVER_TOLERANCE: Range = Range::closed(1e-14, 1e-3);
@@ -189,6 +204,19 @@ struct RawScene {
     transient: Option<RawTransient>,
     #[serde(default)]
     ensemble: Option<ensemble::RawEnsemble>,
+    #[serde(default)]
+    signals: Option<RawSignals>,
+}
+
+/// The reduced model's sensor signals.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSignals {
+    window_ms: Option<f64>,
+    rate_hz: Option<f64>,
+    damping_ratio: Option<f64>,
+    modes: Option<f64>,
+    sensors_mm: Option<Vec<(f64, f64)>>,
 }
 
 /// Where the transient study strikes, if not at the scene's points.
@@ -668,6 +696,8 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         None => vec![],
     };
 
+    let signals = validate_signals(raw.signals.as_ref(), length_mm, width_mm)?;
+
     let tolerance = check("solver.tolerance", raw.solver.tolerance, limits::SOLVER_TOLERANCE, "")?;
     if !(1..=10_000).contains(&raw.solver.max_iterations) {
         return Err(other(
@@ -708,5 +738,60 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         analyses,
         solver,
         ensemble,
+        signals,
     })
+}
+
+/// `[signals]`: each key in its range (the file's units), converted to SI; absent keys take
+/// the defaults of [`SignalSettings`].
+fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -> Result<SignalSettings, Invalid> {
+    let d = SignalSettings::default();
+    let Some(raw) = raw else { return Ok(d) };
+    let window_ms = match raw.window_ms {
+        Some(w) => check("signals.window_ms", w, limits::SIGNAL_WINDOW_MS, "ms")?,
+        None => d.window * 1e3,
+    };
+    let rate_hz = match raw.rate_hz {
+        Some(r) => check("signals.rate_hz", r, limits::SAMPLE_RATE_HZ, "Hz")?,
+        None => d.rate_hz,
+    };
+    let samples = window_ms * 1e-3 * rate_hz;
+    if samples > limits::MAX_SAMPLES {
+        return Err(other(
+            "signals.window_ms and signals.rate_hz",
+            format!(
+                "{window_ms} ms at {rate_hz} Hz is {} samples per channel; at most {} are allowed",
+                analytic::params::compact(samples.ceil()),
+                analytic::params::compact(limits::MAX_SAMPLES)
+            ),
+        ));
+    }
+    let damping_ratio = match raw.damping_ratio {
+        Some(z) => check("signals.damping_ratio", z, coupled::reduced::ReducedSettings::DAMPING_RATIO, "")?,
+        None => d.damping_ratio,
+    };
+    let modes = match raw.modes {
+        Some(n) => count("signals.modes", n, 1, limits::MAX_MODES)?,
+        None => d.modes,
+    };
+    let sensors = match &raw.sensors_mm {
+        None => Vec::new(),
+        Some(list) => {
+            if list.len() > limits::MAX_SENSORS {
+                return Err(other(
+                    "signals.sensors_mm",
+                    format!("{} sensors; at most {} are allowed", list.len(), limits::MAX_SENSORS),
+                ));
+            }
+            let (along, across) = (Range::closed(0.0, l_mm), Range::closed(0.0, b_mm));
+            let mut out = Vec::with_capacity(list.len());
+            for (j, &(x, z)) in list.iter().enumerate() {
+                let x = check(&format!("signals.sensors_mm[{j}][0] (x)"), x, along, "mm")? * MM;
+                let z = check(&format!("signals.sensors_mm[{j}][1] (z)"), z, across, "mm")? * MM;
+                out.push((x, z));
+            }
+            out
+        }
+    };
+    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, modes, sensors })
 }

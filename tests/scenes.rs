@@ -306,3 +306,34 @@ fn contact_law_is_a_scene_choice() {
     }
     expect(&format!("contact_law = \"glue\"\n{DEFAULT_SCENE}"), &["contact_law", "'glue' is not a contact law"]);
 }
+
+/// `[signals]`: defaults when absent, values in SI when given, and every bad value named
+/// with its range before anything is computed.
+#[test]
+fn signals_table() {
+    let s = Scene::default_scene();
+    assert_eq!(s.signals, coupled::reduced::SignalSettings::default());
+    let text = format!(
+        "{DEFAULT_SCENE}\n[signals]\nwindow_ms = 10.0\nrate_hz = 50000.0\ndamping_ratio = 0.01\nmodes = 40\nsensors_mm = [[100.0, 90.0], [458.4, 0.0]]\n"
+    );
+    let s = Scene::parse(&text, "t").unwrap();
+    assert_eq!(s.signals.window, 0.010);
+    assert_eq!((s.signals.rate_hz, s.signals.damping_ratio, s.signals.modes), (50000.0, 0.01, 40));
+    assert_eq!(s.signals.sensors, vec![(0.1, 0.09), (0.4584, 0.0)]);
+    let spec = s.signals.spec();
+    assert_eq!((spec.samples(), spec.sensors.len()), (500, 2));
+    let bad = |table: &str, needles: &[&str]| expect(&format!("{DEFAULT_SCENE}\n[signals]\n{table}\n"), needles);
+    bad("window_ms = 0.0", &["signals.window_ms = 0", "[0.1, 1000] ms"]);
+    bad("rate_hz = 1e300", &["signals.rate_hz = 1e300", "Hz"]);
+    bad(
+        "window_ms = 1000.0\nrate_hz = 1e7",
+        &["signals.window_ms and signals.rate_hz", "10000000 samples per channel; at most 1000000"],
+    );
+    bad("damping_ratio = -0.1", &["signals.damping_ratio = -0.1", "[0, 0.5]"]);
+    bad("damping_ratio = nan", &["signals.damping_ratio = NaN"]);
+    bad("modes = 2.5", &["signals.modes", "not a whole number"]);
+    bad("modes = 0", &["signals.modes = 0", "[1, 1000]"]);
+    bad("sensors_mm = [[500.0, 10.0]]", &["signals.sensors_mm[0][0] (x) = 500", "[0, 458.4] mm"]);
+    bad("sensors_mm = [[10.0, -1.0]]", &["signals.sensors_mm[0][1] (z) = -1"]);
+    bad("sensor_mm = [[10.0, 1.0]]", &["sensor_mm", "unknown field"]);
+}

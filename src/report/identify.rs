@@ -15,7 +15,7 @@ use crate::report::Failure;
 use coupled::identification::{
     run_condition, ConditionRun, EnsembleValidity, ImpactRecord, Instrument, RunError, CHUNK,
 };
-use coupled::reduced::{ChannelKind, Quantity, ReducedModel, ReducedSettings, SignalSpec};
+use coupled::reduced::{ChannelKind, Quantity, ReducedModel, SignalSettings, SignalSpec};
 use coupled::{Scene, SupportSet};
 use identify::classify::{CrossValidated, FOLDS, RIDGE};
 use identify::distribution::Distribution;
@@ -38,34 +38,10 @@ const BINS: usize = 30;
 /// The confidence level of every interval.
 const LEVEL: f64 = 0.95;
 
-/// The signals an identification records: window, rate, the reduced model's settings and
-/// the named sensors (SI).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SignalSettings {
-    /// The reduced model.
-    pub reduced: ReducedSettings,
-    /// Window after first touch, s.
-    pub window: f64,
-    /// Sampling rate, Hz.
-    pub rate_hz: f64,
-    /// Named sensor points (x, z), m.
-    pub sensors: Vec<(f64, f64)>,
-}
-
-/// The scene's signal settings.
-pub fn signal_settings(_scene: &Scene) -> SignalSettings {
-    SignalSettings {
-        reduced: ReducedSettings::default(),
-        window: SignalSpec::DEFAULT_WINDOW,
-        rate_hz: SignalSpec::DEFAULT_RATE_HZ,
-        sensors: vec![],
-    }
-}
-
 /// Channels an identification records per impact on `set`: three quantities at every named
 /// and candidate sensor, and the held or sprung corners.
 pub fn channels_per_impact(scene: &Scene, study: &Study, set: &SupportSet) -> usize {
-    let sensors = signal_settings(scene).sensors.len() + study.candidates_x.len() * study.candidates_z.len();
+    let sensors = scene.signals.sensors.len() + study.candidates_x.len() * study.candidates_z.len();
     let corners = set.supports.corners.iter().filter(|c| !matches!(c, plate_fem::CornerSupport::Free)).count();
     3 * sensors + corners
 }
@@ -496,7 +472,7 @@ fn run_set(
     let plate = &scene.plate;
     let e = &study.ensemble;
     let started = Instant::now();
-    let model = ReducedModel::new(plate, set, settings.reduced)?;
+    let model = ReducedModel::new(plate, set, settings.reduced())?;
     let setup_seconds = started.elapsed().as_secs_f64();
 
     // The main run: named sensors, then the candidate grid, every quantity, the corners.
@@ -742,14 +718,14 @@ fn full_model_check(
     let reduced = instrument.impact(draw.clone(), name)?;
     let t = Instant::now();
     let props = coupled::discretisation::plate_properties(&scene.plate);
-    let fe = plate_fem::Model::new(props, coupled::discretisation::mesh_for(&props, settings.reduced.elements)?)?;
+    let fe = plate_fem::Model::new(props, coupled::discretisation::mesh_for(&props, settings.reduced().elements)?)?;
     let full = crate::report::transient::transient(
         &fe,
         set.supports,
         &striker,
         draw.x,
         draw.z,
-        settings.reduced.steps_per_contact,
+        settings.reduced().steps_per_contact,
     )?;
     let seconds = t.elapsed().as_secs_f64();
     let full_force = full.force_max_interpolated.max(full.force_max);
@@ -914,13 +890,13 @@ fn finding(r: &ConditionResult) -> Result<String, Failure> {
 /// into `out`, and returns the report's files and the summary.
 pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary), Failure> {
     let study = scene.ensemble.as_ref().ok_or("the scene has no [ensemble] table (the identify analysis)")?;
-    let settings = signal_settings(scene);
+    let settings = &scene.signals;
     let mut rows = Rows::open(out)?;
     let mut artifacts = Artifacts::new();
     let mut conditions = Vec::new();
     let mut sections = String::new();
     for (i, set) in scene.conditions.iter().enumerate() {
-        let c = run_set(scene, study, &settings, set, i, &mut rows, &mut artifacts)?;
+        let c = run_set(scene, study, settings, set, i, &mut rows, &mut artifacts)?;
         sections.push_str(&c.markdown);
         conditions.push(c.result);
     }
@@ -1031,8 +1007,8 @@ pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary)
             ("families", families.to_markdown()),
             ("window_ms", sig(settings.window * 1e3, 3)),
             ("rate_hz", sig(settings.rate_hz, 3)),
-            ("modes", settings.reduced.modes.to_string()),
-            ("damping", sig(settings.reduced.damping_ratio * 100.0, 3)),
+            ("modes", settings.modes.to_string()),
+            ("damping", sig(settings.damping_ratio * 100.0, 3)),
             ("contact_law", scene.contact_law.key().to_string()),
             ("restitution", sig(scene.restitution, 3)),
             ("sensors", sensors),

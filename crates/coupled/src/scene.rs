@@ -2,6 +2,7 @@
 //! the velocities and what to compute. Reading and checking scene files is the command
 //! line's business; this type only holds what passed.
 
+use crate::reduced::SignalSettings;
 use crate::supports::SupportSet;
 use crate::transient::LawKind;
 use analytic::{Method, Plate, Sphere};
@@ -153,6 +154,9 @@ pub struct Scene {
     /// The random-impact ensemble of the identification study; present exactly when the
     /// scene asks for [`Analysis::Identify`].
     pub ensemble: Option<identify::Study>,
+    /// The reduced model and the sensor signals of an impact (`[signals]`; defaults when
+    /// the scene has none).
+    pub signals: SignalSettings,
 }
 
 impl Scene {

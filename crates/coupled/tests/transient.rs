@@ -510,6 +510,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         velocities: vec![0.008],
         analyses: vec![Analysis::Responses],
         solver: analytic::Method::default(),
+        signals: Default::default(),
     };
     let r = run_transient(&scene, TransientSettings::default()).unwrap();
     let v = r.responses[0].values().unwrap();

@@ -118,6 +118,45 @@ impl Default for ReducedSettings {
     }
 }
 
+/// What a scene asks of the reduced model and its signals (validated, SI units).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignalSettings {
+    /// Window from first touch, s.
+    pub window: f64,
+    /// Sampling rate, Hz.
+    pub rate_hz: f64,
+    /// Modal damping ratio ζ.
+    pub damping_ratio: f64,
+    /// N, the modes kept.
+    pub modes: usize,
+    /// Sensor points (x, z), m.
+    pub sensors: Vec<(f64, f64)>,
+}
+
+impl Default for SignalSettings {
+    /// 20 ms at 20 kHz, ζ = 0.5 %, N = 80, no sensors (corner channels only).
+    fn default() -> Self {
+        Self {
+            window: SignalSpec::DEFAULT_WINDOW,
+            rate_hz: SignalSpec::DEFAULT_RATE_HZ,
+            damping_ratio: ReducedSettings::DEFAULT_DAMPING_RATIO,
+            modes: ReducedSettings::DEFAULT_MODES,
+            sensors: Vec::new(),
+        }
+    }
+}
+
+impl SignalSettings {
+    /// The signal spec: every quantity at every sensor, and the corner channels.
+    pub fn spec(&self) -> SignalSpec {
+        SignalSpec { window: self.window, rate_hz: self.rate_hz, ..SignalSpec::new(self.sensors.clone()) }
+    }
+    /// The reduced model's settings (the other fields at their defaults).
+    pub fn reduced(&self) -> ReducedSettings {
+        ReducedSettings { modes: self.modes, damping_ratio: self.damping_ratio, ..ReducedSettings::default() }
+    }
+}
+
 /// One corner's data: its support, its modal rows and its residual fields.
 #[derive(Debug, Clone)]
 struct CornerData {
