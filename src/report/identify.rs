@@ -15,10 +15,11 @@ use crate::report::Failure;
 use coupled::identification::{
     run_condition, ConditionRun, EnsembleValidity, ImpactRecord, Instrument, RunError, CHUNK,
 };
-use coupled::reduced::{ChannelKind, Quantity, ReducedModel, SignalSettings, SignalSpec};
+use coupled::reduced::{ChannelKind, Quantity, ReducedModel, ReducedSettings, SignalSettings, SignalSpec};
 use coupled::{Scene, SupportSet};
 use identify::classify::{CrossValidated, FOLDS, RIDGE};
 use identify::distribution::Distribution;
+use identify::features::FEATURES;
 use identify::placement::{best, classifier, map, separabilities, Separability};
 use identify::roc::{auc_with_error, bootstrap_interval, Auc, BOOTSTRAP_RESAMPLES};
 use identify::{Class, Feature, Held, Speed, Study};
@@ -28,6 +29,7 @@ use std::time::Instant;
 const HEAD: &str = include_str!("templates/identify/head.md");
 const FINDING: &str = include_str!("templates/identify/finding.md");
 const FINDING_HELD: &str = include_str!("templates/identify/finding-held.md");
+const FINDING_RESOLUTION: &str = include_str!("templates/identify/finding-resolution.md");
 const CONDITION: &str = include_str!("templates/identify/condition.md");
 const METHOD: &str = include_str!("templates/identify/method.md");
 
@@ -64,6 +66,16 @@ pub struct Ranked {
     pub auc: Auc,
     /// The 95 % percentile bootstrap interval.
     pub interval: (f64, f64),
+    /// AUC on the model with N modes minus AUC with N/2 (the same impacts): how much the
+    /// number owes to the modal truncation.
+    pub resolution: Option<f64>,
+}
+
+impl Ranked {
+    /// Whether the modal truncation moves the AUC by less than its sampling error.
+    pub fn converged(&self) -> bool {
+        self.resolution.is_some_and(|r| r.abs() <= self.auc.standard_error)
+    }
 }
 
 /// One classifier's cross-validated accuracy.
@@ -73,6 +85,8 @@ pub struct Accuracy {
     pub features: String,
     /// Its accuracy.
     pub result: CrossValidated,
+    /// Accuracy with N modes minus accuracy with N/2 (the same impacts and folds).
+    pub resolution: f64,
 }
 
 /// One run of the variability study.
@@ -105,12 +119,18 @@ pub struct ConditionResult {
     pub ranking: Vec<Ranked>,
     /// The best sensor point (x, z), mm, and its best feature.
     pub best_sensor: Option<((f64, f64), Ranked)>,
+    /// The most separating feature whose AUC the modal truncation moves by less than its
+    /// sampling error.
+    pub best_converged: Option<Ranked>,
     /// P_max and the first contact's duration: the paper's quantities.
     pub force_max: Ranked,
     /// The contact time.
     pub contact_time: Ranked,
     /// Classifiers.
     pub classifiers: Vec<Accuracy>,
+    /// The reference feature of the variability study (the most separating one the modal
+    /// truncation does not move, else the best sensor's best).
+    pub reference: Option<Ranked>,
     /// The variability study.
     pub held: Vec<Held1>,
     /// Seconds for the reduced model's set-up (modes, residual flexibility).
@@ -404,12 +424,20 @@ fn spec(settings: &SignalSettings, sensors: Vec<(f64, f64)>) -> SignalSpec {
     }
 }
 
-fn ranked(channel: String, feature: Feature, coal: &[f64], gangue: &[f64], seed: u64) -> Ranked {
+fn ranked(
+    channel: String,
+    feature: Feature,
+    (coal, gangue): (&[f64], &[f64]),
+    half_auc: Option<f64>,
+    seed: u64,
+) -> Ranked {
+    let auc = auc_with_error(coal, gangue);
     Ranked {
         channel,
         feature,
-        auc: auc_with_error(coal, gangue),
+        auc,
         interval: bootstrap_interval(coal, gangue, BOOTSTRAP_RESAMPLES, LEVEL, seed),
+        resolution: half_auc.map(|h| auc.auc - h),
     }
 }
 
@@ -453,6 +481,13 @@ fn histogram(title: &str, label: &str, coal: &[f64], gangue: &[f64], log: bool) 
     )
 }
 
+fn run_failure(set: &str, err: RunError<Failure>) -> Failure {
+    match err {
+        RunError::Model { index, source } => format!("{set}: impact {index}: {source}").into(),
+        RunError::Sink(f) => f,
+    }
+}
+
 /// What one support set gives besides its files: its results and its report section.
 struct ConditionOutput {
     result: ConditionResult,
@@ -490,16 +525,31 @@ fn run_set(
         bar.inc(1);
         Ok(())
     })
-    .map_err(|err| -> Failure {
-        match err {
-            RunError::Model { index, source } => format!("{}: impact {index}: {source}", set.name).into(),
-            RunError::Sink(f) => f,
-        }
-    })?;
+    .map_err(|err| run_failure(&set.name, err))?;
     let run_seconds = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let full_model = full_model_check(scene, study, settings, set, &instrument)?;
-    let held_bytes = run.table.bytes() + CHUNK * infos.len() * 6 * 8;
+    let held_bytes = 2 * run.table.bytes() + CHUNK * infos.len() * 6 * 8;
+
+    // The same impacts on the model with half the modes: what each AUC owes to the modal
+    // truncation (the difference overstates the error at N if the AUC converges in N).
+    let half_settings = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings.reduced() };
+    let half_model = ReducedModel::new(plate, set, half_settings)?;
+    let half_instrument =
+        Instrument::new(&half_model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
+    let bar = progress(e.len(), format!("{}: {} modes", set.name, half_settings.modes));
+    let half = run_condition(study, Held::NONE, &half_instrument, |_: &ImpactRecord| -> Result<(), Failure> {
+        bar.inc(1);
+        Ok(())
+    })
+    .map_err(|err| run_failure(&set.name, err))?;
+    bar.finish_and_clear();
+    let half_all = separabilities(&half.table);
+    let half_classes = half.table.classes().to_vec();
+    let half_of = |values: &[f64]| {
+        let (c, g) = split(values, &half_classes);
+        auc_with_error(&c, &g).auc
+    };
 
     let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
     let all = separabilities(&run.table);
@@ -508,13 +558,22 @@ fn run_set(
     let classes = run.table.classes().to_vec();
     let rank_of = |s: &Separability, k: usize| {
         let (c, g) = run.table.split(s.channel, s.feature);
-        ranked(infos[s.channel].label(), s.feature, &c, &g, seed.wrapping_add(k as u64))
+        let h = half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc;
+        ranked(infos[s.channel].label(), s.feature, (&c, &g), Some(h), seed.wrapping_add(k as u64))
     };
     let ranking: Vec<Ranked> = order.iter().take(TOP).enumerate().map(|(k, s)| rank_of(s, k)).collect();
+    let best_converged = order
+        .iter()
+        .find(|s| {
+            (s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc).abs() <= s.auc.standard_error
+        })
+        .map(|s| rank_of(s, TOP + 2));
     let (fc, fg) = split(&run.force_max, &classes);
-    let force_max = ranked("contact force P_max".into(), Feature::Peak, &fc, &fg, seed ^ 1);
+    let force_max =
+        ranked("contact force P_max".into(), Feature::Peak, (&fc, &fg), Some(half_of(&half.force_max)), seed ^ 1);
     let (tc, tg) = split(&run.contact_time, &classes);
-    let contact_time = ranked("contact time t_c".into(), Feature::Duration, &tc, &tg, seed ^ 2);
+    let contact_time =
+        ranked("contact time t_c".into(), Feature::Duration, (&tc, &tg), Some(half_of(&half.contact_time)), seed ^ 2);
 
     // The best sensor: the sensor channel with the most separating feature.
     let sensor_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_some()).collect();
@@ -565,32 +624,65 @@ fn run_set(
     artifacts.add(&file, histogram(&format!("{}: contact force", set.name), "P_max (N)", &fc, &fg, true));
     hist_md.push_str(&format!("![contact force]({file})\n\n"));
 
-    // Classifiers on the main run.
-    let mut classifiers = Vec::new();
-    if let Some(s) = best_sensor_entry {
+    // The reference feature of the variability study: the most separating one the modal
+    // truncation does not move, else the best sensor's.
+    let converged_entry = order
+        .iter()
+        .find(|s| {
+            (s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc).abs() <= s.auc.standard_error
+        })
+        .map(|s| **s);
+    let reference_entry = converged_entry.or(best_sensor_entry);
+
+    // Classifiers, each also fitted on the half-mode run.
+    let sensor_group = |s: &Separability, what: &str| -> (String, Vec<usize>) {
         let sensor = infos[s.channel].sensor;
-        let chans: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
-        classifiers.push(Accuracy {
-            features: format!(
-                "the best sensor's 3 quantities × 6 features, at ({}, {}) mm",
+        let chans = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
+        (
+            format!(
+                "{what} 3 quantities × 6 features, at ({}, {}) mm",
                 mm(infos[s.channel].at.0),
                 mm(infos[s.channel].at.1)
             ),
-            result: classifier(&run.table, &chans, seed ^ 3)?,
-        });
+            chans,
+        )
+    };
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    if let Some(s) = best_sensor_entry {
+        groups.push(sensor_group(&s, "the best sensor's"));
+    }
+    if let Some(s) = converged_entry.filter(|c| infos[c.channel].sensor.is_some()) {
+        if best_sensor_entry.is_none_or(|b| infos[b.channel].sensor != infos[s.channel].sensor) {
+            groups.push(sensor_group(&s, "the reference feature's sensor:"));
+        }
     }
     let corner_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_none()).collect();
     if !corner_channels.is_empty() {
-        classifiers.push(Accuracy {
-            features: format!("the {} corner channels (spring forces, reactions) × 6 features", corner_channels.len()),
-            result: classifier(&run.table, &corner_channels, seed ^ 4)?,
-        });
+        groups.push((
+            format!("the {} corner channels (spring forces, reactions) × 6 features", corner_channels.len()),
+            corner_channels.clone(),
+        ));
+    }
+    if named > 0 {
+        groups.push((
+            format!(
+                "every named sensor and corner channel ({} channels) × 6 features",
+                named * 3 + corner_channels.len()
+            ),
+            (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect(),
+        ));
+    }
+    let mut classifiers = Vec::new();
+    for (k, (features, chans)) in groups.into_iter().enumerate() {
+        let result = classifier(&run.table, &chans, seed ^ (3 + k as u64))?;
+        let coarse = classifier(&half.table, &chans, seed ^ (3 + k as u64))?;
+        classifiers.push(Accuracy { features, result, resolution: result.accuracy - coarse.accuracy });
     }
 
-    // The variability study, on the reference instrument: the named sensors, the best
-    // sensor, the corners.
+    // The variability study, on the reference instrument: the named sensors, the reference
+    // feature's sensor, the corners.
     let mut reference_sensors = settings.sensors.clone();
-    let mut reference = best_sensor_entry.map(|s| (infos[s.channel].kind, s.feature));
+    let mut reference = reference_entry.map(|s| (infos[s.channel].kind, s.feature));
     if let Some((kind, feature)) = reference {
         if let Some(s) = infos.iter().find(|i| i.kind == kind).and_then(|i| i.sensor) {
             if s >= named {
@@ -626,12 +718,7 @@ fn run_set(
             bar.inc(1);
             Ok(())
         })
-        .map_err(|err| -> Failure {
-            match err {
-                RunError::Model { index, source } => format!("{}: impact {index}: {source}", set.name).into(),
-                RunError::Sink(f) => f,
-            }
-        })?;
+        .map_err(|err| run_failure(&set.name, err))?;
         bar.finish_and_clear();
         let seps = separabilities(&r.table);
         let reference_auc = reference
@@ -647,25 +734,12 @@ fn run_set(
             which: h,
             held: held_label(h),
             reference: reference_auc,
-            best: ranked(ref_infos[top.channel].label(), top.feature, &a, &b, seed ^ (100 + k as u64)),
+            best: ranked(ref_infos[top.channel].label(), top.feature, (&a, &b), None, seed ^ (100 + k as u64)),
             force_max: auc_with_error(&pc, &pg),
             accuracy: classifier(&r.table, &all_channels, seed ^ (200 + k as u64))?,
         });
     }
-    let everything = classifier(
-        &run.table,
-        &(0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect::<Vec<_>>(),
-        seed ^ 5,
-    );
-    if named > 0 {
-        classifiers.push(Accuracy {
-            features: format!(
-                "every named sensor and corner channel ({} channels) × 6 features",
-                named * 3 + corner_channels.len()
-            ),
-            result: everything?,
-        });
-    }
+    let reference_ranked = reference_entry.map(|s| rank_of(&s, TOP + 3));
 
     let result = ConditionResult {
         condition: set.name.clone(),
@@ -673,9 +747,11 @@ fn run_set(
         validity: run.validity,
         ranking,
         best_sensor,
+        best_converged,
         force_max,
         contact_time,
         classifiers,
+        reference: reference_ranked,
         held,
         setup_seconds,
         run_seconds,
@@ -685,6 +761,7 @@ fn run_set(
     };
     let markdown = condition_markdown(
         &result,
+        settings.modes,
         &maps_md,
         &hist_md,
         reference.map(|(k, f)| {
@@ -761,27 +838,38 @@ fn percent(n: usize, of: usize) -> String {
 
 fn condition_markdown(
     r: &ConditionResult,
+    modes: usize,
     maps: &str,
     hists: &str,
     reference: Option<String>,
 ) -> Result<String, Failure> {
-    let mut ranking = Table::new("", &["channel", "feature", "AUC", "DeLong SE", "95 % bootstrap CI", "direction"]);
-    for x in std::iter::once(&r.force_max).chain([&r.contact_time]).chain(&r.ranking) {
+    let mut ranking = Table::new(
+        "",
+        &["channel", "feature", "AUC", "DeLong SE", "95 % bootstrap CI", "AUC(N) - AUC(N/2)", "direction"],
+    );
+    let extra = r
+        .best_converged
+        .as_ref()
+        .filter(|b| !r.ranking.iter().any(|x| x.channel == b.channel && x.feature == b.feature));
+    for x in std::iter::once(&r.force_max).chain([&r.contact_time]).chain(&r.ranking).chain(extra) {
         ranking.push(vec![
             x.channel.clone().into(),
             feature_label(x.feature).into(),
             Cell::Text(sig(x.auc.auc, 3)),
             Cell::Text(sig(x.auc.standard_error, 2)),
             ci(x).into(),
+            x.resolution
+                .map_or(Cell::Empty, |d| Cell::Text(format!("{}{}", sig(d, 2), if x.converged() { "" } else { " *" }))),
             direction(&x.auc).into(),
         ]);
     }
-    let mut acc = Table::new("", &["features", "accuracy", "SE"]);
+    let mut acc = Table::new("", &["features", "accuracy", "SE", "accuracy(N) - accuracy(N/2)"]);
     for a in &r.classifiers {
         acc.push(vec![
             a.features.clone().into(),
             Cell::Text(sig(a.result.accuracy, 3)),
             Cell::Text(sig(a.result.standard_error, 2)),
+            Cell::Text(sig(a.resolution, 2)),
         ]);
     }
     let mut held = Table::new(
@@ -822,6 +910,8 @@ fn condition_markdown(
             ("condition", r.condition.clone()),
             ("fundamental_hz", sig(r.fundamental_hz, 4)),
             ("ranking", ranking.to_markdown()),
+            ("modes", modes.to_string()),
+            ("half_modes", (modes / 2).max(1).to_string()),
             ("classifiers", acc.to_markdown()),
             (
                 "maps",
@@ -842,7 +932,7 @@ fn condition_markdown(
     )?)
 }
 
-fn finding(r: &ConditionResult) -> Result<String, Failure> {
+fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
     let dash = || "-".to_string();
     let top = r.ranking.first();
     let best_classifier = r.classifiers.iter().max_by(|a, b| a.result.accuracy.total_cmp(&b.result.accuracy));
@@ -852,17 +942,34 @@ fn finding(r: &ConditionResult) -> Result<String, Failure> {
     let most =
         r.held.iter().filter(single).max_by(|a, b| a.reference.separability().total_cmp(&b.reference.separability()));
     let paper = r.held.iter().find(|h| h.which.position && h.which.size && h.which.speed && !h.which.material);
-    let held = match (most, paper, &r.best_sensor) {
-        (Some(m), Some(p), Some((_, reference))) => render(
+    let held = match (most, paper, &r.reference) {
+        (Some(m), Some(p), Some(reference)) => render(
             "identify/finding-held.md",
             FINDING_HELD,
             &[
+                ("reference", format!("the {} of the {}", feature_label(reference.feature), reference.channel)),
                 ("variable", m.held.clone()),
                 ("free", sig(reference.auc.auc, 3)),
                 ("auc", sig(m.reference.auc, 3)),
                 ("se", sig(m.reference.standard_error, 2)),
                 ("paper_auc", sig(p.reference.auc, 3)),
                 ("paper_se", sig(p.reference.standard_error, 2)),
+            ],
+        )?,
+        _ => String::new(),
+    };
+    let resolution = match (top, &r.best_converged) {
+        (Some(t), Some(b)) if !t.converged() => render(
+            "identify/finding-resolution.md",
+            FINDING_RESOLUTION,
+            &[
+                ("delta", t.resolution.map_or_else(dash, |d| sig(d, 2))),
+                ("half_modes", (modes / 2).max(1).to_string()),
+                ("modes", modes.to_string()),
+                ("feature", feature_label(b.feature).to_string()),
+                ("channel", b.channel.clone()),
+                ("auc", sig(b.auc.auc, 3)),
+                ("ci", ci(b)),
             ],
         )?,
         _ => String::new(),
@@ -876,6 +983,7 @@ fn finding(r: &ConditionResult) -> Result<String, Failure> {
             ("channel", top.map_or_else(dash, |t| t.channel.clone())),
             ("best_auc", top.map_or_else(dash, |t| sig(t.auc.auc, 3))),
             ("best_ci", top.map_or_else(dash, ci)),
+            ("resolution", resolution.trim_end().to_string()),
             ("force_auc", sig(r.force_max.auc.auc, 3)),
             ("force_ci", ci(&r.force_max)),
             ("classifier", best_classifier.map_or_else(dash, |a| a.features.clone())),
@@ -912,7 +1020,7 @@ pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary)
     };
     let mut findings = String::new();
     for c in &summary.conditions {
-        findings.push_str(&finding(c)?);
+        findings.push_str(&finding(c, settings.modes)?);
     }
     let mut families = Table::new(
         "",
