@@ -116,6 +116,19 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Coal-gangue identification over the scene's random-impact ensemble ([ensemble]): the
+    /// separability of every sensor feature, placement maps, which variability hides the
+    /// difference, into DIR (default impact-out/<scene name>-identify).
+    Identify {
+        /// Scene file with an [ensemble] table and "identify" among its analyses.
+        #[arg(long, value_name = "FILE")]
+        scene: PathBuf,
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print the summary as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         #[arg(long, value_name = "DIR", default_value = "impact-out/paper")]
@@ -327,6 +340,45 @@ fn execute(command: Command) -> Result<(), Failure> {
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
             commit(target, &impact::report::scene_report(&scene)?)
+        }
+        Command::Identify { scene, out: dir, json } => {
+            let scene = Scene::load(&scene)?;
+            let Some(study) = scene.ensemble.as_ref() else {
+                return Err(format!(
+                    "scene {}: impact identify needs an [ensemble] table and \"identify\" in analyses",
+                    scene.name
+                )
+                .into());
+            };
+            // Features of one support set are held while it is analysed: check them against
+            // the memory budget before anything runs.
+            for set in &scene.conditions {
+                let channels = impact::report::identify::channels_per_impact(&scene, study, set);
+                let bytes = impact::report::identify::feature_bytes(study.ensemble.len(), channels);
+                if bytes as f64 > MEMORY_BUDGET_BYTES {
+                    return Err(format!(
+                        "the ensemble's features are {} impacts x {channels} channels x 6 features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
+                        study.ensemble.len(),
+                        bytes as f64 / 1e9,
+                        set.name,
+                        MEMORY_BUDGET_BYTES / 1e9
+                    )
+                    .into());
+                }
+            }
+            let dir =
+                dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-identify", slug(&scene.name))));
+            let mut target = OutputDir::prepare(&dir)?;
+            let (artifacts, summary) = impact::report::identify::report(&scene, &mut target)?;
+            commit(target, &artifacts)?;
+            if json {
+                out(&format!("{}\n", serde_json::to_string_pretty(&summary)?))?;
+            } else {
+                for t in impact::report::identify::summary_tables(&summary) {
+                    out(&format!("{}\n", t.to_text()))?;
+                }
+            }
+            Ok(())
         }
         Command::Report { out } => {
             let target = OutputDir::prepare(&out)?;

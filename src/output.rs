@@ -206,7 +206,7 @@ struct Manifest {
     files: Vec<ManifestEntry>,
 }
 
-#[derive(Debug, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 struct ManifestEntry {
     path: String,
     size: u64,
@@ -511,6 +511,41 @@ pub struct OutputDir {
     target: PathBuf,
     parent: PathBuf,
     stage: Option<PathBuf>,
+    /// Files streamed into the stage ([`OutputDir::stream`]): their paths, and their manifest
+    /// entries once finished.
+    streams: Vec<(String, Option<ManifestEntry>)>,
+}
+
+/// A file written straight into an [`OutputDir`]'s stage as it is produced, for output too
+/// large to hold in memory (an ensemble's feature rows). It is hashed as it is written,
+/// becomes part of the set only through [`OutputDir::finish_stream`], and disappears with
+/// the stage if the run fails.
+#[derive(Debug)]
+pub struct StreamedFile {
+    rel: String,
+    path: PathBuf,
+    writer: io::BufWriter<File>,
+    hash: Sha256,
+    size: u64,
+}
+
+impl StreamedFile {
+    /// Bytes written so far.
+    pub fn size(&self) -> u64 {
+        self.size
+    }
+}
+
+impl Write for StreamedFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.writer.write(buf)?;
+        self.hash.update(&buf[..n]);
+        self.size += n as u64;
+        Ok(n)
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.writer.flush()
+    }
 }
 
 impl OutputDir {
@@ -527,7 +562,56 @@ impl OutputDir {
         check_replaceable_dir(&target)?;
         clean_stale(&parent);
         let (stage, ()) = create_sibling(&parent, &name, STAGE_TAG, |p| fs::create_dir(p))?;
-        Ok(OutputDir { target, parent, stage: Some(stage) })
+        Ok(OutputDir { target, parent, stage: Some(stage), streams: Vec::new() })
+    }
+
+    /// Opens the file `rel` (a relative path, as for [`Artifacts::add`]) in the stage for
+    /// writing as the run goes. It joins the set when passed to [`OutputDir::finish_stream`];
+    /// a stream never finished makes [`OutputDir::commit`] fail, and no artifact may take
+    /// its path.
+    pub fn stream(&mut self, rel: &str) -> Result<StreamedFile, OutputError> {
+        let rel = normalize(Path::new(rel))?;
+        if self.streams.iter().any(|(p, _)| *p == rel) {
+            return Err(OutputError::UnsafePath { path: rel.into(), why: "it is given twice" });
+        }
+        let stage = self.stage.clone().expect("an OutputDir holds its stage until committed");
+        let path = stage.join(&rel);
+        if let Some(dir) = path.parent() {
+            fs::create_dir_all(dir).map_err(io_err(dir, "creating a staged directory"))?;
+        }
+        let mut o = OpenOptions::new();
+        o.write(true).create_new(true);
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::OpenOptionsExt;
+            o.mode(0o644);
+        }
+        let file = o.open(&path).map_err(io_err(&path, "creating a staged file"))?;
+        self.streams.push((rel.clone(), None));
+        Ok(StreamedFile {
+            rel,
+            path,
+            writer: io::BufWriter::with_capacity(1 << 16, file),
+            hash: Sha256::new(),
+            size: 0,
+        })
+    }
+
+    /// Completes a streamed file: flushes it (synced with the rest of the stage on commit)
+    /// and records it for the manifest.
+    pub fn finish_stream(&mut self, mut file: StreamedFile) -> Result<(), OutputError> {
+        file.writer.flush().map_err(io_err(&file.path, "writing a staged file"))?;
+        if PER_FILE_SYNC {
+            file.writer.get_ref().sync_all().map_err(io_err(&file.path, "syncing a staged file"))?;
+        }
+        let entry = ManifestEntry { path: file.rel.clone(), size: file.size, sha256: file.hash.hex() };
+        match self.streams.iter_mut().find(|(p, _)| *p == file.rel) {
+            Some(slot) => slot.1 = Some(entry),
+            None => {
+                return Err(OutputError::UnsafePath { path: file.rel.into(), why: "it was not opened by this output" })
+            }
+        }
+        Ok(())
     }
 
     /// The target directory.
@@ -541,6 +625,26 @@ impl OutputDir {
     pub fn commit(mut self, artifacts: &Artifacts) -> Result<Vec<PathBuf>, OutputError> {
         let stage = self.stage.clone().expect("an OutputDir holds its stage until committed");
         let files = artifacts.checked()?;
+        let mut streamed = Vec::with_capacity(self.streams.len());
+        for (rel, entry) in &self.streams {
+            let Some(entry) = entry else {
+                return Err(OutputError::UnsafePath {
+                    path: rel.into(),
+                    why: "its stream was opened but not finished",
+                });
+            };
+            // A streamed file is a file: no artifact may take its path or use it as a directory.
+            if files
+                .iter()
+                .any(|(p, _)| p == rel || p.starts_with(&format!("{rel}/")) || rel.starts_with(&format!("{p}/")))
+            {
+                return Err(OutputError::UnsafePath {
+                    path: rel.into(),
+                    why: "it is streamed and also given as a file",
+                });
+            }
+            streamed.push(entry.clone());
+        }
         let mut dirs = vec![stage.clone()];
         let mut entries = Vec::with_capacity(files.len());
         for (rel, bytes) in &files {
@@ -555,6 +659,7 @@ impl OutputDir {
             write_staged(&p, bytes, PER_FILE_SYNC)?;
             entries.push(ManifestEntry { path: rel.clone(), size: bytes.len() as u64, sha256: sha256_hex(bytes) });
         }
+        entries.extend(streamed.iter().cloned());
         entries.sort_by(|a, b| a.path.cmp(&b.path));
         let manifest = Manifest { program: "impact".into(), version: env!("CARGO_PKG_VERSION").into(), files: entries };
         let mut json = serde_json::to_string_pretty(&manifest).expect("a manifest serializes");
@@ -585,7 +690,12 @@ impl OutputDir {
         self.stage = None;
         remove_entry(&stage);
         sync_dir(&self.parent).map_err(io_err(&self.parent, "syncing the output's parent directory"))?;
-        Ok(files.iter().map(|(rel, _)| self.target.join(rel)).collect())
+        Ok(files
+            .iter()
+            .map(|(rel, _)| rel)
+            .chain(streamed.iter().map(|e| &e.path))
+            .map(|rel| self.target.join(rel))
+            .collect())
     }
 }
 
@@ -750,25 +860,79 @@ impl Drop for OutputFile {
 
 /// SHA-256 of `bytes` as lowercase hex (FIPS 180-4), for the manifest.
 pub fn sha256_hex(bytes: &[u8]) -> String {
-    const K: [u32; 64] = [
-        0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5, 0xd807aa98,
-        0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174, 0xe49b69c1, 0xefbe4786,
-        0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da, 0x983e5152, 0xa831c66d, 0xb00327c8,
-        0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967, 0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13,
-        0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85, 0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819,
-        0xd6990624, 0xf40e3585, 0x106aa070, 0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a,
-        0x5b9cca4f, 0x682e6ff3, 0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7,
-        0xc67178f2,
-    ];
-    let mut h: [u32; 8] =
-        [0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19];
-    let mut msg = bytes.to_vec();
-    msg.push(0x80);
-    while msg.len() % 64 != 56 {
-        msg.push(0);
+    let mut h = Sha256::new();
+    h.update(bytes);
+    h.hex()
+}
+
+/// SHA-256 (FIPS 180-4) fed in pieces, for files streamed to disk that are never whole in
+/// memory.
+#[derive(Debug, Clone)]
+pub struct Sha256 {
+    state: [u32; 8],
+    block: [u8; 64],
+    filled: usize,
+    length: u64,
+}
+
+impl Default for Sha256 {
+    fn default() -> Self {
+        Self::new()
     }
-    msg.extend_from_slice(&((bytes.len() as u64).wrapping_mul(8)).to_be_bytes());
-    for block in msg.chunks_exact(64) {
+}
+
+impl Sha256 {
+    /// The hash of nothing yet.
+    pub fn new() -> Self {
+        Self {
+            state: [0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19],
+            block: [0; 64],
+            filled: 0,
+            length: 0,
+        }
+    }
+
+    /// Feeds `bytes`.
+    pub fn update(&mut self, mut bytes: &[u8]) {
+        self.length = self.length.wrapping_add(bytes.len() as u64);
+        while !bytes.is_empty() {
+            let take = (64 - self.filled).min(bytes.len());
+            self.block[self.filled..self.filled + take].copy_from_slice(&bytes[..take]);
+            self.filled += take;
+            bytes = &bytes[take..];
+            if self.filled == 64 {
+                let block = self.block;
+                self.compress(&block);
+                self.filled = 0;
+            }
+        }
+    }
+
+    /// The digest as lowercase hex.
+    pub fn hex(mut self) -> String {
+        let bits = self.length.wrapping_mul(8);
+        let mut tail = vec![0x80u8];
+        while (self.filled + tail.len()) % 64 != 56 {
+            tail.push(0);
+        }
+        tail.extend_from_slice(&bits.to_be_bytes());
+        let length = self.length;
+        self.update(&tail);
+        self.length = length;
+        self.state.iter().map(|x| format!("{x:08x}")).collect()
+    }
+
+    fn compress(&mut self, block: &[u8; 64]) {
+        const K: [u32; 64] = [
+            0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5, 0xd807aa98,
+            0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174, 0xe49b69c1, 0xefbe4786,
+            0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da, 0x983e5152, 0xa831c66d, 0xb00327c8,
+            0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967, 0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13,
+            0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85, 0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819,
+            0xd6990624, 0xf40e3585, 0x106aa070, 0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a,
+            0x5b9cca4f, 0x682e6ff3, 0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7,
+            0xc67178f2,
+        ];
         let mut w = [0u32; 64];
         for (i, c) in block.chunks_exact(4).enumerate() {
             w[i] = u32::from_be_bytes([c[0], c[1], c[2], c[3]]);
@@ -778,7 +942,7 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
             let s1 = w[i - 2].rotate_right(17) ^ w[i - 2].rotate_right(19) ^ (w[i - 2] >> 10);
             w[i] = w[i - 16].wrapping_add(s0).wrapping_add(w[i - 7]).wrapping_add(s1);
         }
-        let [mut a, mut b, mut c, mut d, mut e, mut f, mut g, mut hh] = h;
+        let [mut a, mut b, mut c, mut d, mut e, mut f, mut g, mut hh] = self.state;
         for i in 0..64 {
             let s1 = e.rotate_right(6) ^ e.rotate_right(11) ^ e.rotate_right(25);
             let ch = (e & f) ^ (!e & g);
@@ -795,11 +959,10 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
             b = a;
             a = t1.wrapping_add(t2);
         }
-        for (x, y) in h.iter_mut().zip([a, b, c, d, e, f, g, hh]) {
+        for (x, y) in self.state.iter_mut().zip([a, b, c, d, e, f, g, hh]) {
             *x = x.wrapping_add(y);
         }
     }
-    h.iter().map(|x| format!("{x:08x}")).collect()
 }
 
 #[cfg(test)]
@@ -1052,6 +1215,50 @@ mod tests {
         assert!(!owner_alive(dead_pid(), 0));
         assert!(parse_sibling(".x.impact-stage-12-0-zz").is_none());
         assert!(parse_sibling("x.impact-tmp-12-0-0123456789abcdef").is_none());
+    }
+
+    #[test]
+    fn incremental_hash_is_the_one_shot_hash() {
+        // Pieces that straddle the 64-byte blocks and the padding boundary (55/56 bytes).
+        let data: Vec<u8> = (0..1000u32).map(|i| (i * 7 % 251) as u8).collect();
+        for cut in [0, 1, 55, 56, 63, 64, 65, 500, 1000] {
+            let mut h = Sha256::new();
+            h.update(&data[..cut]);
+            h.update(&data[cut..]);
+            assert_eq!(h.hex(), sha256_hex(&data), "cut {cut}");
+        }
+    }
+
+    #[test]
+    fn streamed_files_join_the_manifest() {
+        let dir = tempfile::tempdir().unwrap();
+        let target = dir.path().join("out");
+        let mut out = OutputDir::prepare(&target).unwrap();
+        let mut f = out.stream("rows/features.csv").unwrap();
+        for i in 0..10_000 {
+            writeln!(f, "{i},{}", i * i).unwrap();
+        }
+        let size = f.size();
+        out.finish_stream(f).unwrap();
+        let mut a = Artifacts::new();
+        a.add("index.md", "report");
+        let written = out.commit(&a).unwrap();
+        assert_eq!(written.len(), 2);
+        assert_eq!(fs::metadata(target.join("rows/features.csv")).unwrap().len(), size);
+        // The manifest lists the streamed file with its hash: the set verifies.
+        assert_eq!(verify_set(&target).unwrap(), 2);
+        // An unfinished stream or a clash with an artifact fails the commit, leaving the set.
+        let mut out = OutputDir::prepare(&target).unwrap();
+        let _open = out.stream("a.csv").unwrap();
+        assert!(out.commit(&Artifacts::new()).is_err());
+        let mut out = OutputDir::prepare(&target).unwrap();
+        let f = out.stream("a.csv").unwrap();
+        out.finish_stream(f).unwrap();
+        let mut a = Artifacts::new();
+        a.add("a.csv", "x");
+        assert!(out.commit(&a).is_err());
+        assert_eq!(verify_set(&target).unwrap(), 2);
+        assert!(staging_leftovers(dir.path()).is_empty());
     }
 
     #[test]

@@ -14,6 +14,9 @@ use plate_fem::{CornerSupport, EdgeSupport, Supports};
 use serde::Deserialize;
 use std::path::Path;
 
+mod ensemble;
+pub use ensemble::{FALL_HEIGHT_M, MAX_CANDIDATES_PER_SIDE, MAX_IMPACTS};
+
 /// The embedded default scene: the paper's Table 1.
 pub const DEFAULT_SCENE: &str = include_str!("../scenes/paper-table-1.toml");
 /// How the default scene is named in messages.
@@ -186,9 +189,11 @@ struct RawScene {
     #[serde(default)]
     contact_law: Option<String>,
     plate: RawPlate,
+    #[serde(default)]
     bodies: Vec<RawBody>,
     conditions: Vec<RawCondition>,
-    points: RawPoints,
+    #[serde(default)]
+    points: Option<RawPoints>,
     #[serde(default)]
     velocities: Option<RawVelocities>,
     #[serde(default = "default_analyses")]
@@ -197,6 +202,8 @@ struct RawScene {
     solver: RawSolver,
     #[serde(default)]
     transient: Option<RawTransient>,
+    #[serde(default)]
+    ensemble: Option<ensemble::RawEnsemble>,
     #[serde(default)]
     signals: Option<RawSignals>,
 }
@@ -596,7 +603,20 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         plate_material,
     )?;
 
-    if raw.bodies.is_empty() {
+    if raw.analyses.is_empty() {
+        let keys: Vec<&str> = Analysis::ALL.iter().map(|a| a.key()).collect();
+        return Err(other("analyses", format!("the list is empty; allowed entries: {}", keys.join(", "))));
+    }
+    let mut analyses: Vec<Analysis> = Vec::new();
+    for a in raw.analyses {
+        if !analyses.contains(&a) {
+            analyses.push(a);
+        }
+    }
+    // Every analysis but identification strikes the scene's bodies at its points; the
+    // identification study draws its own from [ensemble].
+    let needs_bodies = analyses.iter().any(|a| *a != Analysis::Identify);
+    if raw.bodies.is_empty() && needs_bodies {
         return Err(other("bodies", "at least one [[bodies]] entry is required"));
     }
     let mut bodies = Vec::with_capacity(raw.bodies.len());
@@ -628,7 +648,13 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         conditions.push(set);
     }
 
-    let points = validate_points(&raw.points, &plate, length_mm, width_mm)?;
+    let points = match &raw.points {
+        Some(p) => validate_points(p, &plate, length_mm, width_mm)?,
+        None if needs_bodies => {
+            return Err(other("points", "a [points] table is required (x_mm, count, pairs_mm or [points.grid])"))
+        }
+        None => Points::Pairs { pairs: vec![] },
+    };
     let transient_points = match &raw.transient {
         None => points.pairs(),
         Some(t) => match validate_points(
@@ -648,16 +674,6 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         },
     };
 
-    if raw.analyses.is_empty() {
-        let keys: Vec<&str> = Analysis::ALL.iter().map(|a| a.key()).collect();
-        return Err(other("analyses", format!("the list is empty; allowed entries: {}", keys.join(", "))));
-    }
-    let mut analyses: Vec<Analysis> = Vec::new();
-    for a in raw.analyses {
-        if !analyses.contains(&a) {
-            analyses.push(a);
-        }
-    }
     let needs_velocity =
         analyses.iter().any(|a| matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap));
     let velocities = match &raw.velocities {
@@ -694,6 +710,20 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         MethodName::Bracketed => Method::Bracketed { tolerance, max_iterations: raw.solver.max_iterations },
     };
 
+    let ensemble = match (&raw.ensemble, analyses.contains(&Analysis::Identify)) {
+        (Some(e), true) => Some(ensemble::validate_ensemble(e, length_mm, width_mm)?),
+        (None, false) => None,
+        (None, true) => {
+            return Err(other("ensemble", "the \"identify\" analysis needs an [ensemble] table (the random impacts)"))
+        }
+        (Some(_), false) => {
+            return Err(other(
+                "ensemble",
+                "is read only by the \"identify\" analysis; add \"identify\" to analyses or remove the table",
+            ))
+        }
+    };
+
     Ok(Scene {
         name: raw.name,
         description: raw.description,
@@ -707,6 +737,7 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         velocities,
         analyses,
         solver,
+        ensemble,
         signals,
     })
 }

@@ -9,6 +9,7 @@ pub mod conclusions;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;
+pub mod identify;
 pub mod paper;
 pub mod paper_studies;
 pub mod signals;

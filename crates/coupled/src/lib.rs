@@ -17,7 +17,9 @@
 //! - [`transient`]: the sphere, the Flores contact and the plate dynamics in time;
 //! - [`reduced`]: the same impact on the plate's lowest modes plus a static correction,
 //!   fast enough for ensembles, with sensor signals;
-//! - [`plan`]: every model filling one row schema for a scene.
+//! - [`plan`]: every model filling one row schema for a scene;
+//! - [`identification`]: the random-impact ensemble of crate `identify` on the reduced model,
+//!   one support set at a time, features only.
 //!
 //! No function here reads or writes files or knows of terminals.
 //!
@@ -44,6 +46,7 @@
 pub mod compliance;
 pub mod discretisation;
 pub mod error;
+pub mod identification;
 pub mod plan;
 pub mod reduced;
 pub mod scene;

@@ -34,11 +34,13 @@ pub enum Analysis {
     /// The paper's own studies: its conclusions item by item and its figures redone with
     /// both models (the paper's plate only).
     PaperStudies,
+    /// Coal-gangue identification over the scene's random-impact ensemble (`[ensemble]`).
+    Identify,
 }
 
 impl Analysis {
     /// Every analysis, in the order reports present them.
-    pub const ALL: [Analysis; 10] = [
+    pub const ALL: [Analysis; 11] = [
         Analysis::Responses,
         Analysis::YieldVelocity,
         Analysis::WidthMaps,
@@ -49,6 +51,7 @@ impl Analysis {
         Analysis::Transient,
         Analysis::SizeMap,
         Analysis::PaperStudies,
+        Analysis::Identify,
     ];
 
     /// The name used in scene files.
@@ -64,6 +67,7 @@ impl Analysis {
             Analysis::Transient => "transient",
             Analysis::SizeMap => "size-map",
             Analysis::PaperStudies => "paper-studies",
+            Analysis::Identify => "identify",
         }
     }
 }
@@ -147,6 +151,9 @@ pub struct Scene {
     pub analyses: Vec<Analysis>,
     /// How to solve the energy balance.
     pub solver: Method,
+    /// The random-impact ensemble of the identification study; present exactly when the
+    /// scene asks for [`Analysis::Identify`].
+    pub ensemble: Option<identify::Study>,
     /// The reduced model and the sensor signals of an impact (`[signals]`; defaults when
     /// the scene has none).
     pub signals: SignalSettings,

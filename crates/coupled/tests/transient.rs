@@ -511,6 +511,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         analyses: vec![Analysis::Responses],
         solver: analytic::Method::default(),
         signals: Default::default(),
+        ensemble: None,
     };
     let r = run_transient(&scene, TransientSettings::default()).unwrap();
     let v = r.responses[0].values().unwrap();

@@ -1,0 +1,210 @@
+//! Coal-gangue identification on one support set: the scene's random-impact ensemble
+//! (crate `identify`) struck on the reduced-order model ([`crate::reduced`]), each impact's
+//! signals reduced to features at once and only the features kept.
+//!
+//! Per support set the reduced model is built once; each impact is then drawn from its own
+//! seeded stream, thrown with the scene's contact law, and its channels' features computed
+//! in the worker that ran it. Results reach the caller's sink in impact order, one chunk at
+//! a time ([`identify::ensemble::for_each_ordered`]), so a run is bit-identical on any
+//! number of threads, the caller can stream rows to disk, and no more than one chunk of
+//! records is ever held besides the feature columns.
+//!
+//! Each record also carries the impact's validity: δ_max/δ_my (eq. 51; beyond 1 the rock
+//! yields, which an elastic contact law does not describe), t_c/T₁ (the rigid-target Hertz
+//! time over the supported plate's fundamental period; the quasi-static criterion of
+//! [`crate::validity`], here only a regime label, since the reduced model is transient) and
+//! the number of contacts.
+
+use crate::error::ModelError;
+use crate::reduced::{ChannelKind, ReducedModel, SignalSpec};
+use crate::transient::{LawKind, Striker};
+use analytic::{contact_stiffness, DruckerPrager, Plate};
+use identify::ensemble::for_each_ordered;
+use identify::placement::FeatureTable;
+use identify::{Draw, Extractor, Features, Held, Study};
+use serde::Serialize;
+
+/// Impacts handed to the sink at a time: large enough to keep both cores busy between
+/// the sink's turns, small enough that the chunk's records are a few MB.
+pub const CHUNK: usize = 256;
+
+/// One impact of the ensemble: what was drawn, what the contact did, its validity and
+/// its channels' features.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ImpactRecord {
+    /// The draw (SI units).
+    pub draw: Draw,
+    /// Largest contact force of the first contact, N.
+    pub force_max: f64,
+    /// Duration of the first contact, s (None if it had not ended within the window).
+    pub contact_time: Option<f64>,
+    /// Contacts within the window.
+    pub contacts: usize,
+    /// Largest compression over δ_my (eq. 51).
+    pub compression_ratio: f64,
+    /// The rigid-target Hertz time over T₁.
+    pub hertz_time_ratio: f64,
+    /// One per channel of the run, in the order of [`ConditionRun::channels`].
+    pub features: Vec<Features>,
+}
+
+/// Counts of an ensemble's impacts beyond each validity criterion.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct EnsembleValidity {
+    /// Impacts.
+    pub impacts: usize,
+    /// δ_max > δ_my: the rock yields.
+    pub beyond_elastic: usize,
+    /// t_c/T₁ below the quasi-static limit.
+    pub not_quasi_static: usize,
+    /// More than one contact.
+    pub recontact: usize,
+    /// A contact still on at the end of the window.
+    pub unfinished: usize,
+}
+
+impl EnsembleValidity {
+    fn add(&mut self, r: &ImpactRecord) {
+        self.impacts += 1;
+        self.beyond_elastic += usize::from(r.compression_ratio > 1.0);
+        self.not_quasi_static += usize::from(r.hertz_time_ratio < crate::validity::QUASI_STATIC_MIN_RATIO);
+        self.recontact += usize::from(r.contacts > 1);
+        self.unfinished += usize::from(r.contact_time.is_none());
+    }
+}
+
+/// An ensemble run on one support set: the features as columns, the paper's contact
+/// quantities, and the validity counts.
+#[derive(Debug, Clone)]
+pub struct ConditionRun {
+    /// The channels, in column order.
+    pub channels: Vec<ChannelKind>,
+    /// The features of every impact and channel.
+    pub table: FeatureTable,
+    /// P_max of every impact, N.
+    pub force_max: Vec<f64>,
+    /// The first contact's duration of every impact, s (0 if unfinished).
+    pub contact_time: Vec<f64>,
+    /// Validity counts.
+    pub validity: EnsembleValidity,
+    /// The supported plate's fundamental frequency, Hz.
+    pub fundamental_hz: f64,
+}
+
+/// A reduced model with the probes and feature extractor of one signal spec.
+pub struct Instrument<'a> {
+    model: &'a ReducedModel,
+    probes: crate::reduced::Probes,
+    extractor: Extractor,
+    plate: Plate,
+    restitution: f64,
+    law: LawKind,
+}
+
+impl<'a> Instrument<'a> {
+    /// Prepares `spec` on `model` for impacts on `plate` with the Flores restitution and the
+    /// contact law of the scene.
+    pub fn new(
+        model: &'a ReducedModel,
+        plate: &Plate,
+        spec: &SignalSpec,
+        restitution: f64,
+        law: LawKind,
+    ) -> Result<Self, ModelError> {
+        let probes = model.probes(spec)?;
+        let extractor = Extractor::new(spec.samples(), spec.rate_hz);
+        Ok(Self { model, probes, extractor, plate: *plate, restitution, law })
+    }
+
+    /// The channels each impact records.
+    pub fn channels(&self) -> Vec<ChannelKind> {
+        self.probes.kinds()
+    }
+
+    /// The fundamental period T₁ of the supported plate, s.
+    pub fn fundamental_period(&self) -> f64 {
+        let w1 = self.model.modes().omegas().first().copied().unwrap_or(f64::INFINITY);
+        2.0 * std::f64::consts::PI / w1
+    }
+
+    /// Throws the sphere of `draw` (of family `family_name`) and reduces its signals.
+    pub fn impact(&self, draw: Draw, family_name: &str) -> Result<ImpactRecord, ModelError> {
+        let sphere = draw.sphere(family_name)?;
+        let k = contact_stiffness(&sphere, self.plate.material());
+        let striker = Striker {
+            k,
+            restitution: self.restitution,
+            mass: sphere.mass(),
+            velocity: draw.velocity,
+            law: self.law.law_for(&sphere),
+        };
+        let hit = self.model.impact(&striker, draw.x, draw.z, &self.probes)?;
+        let o = &hit.outcome;
+        let delta_my = DruckerPrager::of(&sphere).yield_compression(sphere.radius(), k);
+        let features = hit.signals.channels.iter().map(|c| self.extractor.features(&c.samples)).collect();
+        Ok(ImpactRecord {
+            force_max: o.force_max_interpolated.max(o.force_max),
+            contact_time: o.contact_time,
+            contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
+            compression_ratio: o.compression_max_interpolated.max(o.compression_max) / delta_my,
+            hertz_time_ratio: striker.hertz_time() / self.fundamental_period(),
+            features,
+            draw,
+        })
+    }
+}
+
+/// Why an ensemble run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError<E> {
+    /// The model failed on an impact.
+    #[error("impact {index}: {source}")]
+    Model {
+        /// The impact.
+        index: usize,
+        /// What failed.
+        source: ModelError,
+    },
+    /// The sink refused a record.
+    #[error(transparent)]
+    Sink(E),
+}
+
+/// Runs the ensemble of `study` with `held` on `instrument`, handing each record to `sink`
+/// in impact order, and returns the features as columns.
+pub fn run_condition<E>(
+    study: &Study,
+    held: Held,
+    instrument: &Instrument<'_>,
+    mut sink: impl FnMut(&ImpactRecord) -> Result<(), E>,
+) -> Result<ConditionRun, RunError<E>> {
+    let e = &study.ensemble;
+    let channels = instrument.channels();
+    let mut run = ConditionRun {
+        channels: channels.clone(),
+        table: FeatureTable::new(channels.len()),
+        force_max: Vec::with_capacity(e.len()),
+        contact_time: Vec::with_capacity(e.len()),
+        validity: EnsembleValidity::default(),
+        fundamental_hz: 1.0 / instrument.fundamental_period(),
+    };
+    for_each_ordered(
+        e.len(),
+        CHUNK,
+        |i| {
+            let draw = e.draw(i, held).expect("the index is below the ensemble's length");
+            let name = &e.families[draw.family].name;
+            instrument.impact(draw, name).map_err(|source| (i, source))
+        },
+        |_, record| {
+            let record = record.map_err(|(index, source)| RunError::Model { index, source })?;
+            sink(&record).map_err(RunError::Sink)?;
+            run.table.push(record.draw.class, &record.features);
+            run.force_max.push(record.force_max);
+            run.contact_time.push(record.contact_time.unwrap_or(0.0));
+            run.validity.add(&record);
+            Ok(())
+        },
+    )?;
+    Ok(run)
+}

@@ -1,0 +1,1169 @@
+//! `impact identify`: the scene's random-impact ensemble on every support set, the features'
+//! separability of coal from gangue, sensor-placement maps, which variability hides the
+//! difference, and the validity of the ensemble, written up as a report.
+//!
+//! The physics is in `coupled::identification` and the statistics in crate `identify`;
+//! this module streams the feature rows to the output directory, draws the maps and
+//! histograms, and fills the templates.
+
+use crate::output::{Artifacts, OutputDir, StreamedFile};
+use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::table::{sig, Cell, Table};
+use crate::report::comparison::heat_map;
+use crate::report::template::render;
+use crate::report::Failure;
+use coupled::identification::{
+    run_condition, ConditionRun, EnsembleValidity, ImpactRecord, Instrument, RunError, CHUNK,
+};
+use coupled::reduced::{ChannelKind, Quantity, ReducedModel, ReducedSettings, SignalSettings, SignalSpec};
+use coupled::{Scene, SupportSet};
+use identify::classify::{CrossValidated, FOLDS, RIDGE};
+use identify::distribution::Distribution;
+use identify::features::FEATURES;
+use identify::placement::{best, classifier, map, separabilities, Separability};
+use identify::roc::{auc_with_error, bootstrap_interval, Auc, BOOTSTRAP_RESAMPLES};
+use identify::{Class, Feature, Held, Speed, Study};
+use serde::Serialize;
+use std::time::Instant;
+
+const HEAD: &str = include_str!("templates/identify/head.md");
+const FINDING: &str = include_str!("templates/identify/finding.md");
+const FINDING_HELD: &str = include_str!("templates/identify/finding-held.md");
+const FINDING_RESOLUTION: &str = include_str!("templates/identify/finding-resolution.md");
+const CONDITION: &str = include_str!("templates/identify/condition.md");
+const METHOD: &str = include_str!("templates/identify/method.md");
+
+/// Entries of the ranking that get a bootstrap interval (the rest carry DeLong's error).
+const TOP: usize = 10;
+/// Histogram bins.
+const BINS: usize = 30;
+/// The confidence level of every interval.
+const LEVEL: f64 = 0.95;
+
+/// Channels an identification records per impact on `set`: three quantities at every named
+/// and candidate sensor, and the held or sprung corners.
+pub fn channels_per_impact(scene: &Scene, study: &Study, set: &SupportSet) -> usize {
+    let sensors = scene.signals.sensors.len() + study.candidates_x.len() * study.candidates_z.len();
+    let corners = set.supports.corners.iter().filter(|c| !matches!(c, plate_fem::CornerSupport::Free)).count();
+    3 * sensors + corners
+}
+
+/// Bytes of features one run holds: 6 features of 8 bytes per impact and channel.
+pub fn feature_bytes(impacts: usize, channels: usize) -> usize {
+    impacts.saturating_mul(channels).saturating_mul(6 * 8)
+}
+
+// ---------------------------------------------------------------- results
+
+/// One ranked feature of one channel with its intervals.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// The channel, e.g. "acceleration at (229.2, 180) mm".
+    pub channel: String,
+    /// The feature.
+    pub feature: Feature,
+    /// AUC (P(gangue > coal)) with DeLong's standard error.
+    pub auc: Auc,
+    /// The 95 % percentile bootstrap interval.
+    pub interval: (f64, f64),
+    /// AUC on the model with N modes minus AUC with N/2 (the same impacts): how much the
+    /// number owes to the modal truncation.
+    pub resolution: Option<f64>,
+}
+
+impl Ranked {
+    /// Whether the modal truncation moves the AUC by less than its sampling error.
+    pub fn converged(&self) -> bool {
+        self.resolution.is_some_and(|r| r.abs() <= self.auc.standard_error)
+    }
+}
+
+/// One classifier's cross-validated accuracy.
+#[derive(Debug, Clone, Serialize)]
+pub struct Accuracy {
+    /// Which features it sees.
+    pub features: String,
+    /// Its accuracy.
+    pub result: CrossValidated,
+    /// Accuracy with N modes minus accuracy with N/2 (the same impacts and folds).
+    pub resolution: f64,
+}
+
+/// One run of the variability study.
+#[derive(Debug, Clone, Serialize)]
+pub struct Held1 {
+    /// What was held.
+    pub which: Held,
+    /// It in words ("size", "position, size and speed", ...).
+    pub held: String,
+    /// The reference feature's AUC.
+    pub reference: Auc,
+    /// The best feature of the run.
+    pub best: Ranked,
+    /// P_max's AUC.
+    pub force_max: Auc,
+    /// The classifier on every channel of the run.
+    pub accuracy: CrossValidated,
+}
+
+/// The identification on one support set.
+#[derive(Debug, Clone, Serialize)]
+pub struct ConditionResult {
+    /// Support set name.
+    pub condition: String,
+    /// The supported plate's fundamental frequency, Hz.
+    pub fundamental_hz: f64,
+    /// Validity counts.
+    pub validity: EnsembleValidity,
+    /// The most separating features, best first.
+    pub ranking: Vec<Ranked>,
+    /// The best sensor point (x, z), mm, and its best feature.
+    pub best_sensor: Option<((f64, f64), Ranked)>,
+    /// The most separating feature whose AUC the modal truncation moves by less than its
+    /// sampling error.
+    pub best_converged: Option<Ranked>,
+    /// P_max and the first contact's duration: the paper's quantities.
+    pub force_max: Ranked,
+    /// The contact time.
+    pub contact_time: Ranked,
+    /// Classifiers.
+    pub classifiers: Vec<Accuracy>,
+    /// The reference feature of the variability study (the most separating one the modal
+    /// truncation does not move, else the best sensor's best).
+    pub reference: Option<Ranked>,
+    /// The variability study.
+    pub held: Vec<Held1>,
+    /// Seconds for the reduced model's set-up (modes, residual flexibility).
+    pub setup_seconds: f64,
+    /// Seconds for the main ensemble run (impacts, features, rows to disk).
+    pub run_seconds: f64,
+    /// Impacts per second of that run.
+    pub impacts_per_second: f64,
+    /// Bytes of features held in memory for the run.
+    pub feature_bytes: usize,
+    /// The reference impact (every variable at its median, the first family) on the full
+    /// Newmark model of the same mesh and step rule: seconds, and the reduced model's P_max
+    /// relative to it.
+    pub full_model: FullModelCheck,
+}
+
+/// One impact on the full transient model beside the reduced one, in the same run.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct FullModelCheck {
+    /// Seconds for the full model's run (set-up and factorization included, no signals).
+    pub seconds: f64,
+    /// Its P_max, N.
+    pub force_max: f64,
+    /// The reduced model's P_max over it, minus 1.
+    pub force_difference: f64,
+    /// The reduced model's first-contact time over the full model's, minus 1 (0 if either
+    /// contact did not end).
+    pub contact_time_difference: f64,
+}
+
+/// What `impact identify` found, for the terminal and the JSON.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Scene name.
+    pub scene: String,
+    /// Impacts per support set.
+    pub impacts: usize,
+    /// Coal and gangue impacts.
+    pub classes: (usize, usize),
+    /// The contact law.
+    pub contact_law: &'static str,
+    /// The signals.
+    pub signals: SignalSettings,
+    /// Per support set.
+    pub conditions: Vec<ConditionResult>,
+}
+
+// ---------------------------------------------------------------- labels
+
+/// A position in m as mm to 0.1 mm, without trailing zeros ("229.2", "0", "90").
+fn mm(v: f64) -> String {
+    let t = format!("{:.1}", v * 1e3);
+    t.strip_suffix(".0").map_or(t.clone(), str::to_string)
+}
+
+fn quantity_name(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Displacement => "displacement",
+        Quantity::Velocity => "velocity",
+        Quantity::Acceleration => "acceleration",
+    }
+}
+
+/// What a channel is and where, in words and as CSV fields.
+#[derive(Debug, Clone)]
+struct ChannelInfo {
+    kind: ChannelKind,
+    quantity: &'static str,
+    /// (x, z) of the sensor or corner, m.
+    at: (f64, f64),
+    /// The sensor's index among the run's sensors (None for corners).
+    sensor: Option<usize>,
+    unit: &'static str,
+}
+
+impl ChannelInfo {
+    fn new(kind: ChannelKind, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Self {
+        let (quantity, sensor) = match kind {
+            ChannelKind::Displacement { sensor } => ("displacement", Some(sensor)),
+            ChannelKind::Velocity { sensor } => ("velocity", Some(sensor)),
+            ChannelKind::Acceleration { sensor } => ("acceleration", Some(sensor)),
+            ChannelKind::SpringForce { .. } => ("spring force", None),
+            ChannelKind::Reaction { .. } => ("reaction", None),
+        };
+        let at = match kind {
+            ChannelKind::SpringForce { corner } | ChannelKind::Reaction { corner } => {
+                corner.position(plate.length(), plate.width())
+            }
+            _ => sensors[sensor.unwrap_or(0)],
+        };
+        Self { kind, quantity, at, sensor, unit: kind.unit() }
+    }
+
+    fn label(&self) -> String {
+        format!("{} at ({}, {}) mm", self.quantity, mm(self.at.0), mm(self.at.1))
+    }
+}
+
+fn feature_label(f: Feature) -> &'static str {
+    match f {
+        Feature::Peak => "peak",
+        Feature::Rms => "RMS",
+        Feature::Energy => "energy",
+        Feature::Duration => "duration",
+        Feature::DominantFrequency => "dominant frequency",
+        Feature::SpectralCentroid => "spectral centroid",
+    }
+}
+
+fn describe(d: &Distribution, unit: &str, scale: f64) -> String {
+    // Values as the scene wrote them (to rounding of the unit conversion).
+    let v = |x: f64| analytic::params::compact(format!("{:.6e}", x * scale).parse::<f64>().unwrap_or(x * scale));
+    match d {
+        Distribution::Fixed { value } => format!("{} {unit}", v(*value)),
+        Distribution::Uniform { min, max } => format!("uniform on [{}, {}] {unit}", v(*min), v(*max)),
+        Distribution::Normal { mean, sd, min, max } => {
+            format!("normal, mean {} sd {}, in [{}, {}] {unit}", v(*mean), v(*sd), v(*min), v(*max))
+        }
+        Distribution::LogNormal { median, sigma_log, min, max } => format!(
+            "lognormal, median {} σ_ln {}, in [{}, {}] {unit}",
+            v(*median),
+            analytic::params::compact(*sigma_log),
+            v(*min),
+            v(*max)
+        ),
+        Distribution::RosinRammler { scale: s, shape, min, max } => {
+            format!("Rosin-Rammler, x₆₃ {} n {}, in [{}, {}] {unit}", v(*s), sig(*shape, 3), v(*min), v(*max))
+        }
+        Distribution::Choice { values } => {
+            format!("one of {} {unit}", values.iter().map(|x| v(*x)).collect::<Vec<_>>().join(", "))
+        }
+    }
+}
+
+fn held_label(h: Held) -> String {
+    let mut parts = Vec::new();
+    for (on, name) in [(h.position, "position"), (h.size, "size"), (h.speed, "speed"), (h.material, "material")] {
+        if on {
+            parts.push(name);
+        }
+    }
+    match parts.len() {
+        0 => "nothing".into(),
+        1 => parts[0].into(),
+        n => format!("{} and {}", parts[..n - 1].join(", "), parts[n - 1]),
+    }
+}
+
+// ---------------------------------------------------------------- rows on disk
+
+/// The two streamed files: one row per impact, one row per impact and channel.
+struct Rows {
+    impacts: csv::Writer<StreamedFile>,
+    features: csv::Writer<StreamedFile>,
+}
+
+const IMPACT_HEADERS: [&str; 19] = [
+    "condition",
+    "impact",
+    "family",
+    "class",
+    "x_mm",
+    "z_mm",
+    "radius_mm",
+    "velocity_m_per_s",
+    "density_kg_m3",
+    "youngs_modulus_gpa",
+    "poisson_ratio",
+    "cohesion_mpa",
+    "friction_angle_deg",
+    "force_max_n",
+    "contact_time_s",
+    "contacts",
+    "compression_over_yield",
+    "hertz_time_over_t1",
+    "mass_kg",
+];
+
+const FEATURE_HEADERS: [&str; 13] = [
+    "condition",
+    "impact",
+    "class",
+    "quantity",
+    "x_mm",
+    "z_mm",
+    "unit",
+    "peak_unit",
+    "rms_unit",
+    "energy_unit2_s",
+    "duration_s",
+    "dominant_frequency_hz",
+    "spectral_centroid_hz",
+];
+
+fn num(v: f64) -> String {
+    if v.is_finite() {
+        format!("{v:e}")
+    } else {
+        String::new()
+    }
+}
+
+impl Rows {
+    fn open(out: &mut OutputDir) -> Result<Self, Failure> {
+        let mut impacts = csv::Writer::from_writer(out.stream("impacts.csv")?);
+        impacts.write_record(IMPACT_HEADERS)?;
+        let mut features = csv::Writer::from_writer(out.stream("features.csv")?);
+        features.write_record(FEATURE_HEADERS)?;
+        Ok(Self { impacts, features })
+    }
+
+    fn write(
+        &mut self,
+        condition: &str,
+        r: &ImpactRecord,
+        family: &str,
+        channels: &[ChannelInfo],
+    ) -> Result<(), Failure> {
+        let d = &r.draw;
+        let mass = d.density * 4.0 / 3.0 * std::f64::consts::PI * d.radius.powi(3);
+        self.impacts.write_record([
+            condition.to_string(),
+            d.index.to_string(),
+            family.to_string(),
+            d.class.key().to_string(),
+            num(d.x * 1e3),
+            num(d.z * 1e3),
+            num(d.radius * 1e3),
+            num(d.velocity),
+            num(d.density),
+            num(d.youngs_modulus / 1e9),
+            num(d.poisson_ratio),
+            num(d.cohesion / 1e6),
+            num(d.friction_angle_deg),
+            num(r.force_max),
+            r.contact_time.map_or(String::new(), num),
+            r.contacts.to_string(),
+            num(r.compression_ratio),
+            num(r.hertz_time_ratio),
+            num(mass),
+        ])?;
+        for (c, f) in channels.iter().zip(&r.features) {
+            self.features.write_record([
+                condition.to_string(),
+                d.index.to_string(),
+                d.class.key().to_string(),
+                c.quantity.to_string(),
+                num(c.at.0 * 1e3),
+                num(c.at.1 * 1e3),
+                c.unit.to_string(),
+                num(f.peak),
+                num(f.rms),
+                num(f.energy),
+                num(f.duration),
+                num(f.dominant_frequency),
+                num(f.spectral_centroid),
+            ])?;
+        }
+        Ok(())
+    }
+
+    fn finish(self, out: &mut OutputDir) -> Result<(), Failure> {
+        for w in [self.impacts, self.features] {
+            let file = w.into_inner().map_err(|e| e.into_error())?;
+            out.finish_stream(file)?;
+        }
+        Ok(())
+    }
+}
+
+// ---------------------------------------------------------------- the runs
+
+fn progress(len: usize, message: String) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(len as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg:30} [{bar:30}] {pos}/{len} impacts, {per_sec}, eta {eta}")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(message);
+    bar
+}
+
+fn spec(settings: &SignalSettings, sensors: Vec<(f64, f64)>) -> SignalSpec {
+    SignalSpec {
+        window: settings.window,
+        rate_hz: settings.rate_hz,
+        sensors,
+        quantities: Quantity::ALL.to_vec(),
+        corners: true,
+    }
+}
+
+fn ranked(
+    channel: String,
+    feature: Feature,
+    (coal, gangue): (&[f64], &[f64]),
+    half_auc: Option<f64>,
+    seed: u64,
+) -> Ranked {
+    let auc = auc_with_error(coal, gangue);
+    Ranked {
+        channel,
+        feature,
+        auc,
+        interval: bootstrap_interval(coal, gangue, BOOTSTRAP_RESAMPLES, LEVEL, seed),
+        resolution: half_auc.map(|h| auc.auc - h),
+    }
+}
+
+fn split(values: &[f64], classes: &[Class]) -> (Vec<f64>, Vec<f64>) {
+    let mut c = Vec::new();
+    let mut g = Vec::new();
+    for (v, k) in values.iter().zip(classes) {
+        match k {
+            Class::Coal => c.push(*v),
+            Class::Gangue => g.push(*v),
+        }
+    }
+    (c, g)
+}
+
+/// The histogram of coal and gangue values of one column as two curves of the fraction of
+/// each class per bin; scale features on log10 axes when all values are positive.
+fn histogram(title: &str, label: &str, coal: &[f64], gangue: &[f64], log: bool) -> String {
+    let log = log && coal.iter().chain(gangue).all(|v| *v > 0.0);
+    let t = |v: f64| if log { v.log10() } else { v };
+    let (lo, hi) =
+        coal.iter().chain(gangue).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(t(v)), b.max(t(v))));
+    let (lo, hi) = if lo.is_finite() && hi > lo { (lo, hi) } else { (lo.min(0.0), lo.max(0.0) + 1.0) };
+    let width = (hi - lo) / BINS as f64;
+    let curve = |vals: &[f64]| -> Vec<(f64, f64)> {
+        let mut counts = vec![0.0; BINS];
+        for &v in vals {
+            let k = (((t(v) - lo) / width) as usize).min(BINS - 1);
+            counts[k] += 1.0;
+        }
+        let n = vals.len().max(1) as f64;
+        counts.iter().enumerate().map(|(k, c)| (lo + (k as f64 + 0.5) * width, c / n)).collect()
+    };
+    let x_label = if log { format!("log10 {label}") } else { label.to_string() };
+    line_plot(
+        title,
+        &x_label,
+        "fraction of the class per bin",
+        &[Series::new("coal", curve(coal)), Series::new("gangue", curve(gangue))],
+        Scale::Linear,
+    )
+}
+
+fn run_failure(set: &str, err: RunError<Failure>) -> Failure {
+    match err {
+        RunError::Model { index, source } => format!("{set}: impact {index}: {source}").into(),
+        RunError::Sink(f) => f,
+    }
+}
+
+/// What one support set gives besides its files: its results and its report section.
+struct ConditionOutput {
+    result: ConditionResult,
+    markdown: String,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn run_set(
+    scene: &Scene,
+    study: &Study,
+    settings: &SignalSettings,
+    set: &SupportSet,
+    index: usize,
+    rows: &mut Rows,
+    artifacts: &mut Artifacts,
+) -> Result<ConditionOutput, Failure> {
+    let plate = &scene.plate;
+    let e = &study.ensemble;
+    let started = Instant::now();
+    let model = ReducedModel::new(plate, set, settings.reduced())?;
+    let setup_seconds = started.elapsed().as_secs_f64();
+
+    // The main run: named sensors, then the candidate grid, every quantity, the corners.
+    let named = settings.sensors.len();
+    let candidates = study.candidates();
+    let sensors: Vec<(f64, f64)> = settings.sensors.iter().copied().chain(candidates.iter().copied()).collect();
+    let instrument =
+        Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
+    let infos: Vec<ChannelInfo> =
+        instrument.channels().into_iter().map(|k| ChannelInfo::new(k, &sensors, plate)).collect();
+    let bar = progress(e.len(), format!("{}: ensemble", set.name));
+    let t0 = Instant::now();
+    let run: ConditionRun = run_condition(study, Held::NONE, &instrument, |r: &ImpactRecord| -> Result<(), Failure> {
+        rows.write(&set.name, r, &e.families[r.draw.family].name, &infos)?;
+        bar.inc(1);
+        Ok(())
+    })
+    .map_err(|err| run_failure(&set.name, err))?;
+    let run_seconds = t0.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let full_model = full_model_check(scene, study, settings, set, &instrument)?;
+    let held_bytes = 2 * run.table.bytes() + CHUNK * infos.len() * 6 * 8;
+
+    // The same impacts on the model with half the modes: what each AUC owes to the modal
+    // truncation (the difference overstates the error at N if the AUC converges in N).
+    let half_settings = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings.reduced() };
+    let half_model = ReducedModel::new(plate, set, half_settings)?;
+    let half_instrument =
+        Instrument::new(&half_model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
+    let bar = progress(e.len(), format!("{}: {} modes", set.name, half_settings.modes));
+    let half = run_condition(study, Held::NONE, &half_instrument, |_: &ImpactRecord| -> Result<(), Failure> {
+        bar.inc(1);
+        Ok(())
+    })
+    .map_err(|err| run_failure(&set.name, err))?;
+    bar.finish_and_clear();
+    let half_all = separabilities(&half.table);
+    let half_classes = half.table.classes().to_vec();
+    let half_of = |values: &[f64]| {
+        let (c, g) = split(values, &half_classes);
+        auc_with_error(&c, &g).auc
+    };
+
+    let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    let all = separabilities(&run.table);
+    let mut order: Vec<&Separability> = all.iter().collect();
+    order.sort_by(|a, b| b.auc.separability().total_cmp(&a.auc.separability()).then(a.channel.cmp(&b.channel)));
+    let classes = run.table.classes().to_vec();
+    let rank_of = |s: &Separability, k: usize| {
+        let (c, g) = run.table.split(s.channel, s.feature);
+        let h = half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc;
+        ranked(infos[s.channel].label(), s.feature, (&c, &g), Some(h), seed.wrapping_add(k as u64))
+    };
+    let ranking: Vec<Ranked> = order.iter().take(TOP).enumerate().map(|(k, s)| rank_of(s, k)).collect();
+    let best_converged = order
+        .iter()
+        .find(|s| {
+            (s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc).abs() <= s.auc.standard_error
+        })
+        .map(|s| rank_of(s, TOP + 2));
+    let (fc, fg) = split(&run.force_max, &classes);
+    let force_max =
+        ranked("contact force P_max".into(), Feature::Peak, (&fc, &fg), Some(half_of(&half.force_max)), seed ^ 1);
+    let (tc, tg) = split(&run.contact_time, &classes);
+    let contact_time =
+        ranked("contact time t_c".into(), Feature::Duration, (&tc, &tg), Some(half_of(&half.contact_time)), seed ^ 2);
+
+    // The best sensor: the sensor channel with the most separating feature.
+    let sensor_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_some()).collect();
+    let best_sensor_entry = if sensor_channels.is_empty() { None } else { best(&all, &sensor_channels) };
+    let best_sensor =
+        best_sensor_entry.map(|s| ((infos[s.channel].at.0 * 1e3, infos[s.channel].at.1 * 1e3), rank_of(&s, TOP + 1)));
+
+    let stem = format!("c{}", index + 1);
+
+    // Placement maps: per quantity, the feature whose best grid value is highest.
+    let mut maps_md = String::new();
+    if !candidates.is_empty() {
+        for q in Quantity::ALL {
+            let chans: Vec<usize> = (0..infos.len())
+                .filter(|&c| infos[c].sensor.is_some_and(|s| s >= named) && infos[c].quantity == quantity_name(q))
+                .collect();
+            let Some(top) = best(&all, &chans) else { continue };
+            let values = map(&all, &chans, top.feature);
+            let nz = study.candidates_z.len();
+            let svg = heat_map(
+                &format!("{}: separability of {} {}", set.name, quantity_name(q), feature_label(top.feature)),
+                &study.candidates_x,
+                &study.candidates_z,
+                |i, j| values[i * nz + j].separability(),
+                "max(AUC, 1-AUC)",
+            );
+            let file = format!("{stem}-map-{}.svg", quantity_name(q));
+            maps_md.push_str(&format!("![{} map]({file})\n\n", quantity_name(q)));
+            artifacts.add(file, svg);
+        }
+    }
+
+    // Histograms: the best feature overall and P_max.
+    let mut hist_md = String::new();
+    if let Some(top) = order.first() {
+        let (c, g) = run.table.split(top.channel, top.feature);
+        let label = format!(
+            "{} {} ({})",
+            infos[top.channel].label(),
+            feature_label(top.feature),
+            top.feature.unit(infos[top.channel].unit)
+        );
+        let file = format!("{stem}-hist-best.svg");
+        artifacts.add(&file, histogram(&format!("{}: best feature", set.name), &label, &c, &g, top.feature.is_scale()));
+        hist_md.push_str(&format!("![best feature]({file})\n\n"));
+    }
+    let file = format!("{stem}-hist-force.svg");
+    artifacts.add(&file, histogram(&format!("{}: contact force", set.name), "P_max (N)", &fc, &fg, true));
+    hist_md.push_str(&format!("![contact force]({file})\n\n"));
+
+    // The reference feature of the variability study: the most separating one the modal
+    // truncation does not move, else the best sensor's.
+    let converged_entry = order
+        .iter()
+        .find(|s| {
+            (s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc).abs() <= s.auc.standard_error
+        })
+        .map(|s| **s);
+    let reference_entry = converged_entry.or(best_sensor_entry);
+
+    // Classifiers, each also fitted on the half-mode run.
+    let sensor_group = |s: &Separability, what: &str| -> (String, Vec<usize>) {
+        let sensor = infos[s.channel].sensor;
+        let chans = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
+        (
+            format!(
+                "{what} 3 quantities × 6 features, at ({}, {}) mm",
+                mm(infos[s.channel].at.0),
+                mm(infos[s.channel].at.1)
+            ),
+            chans,
+        )
+    };
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    if let Some(s) = best_sensor_entry {
+        groups.push(sensor_group(&s, "the best sensor's"));
+    }
+    if let Some(s) = converged_entry.filter(|c| infos[c.channel].sensor.is_some()) {
+        if best_sensor_entry.is_none_or(|b| infos[b.channel].sensor != infos[s.channel].sensor) {
+            groups.push(sensor_group(&s, "the reference feature's sensor:"));
+        }
+    }
+    let corner_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_none()).collect();
+    if !corner_channels.is_empty() {
+        groups.push((
+            format!("the {} corner channels (spring forces, reactions) × 6 features", corner_channels.len()),
+            corner_channels.clone(),
+        ));
+    }
+    if named > 0 {
+        groups.push((
+            format!(
+                "every named sensor and corner channel ({} channels) × 6 features",
+                named * 3 + corner_channels.len()
+            ),
+            (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect(),
+        ));
+    }
+    let mut classifiers = Vec::new();
+    for (k, (features, chans)) in groups.into_iter().enumerate() {
+        let result = classifier(&run.table, &chans, seed ^ (3 + k as u64))?;
+        let coarse = classifier(&half.table, &chans, seed ^ (3 + k as u64))?;
+        classifiers.push(Accuracy { features, result, resolution: result.accuracy - coarse.accuracy });
+    }
+
+    // The variability study, on the reference instrument: the named sensors, the reference
+    // feature's sensor, the corners.
+    let mut reference_sensors = settings.sensors.clone();
+    let mut reference = reference_entry.map(|s| (infos[s.channel].kind, s.feature));
+    if let Some((kind, feature)) = reference {
+        if let Some(s) = infos.iter().find(|i| i.kind == kind).and_then(|i| i.sensor) {
+            if s >= named {
+                reference_sensors.push(sensors[s]);
+                let moved = match kind {
+                    ChannelKind::Displacement { .. } => ChannelKind::Displacement { sensor: named },
+                    ChannelKind::Velocity { .. } => ChannelKind::Velocity { sensor: named },
+                    ChannelKind::Acceleration { .. } => ChannelKind::Acceleration { sensor: named },
+                    other => other,
+                };
+                reference = Some((moved, feature));
+            }
+        }
+    }
+    let reference_instrument = Instrument::new(
+        &model,
+        plate,
+        &spec(settings, reference_sensors.clone()),
+        scene.restitution,
+        scene.contact_law,
+    )?;
+    let ref_infos: Vec<ChannelInfo> =
+        reference_instrument.channels().into_iter().map(|k| ChannelInfo::new(k, &reference_sensors, plate)).collect();
+    let mut variants: Vec<Held> = study.hold.iter().map(|v| Held::only(*v)).collect();
+    if !study.hold.is_empty() {
+        variants.push(Held { position: true, size: true, speed: true, material: false });
+    }
+    let all_channels: Vec<usize> = (0..ref_infos.len()).collect();
+    let mut held = Vec::new();
+    for (k, h) in variants.into_iter().enumerate() {
+        let bar = progress(e.len(), format!("{}: {} held", set.name, held_label(h)));
+        let r = run_condition(study, h, &reference_instrument, |_: &ImpactRecord| -> Result<(), Failure> {
+            bar.inc(1);
+            Ok(())
+        })
+        .map_err(|err| run_failure(&set.name, err))?;
+        bar.finish_and_clear();
+        let seps = separabilities(&r.table);
+        let reference_auc = reference
+            .and_then(|(kind, f)| ref_infos.iter().position(|i| i.kind == kind).map(|c| (c, f)))
+            .map_or(Auc { auc: 0.5, standard_error: 0.0 }, |(c, f)| {
+                let (a, b) = r.table.split(c, f);
+                auc_with_error(&a, &b)
+            });
+        let top = best(&seps, &[]).expect("a run has channels");
+        let (a, b) = r.table.split(top.channel, top.feature);
+        let (pc, pg) = split(&r.force_max, r.table.classes());
+        held.push(Held1 {
+            which: h,
+            held: held_label(h),
+            reference: reference_auc,
+            best: ranked(ref_infos[top.channel].label(), top.feature, (&a, &b), None, seed ^ (100 + k as u64)),
+            force_max: auc_with_error(&pc, &pg),
+            accuracy: classifier(&r.table, &all_channels, seed ^ (200 + k as u64))?,
+        });
+    }
+    let reference_ranked = reference_entry.map(|s| rank_of(&s, TOP + 3));
+
+    let result = ConditionResult {
+        condition: set.name.clone(),
+        fundamental_hz: run.fundamental_hz,
+        validity: run.validity,
+        ranking,
+        best_sensor,
+        best_converged,
+        force_max,
+        contact_time,
+        classifiers,
+        reference: reference_ranked,
+        held,
+        setup_seconds,
+        run_seconds,
+        impacts_per_second: e.len() as f64 / run_seconds.max(1e-9),
+        feature_bytes: held_bytes,
+        full_model,
+    };
+    let markdown = condition_markdown(
+        &result,
+        settings.modes,
+        &maps_md,
+        &hist_md,
+        reference.map(|(k, f)| {
+            let i = ref_infos.iter().find(|i| i.kind == k).map_or_else(|| "-".to_string(), |i| i.label());
+            format!("{i}, {}", feature_label(f))
+        }),
+    )?;
+    Ok(ConditionOutput { result, markdown })
+}
+
+/// The median impact of the first family on the full Newmark model and on `instrument`.
+fn full_model_check(
+    scene: &Scene,
+    study: &Study,
+    settings: &SignalSettings,
+    set: &SupportSet,
+    instrument: &Instrument<'_>,
+) -> Result<FullModelCheck, Failure> {
+    let e = &study.ensemble;
+    let all = Held { position: true, size: true, speed: true, material: true };
+    let draw = e.draw(0, all).ok_or("the ensemble is empty")?;
+    let name = &e.families[draw.family].name;
+    let sphere = draw.sphere(name)?;
+    let striker = coupled::transient::Striker {
+        k: analytic::contact_stiffness(&sphere, scene.plate.material()),
+        restitution: scene.restitution,
+        mass: sphere.mass(),
+        velocity: draw.velocity,
+        law: scene.contact_law.law_for(&sphere),
+    };
+    let reduced = instrument.impact(draw.clone(), name)?;
+    let t = Instant::now();
+    let props = coupled::discretisation::plate_properties(&scene.plate);
+    let fe = plate_fem::Model::new(props, coupled::discretisation::mesh_for(&props, settings.reduced().elements)?)?;
+    let full = crate::report::transient::transient(
+        &fe,
+        set.supports,
+        &striker,
+        draw.x,
+        draw.z,
+        settings.reduced().steps_per_contact,
+    )?;
+    let seconds = t.elapsed().as_secs_f64();
+    let full_force = full.force_max_interpolated.max(full.force_max);
+    let contact_time_difference = match (reduced.contact_time, full.contact_time) {
+        (Some(a), Some(b)) if b > 0.0 => a / b - 1.0,
+        _ => 0.0,
+    };
+    Ok(FullModelCheck {
+        seconds,
+        force_max: full_force,
+        force_difference: reduced.force_max / full_force - 1.0,
+        contact_time_difference,
+    })
+}
+
+// ---------------------------------------------------------------- the report
+
+fn ci(r: &Ranked) -> String {
+    format!("{}-{}", sig(r.interval.0, 3), sig(r.interval.1, 3))
+}
+
+fn direction(a: &Auc) -> &'static str {
+    if a.gangue_higher() {
+        "gangue higher"
+    } else {
+        "coal higher"
+    }
+}
+
+fn percent(n: usize, of: usize) -> String {
+    format!("{} %", sig(100.0 * n as f64 / of.max(1) as f64, 3))
+}
+
+fn condition_markdown(
+    r: &ConditionResult,
+    modes: usize,
+    maps: &str,
+    hists: &str,
+    reference: Option<String>,
+) -> Result<String, Failure> {
+    let mut ranking = Table::new(
+        "",
+        &["channel", "feature", "AUC", "DeLong SE", "95 % bootstrap CI", "AUC(N) - AUC(N/2)", "direction"],
+    );
+    let extra = r
+        .best_converged
+        .as_ref()
+        .filter(|b| !r.ranking.iter().any(|x| x.channel == b.channel && x.feature == b.feature));
+    for x in std::iter::once(&r.force_max).chain([&r.contact_time]).chain(&r.ranking).chain(extra) {
+        ranking.push(vec![
+            x.channel.clone().into(),
+            feature_label(x.feature).into(),
+            Cell::Text(sig(x.auc.auc, 3)),
+            Cell::Text(sig(x.auc.standard_error, 2)),
+            ci(x).into(),
+            x.resolution
+                .map_or(Cell::Empty, |d| Cell::Text(format!("{}{}", sig(d, 2), if x.converged() { "" } else { " *" }))),
+            direction(&x.auc).into(),
+        ]);
+    }
+    let mut acc = Table::new("", &["features", "accuracy", "SE", "accuracy(N) - accuracy(N/2)"]);
+    for a in &r.classifiers {
+        acc.push(vec![
+            a.features.clone().into(),
+            Cell::Text(sig(a.result.accuracy, 3)),
+            Cell::Text(sig(a.result.standard_error, 2)),
+            Cell::Text(sig(a.resolution, 2)),
+        ]);
+    }
+    let mut held = Table::new(
+        "",
+        &[
+            "held at the median",
+            "reference AUC",
+            "best feature of the run",
+            "its AUC (95 % CI)",
+            "P_max AUC",
+            "classifier accuracy",
+        ],
+    );
+    for h in &r.held {
+        held.push(vec![
+            h.held.clone().into(),
+            Cell::Text(format!("{} ± {}", sig(h.reference.auc, 3), sig(h.reference.standard_error, 2))),
+            format!("{} {}", h.best.channel, feature_label(h.best.feature)).into(),
+            Cell::Text(format!("{} ({})", sig(h.best.auc.auc, 3), ci(&h.best))),
+            Cell::Text(sig(h.force_max.auc, 3)),
+            Cell::Text(format!("{} ± {}", sig(h.accuracy.accuracy, 3), sig(h.accuracy.standard_error, 2))),
+        ]);
+    }
+    let v = &r.validity;
+    let held_md = if r.held.is_empty() {
+        "No variable held (the scene's `hold = []`).".to_string()
+    } else {
+        format!(
+            "Reference: {}. Each row reruns the same impacts (the same random numbers) with one variable at its median.\n\n{}",
+            reference.unwrap_or_else(|| "-".into()),
+            held.to_markdown()
+        )
+    };
+    Ok(render(
+        "identify/condition.md",
+        CONDITION,
+        &[
+            ("condition", r.condition.clone()),
+            ("fundamental_hz", sig(r.fundamental_hz, 4)),
+            ("ranking", ranking.to_markdown()),
+            ("modes", modes.to_string()),
+            ("half_modes", (modes / 2).max(1).to_string()),
+            ("classifiers", acc.to_markdown()),
+            (
+                "maps",
+                if maps.is_empty() {
+                    "No candidate grid in the scene ([ensemble.placement]).\n".into()
+                } else {
+                    maps.to_string()
+                },
+            ),
+            ("histograms", hists.to_string()),
+            ("held", held_md),
+            ("impacts", v.impacts.to_string()),
+            ("beyond_elastic", percent(v.beyond_elastic, v.impacts)),
+            ("not_quasi_static", percent(v.not_quasi_static, v.impacts)),
+            ("recontact", percent(v.recontact, v.impacts)),
+            ("unfinished", percent(v.unfinished, v.impacts)),
+        ],
+    )?)
+}
+
+fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
+    let dash = || "-".to_string();
+    let top = r.ranking.first();
+    let best_classifier = r.classifiers.iter().max_by(|a, b| a.result.accuracy.total_cmp(&b.result.accuracy));
+    let single = |h: &&Held1| {
+        [h.which.position, h.which.size, h.which.speed, h.which.material].iter().filter(|x| **x).count() == 1
+    };
+    let most =
+        r.held.iter().filter(single).max_by(|a, b| a.reference.separability().total_cmp(&b.reference.separability()));
+    let paper = r.held.iter().find(|h| h.which.position && h.which.size && h.which.speed && !h.which.material);
+    let held = match (most, paper, &r.reference) {
+        (Some(m), Some(p), Some(reference)) => render(
+            "identify/finding-held.md",
+            FINDING_HELD,
+            &[
+                ("reference", format!("the {} of the {}", feature_label(reference.feature), reference.channel)),
+                ("variable", m.held.clone()),
+                ("free", sig(reference.auc.auc, 3)),
+                ("auc", sig(m.reference.auc, 3)),
+                ("se", sig(m.reference.standard_error, 2)),
+                ("paper_auc", sig(p.reference.auc, 3)),
+                ("paper_se", sig(p.reference.standard_error, 2)),
+            ],
+        )?,
+        _ => String::new(),
+    };
+    let resolution = match (top, &r.best_converged) {
+        (Some(t), Some(b)) if !t.converged() => render(
+            "identify/finding-resolution.md",
+            FINDING_RESOLUTION,
+            &[
+                ("delta", t.resolution.map_or_else(dash, |d| sig(d, 2))),
+                ("half_modes", (modes / 2).max(1).to_string()),
+                ("modes", modes.to_string()),
+                ("feature", feature_label(b.feature).to_string()),
+                ("channel", b.channel.clone()),
+                ("auc", sig(b.auc.auc, 3)),
+                ("ci", ci(b)),
+            ],
+        )?,
+        _ => String::new(),
+    };
+    Ok(render(
+        "identify/finding.md",
+        FINDING,
+        &[
+            ("condition", r.condition.clone()),
+            ("feature", top.map_or_else(dash, |t| feature_label(t.feature).to_string())),
+            ("channel", top.map_or_else(dash, |t| t.channel.clone())),
+            ("best_auc", top.map_or_else(dash, |t| sig(t.auc.auc, 3))),
+            ("best_ci", top.map_or_else(dash, ci)),
+            ("resolution", resolution.trim_end().to_string()),
+            ("force_auc", sig(r.force_max.auc.auc, 3)),
+            ("force_ci", ci(&r.force_max)),
+            ("classifier", best_classifier.map_or_else(dash, |a| a.features.clone())),
+            ("accuracy", best_classifier.map_or_else(dash, |a| sig(a.result.accuracy, 3))),
+            ("accuracy_se", best_classifier.map_or_else(dash, |a| sig(a.result.standard_error, 2))),
+            ("held", held.trim_end().to_string()),
+        ],
+    )?)
+}
+
+/// Runs the identification of `scene` (which must carry an ensemble), streaming the rows
+/// into `out`, and returns the report's files and the summary.
+pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary), Failure> {
+    let study = scene.ensemble.as_ref().ok_or("the scene has no [ensemble] table (the identify analysis)")?;
+    let settings = &scene.signals;
+    let mut rows = Rows::open(out)?;
+    let mut artifacts = Artifacts::new();
+    let mut conditions = Vec::new();
+    let mut sections = String::new();
+    for (i, set) in scene.conditions.iter().enumerate() {
+        let c = run_set(scene, study, settings, set, i, &mut rows, &mut artifacts)?;
+        sections.push_str(&c.markdown);
+        conditions.push(c.result);
+    }
+    rows.finish(out)?;
+    let e = &study.ensemble;
+    let summary = Summary {
+        scene: scene.name.clone(),
+        impacts: e.len(),
+        classes: e.class_counts(),
+        contact_law: scene.contact_law.key(),
+        signals: settings.clone(),
+        conditions,
+    };
+    let mut findings = String::new();
+    for c in &summary.conditions {
+        findings.push_str(&finding(c, settings.modes)?);
+    }
+    let mut families = Table::new(
+        "",
+        &[
+            "family",
+            "class",
+            "count",
+            "radius",
+            "density",
+            "Young's modulus",
+            "Poisson ratio",
+            "cohesion",
+            "friction angle",
+        ],
+    );
+    for f in &e.families {
+        families.push(vec![
+            f.name.clone().into(),
+            f.class.key().into(),
+            f.count.into(),
+            describe(&f.radius, "mm", 1e3).into(),
+            describe(&f.density, "kg/m³", 1.0).into(),
+            describe(&f.youngs_modulus, "GPa", 1e-9).into(),
+            describe(&f.poisson_ratio, "", 1.0).into(),
+            describe(&f.cohesion, "MPa", 1e-6).into(),
+            describe(&f.friction_angle_deg, "°", 1.0).into(),
+        ]);
+    }
+    let speed = match &e.speed {
+        Speed::FallHeight(h) => format!("free fall from rest, v = √(2gh), fall height h {}", describe(h, "m", 1.0)),
+        Speed::Velocity(v) => format!("velocity {}", describe(v, "m/s", 1.0)),
+    };
+    let sensors = if settings.sensors.is_empty() {
+        "none named".to_string()
+    } else {
+        settings.sensors.iter().map(|(x, z)| format!("({}, {}) mm", mm(*x), mm(*z))).collect::<Vec<_>>().join(", ")
+    };
+    let candidates = if study.candidates_x.is_empty() {
+        "none".to_string()
+    } else {
+        format!("{} x {} points from (0, 0) to (L, B)", study.candidates_x.len(), study.candidates_z.len())
+    };
+    let mut timing = Table::new(
+        "",
+        &[
+            "support set",
+            "model set-up (s)",
+            "ensemble run (s)",
+            "impacts/s",
+            "one full Newmark impact (s)",
+            "speed-up per impact",
+            "reduced/full P_max - 1",
+            "reduced/full t_c - 1",
+            "features held (MB)",
+        ],
+    );
+    for c in &summary.conditions {
+        let per_impact = c.run_seconds / summary.impacts.max(1) as f64;
+        timing.push(vec![
+            c.condition.clone().into(),
+            Cell::Text(sig(c.setup_seconds, 3)),
+            Cell::Text(sig(c.run_seconds, 3)),
+            Cell::Text(sig(c.impacts_per_second, 3)),
+            Cell::Text(sig(c.full_model.seconds, 3)),
+            Cell::Text(sig(c.full_model.seconds / per_impact.max(1e-12), 3)),
+            Cell::Text(sig(c.full_model.force_difference, 2)),
+            Cell::Text(sig(c.full_model.contact_time_difference, 2)),
+            Cell::Text(sig(c.feature_bytes as f64 / 1e6, 3)),
+        ]);
+    }
+    let head = render(
+        "identify/head.md",
+        HEAD,
+        &[
+            ("scene", scene.name.clone()),
+            ("findings", findings),
+            ("impacts", e.len().to_string()),
+            ("coal", summary.classes.0.to_string()),
+            ("gangue", summary.classes.1.to_string()),
+            ("seed", e.seed.to_string()),
+            (
+                "region",
+                format!(
+                    "x in [{}, {}] mm, z in [{}, {}] mm",
+                    mm(e.region.x.0),
+                    mm(e.region.x.1),
+                    mm(e.region.z.0),
+                    mm(e.region.z.1)
+                ),
+            ),
+            ("speed", speed),
+            ("families", families.to_markdown()),
+            ("window_ms", sig(settings.window * 1e3, 3)),
+            ("rate_hz", sig(settings.rate_hz, 3)),
+            ("modes", settings.modes.to_string()),
+            ("damping", sig(settings.damping_ratio * 100.0, 3)),
+            ("contact_law", scene.contact_law.key().to_string()),
+            ("restitution", sig(scene.restitution, 3)),
+            ("sensors", sensors),
+            ("candidates", candidates),
+        ],
+    )?;
+    let method = render(
+        "identify/method.md",
+        METHOD,
+        &[
+            ("resamples", BOOTSTRAP_RESAMPLES.to_string()),
+            ("folds", FOLDS.to_string()),
+            ("ridge", sig(RIDGE, 3)),
+            ("top", TOP.to_string()),
+            ("timing", timing.to_markdown()),
+            ("threshold", sig(identify::features::DURATION_THRESHOLD * 100.0, 3)),
+            ("taper", sig(identify::features::TAPER_FRACTION * 100.0, 3)),
+            ("chunk", CHUNK.to_string()),
+        ],
+    )?;
+    artifacts.add("index.md", format!("{head}{sections}{method}"));
+    artifacts.add("summary.json", serde_json::to_string_pretty(&summary)? + "\n");
+    Ok((artifacts, summary))
+}
+
+/// The summary as tables for the terminal.
+pub fn summary_tables(s: &Summary) -> Vec<Table> {
+    let mut t = Table::new(
+        format!(
+            "{}: coal against gangue over {} impacts per support set ({} coal, {} gangue)",
+            s.scene, s.impacts, s.classes.0, s.classes.1
+        ),
+        &["support set", "best feature", "AUC", "95 % CI", "P_max AUC", "best accuracy", "beyond elastic", "impacts/s"],
+    );
+    for c in &s.conditions {
+        let top = c.ranking.first();
+        let acc = c.classifiers.iter().map(|a| a.result.accuracy).fold(f64::NAN, f64::max);
+        t.push(vec![
+            c.condition.clone().into(),
+            top.map_or(Cell::Empty, |r| format!("{} {}", r.channel, feature_label(r.feature)).into()),
+            top.map_or(Cell::Empty, |r| Cell::Text(sig(r.auc.auc, 3))),
+            top.map_or(Cell::Empty, |r| ci(r).into()),
+            Cell::Text(sig(c.force_max.auc.auc, 3)),
+            if acc.is_finite() { Cell::Text(sig(acc, 3)) } else { Cell::Empty },
+            percent(c.validity.beyond_elastic, c.validity.impacts).into(),
+            Cell::Text(sig(c.impacts_per_second, 3)),
+        ]);
+    }
+    vec![t]
+}

@@ -1,0 +1,241 @@
+//! `impact identify` and its scene section: every bad `[ensemble]` value is an error naming
+//! the field, the value and the allowed range; a small ensemble runs end to end, writes its
+//! rows and report as one output set, gives the same rows on one and two threads, and
+//! separates coal from gangue perfectly once everything but the material is held.
+
+use impact::scene::{Scene, SceneSource};
+use std::path::Path;
+use std::process::Command;
+
+/// A small identification scene: Table 1's coal and gangue (fixed materials, the paper's
+/// radius with a spread), two support sets, a 3 x 2 candidate grid.
+const SMALL: &str = r#"
+name = "small-identify"
+restitution = 0.65
+analyses = ["identify"]
+
+[plate]
+length_mm = 458.4
+width_mm = 360.0
+thickness_mm = 8.0
+youngs_modulus_gpa = 210.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+
+[[conditions]]
+name = "Con 1"
+supports = "both-fixed"
+
+[[conditions]]
+name = "Con 2"
+supports = "both-springs"
+spring_stiffness_n_per_m = 5.11545e8
+
+[ensemble]
+seed = 11
+placement = { x_count = 3, z_count = 2 }
+velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
+
+[[ensemble.families]]
+name = "coal"
+class = "coal"
+count = 24
+density_kg_m3 = 1380.0
+youngs_modulus_gpa = 2.26
+poisson_ratio = 0.28
+cohesion_mpa = 8.39
+friction_angle_deg = 25.0
+radius_mm = { distribution = "lognormal", median = 25.0, sigma_log = 0.2, min = 15.0, max = 40.0 }
+
+[[ensemble.families]]
+name = "gangue"
+class = "gangue"
+count = 24
+density_kg_m3 = 2400.0
+youngs_modulus_gpa = 16.0
+poisson_ratio = 0.28
+cohesion_mpa = 37.68
+friction_angle_deg = 37.0
+radius_mm = { distribution = "lognormal", median = 25.0, sigma_log = 0.2, min = 15.0, max = 40.0 }
+"#;
+
+fn with(from: &str, to: &str) -> String {
+    assert!(SMALL.contains(from), "test setup: '{from}' is in the scene");
+    SMALL.replacen(from, to, 1)
+}
+
+fn expect(text: &str, needles: &[&str]) {
+    let e = match Scene::parse(text, "test.toml") {
+        Ok(_) => panic!("scene was accepted"),
+        Err(e) => e.to_string(),
+    };
+    for n in needles {
+        assert!(e.contains(n), "error '{e}' does not mention '{n}'");
+    }
+}
+
+#[test]
+fn small_scene_is_valid_and_in_si() {
+    let s = Scene::parse(SMALL, "small").unwrap();
+    let study = s.ensemble.unwrap();
+    assert_eq!(study.ensemble.len(), 48);
+    assert_eq!(study.ensemble.class_counts(), (24, 24));
+    // Radii converted from mm (the truncated law's median is the same law's in mm, times
+    // 1e-3), moduli from GPa, the candidate grid spans the plate.
+    let in_mm = identify::Distribution::LogNormal { median: 25.0, sigma_log: 0.2, min: 15.0, max: 40.0 };
+    assert!((study.ensemble.families[0].radius.median() / (in_mm.median() * 1e-3) - 1.0).abs() < 1e-15);
+    assert_eq!(study.ensemble.families[1].youngs_modulus.median(), 16e9);
+    assert_eq!(study.candidates_x, vec![0.0, 0.2292, 0.4584]);
+    assert_eq!(study.candidates_z, vec![0.0, 0.36]);
+    assert_eq!(study.hold.len(), 4);
+}
+
+#[test]
+fn ensemble_and_identify_come_together() {
+    let start = SMALL.find("[ensemble]").unwrap();
+    expect(&SMALL[..start], &["ensemble", "identify"]);
+    // An [ensemble] beside analyses that do not read it.
+    let text = format!("{}\n{}", impact::scene::DEFAULT_SCENE, &SMALL[start..]);
+    expect(&text, &["ensemble", "is read only by the \"identify\" analysis"]);
+}
+
+#[test]
+fn distribution_values_name_field_value_and_range() {
+    expect(
+        &with("min = 15.0, max = 40.0 }", "min = 0.0, max = 40.0 }"),
+        &["ensemble.families[0].radius_mm.min = 0", "[0.001, 10000] mm"],
+    );
+    expect(
+        &with("poisson_ratio = 0.28", "poisson_ratio = 0.6"),
+        &["ensemble.families[0].poisson_ratio = 0.6", "(0, 0.5)"],
+    );
+    expect(
+        &with("min = 0.002, max = 0.008", "min = 0.002, max = 1e300"),
+        &["ensemble.velocity_m_per_s.max = 1e300", "m/s"],
+    );
+    expect(&with("min = 15.0, max = 40.0 }", "min = 40.0, max = 15.0 }"), &["radius_mm.max", "below min"]);
+    expect(
+        &with(r#"distribution = "lognormal""#, r#"distribution = "gaussian""#),
+        &["radius_mm.distribution", "'gaussian'", "rosin-rammler"],
+    );
+    expect(
+        &with("sigma_log = 0.2,", "sigma_log = 0.2, sd = 1.0,"),
+        &["radius_mm.sd", "not a parameter of the lognormal law"],
+    );
+    expect(&with("median = 25.0, ", ""), &["radius_mm.median", "required"]);
+    expect(&with("density_kg_m3 = 1380.0", r#"density_kg_m3 = "heavy""#), &["density_kg_m3", "neither a number"]);
+    // A normal whose bounds lie 40 standard deviations out has no probability between them.
+    expect(
+        &with(
+            "density_kg_m3 = 1380.0",
+            r#"density_kg_m3 = { distribution = "normal", mean = 1380.0, sd = 1.0, min = 1500.0, max = 1600.0 }"#,
+        ),
+        &["density_kg_m3.min", "no probability"],
+    );
+}
+
+#[test]
+fn ensemble_structure_is_checked() {
+    expect(
+        &with(
+            r#"velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }"#,
+            "velocity_m_per_s = 0.008\nfall_height_m = 1.0",
+        ),
+        &["exactly one of fall_height_m", "velocity_m_per_s"],
+    );
+}
+
+#[test]
+fn counts_classes_regions_and_grids_are_checked() {
+    expect(&with("count = 24", "count = 0"), &["ensemble.families[0].count = 0", "[1, 1000000]"]);
+    expect(&with("count = 24", "count = 2.5"), &["ensemble.families[0].count", "not a whole number"]);
+    expect(&with("count = 24", "count = 2e6"), &["ensemble.families[0].count", "[1, 1000000]"]);
+    expect(&with(r#"class = "gangue""#, r#"class = "coal""#), &["ensemble.families", "class = \"gangue\""]);
+    expect(&with(r#"class = "gangue""#, r#"class = "rock""#), &["ensemble.families[1].class", "'rock'"]);
+    expect(&with(r#"name = "gangue""#, r#"name = "coal""#), &["ensemble.families[1].name", "same file name"]);
+    expect(
+        &with("seed = 11", "seed = 11\nregion = { x_mm = [0.0, 500.0], z_mm = [0.0, 360.0] }"),
+        &["ensemble.region.x_mm[1] = 500", "[0, 458.4] mm"],
+    );
+    expect(&with("x_count = 3", "x_count = 100"), &["ensemble.placement.x_count = 100", "[1, 41]"]);
+    expect(&with("seed = 11", "seed = 11\nhold = [\"colour\"]"), &["ensemble.hold[0]", "'colour'", "position"]);
+    expect(&with("seed = 11", "seed = -1"), &["seed"]);
+}
+
+fn run(dir: &Path, scene: &Path, threads: &str) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["identify", "--scene"])
+        .arg(scene)
+        .arg("--out")
+        .arg(dir)
+        .arg("--json")
+        .env("RAYON_NUM_THREADS", threads)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("small.toml");
+    std::fs::write(&scene, SMALL).unwrap();
+    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
+    let a = run(&one, &scene, "1");
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    let b = run(&two, &scene, "2");
+    assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
+    // One output set, the streamed files listed in its manifest with their hashes.
+    impact::output::verify_set(&one).unwrap();
+    for f in ["index.md", "summary.json", "impacts.csv", "features.csv", "c1-map-acceleration.svg", "c2-hist-best.svg"]
+    {
+        assert!(one.join(f).is_file(), "{f} is missing");
+    }
+    // The rows do not depend on the number of threads (timings in the report do).
+    for f in ["impacts.csv", "features.csv"] {
+        assert!(std::fs::read(one.join(f)).unwrap() == std::fs::read(two.join(f)).unwrap(), "{f} differs");
+    }
+    // One row per impact and support set; one per impact, channel and support set: Con 1
+    // records 3 quantities at 6 candidates and 4 corner reactions, Con 2 as many spring forces.
+    let impacts = std::fs::read_to_string(one.join("impacts.csv")).unwrap();
+    assert_eq!(impacts.lines().count(), 1 + 2 * 48);
+    assert!(impacts.starts_with("condition,impact,family,class,x_mm,z_mm,radius_mm,velocity_m_per_s"));
+    let features = std::fs::read_to_string(one.join("features.csv")).unwrap();
+    assert_eq!(features.lines().count(), 1 + 2 * 48 * (3 * 6 + 4));
+    assert!(!features.contains("NaN") && !features.contains("inf"));
+
+    let summary: serde_json::Value = serde_json::from_slice(&a.stdout).unwrap();
+    let conditions = summary["conditions"].as_array().unwrap();
+    assert_eq!(conditions.len(), 2);
+    for c in conditions {
+        for r in c["ranking"].as_array().unwrap() {
+            let auc = r["auc"]["auc"].as_f64().unwrap();
+            let (lo, hi) = (r["interval"][0].as_f64().unwrap(), r["interval"][1].as_f64().unwrap());
+            assert!((0.0..=1.0).contains(&auc) && lo <= hi);
+        }
+        // Known answer: with position, size and speed held, coal and gangue are two fixed
+        // spheres at one point and speed, so the reference feature (any that differs between
+        // them) separates them perfectly.
+        let paper = c["held"].as_array().unwrap().iter().find(|h| h["held"] == "position, size and speed").unwrap();
+        let auc = paper["reference"]["auc"].as_f64().unwrap();
+        assert!(auc == 1.0 || auc == 0.0, "{auc}");
+        // Sizes vary and overlap: nothing separates perfectly without holding them.
+        let best = c["ranking"][0]["auc"]["auc"].as_f64().unwrap();
+        assert!(best.max(1.0 - best) < 1.0);
+    }
+}
+
+#[test]
+fn identify_needs_an_ensemble_and_writes_nothing_without_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["identify", "--scene"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-table-1.toml"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("[ensemble]"));
+    assert!(!out.exists());
+}
