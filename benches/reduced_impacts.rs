@@ -54,12 +54,36 @@ fn two_sensors(scene: &Scene) -> Vec<(f64, f64)> {
     vec![(0.25 * l, 0.25 * b), (0.75 * l, 0.6 * b)]
 }
 
+/// CPU time of this thread, s (Linux: the first field of /proc/thread-self/schedstat, in ns);
+/// None elsewhere.
+fn thread_cpu_seconds() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    Some(text.split_whitespace().next()?.parse::<f64>().ok()? * 1e-9)
+}
+
+/// Prints the thread's CPU time per impact over `list` (best of three rounds). On a shared
+/// machine wall-clock rates fall with the load; the CPU time of the thread doing the work
+/// does much less, so it is printed beside criterion's numbers.
+fn cpu_report(what: &str, model: &ReducedModel, probes: &coupled::reduced::Probes, list: &[(Striker, f64, f64)]) {
+    let mut best = f64::INFINITY;
+    for _ in 0..3 {
+        let Some(t0) = thread_cpu_seconds() else { return };
+        for (s, x, z) in list {
+            black_box(model.impact(s, *x, *z, probes).unwrap());
+        }
+        let Some(t1) = thread_cpu_seconds() else { return };
+        best = best.min((t1 - t0) / list.len() as f64);
+    }
+    println!("cpu time: {what}: {:.0} µs per impact ({:.0} impacts per CPU-second)", best * 1e6, 1.0 / best);
+}
+
 fn throughput(c: &mut Criterion) {
     let scene = Scene::default_scene();
     let set = con3(&scene);
     let model = ReducedModel::new(&scene.plate, &set, ReducedSettings::default()).unwrap();
     let probes = model.probes(&SignalSpec::new(two_sensors(&scene))).unwrap();
     let list = impacts(&scene, 256);
+    cpu_report("reduced, N = 80, 2 sensors, 20 ms", &model, &probes, &list);
     let mut g = c.benchmark_group("impacts, 20 ms at 20 kHz, 2 sensors, N = 80");
     g.sample_size(10);
     g.throughput(Throughput::Elements(list.len() as u64));
@@ -100,11 +124,12 @@ fn growth(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(list.len() as u64));
     let run = |g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
-               id: BenchmarkId,
+               (name, param): (&str, String),
                model: &ReducedModel,
                spec: SignalSpec| {
         let probes = model.probes(&spec).unwrap();
-        g.bench_function(id, |b| {
+        cpu_report(&format!("{name} {param}"), model, &probes, &list);
+        g.bench_function(BenchmarkId::new(name, param), |b| {
             b.iter(|| {
                 for (s, x, z) in &list {
                     black_box(model.impact(s, *x, *z, &probes).unwrap());
@@ -115,19 +140,19 @@ fn growth(c: &mut Criterion) {
     for n in [20, 40, 80, 160] {
         let model =
             ReducedModel::new(&scene.plate, &set, ReducedSettings { modes: n, ..ReducedSettings::default() }).unwrap();
-        run(&mut g, BenchmarkId::new("modes", n), &model, SignalSpec::new(two_sensors(&scene)));
+        run(&mut g, ("modes", n.to_string()), &model, SignalSpec::new(two_sensors(&scene)));
         if n == 80 {
             for ms in [5.0, 80.0] {
                 let spec = SignalSpec { window: ms * 1e-3, ..SignalSpec::new(two_sensors(&scene)) };
-                run(&mut g, BenchmarkId::new("window ms", ms), &model, spec);
+                run(&mut g, ("window ms", ms.to_string()), &model, spec);
             }
             let (l, b) = (scene.plate.length(), scene.plate.width());
             for k in [0usize, 8] {
                 let sensors = (0..k).map(|i| ((i as f64 + 0.5) / k as f64 * l, 0.3 * b)).collect();
-                run(&mut g, BenchmarkId::new("sensors", k), &model, SignalSpec::new(sensors));
+                run(&mut g, ("sensors", k.to_string()), &model, SignalSpec::new(sensors));
             }
             let bare = SignalSpec { corners: false, ..SignalSpec::new(vec![]) };
-            run(&mut g, BenchmarkId::new("no channels (contact only)", 0), &model, bare);
+            run(&mut g, ("no channels (contact only)", 0.to_string()), &model, bare);
         }
     }
     g.finish();

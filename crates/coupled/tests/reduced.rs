@@ -398,3 +398,70 @@ fn bad_settings_are_refused() {
     assert!(red.impact(&s, -0.1, 0.1, &probes).is_err());
     let _ = Correction::ResidualMode;
 }
+
+/// The convergence table of docs/reduced-model.md (run with `cargo test --release -p coupled
+/// --test reduced convergence_table -- --ignored --nocapture`): for each velocity, the
+/// largest relative error over Con 1-3, the three bodies and three points (centre, middle of
+/// a free edge, middle of an end) of the peak force, the contact time and the apparent
+/// restitution against the full model at the same time step, for N = 20 to 160 with the
+/// static correction and N = 80 with the residual mode.
+#[test]
+#[ignore = "a study (about a minute), its output is the table in docs/reduced-model.md"]
+fn convergence_table() {
+    let p = plate();
+    let full = TransientCase::new(&p, TransientSettings::default()).unwrap();
+    let points = [(0.2292, 0.18), (0.2292, 0.0), (0.0, 0.18)];
+    let counts = [20usize, 40, 80, 120, 160];
+    let spec = SignalSpec { sensors: vec![], corners: false, ..SignalSpec::new(vec![]) };
+    let mut columns: Vec<(String, ReducedSettings)> = counts
+        .iter()
+        .map(|&n| (format!("N = {n}"), ReducedSettings { modes: n, damping_ratio: 0.0, ..ReducedSettings::default() }))
+        .collect();
+    columns.push((
+        "N = 80, residual mode".into(),
+        ReducedSettings {
+            modes: 80,
+            damping_ratio: 0.0,
+            correction: Correction::ResidualMode,
+            ..ReducedSettings::default()
+        },
+    ));
+    let velocities = [0.0025, 0.008, 1.0, 3.0];
+    // worst[v][column][quantity]
+    let mut worst = vec![vec![[0.0f64; 3]; columns.len()]; velocities.len()];
+    for c in 1..=3 {
+        let set = con(c);
+        let models: Vec<ReducedModel> = columns.iter().map(|(_, s)| ReducedModel::new(&p, &set, *s).unwrap()).collect();
+        for b in ["coal", "gangue 1", "gangue 2"] {
+            for (vi, &v) in velocities.iter().enumerate() {
+                let s = striker(&p, &body(b), 0.65, v);
+                let dt = s.hertz_time() / 200.0;
+                for &(x, z) in &points {
+                    let f = full.run_steps(&set, &s, x, z, 200.0).unwrap();
+                    let qf = Quantities::of(&f, &s);
+                    for (k, m) in models.iter().enumerate() {
+                        let r = m.impact_with_step(&s, x, z, &m.probes(&spec).unwrap(), FreeSteps::Exact, dt).unwrap();
+                        let q = Quantities::of(&r.outcome, &s);
+                        let e = [
+                            (q.peak_force / qf.peak_force - 1.0).abs(),
+                            (q.contact_time / qf.contact_time - 1.0).abs(),
+                            (q.restitution / qf.restitution - 1.0).abs(),
+                        ];
+                        for j in 0..3 {
+                            worst[vi][k][j] = worst[vi][k][j].max(e[j]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let names: Vec<&str> = columns.iter().map(|c| c.0.as_str()).collect();
+    println!("| v (m/s) | quantity | {} |", names.join(" | "));
+    println!("|---|---|{}", "---|".repeat(names.len()));
+    for (vi, v) in velocities.iter().enumerate() {
+        for (j, q) in ["peak force", "contact time", "restitution"].iter().enumerate() {
+            let cells: Vec<String> = worst[vi].iter().map(|w| format!("{:.1e}", w[j])).collect();
+            println!("| {v} | {q} | {} |", cells.join(" | "));
+        }
+    }
+}

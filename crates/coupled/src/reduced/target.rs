@@ -14,7 +14,7 @@
 //! rule while a force acts and is zero once none does (a static response to no load).
 //!
 //! A step that starts with no force is propagated exactly (the damped free vibration,
-//! [`free_map`]); if a contact begins within it, the force enters through the same hᵢ (the
+//! [`super::signals::free_map`]); if a contact begins within it, the force enters through the same hᵢ (the
 //! contact's first step, where P is smallest). Between contacts nothing is time-stepped in
 //! the Newmark sense, so no period error accumulates there.
 
@@ -264,6 +264,16 @@ impl Target for ModalTarget {
             .filter_map(|(c, w)| c.as_ref().map(|c| 0.5 * c.spring * w * w))
             .sum();
         PlateEnergy { kinetic, strain: potential - springs, springs }
+    }
+
+    /// Σᵢ|φᵢ(p)|Aᵢ with Aᵢ = √(qᵢ² + q̇ᵢ²/ωᵢ²): free of force, each mode's ωᵢ²qᵢ² + q̇ᵢ² has the
+    /// rate -4ζωᵢq̇ᵢ² ≤ 0, so |qᵢ| stays below Aᵢ for all later time, and the point deflection
+    /// (no static part without a force) below the sum. By Cauchy-Schwarz this never exceeds
+    /// the energy bound √(2E C_modal).
+    fn free_reach(&self) -> Option<f64> {
+        let n = self.q.len();
+        let (q, v, phi, om2) = (&self.q[..n], &self.v[..n], &self.phi_p[..n], &self.omega2[..n]);
+        Some((0..n).map(|i| phi[i].abs() * (q[i] * q[i] + v[i] * v[i] / om2[i]).sqrt()).sum())
     }
 
     fn corner_displacements(&self) -> [f64; 4] {

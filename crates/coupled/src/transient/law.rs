@@ -140,7 +140,7 @@ impl ContactLaw {
                     thornton_loading(k, dy, delta)
                 } else if dmax <= dy {
                     // Never yielded: the unloading curve is the Hertz curve itself.
-                    k * delta.powf(1.5)
+                    k * delta * delta.sqrt()
                 } else {
                     let (dp, kp) = thornton_unloading(k, dy, dmax);
                     if delta <= dp {
@@ -188,9 +188,9 @@ impl ContactLaw {
 /// πp_yR = (3/2)Kδ_y^{1/2}.
 fn thornton_loading(k: f64, dy: f64, delta: f64) -> f64 {
     if delta <= dy {
-        k * delta.powf(1.5)
+        k * delta * delta.sqrt()
     } else {
-        let py = k * dy.powf(1.5);
+        let py = k * dy * dy.sqrt();
         py + 1.5 * k * dy.sqrt() * (delta - dy)
     }
 }

@@ -262,7 +262,9 @@ impl StepEnd {
 /// δ = u - w_p > 0, so once u < -W with u̇ ≤ 0 no contact can ever occur again: the run
 /// stops there. A rigid target has W = 0, so it stops at the first separation. Without C_p
 /// the run stops at the first separation or, with [`PlateFacts::follow_unbounded`], follows
-/// the free motion to `t_max`; either way [`Outcome::left_at`] is None.
+/// the free motion to `t_max`; either way [`Outcome::left_at`] is None. A target that knows a
+/// tighter bound on its later free motion gives it by [`Target::free_reach`] (the modal
+/// plate does: Σᵢ|φᵢ(p)| times each mode's amplitude), and the smaller bound is used.
 ///
 /// The first-contact fields of [`Outcome`] (and its `history`) are exactly those of a run
 /// that stops at the first separation; the later samples go to `later_history`.
@@ -407,10 +409,14 @@ pub fn simulate_with<T: Target + ?Sized>(
         prev = end;
         // The stopping rule (see the doc comment): free, moving away, beyond the plate's reach.
         if first_done && current.is_none() {
-            let reach = match (plate.is_some(), facts.static_compliance) {
-                (false, _) => Some(0.0),
-                (true, Some(c)) => Some((2.0 * end.plate_energy().max(0.0) * c).sqrt()),
-                (true, None) => None,
+            // The energy bound, or the target's own bound on its free motion if tighter.
+            let energy = facts.static_compliance.map(|c| (2.0 * end.plate_energy().max(0.0) * c).sqrt());
+            let reach = match plate.as_ref().map(|p| p.free_reach()) {
+                None => Some(0.0),
+                Some(own) => match (own, energy) {
+                    (Some(a), Some(b)) => Some(a.min(b)),
+                    (a, b) => a.or(b),
+                },
             };
             match reach {
                 Some(w) if v <= 0.0 && u < -w => {

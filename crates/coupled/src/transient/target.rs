@@ -20,6 +20,11 @@ pub trait Target {
     fn energy(&self) -> PlateEnergy;
     /// Corner deflections now (zeros where the target has no corners).
     fn corner_displacements(&self) -> [f64; 4];
+    /// An upper bound on |w_p| over all later motion free of force, if the target knows one
+    /// (the transient loop's stopping rule then uses it when it is below the energy bound).
+    fn free_reach(&self) -> Option<f64> {
+        None
+    }
 }
 
 impl Target for Newmark<'_> {
