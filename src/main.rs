@@ -222,6 +222,20 @@ fn load(path: &Option<PathBuf>) -> Result<Scene, Failure> {
     })
 }
 
+/// A scene for the commands that strike its bodies at its points: a scene written only for
+/// `impact identify` has neither (its ensemble draws its own).
+fn load_bodies(path: &Option<PathBuf>, command: &str) -> Result<Scene, Failure> {
+    let scene = load(path)?;
+    if scene.bodies.is_empty() || scene.points.is_empty() {
+        return Err(format!(
+            "scene {}: impact {command} strikes the scene's [[bodies]] at its [points], and it has none (a scene whose only analysis is \"identify\" is for impact identify)",
+            scene.name
+        )
+        .into());
+    }
+    Ok(scene)
+}
+
 /// Writes to standard output; a closed pipe ends the program quietly (see `main`).
 fn out(text: &str) -> Result<(), Failure> {
     let mut o = std::io::stdout().lock();
@@ -294,19 +308,19 @@ fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
 fn execute(command: Command) -> Result<(), Failure> {
     match command {
         Command::Solve(c) => {
-            let scene = load(&c.scene)?;
+            let scene = load_bodies(&c.scene, "solve")?;
             let target = prepare(c.out.as_deref())?;
             let r = results(&scene, &c.model.kinds())?;
             emit(&c, target, &scene, r)
         }
         Command::Sweep { common, count } => {
-            let scene = load(&common.scene)?.with_sweep(count as usize);
+            let scene = load_bodies(&common.scene, "sweep")?.with_sweep(count as usize);
             let target = prepare(common.out.as_deref())?;
             let r = results(&scene, &common.model.kinds())?;
             emit(&common, target, &scene, r)
         }
         Command::Yield(c) => {
-            let mut scene = load(&c.scene)?;
+            let mut scene = load_bodies(&c.scene, "yield")?;
             scene.analyses = vec![Analysis::YieldVelocity];
             let target = prepare(c.out.as_deref())?;
             let r = results(&scene, &c.model.kinds())?;
@@ -317,7 +331,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             commit(target, &impact::report::paper::reproduce()?)
         }
         Command::Dynamic { scene, out } => {
-            let scene = load(&scene)?;
+            let scene = load_bodies(&scene, "dynamic")?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
             commit(target, &impact::report::transient::report(&scene)?)
@@ -336,7 +350,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
         }
         Command::Compare { scene, out } => {
-            let scene = load(&scene)?;
+            let scene = load_bodies(&scene, "compare")?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
             commit(target, &impact::report::scene_report(&scene)?)

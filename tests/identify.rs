@@ -238,4 +238,12 @@ fn identify_needs_an_ensemble_and_writes_nothing_without_one() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("[ensemble]"));
     assert!(!out.exists());
+    // And the other way round: a scene written only for identify has no bodies to solve.
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["solve", "--scene"])
+        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/caving-stream.toml"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("[[bodies]]"), "{}", String::from_utf8_lossy(&o.stderr));
 }

@@ -71,10 +71,21 @@ pub struct Ranked {
     pub resolution: Option<f64>,
 }
 
+/// A change in AUC below which no conclusion here changes (the AUCs are quoted to 3 digits
+/// and separabilities compared in steps of a few hundredths).
+const AUC_RESOLUTION: f64 = 0.01;
+
+/// Whether a change `delta` of an AUC with standard error `se` between N/2 and N modes is
+/// within the sampling error or below [`AUC_RESOLUTION`].
+fn resolved(delta: f64, se: f64) -> bool {
+    delta.abs() <= se.max(AUC_RESOLUTION)
+}
+
 impl Ranked {
-    /// Whether the modal truncation moves the AUC by less than its sampling error.
+    /// Whether the modal truncation moves the AUC by less than its sampling error or
+    /// [`AUC_RESOLUTION`].
     pub fn converged(&self) -> bool {
-        self.resolution.is_some_and(|r| r.abs() <= self.auc.standard_error)
+        self.resolution.is_some_and(|r| resolved(r, self.auc.standard_error))
     }
 }
 
@@ -565,7 +576,7 @@ fn run_set(
     let best_converged = order
         .iter()
         .find(|s| {
-            (s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc).abs() <= s.auc.standard_error
+            resolved(s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc, s.auc.standard_error)
         })
         .map(|s| rank_of(s, TOP + 2));
     let (fc, fg) = split(&run.force_max, &classes);
@@ -629,7 +640,7 @@ fn run_set(
     let converged_entry = order
         .iter()
         .find(|s| {
-            (s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc).abs() <= s.auc.standard_error
+            resolved(s.auc.auc - half_all[s.channel * FEATURES.len() + s.feature.index()].auc.auc, s.auc.standard_error)
         })
         .map(|s| **s);
     let reference_entry = converged_entry.or(best_sensor_entry);
@@ -912,6 +923,7 @@ fn condition_markdown(
             ("ranking", ranking.to_markdown()),
             ("modes", modes.to_string()),
             ("half_modes", (modes / 2).max(1).to_string()),
+            ("resolution", sig(AUC_RESOLUTION, 2)),
             ("classifiers", acc.to_markdown()),
             (
                 "maps",
