@@ -677,5 +677,6 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         velocities,
         analyses,
         solver,
+        transient_discretisation: coupled::transient::Discretisation::default(),
     })
 }

@@ -2,7 +2,7 @@
 //! flags on both sides of each threshold, through the command line and the library.
 
 use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, RowOutcome};
-use coupled::transient::TransientSettings;
+use coupled::transient::{Discretisation, TransientSettings};
 use coupled::{BeamModel, PlateModel};
 use impact::scene::{Scene, SceneSource};
 use std::process::Command;
@@ -107,7 +107,8 @@ fn three_models_order_as_the_physics_says() {
     let plate = run(&s, &fe, ModelKind::Plate, &periods).unwrap();
     let mut t = s.clone();
     t.analyses = vec![coupled::Analysis::Responses];
-    let transient = run_transient(&t, TransientSettings::default()).unwrap();
+    t.transient_discretisation = Discretisation::Fixed { settings: TransientSettings::default() };
+    let transient = run_transient(&t).unwrap();
     let p = |r: &coupled::Results| r.responses[0].values().unwrap().contact_force;
     let imp = coupled::plan::impact_of(&s, &s.bodies[0], 0.008);
     let rigid = imp.contact_stiffness

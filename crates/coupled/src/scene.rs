@@ -3,7 +3,7 @@
 //! line's business; this type only holds what passed.
 
 use crate::supports::SupportSet;
-use crate::transient::LawKind;
+use crate::transient::{Discretisation, LawKind};
 use analytic::{Method, Plate, Sphere};
 use serde::{Deserialize, Serialize};
 
@@ -146,6 +146,9 @@ pub struct Scene {
     pub analyses: Vec<Analysis>,
     /// How to solve the energy balance.
     pub solver: Method,
+    /// How the transient model is discretised: by default each case's mesh and step are
+    /// chosen so that its error estimate is within 1e-4 of the forces and the contact time.
+    pub transient_discretisation: Discretisation,
 }
 
 impl Scene {

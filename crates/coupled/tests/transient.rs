@@ -510,8 +510,9 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         velocities: vec![0.008],
         analyses: vec![Analysis::Responses],
         solver: analytic::Method::default(),
+        transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
     };
-    let r = run_transient(&scene, TransientSettings::default()).unwrap();
+    let r = run_transient(&scene).unwrap();
     let v = r.responses[0].values().unwrap();
     let s = strike("coal");
     let o = TransientCase::new(&p, TransientSettings::default())
