@@ -437,6 +437,7 @@ fn status_line(results: &Results) -> String {
         (s.beyond_elastic, "beyond the elastic range (v above the yield velocity of the same model)"),
         (s.not_quasi_static, "not quasi-static (t_c/T₁ < 0.2)"),
         (s.beyond_thin_plate, "beyond the thin-plate range (h/min(L, B) > 0.05)"),
+        (s.outside_regime_rule, "outside the quasi-static regime rule (closed-form bound on the force error > 3 %)"),
         (s.recontact, "with a second contact to follow"),
         (s.not_applicable, "not applicable (the beam describes only Con 1-3)"),
     ] {

@@ -11,6 +11,7 @@ pub mod fem_verification;
 pub mod field;
 pub mod paper;
 pub mod paper_studies;
+pub mod regimes;
 pub mod skfem;
 pub mod studies;
 pub mod template;
@@ -30,10 +31,11 @@ pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 /// beside it, each in its own folder, the paper's studies and the transient study when
 /// the scene names them.
 pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let studies: [(Analysis, &str, Report); 3] = [
+    let studies: [(Analysis, &str, Report); 4] = [
         (Analysis::PaperStudies, "paper-studies", paper_studies::report),
         (Analysis::PaperStudies, "yield-three-models", yield_models::report),
         (Analysis::Transient, "dynamic", transient::report),
+        (Analysis::RegimeMaps, "regimes", regimes::report),
     ];
     let mut a = comparison::report(scene)?;
     for (analysis, dir, report) in studies {

@@ -262,6 +262,7 @@ impl Results {
                             "beyond elastic range" => s.beyond_elastic += 1,
                             "not quasi-static" => s.not_quasi_static += 1,
                             "beyond thin-plate range" => s.beyond_thin_plate += 1,
+                            "outside the quasi-static regime rule" => s.outside_regime_rule += 1,
                             _ => s.recontact += 1,
                         }
                     }
@@ -287,6 +288,8 @@ pub struct Summary {
     pub beyond_thin_plate: usize,
     /// Transient rows whose sphere must strike again.
     pub recontact: usize,
+    /// Quasi-static rows the closed-form regime rule does not trust.
+    pub outside_regime_rule: usize,
     /// Rows the model does not describe.
     pub not_applicable: usize,
 }
@@ -314,6 +317,19 @@ fn hertz_time(imp: &Impact) -> f64 {
         * (imp.mass * imp.mass / (imp.contact_stiffness * imp.contact_stiffness * imp.velocity)).powf(0.2)
 }
 
+/// The closed-form regime rule ([`crate::regimes`]) for the impact `imp` at a point of
+/// compliance `c` of `set`.
+fn regime_rule(scene: &Scene, set: &SupportSet, imp: &Impact, c: f64) -> validity::Criterion {
+    let s = Striker {
+        k: imp.contact_stiffness,
+        restitution: imp.restitution,
+        mass: imp.mass,
+        velocity: imp.velocity,
+        law: crate::transient::ContactLaw::Flores,
+    };
+    crate::regimes::rule(crate::regimes::RuleInputs::of(&s, &scene.plate, set, c))
+}
+
 fn thin_plate(scene: &Scene) -> validity::Criterion {
     let p = &scene.plate;
     validity::thin_plate(p.thickness(), p.length(), p.width())
@@ -323,6 +339,7 @@ fn thin_plate(scene: &Scene) -> validity::Criterion {
 /// compliance's error estimate (the balance re-solved at C + error).
 fn quasi_static_values(
     scene: &Scene,
+    set: &SupportSet,
     imp: &Impact,
     estimate: &Estimate,
     delta_my: f64,
@@ -349,6 +366,7 @@ fn quasi_static_values(
         quasi_static: Some(validity::quasi_static(hertz_time(imp), period)),
         thin_plate: thin_plate(scene),
         recontact: None,
+        regime: Some(regime_rule(scene, set, imp, estimate.compliance.total())),
     };
     let values = ResponseValues {
         compliance: Some(estimate.compliance.total()),
@@ -411,7 +429,7 @@ pub fn run(
                             Ok(est) => {
                                 let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
                                 let (_, values) =
-                                    quasi_static_values(scene, &imp, est, d_my, period).map_err(|source| {
+                                    quasi_static_values(scene, set, &imp, est, d_my, period).map_err(|source| {
                                         ModelError::NotConverged {
                                             context: format!(
                                                 "{} on {} at (x, z) = ({x}, {z}) m, v = {v} m/s",
@@ -437,7 +455,7 @@ pub fn run(
                 if scene.wants(Analysis::YieldVelocity) {
                     let outcome = match &estimate {
                         Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
-                        Ok(est) => RowOutcome::Computed(yield_values(scene, body, &dp, est, period)),
+                        Ok(est) => RowOutcome::Computed(yield_values(scene, set, body, &dp, est, period)),
                     };
                     yields.push(YieldRow {
                         model: kind,
@@ -456,7 +474,14 @@ pub fn run(
 
 /// The yield velocity of eqs. 51-54 for a compliance estimate, with the error that follows
 /// from the compliance's error.
-fn yield_values(scene: &Scene, body: &Sphere, dp: &DruckerPrager, est: &Estimate, period: f64) -> YieldValues {
+fn yield_values(
+    scene: &Scene,
+    set: &SupportSet,
+    body: &Sphere,
+    dp: &DruckerPrager,
+    est: &Estimate,
+    period: f64,
+) -> YieldValues {
     // The velocity does not enter v_y; any positive value builds the balance.
     let imp = impact_of(scene, body, 1.0);
     let d = dp.yield_compression(body.radius(), imp.contact_stiffness);
@@ -479,6 +504,7 @@ fn yield_values(scene: &Scene, body: &Sphere, dp: &DruckerPrager, est: &Estimate
             quasi_static: Some(validity::quasi_static(hertz_time(&at_yield), period)),
             thin_plate: thin_plate(scene),
             recontact: None,
+            regime: Some(regime_rule(scene, set, &at_yield, c)),
         },
     }
 }
@@ -559,6 +585,7 @@ pub fn transient_values(
             quasi_static: None,
             thin_plate: thin_plate(scene),
             recontact,
+            regime: None,
         },
     }
 }
@@ -747,7 +774,13 @@ pub fn dynamic_yield_with(
         yield_compression: d_my,
         yield_velocity: (0.5 * (lo + hi)).exp(),
         yield_velocity_error: Some(hi.exp() - lo.exp()),
-        validity: Validity { elastic: None, quasi_static: None, thin_plate: thin_plate(scene), recontact: None },
+        validity: Validity {
+            elastic: None,
+            quasi_static: None,
+            thin_plate: thin_plate(scene),
+            recontact: None,
+            regime: None,
+        },
     })
 }
 

@@ -30,6 +30,10 @@ pub enum Analysis {
     Transient,
     /// The quasi-static error of the transient model over plate size and thickness.
     SizeMap,
+    /// The regime maps: the quasi-static error over plate size, thickness, sphere mass and
+    /// spring stiffness for Con 1-3, beside Olsson's and Christoforou and Yigit's criteria
+    /// and the closed-form rule.
+    RegimeMaps,
     /// The paper's own studies: its conclusions item by item and its figures redone with
     /// both models (the paper's plate only).
     PaperStudies,
@@ -37,7 +41,7 @@ pub enum Analysis {
 
 impl Analysis {
     /// Every analysis, in the order reports present them.
-    pub const ALL: [Analysis; 10] = [
+    pub const ALL: [Analysis; 11] = [
         Analysis::Responses,
         Analysis::YieldVelocity,
         Analysis::WidthMaps,
@@ -47,6 +51,7 @@ impl Analysis {
         Analysis::Verification,
         Analysis::Transient,
         Analysis::SizeMap,
+        Analysis::RegimeMaps,
         Analysis::PaperStudies,
     ];
 
@@ -62,6 +67,7 @@ impl Analysis {
             Analysis::Verification => "verification",
             Analysis::Transient => "transient",
             Analysis::SizeMap => "size-map",
+            Analysis::RegimeMaps => "regime-maps",
             Analysis::PaperStudies => "paper-studies",
         }
     }
