@@ -311,6 +311,14 @@ impl Measured {
 
 /// The quasi-static model in time: `s` against a massless spring of compliance `compliance`
 /// (the plate without inertia), stepped with `dt` until the first separation.
+///
+/// With an elastic law the contact time converges at second order (against the energy
+/// integral: 1e-6 at 2000 steps). The spring's velocity comes from the trapezoidal rule, and
+/// a massless spring has no inertia to keep it consistent: the t^{3/2} onset of the Hertz
+/// force leaves an alternating error of order √Δt in it, which the Flores damping term feels.
+/// With Flores the contact time then converges at about first order: 3e-5 at 200 steps per
+/// contact for λ ≈ 6, 1.3e-3 for λ ≈ 64 (measured against 6400 steps), far below the
+/// quasi-static model's own error in the regime maps.
 pub fn quasi_static_run(s: &Striker, compliance: f64, dt: f64, t_max: f64) -> Outcome {
     let mut spring = SpringMass::new(0.0, 1.0 / compliance, dt);
     simulate_with(s, Some(&mut spring), PlateFacts::default(), dt, t_max)
