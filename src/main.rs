@@ -2,7 +2,7 @@
 
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, Results};
-use coupled::transient::TransientSettings;
+use coupled::transient::{Discretisation, DEFAULT_TOLERANCE};
 use coupled::{BeamModel, PlateModel};
 use impact::output::{Artifacts, OutputDir, OutputFile};
 use impact::present::rows::{response_tables, slug, yield_tables};
@@ -39,6 +39,29 @@ struct Common {
     /// transient plate, or all three.
     #[arg(long, value_enum, default_value_t = ModelChoice::Beam)]
     model: ModelChoice,
+    #[command(flatten)]
+    transient: TransientArgs,
+}
+
+/// How the transient model is discretised.
+#[derive(Args, Clone)]
+struct TransientArgs {
+    /// Relative error allowed on the transient model's peak force, force at maximum
+    /// compression and contact time: each case's mesh and time step are chosen so that its
+    /// error estimate is within it (in [1e-6, 0.1]).
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_name = "REL")]
+    tolerance: f64,
+}
+
+impl TransientArgs {
+    /// The scene with this discretisation, or an error naming the flag.
+    fn apply(&self, mut scene: Scene) -> Result<Scene, Failure> {
+        if !(1e-6..=0.1).contains(&self.tolerance) {
+            return Err(format!("--tolerance {} is outside the allowed range [1e-6, 0.1]", self.tolerance).into());
+        }
+        scene.transient_discretisation = Discretisation::tolerance(self.tolerance);
+        Ok(scene)
+    }
 }
 
 /// The `impact field --format` choice.
@@ -92,6 +115,8 @@ enum Command {
         scene: Option<PathBuf>,
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        transient: TransientArgs,
     },
     /// Transient impact against the quasi-static models for a scene (default out:
     /// impact-out/<scene name>/dynamic).
@@ -101,6 +126,8 @@ enum Command {
         scene: Option<PathBuf>,
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        transient: TransientArgs,
     },
     /// Sensor signals of the scene's impacts by the reduced-order model (its `[signals]`
     /// table): every support set, body, transient point and velocity; the time series as CSV
@@ -142,8 +169,12 @@ enum Command {
     /// Time the plate FE compliance map (101 x 21 points, Con 1-3) on the mesh that
     /// reaches the tolerance at the centre.
     FemBench {
-        #[command(flatten)]
-        common: Common,
+        /// Scene file; default: the paper's Table 1.
+        #[arg(long, value_name = "FILE")]
+        scene: Option<PathBuf>,
+        /// Print JSON instead of tables.
+        #[arg(long)]
+        json: bool,
         /// Relative error allowed at the plate centre, from the mesh convergence study.
         #[arg(long, default_value_t = 1e-4)]
         tolerance: f64,
@@ -298,7 +329,7 @@ fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
                     PlateModel::compute(&scene.plate, &scene.conditions, &scene.point_pairs(), BASE_MESH, LEVELS)?;
                 run(scene, &model, kind, &periods)?
             }
-            ModelKind::Transient => run_transient(scene, TransientSettings::default())?,
+            ModelKind::Transient => run_transient(scene)?,
         };
         all.extend(r);
     }
@@ -308,19 +339,19 @@ fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
 fn execute(command: Command) -> Result<(), Failure> {
     match command {
         Command::Solve(c) => {
-            let scene = load_bodies(&c.scene, "solve")?;
+            let scene = c.transient.apply(load_bodies(&c.scene, "solve")?)?;
             let target = prepare(c.out.as_deref())?;
             let r = results(&scene, &c.model.kinds())?;
             emit(&c, target, &scene, r)
         }
         Command::Sweep { common, count } => {
-            let scene = load_bodies(&common.scene, "sweep")?.with_sweep(count as usize);
+            let scene = common.transient.apply(load_bodies(&common.scene, "sweep")?)?.with_sweep(count as usize);
             let target = prepare(common.out.as_deref())?;
             let r = results(&scene, &common.model.kinds())?;
             emit(&common, target, &scene, r)
         }
         Command::Yield(c) => {
-            let mut scene = load_bodies(&c.scene, "yield")?;
+            let mut scene = c.transient.apply(load_bodies(&c.scene, "yield")?)?;
             scene.analyses = vec![Analysis::YieldVelocity];
             let target = prepare(c.out.as_deref())?;
             let r = results(&scene, &c.model.kinds())?;
@@ -330,8 +361,8 @@ fn execute(command: Command) -> Result<(), Failure> {
             let target = OutputDir::prepare(&out)?;
             commit(target, &impact::report::paper::reproduce()?)
         }
-        Command::Dynamic { scene, out } => {
-            let scene = load_bodies(&scene, "dynamic")?;
+        Command::Dynamic { scene, out, transient } => {
+            let scene = transient.apply(load_bodies(&scene, "dynamic")?)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
             commit(target, &impact::report::transient::report(&scene)?)
@@ -349,8 +380,8 @@ fn execute(command: Command) -> Result<(), Failure> {
                 out(&format!("scene: {} ({})\n\n{}", scene.name, scene.description, text.join("\n")))
             }
         }
-        Command::Compare { scene, out } => {
-            let scene = load_bodies(&scene, "compare")?;
+        Command::Compare { scene, out, transient } => {
+            let scene = transient.apply(load_bodies(&scene, "compare")?)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
             commit(target, &impact::report::scene_report(&scene)?)
@@ -398,8 +429,8 @@ fn execute(command: Command) -> Result<(), Failure> {
             let target = OutputDir::prepare(&out)?;
             commit(target, &impact::report::main_report(&Scene::default_scene())?)
         }
-        Command::FemBench { common, tolerance, nx, nz } => {
-            let scene = load(&common.scene)?;
+        Command::FemBench { scene, json, tolerance, nx, nz } => {
+            let scene = load(&scene)?;
             if !(1e-12..1.0).contains(&tolerance) {
                 return Err(format!("--tolerance {tolerance} is outside the allowed range [1e-12, 1)").into());
             }
@@ -407,7 +438,7 @@ fn execute(command: Command) -> Result<(), Failure> {
                 return Err(format!("--nx {nx} and --nz {nz} must each be in [2, 1001]").into());
             }
             let r = impact::report::fem_bench::bench(&scene, tolerance, nx, nz)?;
-            if common.json {
+            if json {
                 out(&format!("{}\n", serde_json::to_string_pretty(&r)?))?;
             } else {
                 for t in impact::report::fem_bench::bench_tables(&r) {
@@ -499,6 +530,7 @@ fn status_line(results: &Results) -> String {
         (s.beyond_elastic, "beyond the elastic range (v above the yield velocity of the same model)"),
         (s.not_quasi_static, "not quasi-static (t_c/T₁ < 0.2)"),
         (s.beyond_thin_plate, "beyond the thin-plate range (h/min(L, B) > 0.05)"),
+        (s.outside_regime_rule, "outside the quasi-static regime rule (closed-form bound on the force error > 3 %)"),
         (s.recontact, "with a second contact to follow"),
         (s.not_applicable, "not applicable (the beam describes only Con 1-3)"),
     ] {

@@ -675,7 +675,9 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     };
 
     let needs_velocity =
-        analyses.iter().any(|a| matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap));
+        analyses.iter().any(|a| {
+            matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps)
+        });
     let velocities = match &raw.velocities {
         Some(v) => {
             if v.m_per_s.is_empty() {
@@ -690,7 +692,7 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         None if needs_velocity => {
             return Err(other(
                 "velocities.m_per_s",
-                "is required when analyses include \"responses\", \"transient\" or \"size-map\"",
+                "is required when analyses include \"responses\", \"transient\", \"size-map\" or \"regime-maps\"",
             ));
         }
         None => vec![],
@@ -739,6 +741,7 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         solver,
         ensemble,
         signals,
+        transient_discretisation: coupled::transient::Discretisation::default(),
     })
 }
 

@@ -39,6 +39,23 @@ pub fn validity_text(v: &Validity) -> String {
     }
 }
 
+/// The transient discretisation of a row: elements, steps per Hertz time, the largest
+/// relative error estimate and the tolerance it was chosen for (empty for other models).
+pub fn discretisation_text(e: &Evidence) -> String {
+    match *e {
+        Evidence::Transient { elements, steps_per_contact, relative_error, tolerance, met_tolerance, .. } => {
+            let est = relative_error.map_or(String::new(), |r| format!(", estimate {}", crate::present::table::sig(r, 2)));
+            let tol = match tolerance {
+                Some(t) if met_tolerance => format!(" <= {}", crate::present::table::sig(t, 2)),
+                Some(t) => format!(" > {} (budget reached)", crate::present::table::sig(t, 2)),
+                None => String::new(),
+            };
+            format!("{elements} elements, {steps_per_contact} steps/t_H{est}{tol}")
+        }
+        Evidence::Balance { .. } => String::new(),
+    }
+}
+
 fn opt(v: Option<f64>) -> Cell {
     v.map_or(Cell::Empty, Cell::Num)
 }
@@ -79,6 +96,7 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
             }
             if transient {
                 headers.push("sphere kinetic".into());
+                headers.push("discretisation".into());
             }
             headers.extend(
                 ["iterations or steps", "residual or peak force (N)", "validity"].iter().map(|s| s.to_string()),
@@ -123,6 +141,7 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
                         }
                         if transient {
                             row.push(v.sphere_kinetic_ratio.into());
+                            row.push(discretisation_text(&v.evidence).into());
                         }
                         match v.evidence {
                             Evidence::Balance { iterations, residual } => {

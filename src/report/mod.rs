@@ -12,6 +12,7 @@ pub mod field;
 pub mod identify;
 pub mod paper;
 pub mod paper_studies;
+pub mod regimes;
 pub mod signals;
 pub mod skfem;
 pub mod studies;
@@ -32,10 +33,11 @@ pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 /// beside it, each in its own folder, the paper's studies and the transient study when
 /// the scene names them.
 pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let studies: [(Analysis, &str, Report); 3] = [
+    let studies: [(Analysis, &str, Report); 4] = [
         (Analysis::PaperStudies, "paper-studies", paper_studies::report),
         (Analysis::PaperStudies, "yield-three-models", yield_models::report),
         (Analysis::Transient, "dynamic", transient::report),
+        (Analysis::RegimeMaps, "regimes", regimes::report),
     ];
     let mut a = comparison::report(scene)?;
     for (analysis, dir, report) in studies {
@@ -47,8 +49,12 @@ pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
 }
 
 /// The main job: the paper's reproduction, the plate FE verification, and the scene report
-/// of the default scene.
+/// of the default scene, its transient cases to [`studies::REPORT_TOLERANCE`].
 pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
+    let scene = &Scene {
+        transient_discretisation: coupled::transient::Discretisation::tolerance(studies::REPORT_TOLERANCE),
+        ..scene.clone()
+    };
     let reports: [(&str, Report); 2] = [("paper", paper::report), ("fem", fem_verification::report)];
     let mut all = Artifacts::new();
     for (dir, report) in reports {

@@ -4,10 +4,14 @@ use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Scale, Series};
 use crate::present::table::{sig, Cell, Table};
 use crate::scene::{Analysis, Scene, SceneSource, SupportSet};
-use analytic::{respond, Condition, Method, Sphere};
+use analytic::{respond, Condition, DruckerPrager, Method, Sphere};
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
-use coupled::transient::{simulate, zener, ContactLaw, Outcome, Striker, HERTZ_TIME};
+use coupled::regimes::{mass_ratio, OlssonRegime, RuleInputs};
+use coupled::transient::{
+    simulate, zener, ContactLaw, Discretisation, Estimated, Ladder, LawKind, Outcome, Sample, Striker,
+    TransientSettings, HERTZ_TIME,
+};
 use coupled::PlateModel;
 use coupled::{BeamModel, ComplianceModel};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
@@ -27,6 +31,12 @@ const HISTORY: &str = include_str!("templates/transient/history.md");
 const SUMMARY: &str = include_str!("templates/transient/summary.md");
 const SUMMARY_BODY: &str = include_str!("templates/transient/summary-body.md");
 const SIZE_MAP: &str = include_str!("templates/transient/size-map.md");
+const CONTACTS: &str = include_str!("templates/transient/contacts.md");
+const DISCRETISATION: &str = include_str!("templates/transient/discretisation.md");
+const DISC_FIXED: &str = include_str!("templates/transient/discretisation-fixed.md");
+const DISC_TOLERANCE: &str = include_str!("templates/transient/discretisation-tolerance.md");
+const REGIMES: &str = include_str!("templates/transient/regimes.md");
+const LAWS: &str = include_str!("templates/transient/laws.md");
 
 /// Impact velocity of the verification runs, m/s.
 const VERIFICATION_VELOCITY: f64 = 0.008;
@@ -84,12 +94,15 @@ pub struct TransientCase {
     pub velocity: f64,
     /// The fundamental period T₁ of the supported plate, s.
     pub period: f64,
-    /// K δ_max^{3/2} of the transient run (the paper's P_max), N.
+    /// The law's force at maximum compression of the transient run, at the instant δ̇ = 0 on
+    /// the integrator's interpolant (the paper's P_max), N.
     pub force_at_max_compression: f64,
     /// P_max of the quasi-static balance with the plate's compliance, N.
     pub quasi_static_plate_force: f64,
     /// δ_max of that balance, m.
     pub quasi_static_plate_compression: f64,
+    /// The plate's static compliance there (springs included), m/N.
+    pub quasi_static_plate_compliance: f64,
     /// P_max of the quasi-static balance with the beam's compliance, N; `None` for a
     /// support set the beam does not describe.
     pub quasi_static_beam_force: Option<f64>,
@@ -99,27 +112,51 @@ pub struct TransientCase {
     pub quasi_static_plate_energy: f64,
     /// Sphere kinetic energy left at maximum compression, over E₀.
     pub sphere_energy_left: f64,
-    /// The whole transient run.
-    pub outcome: Outcome,
+    /// δ_max over the Drucker-Prager yield compression δ_my of eq. 51.
+    pub yield_ratio: f64,
+    /// The closed-form regime rule's inputs, with the plate's compliance.
+    pub rule: RuleInputs,
+    /// M_i/M_p.
+    pub mass_ratio: f64,
+    /// The sphere's mass, kg.
+    pub sphere_mass: f64,
+    /// The Hertz contact time on a rigid target, s.
+    pub hertz_time: f64,
+    /// The values at their instants, their error estimates and the whole run (every contact).
+    pub estimate: Estimated,
+    /// Wall-clock time of the case (its discretisation's choice and estimate), s.
+    pub seconds: f64,
 }
 
 impl TransientCase {
-    /// t_c/T₁; `None` if the sphere had not separated at the end of the run.
-    pub fn contact_ratio(&self) -> Option<f64> {
-        self.outcome.contact_time.map(|t| t / self.period)
+    /// The whole run.
+    pub fn outcome(&self) -> &Outcome {
+        &self.estimate.outcome
     }
 
-    /// The error of the quasi-static plate's P_max: K δ_max^{3/2} transient / QS - 1.
+    /// The first contact's duration on the interpolant, s.
+    pub fn contact_time(&self) -> Option<f64> {
+        self.outcome().contacts.first().map(|c| c.duration)
+    }
+
+    /// t_c/T₁; `None` if the sphere had not separated at the end of the run.
+    pub fn contact_ratio(&self) -> Option<f64> {
+        self.contact_time().map(|t| t / self.period)
+    }
+
+    /// The error of the quasi-static plate's P_max: the transient force at maximum
+    /// compression / QS - 1.
     pub fn force_error(&self) -> f64 {
         self.force_at_max_compression / self.quasi_static_plate_force - 1.0
     }
 }
 
 /// Transient against quasi-static at the given points, for every condition, body and
-/// velocity of the scene.
+/// velocity of the scene, each case on the discretisation the scene asks for
+/// ([`Scene::transient_discretisation`]) with its error estimate.
 pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientCase>, Failure> {
-    let props = plate_properties(&scene.plate);
-    let model = Model::new(props, mesh_for(&props, DYNAMIC_MESH)?)?;
+    let disc = scene.transient_discretisation;
+    let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let qs = PlateModel::compute(
         &scene.plate,
         &scene.conditions,
@@ -137,15 +174,18 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
             .progress_chars("=> "),
     );
     for cond in &scene.conditions {
-        let (w1, _) = fundamental_frequency(&model, &cond.supports, 200)?;
-        let t1 = 2.0 * std::f64::consts::PI / w1;
+        let t1 = ladder.levels(0)?.0.fundamental_period(&cond.supports)?;
         for body in &scene.bodies {
+            let d_my = DruckerPrager::of(body).yield_compression(body.radius(), impact_of(scene, body, 1.0).contact_stiffness);
             for &v in &scene.velocities {
                 let s = striker(scene, body, v);
                 let imp = impact_of(scene, body, v);
                 for &(x, z) in points {
-                    let o = transient(&model, cond.supports, &s, x, z, STEPS_PER_CONTACT)?;
-                    let rp = respond(&imp, &qs.compliance(cond, x, z)?.compliance, METHOD)?;
+                    let t0 = Instant::now();
+                    let e = disc.estimate(&mut ladder, cond, &s, (x, z))?;
+                    let seconds = t0.elapsed().as_secs_f64();
+                    let c = qs.compliance(cond, x, z)?;
+                    let rp = respond(&imp, &c.compliance, METHOD)?;
                     // The beam describes only the paper's Con 1-3; for any other set it has
                     // no value to show.
                     let rb = match beam.compliance(cond, x, z) {
@@ -154,7 +194,7 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
                         Err(e) => return Err(e.into()),
                     };
                     let e0 = 0.5 * s.mass * v * v;
-                    let m = o.at_max_compression;
+                    let m = e.outcome.at_max_compression_interpolated;
                     cases.push(TransientCase {
                         condition: cond.name.clone(),
                         body: body.name.clone(),
@@ -162,14 +202,21 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
                         z,
                         velocity: v,
                         period: t1,
-                        force_at_max_compression: s.k * o.compression_max.powf(1.5),
+                        force_at_max_compression: e.values.force_at_max_compression,
                         quasi_static_plate_force: rp.contact_force,
                         quasi_static_plate_compression: rp.compression,
+                        quasi_static_plate_compliance: c.compliance.total(),
                         quasi_static_beam_force: rb,
                         plate_energy: (m.plate_kinetic + m.plate_strain) / e0,
                         quasi_static_plate_energy: rp.plate_ratio,
                         sphere_energy_left: m.sphere_kinetic / e0,
-                        outcome: o,
+                        yield_ratio: e.values.compression / d_my,
+                        rule: RuleInputs::of(&s, &scene.plate, cond, c.compliance.total()),
+                        mass_ratio: mass_ratio(s.mass, &scene.plate),
+                        sphere_mass: s.mass,
+                        hertz_time: s.hertz_time(),
+                        estimate: e,
+                        seconds,
                     });
                     pb.inc(1);
                 }
@@ -180,7 +227,23 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
     Ok(cases)
 }
 
-/// The transient comparison as the report prints it.
+/// A value with its estimated error, "v ± e" (the error to two digits).
+fn with_error(v: f64, e: f64) -> Cell {
+    if v.is_finite() && e.is_finite() {
+        Cell::Text(format!("{} ± {}", sig(v, 7), sig(e, 2)))
+    } else if v.is_finite() {
+        Cell::Num(v)
+    } else {
+        Cell::Empty
+    }
+}
+
+fn point(c: &TransientCase) -> Cell {
+    format!("({:.1}, {:.1})", c.x * 1e3, c.z * 1e3).into()
+}
+
+/// The transient comparison as the report prints it: every value at its instant, with its
+/// error estimate.
 pub fn comparison_table(cases: &[TransientCase]) -> Table {
     let mut t = Table::new(
         "",
@@ -192,10 +255,10 @@ pub fn comparison_table(cases: &[TransientCase]) -> Table {
             "t_c (ms)",
             "t_c/T₁",
             "peak force, transient (N)",
-            "Kδ_max^{3/2}, transient (N)",
+            "P_max at δ_max, transient (N)",
             "P_max quasi-static plate (N)",
             "P_max quasi-static beam (N)",
-            "Kδ_max^{3/2} transient/QS plate - 1",
+            "P_max transient/QS plate - 1",
             "δ_max transient/QS plate - 1",
             "apparent e",
             "plate energy at δ_max (transient)",
@@ -204,24 +267,312 @@ pub fn comparison_table(cases: &[TransientCase]) -> Table {
         ],
     );
     for c in cases {
-        let o = &c.outcome;
+        let (q, err) = (&c.estimate.values, &c.estimate.error);
         t.push(vec![
             c.condition.clone().into(),
             c.body.clone().into(),
-            format!("({:.1}, {:.1})", c.x * 1e3, c.z * 1e3).into(),
+            point(c),
             c.velocity.into(),
-            opt(o.contact_time.map(|t| t * 1e3)),
+            with_error(q.contact_time * 1e3, err.contact_time * 1e3),
             opt(c.contact_ratio()),
-            o.force_max.into(),
-            c.force_at_max_compression.into(),
+            with_error(q.peak_force, err.peak_force),
+            with_error(q.force_at_max_compression, err.force_at_max_compression),
             c.quasi_static_plate_force.into(),
             c.quasi_static_beam_force.map_or(Cell::Text("n/a".into()), Cell::Num),
             c.force_error().into(),
-            (o.compression_max / c.quasi_static_plate_compression - 1.0).into(),
-            opt(o.apparent_restitution),
+            (q.compression / c.quasi_static_plate_compression - 1.0).into(),
+            with_error(q.restitution, err.restitution),
             c.plate_energy.into(),
             c.quasi_static_plate_energy.into(),
             c.sphere_energy_left.into(),
+        ]);
+    }
+    t
+}
+
+/// The whole impact of each case: every contact, the total impulse and the final rebound.
+pub fn contacts_table(cases: &[TransientCase]) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "condition",
+            "body",
+            "point (mm)",
+            "v (m/s)",
+            "contacts",
+            "each contact: start (ms), duration (ms), peak force (N)",
+            "total impulse (N·s)",
+            "impulse / m v₀",
+            "final velocity (m/s)",
+            "final rebound / v₀",
+            "left for good at (ms)",
+        ],
+    );
+    for c in cases {
+        let o = c.outcome();
+        let each: Vec<String> = o
+            .contacts
+            .iter()
+            .chain(&o.unfinished_contact)
+            .map(|k| format!("{:.4} / {:.4} / {}", k.start * 1e3, k.duration * 1e3, sig(k.peak_force, 4)))
+            .collect();
+        let momentum = c.sphere_mass * c.velocity;
+        t.push(vec![
+            c.condition.clone().into(),
+            c.body.clone().into(),
+            point(c),
+            c.velocity.into(),
+            Cell::Int((o.contacts.len() + usize::from(o.unfinished_contact.is_some())) as u64),
+            each.join("; ").into(),
+            o.total_impulse.into(),
+            (o.total_impulse / momentum).into(),
+            o.final_velocity.into(),
+            (-o.final_velocity / c.velocity).into(),
+            o.left_at.map_or(Cell::Text("window ended".into()), |t| Cell::Num(t * 1e3)),
+        ]);
+    }
+    t
+}
+/// Every contact of every case, one row each (the CSV beside the contacts table).
+pub fn contact_rows(cases: &[TransientCase]) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "condition",
+            "body",
+            "x_mm",
+            "z_mm",
+            "v_m_s",
+            "contact",
+            "start_s",
+            "duration_s",
+            "peak_force_n",
+            "impulse_n_s",
+            "velocity_after_m_s",
+            "finished",
+        ],
+    );
+    for c in cases {
+        let o = c.outcome();
+        let all = o.contacts.iter().map(|k| (k, true)).chain(o.unfinished_contact.iter().map(|k| (k, false)));
+        for (i, (k, done)) in all.enumerate() {
+            t.push(vec![
+                c.condition.clone().into(),
+                c.body.clone().into(),
+                (c.x * 1e3).into(),
+                (c.z * 1e3).into(),
+                c.velocity.into(),
+                Cell::Int(i as u64 + 1),
+                k.start.into(),
+                k.duration.into(),
+                k.peak_force.into(),
+                k.impulse.into(),
+                k.rebound_velocity.into(),
+                (if done { "yes" } else { "no" }).into(),
+            ]);
+        }
+    }
+    t
+}
+
+/// The discretisation each case got, its error estimate and its cost.
+pub fn discretisation_table(cases: &[TransientCase]) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "condition",
+            "body",
+            "point (mm)",
+            "v (m/s)",
+            "elements",
+            "steps per t_H",
+            "estimate (relative, largest of the forces and t_c)",
+            "time part",
+            "mesh part",
+            "tolerance met",
+            "wall time (s)",
+        ],
+    );
+    for c in cases {
+        let e = &c.estimate;
+        t.push(vec![
+            c.condition.clone().into(),
+            c.body.clone().into(),
+            point(c),
+            c.velocity.into(),
+            Cell::Int(e.elements as u64),
+            e.steps_per_contact.into(),
+            e.relative_error().into(),
+            e.time_error.relative_to(&e.values).into(),
+            e.mesh_error.relative_to(&e.values).into(),
+            match e.tolerance {
+                Some(tol) if e.met_tolerance => format!("yes (≤ {})", sig(tol, 2)),
+                Some(tol) => format!("no (> {}; budget reached)", sig(tol, 2)),
+                None => "fixed settings".into(),
+            }
+            .into(),
+            c.seconds.into(),
+        ]);
+    }
+    t
+}
+
+/// Each case's regime: the closed-form criteria, the validity status, and the measured
+/// quasi-static error beside them.
+pub fn regimes_table(cases: &[TransientCase]) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "condition",
+            "body",
+            "point (mm)",
+            "v (m/s)",
+            "M_i/M_p (Olsson)",
+            "lambda",
+            "zeta",
+            "C&Y bound B",
+            "t_H/T₁ est",
+            "rule: bound, verdict",
+            "t_H/T₁ (FE) ≥ 0.2",
+            "contacts",
+            "δ_max/δ_my",
+            "measured QS force error",
+            "rule right",
+        ],
+    );
+    for c in cases {
+        let r = &c.rule;
+        let trusted = r.trusts();
+        let within = c.force_error().abs() <= coupled::regimes::RULE_LIMIT;
+        let contacts = c.outcome().contacts.len() + usize::from(c.outcome().unfinished_contact.is_some());
+        t.push(vec![
+            c.condition.clone().into(),
+            c.body.clone().into(),
+            point(c),
+            c.velocity.into(),
+            format!("{} ({})", sig(c.mass_ratio, 3), OlssonRegime::of(c.mass_ratio).key()).into(),
+            r.parameters.relative_stiffness.into(),
+            r.parameters.loss_factor.into(),
+            r.parameters.error_bound().into(),
+            r.period_ratio.map_or(Cell::Empty, Cell::Num),
+            format!("{} ({})", sig(r.error_bound(), 3), if trusted { "trusted" } else { "not quasi-static" }).into(),
+            (if c.hertz_time / c.period >= coupled::validity::QUASI_STATIC_MIN_RATIO { "yes" } else { "no" }).into(),
+            Cell::Int(contacts as u64),
+            format!("{}{}", sig(c.yield_ratio, 3), if c.yield_ratio > 1.0 { " (beyond elastic range)" } else { "" })
+                .into(),
+            c.force_error().into(),
+            match (trusted, within) {
+                (true, true) | (false, false) => "yes",
+                (false, true) => "conservative",
+                (true, false) => "NO",
+            }
+            .into(),
+        ]);
+    }
+    t
+}
+
+/// Multiples of the rigid-target yield velocity at which the contact laws are compared: one
+/// below yield, and 10, 100 and 200 times above (2 m/s for the paper's coal).
+pub const LAW_RATIOS: [f64; 4] = [0.5, 10.0, 100.0, 200.0];
+
+/// One contact law at one velocity.
+#[derive(Debug, Clone)]
+pub struct LawCase {
+    pub law: LawKind,
+    /// v over the rigid-target yield velocity.
+    pub ratio: f64,
+    pub velocity: f64,
+    /// δ_my of eq. 51, m.
+    pub yield_compression: f64,
+    /// The sphere's E₀, J.
+    pub energy: f64,
+    /// Values, errors and the whole run.
+    pub estimate: Estimated,
+    /// Thornton's permanent compression after the impact, m (zero for the elastic laws).
+    pub permanent_set: f64,
+}
+
+/// Hertz, Flores and Thornton side by side on the scene's plate: the first body at the
+/// centre under the first condition, at [`LAW_RATIOS`] times its rigid-target yield velocity.
+pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
+    let body = scene.bodies.first().ok_or("no body")?;
+    let cond = scene.conditions.first().ok_or("no condition")?;
+    let (x, z) = (scene.plate.length() / 2.0, scene.plate.width() / 2.0);
+    let k = impact_of(scene, body, 1.0).contact_stiffness;
+    let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
+    let v_y = analytic::yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
+    let disc = scene.transient_discretisation;
+    let mut ladder = Ladder::new(&scene.plate, disc.start())?;
+    let mut out = Vec::new();
+    for law in [LawKind::Hertz, LawKind::Flores, LawKind::Thornton] {
+        for ratio in LAW_RATIOS {
+            let v = ratio * v_y;
+            let s = Striker { law: law.law_for(body), ..striker(scene, body, v) };
+            let e = disc.estimate(&mut ladder, cond, &s, (x, z))?;
+            let deepest = e.outcome.history.iter().chain(&e.outcome.later_history).map(|h| h.compression).fold(0.0, f64::max);
+            out.push(LawCase {
+                law,
+                ratio,
+                velocity: v,
+                yield_compression: d_my,
+                energy: 0.5 * s.mass * v * v,
+                permanent_set: s.permanent_set(deepest),
+                estimate: e,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The laws' forces and energy split.
+pub fn laws_table(cases: &[LawCase]) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "law",
+            "v/v_y",
+            "v (m/s)",
+            "peak force (N)",
+            "P_max at δ_max (N)",
+            "δ_max/δ_my",
+            "permanent set δ_p/δ_max",
+            "apparent e",
+            "at δ_max: rock elastic",
+            "at δ_max: dissipated",
+            "at δ_max: plate",
+            "at δ_max: springs",
+            "at δ_max: sphere KE",
+            "after: rebound KE",
+            "after: dissipated",
+            "after: left in the plate",
+            "contacts",
+        ],
+    );
+    for c in cases {
+        let (q, err) = (&c.estimate.values, &c.estimate.error);
+        let o = &c.estimate.outcome;
+        let m = o.at_max_compression_interpolated;
+        let end = o.later_history.last().or(o.history.last()).copied().unwrap_or(m);
+        let e0 = c.energy;
+        t.push(vec![
+            c.law.key().into(),
+            c.ratio.into(),
+            c.velocity.into(),
+            with_error(q.peak_force, err.peak_force),
+            with_error(q.force_at_max_compression, err.force_at_max_compression),
+            (q.compression / c.yield_compression).into(),
+            (c.permanent_set / q.compression).into(),
+            with_error(q.restitution, err.restitution),
+            (m.contact / e0).into(),
+            (m.dissipated / e0).into(),
+            ((m.plate_kinetic + m.plate_strain) / e0).into(),
+            (m.springs / e0).into(),
+            (m.sphere_kinetic / e0).into(),
+            (end.sphere_kinetic / e0).into(),
+            (end.dissipated / e0).into(),
+            ((end.plate_kinetic + end.plate_strain + end.springs) / e0).into(),
+            Cell::Int((o.contacts.len() + usize::from(o.unfinished_contact.is_some())) as u64),
         ]);
     }
     t
@@ -243,7 +594,7 @@ pub fn size_map(scene: &Scene) -> Result<(Table, Vec<Series>), Failure> {
             "T₁ (ms)",
             "t_c (ms)",
             "t_c/T₁",
-            "Kδ_max^{3/2} transient (N)",
+            "P_max at δ_max, transient (N)",
             "P_max QS plate (N)",
             "transient/QS - 1",
         ],
@@ -270,19 +621,20 @@ pub fn size_map(scene: &Scene) -> Result<(Table, Vec<Series>), Failure> {
                 crate::report::studies::LEVELS,
             )?;
             let rp = respond(&imp, &qs.compliance(&cond, x, z)?.compliance, METHOD)?;
-            let p_at_max = s.k * o.compression_max.powf(1.5);
+            let p_at_max = s.force_at_max_compression(o.compression_max_interpolated);
             let err = p_at_max / rp.contact_force - 1.0;
+            let contact_time = o.contacts.first().map(|c| c.duration);
             t.push(vec![
                 scale.into(),
                 (h * 1e3).into(),
                 (t1 * 1e3).into(),
-                opt(o.contact_time.map(|t| t * 1e3)),
-                opt(o.contact_time.map(|t| t / t1)),
+                opt(contact_time.map(|t| t * 1e3)),
+                opt(contact_time.map(|t| t / t1)),
                 p_at_max.into(),
                 rp.contact_force.into(),
                 err.into(),
             ]);
-            if let Some(ct) = o.contact_time {
+            if let Some(ct) = contact_time {
                 pts.push((ct / t1, err.abs()));
             }
         }
@@ -469,6 +821,39 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
     )?)
 }
 
+/// The discretisation of the comparison in words (from the templates).
+fn discretisation_prose(scene: &Scene) -> Result<String, Failure> {
+    Ok(match scene.transient_discretisation {
+        Discretisation::Fixed { settings } => render(
+            "transient/discretisation-fixed.md",
+            DISC_FIXED,
+            &[
+                ("elements", settings.elements.to_string()),
+                ("steps", settings.steps_per_contact.to_string()),
+            ],
+        )?,
+        Discretisation::Tolerance { tolerance, budget } => {
+            let start = TransientSettings::default();
+            render(
+                "transient/discretisation-tolerance.md",
+                DISC_TOLERANCE,
+                &[
+                    ("tolerance", sig(tolerance, 2)),
+                    ("elements", start.elements.to_string()),
+                    ("steps", start.steps_per_contact.to_string()),
+                    ("max_elements", budget.max_elements.to_string()),
+                    ("max_steps", budget.max_steps_per_contact.to_string()),
+                ],
+            )?
+        }
+    })
+}
+
+/// A series over the whole run (every contact) of one sampled quantity.
+fn whole_run(o: &Outcome, name: &str, x: impl Fn(f64) -> f64, f: impl Fn(&Sample) -> f64) -> Series {
+    Series::new(name, o.history.iter().chain(&o.later_history).map(|s| (x(s.t), f(s))).collect())
+}
+
 /// Everything `impact dynamic` writes for `scene` at `points`.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let points = &scene.transient_points;
@@ -477,7 +862,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     md.push_str(&render(
         "transient/head.md",
         HEAD,
-        &[("scene", scene.name.clone()), ("mesh", DYNAMIC_MESH.to_string()), ("steps", STEPS_PER_CONTACT.to_string())],
+        &[("scene", scene.name.clone()), ("discretisation", discretisation_prose(scene)?)],
     )?);
     if scene.wants(Analysis::Verification) {
         md.push_str(&verification(scene)?);
@@ -485,28 +870,98 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         md.push_str(&render("transient/not-verified.md", NOT_VERIFIED, &[])?);
     }
 
+    let t0 = Instant::now();
     let cases = comparison(scene, points)?;
+    let comparison_secs = t0.elapsed().as_secs_f64();
     let t = comparison_table(&cases);
     a.add("transient-vs-quasistatic.csv", t.to_csv());
     md.push_str(&render("transient/comparison.md", COMPARISON, &[("table", t.to_markdown())])?);
-    if let Some(o) = cases.first().map(|c| &c.outcome) {
-        let series =
-            vec![Series::new("transient contact force", o.history.iter().map(|s| (s.t * 1e3, s.force)).collect())];
+
+    // The whole impact.
+    let ct = contacts_table(&cases);
+    a.add("contacts.csv", contact_rows(&cases).to_csv());
+    let repeated = cases.iter().filter(|c| c.outcome().contacts.len() > 1).count();
+    let unproven = cases.iter().filter(|c| c.outcome().left_at.is_none()).count();
+    md.push_str(&render(
+        "transient/contacts.md",
+        CONTACTS,
+        &[
+            ("cases", cases.len().to_string()),
+            ("repeated", repeated.to_string()),
+            ("unproven", unproven.to_string()),
+            ("table", ct.to_markdown()),
+        ],
+    )?);
+
+    // Discretisation, error estimates and cost.
+    let dt = discretisation_table(&cases);
+    a.add("discretisation.csv", dt.to_csv());
+    let mut secs: Vec<f64> = cases.iter().map(|c| c.seconds).collect();
+    secs.sort_by(f64::total_cmp);
+    let median = secs.get(secs.len() / 2).copied().unwrap_or(0.0);
+    let worst_estimate = cases.iter().map(|c| c.estimate.relative_error()).fold(0.0, f64::max);
+    let unmet = cases.iter().filter(|c| !c.estimate.met_tolerance).count();
+    let finest = cases.iter().map(|c| c.estimate.elements).max().unwrap_or(0);
+    md.push_str(&render(
+        "transient/discretisation.md",
+        DISCRETISATION,
+        &[
+            ("cases", cases.len().to_string()),
+            ("seconds", format!("{comparison_secs:.0}")),
+            ("median", format!("{median:.2}")),
+            ("slowest", format!("{:.1}", secs.last().copied().unwrap_or(0.0))),
+            ("worst_estimate", sig(worst_estimate, 2)),
+            ("unmet", unmet.to_string()),
+            ("finest", finest.to_string()),
+            ("table", dt.to_markdown()),
+        ],
+    )?);
+
+    // Regimes.
+    let rt = regimes_table(&cases);
+    a.add("regimes.csv", rt.to_csv());
+    let trusted = cases.iter().filter(|c| c.rule.trusts()).count();
+    let wrong = cases
+        .iter()
+        .filter(|c| c.rule.trusts() && c.force_error().abs() > coupled::regimes::RULE_LIMIT)
+        .count();
+    let conservative = cases
+        .iter()
+        .filter(|c| !c.rule.trusts() && c.force_error().abs() <= coupled::regimes::RULE_LIMIT)
+        .count();
+    let wave = cases.iter().filter(|c| OlssonRegime::of(c.mass_ratio) == OlssonRegime::WaveControlled).count();
+    let beyond = cases.iter().filter(|c| c.yield_ratio > 1.0).count();
+    md.push_str(&render(
+        "transient/regimes.md",
+        REGIMES,
+        &[
+            ("cases", cases.len().to_string()),
+            ("trusted", trusted.to_string()),
+            ("wrong", wrong.to_string()),
+            ("conservative", conservative.to_string()),
+            ("wave", wave.to_string()),
+            ("repeated", repeated.to_string()),
+            ("beyond", beyond.to_string()),
+            ("table", rt.to_markdown()),
+        ],
+    )?);
+
+    if let Some(c) = cases.first() {
+        let o = c.outcome();
+        let ms = |t: f64| t * 1e3;
+        let series = vec![whole_run(o, "transient contact force", ms, |s| s.force)];
         a.add(
             "history-force.svg",
             line_plot("Contact force history (first case of the table)", "t (ms)", "P (N)", &series, Scale::Linear),
         );
-        let e0 = 0.5 * striker(scene, &scene.bodies[0], scene.velocities[0]).mass * scene.velocities[0].powi(2);
-        let pick = |name: &str, f: &dyn Fn(&coupled::transient::Sample) -> f64| {
-            Series::new(name, o.history.iter().map(|s| (s.t * 1e3, f(s) / e0)).collect())
-        };
+        let e0 = 0.5 * c.sphere_mass * c.velocity * c.velocity;
         let energies = vec![
-            pick("sphere kinetic", &|s| s.sphere_kinetic),
-            pick("contact (elastic)", &|s| s.contact),
-            pick("plate kinetic", &|s| s.plate_kinetic),
-            pick("plate strain", &|s| s.plate_strain),
-            pick("springs", &|s| s.springs),
-            pick("dissipated", &|s| s.dissipated),
+            whole_run(o, "sphere kinetic", ms, |s| s.sphere_kinetic / e0),
+            whole_run(o, "contact (elastic)", ms, |s| s.contact / e0),
+            whole_run(o, "plate kinetic", ms, |s| s.plate_kinetic / e0),
+            whole_run(o, "plate strain", ms, |s| s.plate_strain / e0),
+            whole_run(o, "springs", ms, |s| s.springs / e0),
+            whole_run(o, "dissipated", ms, |s| s.dissipated / e0),
         ];
         a.add(
             "history-energy.svg",
@@ -534,7 +989,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                 "dissipated_j",
             ],
         );
-        for s in &o.history {
+        for s in o.history.iter().chain(&o.later_history) {
             h.push(vec![
                 s.t.into(),
                 s.force.into(),
@@ -552,6 +1007,63 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         a.add("history.csv", h.to_csv());
         md.push_str(&render("transient/history.md", HISTORY, &[])?);
     }
+
+    // The contact laws side by side above the yield velocity.
+    let lc = laws(scene)?;
+    let lt = laws_table(&lc);
+    a.add("contact-laws.csv", lt.to_csv());
+    let top = LAW_RATIOS.iter().copied().fold(0.0, f64::max);
+    let at = |law: LawKind, ratio: f64| lc.iter().find(|c| c.law == law && c.ratio == ratio);
+    let (hertz, flores, thornton) =
+        (at(LawKind::Hertz, top).ok_or("no Hertz run")?, at(LawKind::Flores, top).ok_or("no Flores run")?, at(LawKind::Thornton, top).ok_or("no Thornton run")?);
+    let t_h = |c: &LawCase| striker(scene, &scene.bodies[0], c.velocity).hertz_time();
+    let law_series: Vec<Series> = [hertz, flores, thornton]
+        .iter()
+        .map(|c| {
+            let th = t_h(c);
+            whole_run(&c.estimate.outcome, c.law.key(), |t| t / th, |s| s.force)
+        })
+        .collect();
+    a.add(
+        "contact-laws.svg",
+        line_plot(
+            &format!("Contact force at {top} x v_y, the three laws"),
+            "t / t_H (Hertz time)",
+            "P (N)",
+            &law_series,
+            Scale::Linear,
+        ),
+    );
+    let end_dissipated = |c: &LawCase| {
+        let o = &c.estimate.outcome;
+        o.later_history.last().or(o.history.last()).map_or(f64::NAN, |s| s.dissipated / c.energy)
+    };
+    let below = at(LawKind::Thornton, LAW_RATIOS[0]).ok_or("no run below yield")?;
+    let below_hertz = at(LawKind::Hertz, LAW_RATIOS[0]).ok_or("no run below yield")?;
+    md.push_str(&render(
+        "transient/laws.md",
+        LAWS,
+        &[
+            ("body", scene.bodies[0].name.clone()),
+            ("condition", scene.conditions[0].name.clone()),
+            ("v_y", sig(hertz.velocity / hertz.ratio, 4)),
+            ("ratios", LAW_RATIOS.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", ")),
+            ("top", top.to_string()),
+            ("v_top", sig(hertz.velocity, 3)),
+            ("thornton_hertz", format!("{:.3}", thornton.estimate.values.peak_force / hertz.estimate.values.peak_force)),
+            ("flores_hertz", format!("{:.3}", flores.estimate.values.peak_force / hertz.estimate.values.peak_force)),
+            ("thornton_e", format!("{:.3}", thornton.estimate.values.restitution)),
+            ("flores_e", format!("{:.3}", flores.estimate.values.restitution)),
+            ("thornton_dissipated", format!("{:.0}", 100.0 * end_dissipated(thornton))),
+            ("flores_dissipated", format!("{:.0}", 100.0 * end_dissipated(flores))),
+            ("below_ratio", LAW_RATIOS[0].to_string()),
+            (
+                "below_same",
+                sig((below.estimate.values.peak_force / below_hertz.estimate.values.peak_force - 1.0).abs(), 2),
+            ),
+            ("table", lt.to_markdown()),
+        ],
+    )?);
 
     // Per body: the range of the quasi-static error and of t_c/T₁ over the cases.
     let mut summary = String::new();

@@ -14,6 +14,8 @@
 //! - [`compliance`]: the [`ComplianceModel`] seam, the beam ([`BeamModel`]) and the plate
 //!   finite elements with Richardson error estimates ([`PlateModel`]);
 //! - [`validity`]: elastic range, quasi-static validity, thin-plate range, re-contact;
+//! - [`regimes`]: Olsson's and Christoforou and Yigit's impact regimes, the closed-form rule
+//!   for the quasi-static balance, and one measured case of the regime map;
 //! - [`transient`]: the sphere, the Flores contact and the plate dynamics in time;
 //! - [`reduced`]: the same impact on the plate's lowest modes plus a static correction,
 //!   fast enough for ensembles, with sensor signals;
@@ -49,6 +51,7 @@ pub mod error;
 pub mod identification;
 pub mod plan;
 pub mod reduced;
+pub mod regimes;
 pub mod scene;
 pub mod supports;
 pub mod transient;

@@ -12,7 +12,7 @@ use crate::compliance::{ComplianceModel, Estimate};
 use crate::error::ModelError;
 use crate::scene::{Analysis, Scene};
 use crate::supports::SupportSet;
-use crate::transient::estimate::{estimate_on, Estimated};
+use crate::transient::estimate::{Estimated, Ladder};
 use crate::transient::{case::striker, Outcome, Striker, TransientCase, TransientSettings};
 use crate::validity::{self, Validity};
 use analytic::{
@@ -92,6 +92,15 @@ pub enum Evidence {
         restitution_error: Option<f64>,
         /// Elements along the longer side of the plate mesh.
         elements: usize,
+        /// Time steps per Hertz contact time.
+        steps_per_contact: f64,
+        /// The largest relative error estimate of the peak force, the force at maximum
+        /// compression and the contact time.
+        relative_error: Option<f64>,
+        /// The relative tolerance the discretisation was chosen for (None: fixed settings).
+        tolerance: Option<f64>,
+        /// Whether the estimate met it (within the ladder's budget).
+        met_tolerance: bool,
         /// Contacts until the sphere left for good (or the window ended).
         contacts: usize,
         /// The impulse of all of them, N·s.
@@ -253,6 +262,7 @@ impl Results {
                             "beyond elastic range" => s.beyond_elastic += 1,
                             "not quasi-static" => s.not_quasi_static += 1,
                             "beyond thin-plate range" => s.beyond_thin_plate += 1,
+                            "outside the quasi-static regime rule" => s.outside_regime_rule += 1,
                             _ => s.recontact += 1,
                         }
                     }
@@ -278,6 +288,8 @@ pub struct Summary {
     pub beyond_thin_plate: usize,
     /// Transient rows whose sphere must strike again.
     pub recontact: usize,
+    /// Quasi-static rows the closed-form regime rule does not trust.
+    pub outside_regime_rule: usize,
     /// Rows the model does not describe.
     pub not_applicable: usize,
 }
@@ -305,6 +317,19 @@ fn hertz_time(imp: &Impact) -> f64 {
         * (imp.mass * imp.mass / (imp.contact_stiffness * imp.contact_stiffness * imp.velocity)).powf(0.2)
 }
 
+/// The closed-form regime rule ([`crate::regimes`]) for the impact `imp` at a point of
+/// compliance `c` of `set`.
+fn regime_rule(scene: &Scene, set: &SupportSet, imp: &Impact, c: f64) -> validity::Criterion {
+    let s = Striker {
+        k: imp.contact_stiffness,
+        restitution: imp.restitution,
+        mass: imp.mass,
+        velocity: imp.velocity,
+        law: crate::transient::ContactLaw::Flores,
+    };
+    crate::regimes::rule(crate::regimes::RuleInputs::of(&s, &scene.plate, set, c))
+}
+
 fn thin_plate(scene: &Scene) -> validity::Criterion {
     let p = &scene.plate;
     validity::thin_plate(p.thickness(), p.length(), p.width())
@@ -314,6 +339,7 @@ fn thin_plate(scene: &Scene) -> validity::Criterion {
 /// compliance's error estimate (the balance re-solved at C + error).
 fn quasi_static_values(
     scene: &Scene,
+    set: &SupportSet,
     imp: &Impact,
     estimate: &Estimate,
     delta_my: f64,
@@ -340,6 +366,7 @@ fn quasi_static_values(
         quasi_static: Some(validity::quasi_static(hertz_time(imp), period)),
         thin_plate: thin_plate(scene),
         recontact: None,
+        regime: Some(regime_rule(scene, set, imp, estimate.compliance.total())),
     };
     let values = ResponseValues {
         compliance: Some(estimate.compliance.total()),
@@ -402,7 +429,7 @@ pub fn run(
                             Ok(est) => {
                                 let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
                                 let (_, values) =
-                                    quasi_static_values(scene, &imp, est, d_my, period).map_err(|source| {
+                                    quasi_static_values(scene, set, &imp, est, d_my, period).map_err(|source| {
                                         ModelError::NotConverged {
                                             context: format!(
                                                 "{} on {} at (x, z) = ({x}, {z}) m, v = {v} m/s",
@@ -428,7 +455,7 @@ pub fn run(
                 if scene.wants(Analysis::YieldVelocity) {
                     let outcome = match &estimate {
                         Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
-                        Ok(est) => RowOutcome::Computed(yield_values(scene, body, &dp, est, period)),
+                        Ok(est) => RowOutcome::Computed(yield_values(scene, set, body, &dp, est, period)),
                     };
                     yields.push(YieldRow {
                         model: kind,
@@ -447,7 +474,14 @@ pub fn run(
 
 /// The yield velocity of eqs. 51-54 for a compliance estimate, with the error that follows
 /// from the compliance's error.
-fn yield_values(scene: &Scene, body: &Sphere, dp: &DruckerPrager, est: &Estimate, period: f64) -> YieldValues {
+fn yield_values(
+    scene: &Scene,
+    set: &SupportSet,
+    body: &Sphere,
+    dp: &DruckerPrager,
+    est: &Estimate,
+    period: f64,
+) -> YieldValues {
     // The velocity does not enter v_y; any positive value builds the balance.
     let imp = impact_of(scene, body, 1.0);
     let d = dp.yield_compression(body.radius(), imp.contact_stiffness);
@@ -470,6 +504,7 @@ fn yield_values(scene: &Scene, body: &Sphere, dp: &DruckerPrager, est: &Estimate
             quasi_static: Some(validity::quasi_static(hertz_time(&at_yield), period)),
             thin_plate: thin_plate(scene),
             recontact: None,
+            regime: Some(regime_rule(scene, set, &at_yield, c)),
         },
     }
 }
@@ -492,9 +527,7 @@ pub fn transient_values(
     let corners = o.corners_at_max_compression_interpolated;
     let (l, b) = (scene.plate.length(), scene.plate.width());
     let delta = o.compression_max_interpolated;
-    // δ̇ = 0 at maximum compression: Kδ^{3/2} for the elastic laws, the loading branch for
-    // Thornton's.
-    let p = if s.law.is_elastic() { s.k * delta.max(0.0).powf(1.5) } else { s.force(delta.max(0.0), 0.0) };
+    let p = s.force_at_max_compression(delta);
     let dp = DruckerPrager::of(body);
     let d_my = dp.yield_compression(body.radius(), s.k);
     // The plate's own deflection: w at the point minus the bilinear plane through the
@@ -536,6 +569,10 @@ pub fn transient_values(
             apparent_restitution: o.apparent_restitution,
             restitution_error: errors.map(|e| e.error.restitution),
             elements: errors.map_or(0, |e| e.elements),
+            steps_per_contact: s.hertz_time() / dt,
+            relative_error: errors.map(|e| e.relative_error()),
+            tolerance: errors.and_then(|e| e.tolerance),
+            met_tolerance: errors.is_none_or(|e| e.met_tolerance),
             contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
             total_impulse: o.total_impulse,
             final_velocity: o.final_velocity,
@@ -548,18 +585,19 @@ pub fn transient_values(
             quasi_static: None,
             thin_plate: thin_plate(scene),
             recontact,
+            regime: None,
         },
     }
 }
 
 /// Runs the scene's responses with the transient model (yield velocities by the transient
 /// model are the velocity at which the transient δ_max reaches δ_my). Every response carries
-/// the error estimate of [`crate::transient::estimate`]: each case also runs at half and
-/// twice the time step and on the meshes with h halved and doubled.
-pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Results, ModelError> {
-    let case = TransientCase::new(&scene.plate, settings)?;
-    let fine = case.refined(&scene.plate)?;
-    let coarse = case.coarsened(&scene.plate).transpose()?;
+/// the error estimate of [`crate::transient::estimate`] on the discretisation the scene asks
+/// for ([`Scene::transient_discretisation`]): fixed settings, or per case the coarsest mesh
+/// and step whose estimate meets a tolerance.
+pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {
+    let disc = scene.transient_discretisation;
+    let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let points = scene.point_pairs();
     let mut responses = Vec::new();
     let mut yields = Vec::new();
@@ -572,10 +610,8 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                             law: scene.contact_law.law_for(body),
                             ..striker(&scene.plate, body, scene.restitution, v)
                         };
-                        let e =
-                            estimate_on(&case, &fine, coarse.as_ref(), set, &s, (x, z), settings.steps_per_contact)?;
-                        let o = &e.outcome;
-                        let dt = s.hertz_time() / settings.steps_per_contact;
+                        let e = disc.estimate(&mut ladder, set, &s, (x, z))?;
+                        let dt = s.hertz_time() / e.steps_per_contact;
                         responses.push(ResponseRow {
                             model: ModelKind::Transient,
                             body: body.name.clone(),
@@ -587,7 +623,7 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                                 scene,
                                 set,
                                 body,
-                                o,
+                                &e.outcome,
                                 &s,
                                 dt,
                                 (x, z),
@@ -597,13 +633,31 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                     }
                 }
                 if scene.wants(Analysis::YieldVelocity) {
+                    // The discretisation is chosen at the root search's start, the rigid-target
+                    // yield velocity, and its relative error in δ_max carried to v_y through
+                    // d ln δ_max/d ln v ≈ 0.8.
+                    let k = contact_stiffness(body, scene.plate.material());
+                    let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
+                    let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
+                    let s = Striker {
+                        law: scene.contact_law.law_for(body),
+                        ..striker(&scene.plate, body, scene.restitution, v_rigid)
+                    };
+                    let e = disc.estimate(&mut ladder, set, &s, (x, z))?;
+                    let level = (e.elements / disc.start().elements).max(1).trailing_zeros() as usize;
+                    let case = ladder.levels(level)?.0;
+                    let mut y = dynamic_yield_with(scene, case, e.steps_per_contact, set, body, x, z)?;
+                    let relative = e.error.compression / e.values.compression;
+                    if let Some(w) = y.yield_velocity_error.as_mut() {
+                        *w += y.yield_velocity * relative / HERTZ_SLOPE;
+                    }
                     yields.push(YieldRow {
                         model: ModelKind::Transient,
                         body: body.name.clone(),
                         condition: set.name.clone(),
                         x,
                         z,
-                        outcome: RowOutcome::Computed(dynamic_yield(scene, &case, set, body, x, z)?),
+                        outcome: RowOutcome::Computed(y),
                     });
                 }
             }
@@ -679,10 +733,24 @@ pub fn log_root(
 
 /// The dynamic yield velocity: the v at which the transient δ_max reaches δ_my of eq. 51.
 /// ln(δ_max/δ_my) increases with ln v; [`log_root`] brackets it from the rigid-target
-/// value of the balance and closes the bracket to [`YIELD_ROOT_TOLERANCE`].
+/// value of the balance and closes the bracket to [`YIELD_ROOT_TOLERANCE`]. The error is the
+/// bracket's width.
 pub fn dynamic_yield(
     scene: &Scene,
     case: &TransientCase,
+    set: &SupportSet,
+    body: &Sphere,
+    x: f64,
+    z: f64,
+) -> Result<YieldValues, ModelError> {
+    dynamic_yield_with(scene, case, case.settings().steps_per_contact, set, body, x, z)
+}
+
+/// [`dynamic_yield`] with `steps_per_contact` steps per Hertz time on `case`'s mesh.
+pub fn dynamic_yield_with(
+    scene: &Scene,
+    case: &TransientCase,
+    steps_per_contact: f64,
     set: &SupportSet,
     body: &Sphere,
     x: f64,
@@ -695,7 +763,7 @@ pub fn dynamic_yield(
             law: scene.contact_law.law_for(body),
             ..striker(&scene.plate, body, scene.restitution, lv.exp())
         };
-        Ok((case.run(set, &s, x, z)?.compression_max / d_my).ln())
+        Ok((case.run_steps(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
     };
     // On a rigid target the balance gives the smallest v that reaches δ_my: start there.
     let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
@@ -706,7 +774,13 @@ pub fn dynamic_yield(
         yield_compression: d_my,
         yield_velocity: (0.5 * (lo + hi)).exp(),
         yield_velocity_error: Some(hi.exp() - lo.exp()),
-        validity: Validity { elastic: None, quasi_static: None, thin_plate: thin_plate(scene), recontact: None },
+        validity: Validity {
+            elastic: None,
+            quasi_static: None,
+            thin_plate: thin_plate(scene),
+            recontact: None,
+            regime: None,
+        },
     })
 }
 

@@ -4,7 +4,7 @@
 
 use crate::reduced::SignalSettings;
 use crate::supports::SupportSet;
-use crate::transient::LawKind;
+use crate::transient::{Discretisation, LawKind};
 use analytic::{Method, Plate, Sphere};
 use serde::{Deserialize, Serialize};
 
@@ -31,6 +31,10 @@ pub enum Analysis {
     Transient,
     /// The quasi-static error of the transient model over plate size and thickness.
     SizeMap,
+    /// The regime maps: the quasi-static error over plate size, thickness, sphere mass and
+    /// spring stiffness for Con 1-3, beside Olsson's and Christoforou and Yigit's criteria
+    /// and the closed-form rule.
+    RegimeMaps,
     /// The paper's own studies: its conclusions item by item and its figures redone with
     /// both models (the paper's plate only).
     PaperStudies,
@@ -40,7 +44,7 @@ pub enum Analysis {
 
 impl Analysis {
     /// Every analysis, in the order reports present them.
-    pub const ALL: [Analysis; 11] = [
+    pub const ALL: [Analysis; 12] = [
         Analysis::Responses,
         Analysis::YieldVelocity,
         Analysis::WidthMaps,
@@ -50,6 +54,7 @@ impl Analysis {
         Analysis::Verification,
         Analysis::Transient,
         Analysis::SizeMap,
+        Analysis::RegimeMaps,
         Analysis::PaperStudies,
         Analysis::Identify,
     ];
@@ -66,6 +71,7 @@ impl Analysis {
             Analysis::Verification => "verification",
             Analysis::Transient => "transient",
             Analysis::SizeMap => "size-map",
+            Analysis::RegimeMaps => "regime-maps",
             Analysis::PaperStudies => "paper-studies",
             Analysis::Identify => "identify",
         }
@@ -157,6 +163,9 @@ pub struct Scene {
     /// The reduced model and the sensor signals of an impact (`[signals]`; defaults when
     /// the scene has none).
     pub signals: SignalSettings,
+    /// How the transient model is discretised: by default each case's mesh and step are
+    /// chosen so that its error estimate is within 1e-4 of the forces and the contact time.
+    pub transient_discretisation: Discretisation,
 }
 
 impl Scene {

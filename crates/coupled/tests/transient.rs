@@ -512,8 +512,9 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         solver: analytic::Method::default(),
         signals: Default::default(),
         ensemble: None,
+        transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
     };
-    let r = run_transient(&scene, TransientSettings::default()).unwrap();
+    let r = run_transient(&scene).unwrap();
     let v = r.responses[0].values().unwrap();
     let s = strike("coal");
     let o = TransientCase::new(&p, TransientSettings::default())
@@ -544,4 +545,75 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         }
         e => panic!("{e:?}"),
     }
+}
+
+/// The default discretisation (chosen per case for the default tolerance) against a run four
+/// times finer in h and in Δt: for each case the chosen mesh and step, the estimated and the
+/// actual error of the peak force, the force at maximum compression, the first contact time
+/// and the apparent restitution, and the wall time of the choice (the cost of a case). Prints
+/// the Markdown table of docs/transient-estimate-coverage.md. About 15 minutes.
+#[test]
+#[ignore]
+fn the_default_discretisation_is_covered_by_its_estimate() {
+    let p = plate();
+    let (l, b) = (p.length(), p.width());
+    let centre = (l / 2.0, b / 2.0);
+    let area2 = (0.25 * l, b / 2.0);
+    let edge = (l / 2.0, 0.0);
+    let end = (0.0, b / 2.0);
+    let con = |i: usize| match i {
+        1 => SupportSet::new("Con 1", Supports::con1()),
+        2 => SupportSet::new("Con 2", Supports::con2(5.11545e8)),
+        _ => SupportSet::new("Con 3", Supports::con3(5.11545e8)),
+    };
+    let cases = [
+        ("coal", 1, centre, "centre", 0.008),
+        ("coal", 1, area2, "Area 2", 0.008),
+        ("coal", 2, edge, "free-edge mid", 0.008),
+        ("coal", 3, end, "end mid", 0.008),
+        ("coal", 2, area2, "Area 2", 0.0025),
+        ("gangue 1", 1, edge, "free-edge mid", 0.008),
+        ("gangue 1", 2, centre, "centre", 0.008),
+        ("gangue 1", 3, area2, "Area 2", 0.008),
+        ("gangue 1", 2, end, "end mid", 0.008),
+        ("gangue 2", 1, end, "end mid", 0.008),
+        ("gangue 2", 2, edge, "free-edge mid", 0.008),
+        ("gangue 2", 3, centre, "centre", 0.008),
+        ("gangue 2", 3, area2, "Area 2", 0.008),
+        ("gangue 2", 1, centre, "centre", 0.0025),
+    ];
+    println!("| body | condition | point | v (m/s) | chosen n, N | P_peak est / actual | P(δ_max) est / actual | t_c est / actual | e est / actual | worst actual/est | wall time (s) | reference (s) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let mut worst: f64 = 0.0;
+    for (name, ci, pt, where_, v) in cases {
+        let s = striker(&p, &body(name), 0.65, v);
+        let t0 = std::time::Instant::now();
+        let e = choose(&p, &con(ci), &s, pt, DEFAULT_TOLERANCE, Budget::default()).unwrap();
+        let secs = t0.elapsed().as_secs_f64();
+        let t1 = std::time::Instant::now();
+        // Four times finer in h (two exact halvings of the chosen mesh) and in Δt.
+        let mut fine = TransientCase::new(&p, TransientSettings::default()).unwrap();
+        while fine.settings().elements < 4 * e.elements {
+            fine = fine.refined(&p).unwrap();
+        }
+        let reference = Quantities::of(&fine.first_contact(&con(ci), &s, pt.0, pt.1, 4.0 * e.steps_per_contact).unwrap(), &s);
+        let ref_secs = t1.elapsed().as_secs_f64();
+        let actual = deviations(&e.values, &reference);
+        let est = as_array(&e.error);
+        let values = as_array(&e.values);
+        let rel = |i: usize| format!("{:.1e} / {:.1e}", est[i] / values[i].abs(), actual[i] / values[i].abs());
+        let ratio = [0usize, 1, 3, 4].iter().map(|&i| actual[i] / est[i]).fold(0.0, f64::max);
+        worst = worst.max(ratio);
+        println!(
+            "| {name} | Con {ci} | {where_} | {v} | {}, {} | {} | {} | {} | {} | {ratio:.2} | {secs:.1} | {ref_secs:.0} |",
+            e.elements,
+            e.steps_per_contact,
+            rel(0),
+            rel(1),
+            rel(3),
+            rel(4)
+        );
+    }
+    println!("largest actual/estimate: {worst:.3}");
+    assert!(worst <= 1.0);
 }

@@ -97,6 +97,7 @@ pub fn run(scene: &Scene) -> Result<(Vec<ModelSummary>, Vec<SceneImpact>), Model
                     let validity = Validity {
                         elastic: s.law.is_elastic().then(|| validity::elastic(q.compression, d_my)),
                         quasi_static: None,
+                        regime: None,
                         thin_plate: validity::thin_plate(
                             scene.plate.thickness(),
                             scene.plate.length(),

@@ -40,8 +40,18 @@ pub fn striker(plate: &Plate, body: &Sphere, restitution: f64, velocity: f64) ->
     }
 }
 
+/// The corner spring stiffnesses of `supports` in [`plate_fem::Corner::ALL`] order, N/m
+/// (0 where a corner is free or held).
+pub fn corner_springs(supports: &Supports) -> [f64; 4] {
+    supports.corners.map(|c| match c {
+        CornerSupport::Spring(k) => k,
+        _ => 0.0,
+    })
+}
+
 /// The plate's transient model: one mesh, shared by every case on it.
 pub struct TransientCase {
+    plate: Plate,
     model: Model,
     settings: TransientSettings,
 }
@@ -56,7 +66,7 @@ impl TransientCase {
     /// The plate's transient model on a given mesh (`settings.elements` is then only a label).
     pub fn on_mesh(plate: &Plate, mesh: Mesh, settings: TransientSettings) -> Result<Self, ModelError> {
         let model = Model::new(plate_properties(plate), mesh)?;
-        Ok(Self { model, settings })
+        Ok(Self { plate: *plate, model, settings })
     }
 
     /// The same plate on the mesh with every element split in four (h halved exactly, every
@@ -88,11 +98,12 @@ impl TransientCase {
             let c: f64 = n.iter().zip(&w).map(|(a, b)| a * b).sum();
             (c.is_finite() && c > 0.0).then_some(c)
         });
-        let corner_springs = supports.corners.map(|c| match c {
-            CornerSupport::Spring(k) => k,
-            _ => 0.0,
-        });
-        PlateFacts { static_compliance, corner_springs: Some(corner_springs), follow_unbounded: true }
+        PlateFacts { static_compliance, corner_springs: Some(corner_springs(supports)), follow_unbounded: true }
+    }
+
+    /// The plate.
+    pub fn plate(&self) -> &Plate {
+        &self.plate
     }
 
     /// The finite-element model.
@@ -116,6 +127,24 @@ impl TransientCase {
     /// ([`super::simulate_with`] with [`Self::facts`]).
     pub fn run(&self, set: &SupportSet, s: &Striker, x: f64, z: f64) -> Result<Outcome, ModelError> {
         self.run_steps(set, s, x, z, self.settings.steps_per_contact)
+    }
+
+    /// The first contact only, with `steps_per_contact` steps per Hertz time: the run stops
+    /// at the first separation and needs no static factorization for the stopping rule.
+    /// Its first-contact quantities are those of [`Self::run_steps`]
+    /// ([`super::simulate_with`] is the same up to the first separation).
+    pub fn first_contact(
+        &self,
+        set: &SupportSet,
+        s: &Striker,
+        x: f64,
+        z: f64,
+        steps_per_contact: f64,
+    ) -> Result<Outcome, ModelError> {
+        let dt = s.hertz_time() / steps_per_contact;
+        let mut nm = Newmark::new(&self.model, set.supports, dt, x, z)?;
+        let facts = PlateFacts { corner_springs: Some(corner_springs(&set.supports)), ..PlateFacts::default() };
+        Ok(simulate_with(s, Some(&mut nm), facts, dt, self.settings.window_contacts * s.hertz_time()))
     }
 
     /// One impact with `steps_per_contact` steps per Hertz time instead of the settings'.

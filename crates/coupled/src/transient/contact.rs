@@ -53,6 +53,12 @@ impl Striker {
     pub fn force(&self, delta: f64, rate: f64) -> f64 {
         self.force_after(delta, rate, delta)
     }
+    /// The force at maximum compression δ_max, where δ̇ = 0: the law's own force there on its
+    /// loading branch (Kδ^{3/2} for Hertz and Flores, whose damping vanishes with δ̇;
+    /// Thornton's plastic branch beyond its yield compression). The paper's P_max (eq. 20).
+    pub fn force_at_max_compression(&self, delta: f64) -> f64 {
+        self.force(delta.max(0.0), 0.0)
+    }
     /// The law's force at δ, δ̇ after a largest compression `dmax` so far.
     pub fn force_after(&self, delta: f64, rate: f64, dmax: f64) -> f64 {
         self.law.force(self.k, self.restitution, self.velocity, delta, rate, dmax)

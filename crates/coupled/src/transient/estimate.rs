@@ -25,6 +25,7 @@ use crate::error::ModelError;
 use crate::supports::SupportSet;
 use analytic::Plate;
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// The safety factor on the Richardson estimates (see the module documentation).
 pub const SAFETY: f64 = 1.5;
@@ -34,7 +35,8 @@ pub const SAFETY: f64 = 1.5;
 pub struct Quantities {
     /// Peak contact force (Flores, damping included), N.
     pub peak_force: f64,
-    /// Force at maximum compression, Kδ_max^{3/2}, N.
+    /// Force at maximum compression, the law's force at δ_max with δ̇ = 0 (Kδ_max^{3/2} for
+    /// the elastic laws), N.
     pub force_at_max_compression: f64,
     /// δ_max, m.
     pub compression: f64,
@@ -50,7 +52,7 @@ impl Quantities {
         let first = o.contacts.first();
         Self {
             peak_force: o.force_max_interpolated,
-            force_at_max_compression: s.k * o.compression_max_interpolated.max(0.0).powf(1.5),
+            force_at_max_compression: s.force_at_max_compression(o.compression_max_interpolated),
             compression: o.compression_max_interpolated,
             contact_time: first.map_or(f64::NAN, |c| c.duration),
             restitution: first.map_or(f64::NAN, |c| -c.rebound_velocity / s.velocity),
@@ -131,15 +133,71 @@ pub struct Estimated {
     pub mesh_error: Quantities,
     /// Their sum: the estimate of the absolute error of `values`.
     pub error: Quantities,
-    /// Whether the error met the tolerance asked of [`choose`] (true from [`estimate_on`]).
+    /// The relative tolerance [`choose`] aimed at (None from [`estimate_on`]).
+    pub tolerance: Option<f64>,
+    /// Whether the error met that tolerance (true from [`estimate_on`]).
     pub met_tolerance: bool,
-    /// The (n, N) run itself.
+    /// The (n, N) run itself, followed through every contact.
     pub outcome: Outcome,
+}
+
+impl Estimated {
+    /// The largest relative error estimate of the forces and the contact time, the measure
+    /// [`choose`] holds to its tolerance.
+    pub fn relative_error(&self) -> f64 {
+        self.error.relative_to(&self.values)
+    }
+}
+
+/// The observed order from the coarse, middle and fine levels, clamped to [1, 2] (2 where
+/// the differences do not define one).
+fn observed_order(coarse: f64, middle: f64, fine: f64) -> f64 {
+    let p = ((coarse - middle).abs() / (middle - fine).abs()).log2();
+    if p.is_nan() {
+        2.0
+    } else {
+        p.clamp(1.0, 2.0)
+    }
+}
+
+/// The estimate from the runs: `q` the (n, N) values, `q_dt` (n, 2N), `q_2dt` (n, N/2),
+/// `q_h` (2n, N) and `q_2h` (n/2, N) where there is a coarser mesh.
+fn combine(
+    q: Quantities,
+    (q_2dt, q_dt): (Quantities, Quantities),
+    (q_2h, q_h): (Option<Quantities>, Quantities),
+    (elements, steps_per_contact): (usize, f64),
+    outcome: Outcome,
+) -> Estimated {
+    let time_order = q_2dt.zip(q, |a, b| (a, b)).zip3(q_dt, |(a, b), c| observed_order(a, b, c));
+    let mesh_order = match q_2h {
+        Some(c) => c.zip(q, |a, b| (a, b)).zip3(q_h, |(a, b), c| observed_order(a, b, c)),
+        None => Quantities::from(q.zip(q, |_, _| 2.0)),
+    };
+    let part = |fine: Quantities, p: Quantities| {
+        q.zip(fine, |a, b| (a - b).abs()).zip(p, |d, p| SAFETY * d / (1.0 - 0.5f64.powf(p)))
+    };
+    let time_error = part(q_dt, time_order);
+    let mesh_error = part(q_h, mesh_order);
+    Estimated {
+        elements,
+        steps_per_contact,
+        values: q,
+        time_order,
+        mesh_order,
+        time_error,
+        mesh_error,
+        error: Quantities::from(time_error.zip(mesh_error, |a, b| a + b)),
+        tolerance: None,
+        met_tolerance: true,
+        outcome,
+    }
 }
 
 /// The estimate for one case: `base`, `fine` and `coarse` are the same plate on n, 2n and
 /// n/2 elements ([`TransientCase::refined`], [`TransientCase::coarsened`]);
-/// `steps_per_contact` is N.
+/// `steps_per_contact` is N. The (n, N) run follows every contact; the four runs that only
+/// estimate its error stop at the first separation ([`TransientCase::first_contact`]).
 pub fn estimate_on(
     base: &TransientCase,
     fine: &TransientCase,
@@ -151,47 +209,17 @@ pub fn estimate_on(
 ) -> Result<Estimated, ModelError> {
     let o = base.run_steps(set, s, x, z, steps_per_contact)?;
     let q = Quantities::of(&o, s);
-    let q_dt = Quantities::of(&base.run_steps(set, s, x, z, 2.0 * steps_per_contact)?, s);
-    let q_2dt = Quantities::of(&base.run_steps(set, s, x, z, 0.5 * steps_per_contact)?, s);
-    let q_h = Quantities::of(&fine.run_steps(set, s, x, z, steps_per_contact)?, s);
-    let q_2h = match coarse {
-        Some(c) => Some(Quantities::of(&c.run_steps(set, s, x, z, steps_per_contact)?, s)),
-        None => None,
+    let first = |c: &TransientCase, n: f64| -> Result<Quantities, ModelError> {
+        Ok(Quantities::of(&c.first_contact(set, s, x, z, n)?, s))
     };
-    // The observed order from the coarse, middle and fine levels, clamped to [1, 2].
-    let order = |coarse: f64, middle: f64, fine: f64| {
-        let p = ((coarse - middle).abs() / (middle - fine).abs()).log2();
-        if p.is_nan() {
-            2.0
-        } else {
-            p.clamp(1.0, 2.0)
-        }
-    };
-    let time_order = q_2dt.zip(q, |a, b| (a, b)).zip3(q_dt, |(a, b), c| order(a, b, c));
-    let mesh_order = match q_2h {
-        Some(c) => c.zip(q, |a, b| (a, b)).zip3(q_h, |(a, b), c| order(a, b, c)),
-        None => Quantities::from(q.zip(q, |_, _| 2.0)),
-    };
-    let part = |fine: Quantities, p: Quantities| {
-        q.zip(fine, |a, b| (a - b).abs()).zip(p, |d, p| SAFETY * d / (1.0 - 0.5f64.powf(p)))
-    };
-    let time_error = part(q_dt, time_order);
-    let mesh_error = part(q_h, mesh_order);
-    Ok(Estimated {
-        elements: base.settings().elements,
-        steps_per_contact,
-        values: q,
-        time_order,
-        mesh_order,
-        time_error,
-        mesh_error,
-        error: Quantities::from(time_error.zip(mesh_error, |a, b| a + b)),
-        met_tolerance: true,
-        outcome: o,
-    })
+    let q_dt = first(base, 2.0 * steps_per_contact)?;
+    let q_2dt = first(base, 0.5 * steps_per_contact)?;
+    let q_h = first(fine, steps_per_contact)?;
+    let q_2h = coarse.map(|c| first(c, steps_per_contact)).transpose()?;
+    Ok(combine(q, (q_2dt, q_dt), (q_2h, q_h), (base.settings().elements, steps_per_contact), o))
 }
 
-/// The estimate for one case on `elements` and `steps_per_contact` (builds both meshes).
+/// The estimate for one case on `elements` and `steps_per_contact` (builds the meshes).
 pub fn estimate(
     plate: &Plate,
     set: &SupportSet,
@@ -216,13 +244,102 @@ pub struct Budget {
 
 impl Default for Budget {
     fn default() -> Self {
-        // The estimate at n = 40 runs the 80-element mesh (20k DOFs), tens of seconds a case.
+        // The estimate at n = 40 runs the 80-element mesh (20k DOFs), seconds a case.
         Self { max_elements: 40, max_steps_per_contact: 1600.0 }
     }
 }
 
 /// The relative tolerance [`choose`] aims at on the forces and the contact time.
 pub const DEFAULT_TOLERANCE: f64 = 1e-4;
+
+/// How the transient model is discretised, case by case.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum Discretisation {
+    /// The same mesh and step for every case, each with its error estimate.
+    Fixed {
+        /// The mesh, step and window.
+        settings: TransientSettings,
+    },
+    /// Per case, the coarsest mesh and step of the ladder whose estimate meets a relative
+    /// tolerance on the forces and the contact time ([`choose`]).
+    Tolerance {
+        /// The relative tolerance.
+        tolerance: f64,
+        /// How far the ladder may go.
+        budget: Budget,
+    },
+}
+
+impl Default for Discretisation {
+    fn default() -> Self {
+        Discretisation::tolerance(DEFAULT_TOLERANCE)
+    }
+}
+
+impl Discretisation {
+    /// Per-case choice to `tolerance` within the default budget.
+    pub fn tolerance(tolerance: f64) -> Self {
+        Discretisation::Tolerance { tolerance, budget: Budget::default() }
+    }
+
+    /// Where the ladder starts: the fixed settings, or 20 elements and 200 steps per Hertz
+    /// time for a tolerance.
+    pub fn start(&self) -> TransientSettings {
+        match *self {
+            Discretisation::Fixed { settings } => settings,
+            Discretisation::Tolerance { .. } => TransientSettings::default(),
+        }
+    }
+
+    /// The estimate for one case on `ladder` ([`Ladder::new`] with [`Self::start`]):
+    /// the fixed settings' estimate, or [`choose_on`].
+    pub fn estimate(
+        &self,
+        ladder: &mut Ladder,
+        set: &SupportSet,
+        s: &Striker,
+        point: (f64, f64),
+    ) -> Result<Estimated, ModelError> {
+        match *self {
+            Discretisation::Fixed { settings } => {
+                let (base, fine, coarse) = ladder.levels(0)?;
+                estimate_on(base, fine, coarse, set, s, point, settings.steps_per_contact)
+            }
+            Discretisation::Tolerance { tolerance, budget } => choose_on(ladder, set, s, point, tolerance, budget),
+        }
+    }
+}
+
+/// One plate's meshes for the estimates: the starting mesh, the one with h doubled (where
+/// the starting counts allow it) and the ones with h halved, built when first needed and
+/// shared by every case on the plate.
+pub struct Ladder {
+    plate: Plate,
+    coarse: Option<TransientCase>,
+    /// levels[0] is the starting mesh, levels[k] has h halved k times.
+    levels: Vec<TransientCase>,
+}
+
+impl Ladder {
+    /// The ladder of `plate` starting at `settings`.
+    pub fn new(plate: &Plate, settings: TransientSettings) -> Result<Self, ModelError> {
+        let base = TransientCase::new(plate, settings)?;
+        let coarse = base.coarsened(plate).transpose()?;
+        Ok(Self { plate: *plate, coarse, levels: vec![base] })
+    }
+
+    /// The meshes at level `k` (h halved k times from the start), at 2k... i.e. (n, 2n,
+    /// n/2) for the estimate at level k, building any that are missing.
+    pub fn levels(&mut self, k: usize) -> Result<(&TransientCase, &TransientCase, Option<&TransientCase>), ModelError> {
+        while self.levels.len() < k + 2 {
+            let finer = self.levels[self.levels.len() - 1].refined(&self.plate)?;
+            self.levels.push(finer);
+        }
+        let coarse = if k == 0 { self.coarse.as_ref() } else { self.levels.get(k - 1) };
+        Ok((&self.levels[k], &self.levels[k + 1], coarse))
+    }
+}
 
 /// Chooses the discretisation of one case from a relative `tolerance` on the peak force,
 /// the force at maximum compression and the contact time: starts at 20 elements and 200
@@ -237,31 +354,62 @@ pub fn choose(
     tolerance: f64,
     budget: Budget,
 ) -> Result<Estimated, ModelError> {
-    let mut settings = TransientSettings::default();
-    let mut base = TransientCase::new(plate, settings)?;
-    let mut fine = base.refined(plate)?;
-    let mut coarse = base.coarsened(plate).transpose()?;
+    let mut ladder = Ladder::new(plate, TransientSettings::default())?;
+    choose_on(&mut ladder, set, s, point, tolerance, budget)
+}
+
+/// [`choose`] on a shared [`Ladder`]. Each level's runs are kept, so a run that one level
+/// needs and the previous one made (the (n, 2N) run becomes the next level's (n/2, N)
+/// after both double, the (2n, N) run its (n, N/2)) is not repeated; only the values' run
+/// follows every contact.
+pub fn choose_on(
+    ladder: &mut Ladder,
+    set: &SupportSet,
+    s: &Striker,
+    (x, z): (f64, f64),
+    tolerance: f64,
+    budget: Budget,
+) -> Result<Estimated, ModelError> {
+    let mut runs: HashMap<(usize, u64), Quantities> = HashMap::new();
+    let (mut level, mut steps) = (0usize, TransientSettings::default().steps_per_contact);
+    let base_elements = ladder.levels(0)?.0.settings().elements;
     loop {
-        let mut e = estimate_on(&base, &fine, coarse.as_ref(), set, s, point, settings.steps_per_contact)?;
-        if e.error.relative_to(&e.values) <= tolerance {
+        let (base, fine, coarse) = ladder.levels(level)?;
+        let mut first = |c: &TransientCase, k: usize, n: f64| -> Result<Quantities, ModelError> {
+            if let Some(q) = runs.get(&(k, n.to_bits())) {
+                return Ok(*q);
+            }
+            let q = Quantities::of(&c.first_contact(set, s, x, z, n)?, s);
+            runs.insert((k, n.to_bits()), q);
+            Ok(q)
+        };
+        // The coarse mesh is level - 1 (or the ladder's h-doubled start, keyed below 0).
+        let coarse_key = level.wrapping_sub(1);
+        let q_dt = first(base, level, 2.0 * steps)?;
+        let q_2dt = first(base, level, 0.5 * steps)?;
+        let q_h = first(fine, level + 1, steps)?;
+        let q_2h = coarse.map(|c| first(c, coarse_key, steps)).transpose()?;
+        let o = base.run_steps(set, s, x, z, steps)?;
+        let q = Quantities::of(&o, s);
+        runs.insert((level, steps.to_bits()), q);
+        let mut e = combine(q, (q_2dt, q_dt), (q_2h, q_h), (base_elements << level, steps), o);
+        e.tolerance = Some(tolerance);
+        if e.relative_error() <= tolerance {
             return Ok(e);
         }
-        let refine_t = e.time_error.relative_to(&e.values) > 0.5 * tolerance
-            && 2.0 * settings.steps_per_contact <= budget.max_steps_per_contact;
-        let refine_h =
-            e.mesh_error.relative_to(&e.values) > 0.5 * tolerance && 2 * settings.elements <= budget.max_elements;
+        let refine_t =
+            e.time_error.relative_to(&e.values) > 0.5 * tolerance && 2.0 * steps <= budget.max_steps_per_contact;
+        let refine_h = e.mesh_error.relative_to(&e.values) > 0.5 * tolerance
+            && (base_elements << (level + 1)) <= budget.max_elements;
         if !refine_t && !refine_h {
             e.met_tolerance = false;
             return Ok(e);
         }
         if refine_t {
-            settings.steps_per_contact *= 2.0;
+            steps *= 2.0;
         }
         if refine_h {
-            settings.elements *= 2;
-            // n/2, n, 2n become n, 2n, 4n.
-            let finer = fine.refined(plate)?;
-            coarse = Some(std::mem::replace(&mut base, std::mem::replace(&mut fine, finer)));
+            level += 1;
         }
     }
 }
