@@ -674,10 +674,9 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         },
     };
 
-    let needs_velocity =
-        analyses.iter().any(|a| {
-            matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps)
-        });
+    let needs_velocity = analyses
+        .iter()
+        .any(|a| matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps));
     let velocities = match &raw.velocities {
         Some(v) => {
             if v.m_per_s.is_empty() {

@@ -44,7 +44,8 @@ pub fn validity_text(v: &Validity) -> String {
 pub fn discretisation_text(e: &Evidence) -> String {
     match *e {
         Evidence::Transient { elements, steps_per_contact, relative_error, tolerance, met_tolerance, .. } => {
-            let est = relative_error.map_or(String::new(), |r| format!(", estimate {}", crate::present::table::sig(r, 2)));
+            let est =
+                relative_error.map_or(String::new(), |r| format!(", estimate {}", crate::present::table::sig(r, 2)));
             let tol = match tolerance {
                 Some(t) if met_tolerance => format!(" <= {}", crate::present::table::sig(t, 2)),
                 Some(t) => format!(" > {} (budget reached)", crate::present::table::sig(t, 2)),

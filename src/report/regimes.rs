@@ -133,11 +133,8 @@ struct Family {
 /// Con 1, and Con 2 and Con 3 at every stiffness of [`SPRINGS`], plus the scene's sets that
 /// are not the paper's (each at its own supports).
 fn families(scene: &Scene) -> Vec<Family> {
-    let mut out = vec![Family {
-        family: "Con 1".into(),
-        set: SupportSet::preset("Con 1", Condition::BothFixed),
-        spring: None,
-    }];
+    let mut out =
+        vec![Family { family: "Con 1".into(), set: SupportSet::preset("Con 1", Condition::BothFixed), spring: None }];
     for k_t in SPRINGS {
         for (family, condition) in
             [("Con 2", Condition::BothSprings { k_t }), ("Con 3", Condition::FixedAndSprings { k_t })]
@@ -165,13 +162,7 @@ struct Job {
 /// The scene's plate scaled in size and thickness.
 fn scaled_plate(scene: &Scene, scale: f64, thickness_factor: f64) -> Result<Plate, Failure> {
     let p = &scene.plate;
-    Ok(Plate::new(
-        p.length() * scale,
-        p.width() * scale,
-        p.thickness() * thickness_factor,
-        p.density(),
-        p.material(),
-    )?)
+    Ok(Plate::new(p.length() * scale, p.width() * scale, p.thickness() * thickness_factor, p.density(), p.material())?)
 }
 
 /// The scene's first body with its radius times `factor`.
@@ -185,10 +176,17 @@ fn scaled_body(body: &Sphere, factor: f64) -> Result<Sphere, Failure> {
     )?)
 }
 
+/// The support sets of a job (family, set, corner spring) and its impact points.
+type JobCases = (Vec<(String, SupportSet, Option<f64>)>, Vec<(f64, f64)>);
+/// Each job's rows, or its failure as text, in job order (None until it has run).
+type JobSlots = Mutex<Vec<Option<Result<Vec<MapRow>, String>>>>;
+/// A published criterion as a test of one case.
+type CaseTest = Box<dyn Fn(&MapRow) -> bool>;
+
 /// Every case of one plate.
 fn run_job(scene: &Scene, job: &Job, families: &[Family]) -> Result<Vec<MapRow>, Failure> {
     let plate = scaled_plate(scene, job.scale, job.thickness_factor)?;
-    let (sets, points): (Vec<(String, SupportSet, Option<f64>)>, Vec<(f64, f64)>) = match job.slice {
+    let (sets, points): JobCases = match job.slice {
         Slice::Centre => (
             families.iter().map(|f| (f.family.clone(), f.set.clone(), f.spring)).collect(),
             vec![(plate.length() / 2.0, plate.width() / 2.0)],
@@ -249,7 +247,7 @@ fn run_job(scene: &Scene, job: &Job, families: &[Family]) -> Result<Vec<MapRow>,
 /// Runs `jobs` on up to `threads` threads, in order of the jobs.
 fn run_jobs(scene: &Scene, jobs: &[Job], families: &[Family], threads: usize) -> Result<Vec<MapRow>, Failure> {
     let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<Result<Vec<MapRow>, String>>>> = Mutex::new(jobs.iter().map(|_| None).collect());
+    let results: JobSlots = Mutex::new(jobs.iter().map(|_| None).collect());
     std::thread::scope(|s| {
         for _ in 0..threads.max(1) {
             s.spawn(|| loop {
@@ -302,8 +300,7 @@ fn discretisation_check(scene: &Scene, rows: &[MapRow], families: &[Family]) -> 
         let sphere = scaled_body(body, r.radius / body.radius())?;
         let s = striker(&plate, &sphere, scene.restitution, v);
         let facts = case.facts(&set.supports, r.point.0, r.point.1);
-        let m =
-            measure(&case, set, facts, &s, r.point, r.compliance, r.measured.quasi_static_force, 2.0 * MAP_STEPS)?;
+        let m = measure(&case, set, facts, &s, r.point, r.compliance, r.measured.quasi_static_force, 2.0 * MAP_STEPS)?;
         let old = &r.measured;
         c.force = c
             .force
@@ -351,11 +348,14 @@ fn score<'a>(rows: impl Iterator<Item = &'a MapRow>, trusts: impl Fn(&MapRow) ->
 }
 
 /// The criteria set beside the measured error, each as a test of one case.
-fn criteria() -> Vec<(&'static str, Box<dyn Fn(&MapRow) -> bool>)> {
+fn criteria() -> Vec<(&'static str, CaseTest)> {
     vec![
         ("Olsson: large mass, M_i/M_p > 2", Box::new(|r: &MapRow| r.mass_ratio > OLSSON_QUASI_STATIC)),
         ("Olsson: not small mass, M_i/M_p ≥ 0.23", Box::new(|r: &MapRow| r.mass_ratio >= OLSSON_WAVE_CONTROLLED)),
-        ("t_H/T₁ ≥ 0.2 (T₁ from the plate FE; the validity status)", Box::new(|r: &MapRow| r.period_ratio() >= QUASI_STATIC_MIN_RATIO)),
+        (
+            "t_H/T₁ ≥ 0.2 (T₁ from the plate FE; the validity status)",
+            Box::new(|r: &MapRow| r.period_ratio() >= QUASI_STATIC_MIN_RATIO),
+        ),
         (
             "Christoforou and Yigit: B ≤ 3 % (ζ < 1)",
             Box::new(|r: &MapRow| r.rule.parameters.error_bound() <= RULE_LIMIT && r.rule.parameters.loss_factor < 1.0),
@@ -532,7 +532,11 @@ fn grid_table(rows: &[MapRow], condition: &str, radii: &[f64]) -> Table {
                     Cell::Text(format!(
                         "{:+.1}{}{}",
                         100.0 * r.signed_error(),
-                        if r.measured.contacts > 1 { format!(" ({} contacts)", r.measured.contacts) } else { String::new() },
+                        if r.measured.contacts > 1 {
+                            format!(" ({} contacts)", r.measured.contacts)
+                        } else {
+                            String::new()
+                        },
                         if r.rule.trusts() { ", trusted" } else { "" }
                     ))
                 },
@@ -545,7 +549,8 @@ fn grid_table(rows: &[MapRow], condition: &str, radii: &[f64]) -> Table {
 
 /// Force error against the spring stiffness at the scene's size and thickness.
 fn spring_table(rows: &[MapRow], radii: &[f64]) -> Table {
-    let mut headers = vec!["family".to_string(), "k_T (N/m)".to_string(), "T₁ FE (ms)".to_string(), "T₁ est/FE".to_string()];
+    let mut headers =
+        vec!["family".to_string(), "k_T (N/m)".to_string(), "T₁ FE (ms)".to_string(), "T₁ est/FE".to_string()];
     headers.extend(radii.iter().map(|r| format!("R = {} mm: error (%)", sig(r * 1e3, 3))));
     let refs: Vec<&str> = headers.iter().map(String::as_str).collect();
     let mut t = Table::new("", &refs);
@@ -632,7 +637,9 @@ fn curves(rows: &[MapRow], condition: &str, scale: f64, x: impl Fn(&MapRow) -> f
         .map(|&radius| {
             let mut pts: Vec<(f64, f64)> = rows
                 .iter()
-                .filter(|r| r.slice == Slice::Centre && r.condition == condition && r.scale == scale && r.radius == radius)
+                .filter(|r| {
+                    r.slice == Slice::Centre && r.condition == condition && r.scale == scale && r.radius == radius
+                })
                 .map(|r| (x(r), r.error()))
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -687,11 +694,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let large = score(centre.iter().copied(), |r| r.mass_ratio > OLSSON_QUASI_STATIC);
     let small: Vec<&&MapRow> = centre.iter().filter(|r| r.mass_ratio < OLSSON_WAVE_CONTROLLED).collect();
     let small_fine = small.iter().filter(|r| r.quasi_static()).count();
-    let small_fine_lambda = small
-        .iter()
-        .filter(|r| r.quasi_static())
-        .map(|r| r.rule.parameters.relative_stiffness)
-        .fold(0.0f64, f64::max);
+    let small_fine_lambda =
+        small.iter().filter(|r| r.quasi_static()).map(|r| r.rule.parameters.relative_stiffness).fold(0.0f64, f64::max);
     let repeated: Vec<&&MapRow> = centre.iter().filter(|r| r.measured.contacts > 1).collect();
     let repeated_min_zeta = repeated.iter().map(|r| r.rule.parameters.loss_factor).fold(f64::INFINITY, f64::min);
     // Christoforou and Yigit's bound where ζ < 1 and the contact is fast: how often it holds.
@@ -708,11 +712,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         .filter(|r| r.rule.speed() == ContactSpeed::Slow)
         .map(|r| r.error() / share(r))
         .fold(0.0f64, f64::max);
-    let trusted_time = rows
-        .iter()
-        .filter(|r| r.rule.trusts())
-        .filter_map(|r| r.time_error())
-        .fold(0.0f64, f64::max);
+    let trusted_time = rows.iter().filter(|r| r.rule.trusts()).filter_map(|r| r.time_error()).fold(0.0f64, f64::max);
     let period_ratio_range = rows
         .iter()
         .filter_map(|r| r.period_estimate.map(|t| t / r.period))
@@ -773,15 +773,17 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     );
     let spring_series: Vec<Series> = ["Con 2", "Con 3"]
         .iter()
-        .flat_map(|fam| {
-            radii.iter().take(2).map(move |&radius| (fam, radius))
-        })
+        .flat_map(|fam| radii.iter().take(2).map(move |&radius| (fam, radius)))
         .map(|(fam, radius)| {
             let h = mid_thickness(&rows);
             let mut pts: Vec<(f64, f64)> = rows
                 .iter()
                 .filter(|r| {
-                    r.slice == Slice::Centre && r.family == *fam && r.scale == 1.0 && r.thickness == h && r.radius == radius
+                    r.slice == Slice::Centre
+                        && r.family == *fam
+                        && r.scale == 1.0
+                        && r.thickness == h
+                        && r.radius == radius
                 })
                 .filter_map(|r| Some((r.spring?.log10(), r.error())))
                 .collect();

@@ -176,7 +176,8 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
     for cond in &scene.conditions {
         let t1 = ladder.levels(0)?.0.fundamental_period(&cond.supports)?;
         for body in &scene.bodies {
-            let d_my = DruckerPrager::of(body).yield_compression(body.radius(), impact_of(scene, body, 1.0).contact_stiffness);
+            let d_my =
+                DruckerPrager::of(body).yield_compression(body.radius(), impact_of(scene, body, 1.0).contact_stiffness);
             for &v in &scene.velocities {
                 let s = striker(scene, body, v);
                 let imp = impact_of(scene, body, v);
@@ -510,7 +511,8 @@ pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
             let v = ratio * v_y;
             let s = Striker { law: law.law_for(body), ..striker(scene, body, v) };
             let e = disc.estimate(&mut ladder, cond, &s, (x, z))?;
-            let deepest = e.outcome.history.iter().chain(&e.outcome.later_history).map(|h| h.compression).fold(0.0, f64::max);
+            let deepest =
+                e.outcome.history.iter().chain(&e.outcome.later_history).map(|h| h.compression).fold(0.0, f64::max);
             out.push(LawCase {
                 law,
                 ratio,
@@ -827,10 +829,7 @@ fn discretisation_prose(scene: &Scene) -> Result<String, Failure> {
         Discretisation::Fixed { settings } => render(
             "transient/discretisation-fixed.md",
             DISC_FIXED,
-            &[
-                ("elements", settings.elements.to_string()),
-                ("steps", settings.steps_per_contact.to_string()),
-            ],
+            &[("elements", settings.elements.to_string()), ("steps", settings.steps_per_contact.to_string())],
         )?,
         Discretisation::Tolerance { tolerance, budget } => {
             let start = TransientSettings::default();
@@ -921,14 +920,10 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let rt = regimes_table(&cases);
     a.add("regimes.csv", rt.to_csv());
     let trusted = cases.iter().filter(|c| c.rule.trusts()).count();
-    let wrong = cases
-        .iter()
-        .filter(|c| c.rule.trusts() && c.force_error().abs() > coupled::regimes::RULE_LIMIT)
-        .count();
-    let conservative = cases
-        .iter()
-        .filter(|c| !c.rule.trusts() && c.force_error().abs() <= coupled::regimes::RULE_LIMIT)
-        .count();
+    let wrong =
+        cases.iter().filter(|c| c.rule.trusts() && c.force_error().abs() > coupled::regimes::RULE_LIMIT).count();
+    let conservative =
+        cases.iter().filter(|c| !c.rule.trusts() && c.force_error().abs() <= coupled::regimes::RULE_LIMIT).count();
     let wave = cases.iter().filter(|c| OlssonRegime::of(c.mass_ratio) == OlssonRegime::WaveControlled).count();
     let beyond = cases.iter().filter(|c| c.yield_ratio > 1.0).count();
     md.push_str(&render(
@@ -1014,8 +1009,11 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     a.add("contact-laws.csv", lt.to_csv());
     let top = LAW_RATIOS.iter().copied().fold(0.0, f64::max);
     let at = |law: LawKind, ratio: f64| lc.iter().find(|c| c.law == law && c.ratio == ratio);
-    let (hertz, flores, thornton) =
-        (at(LawKind::Hertz, top).ok_or("no Hertz run")?, at(LawKind::Flores, top).ok_or("no Flores run")?, at(LawKind::Thornton, top).ok_or("no Thornton run")?);
+    let (hertz, flores, thornton) = (
+        at(LawKind::Hertz, top).ok_or("no Hertz run")?,
+        at(LawKind::Flores, top).ok_or("no Flores run")?,
+        at(LawKind::Thornton, top).ok_or("no Thornton run")?,
+    );
     let t_h = |c: &LawCase| striker(scene, &scene.bodies[0], c.velocity).hertz_time();
     let law_series: Vec<Series> = [hertz, flores, thornton]
         .iter()
@@ -1050,7 +1048,10 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ("ratios", LAW_RATIOS.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", ")),
             ("top", top.to_string()),
             ("v_top", sig(hertz.velocity, 3)),
-            ("thornton_hertz", format!("{:.3}", thornton.estimate.values.peak_force / hertz.estimate.values.peak_force)),
+            (
+                "thornton_hertz",
+                format!("{:.3}", thornton.estimate.values.peak_force / hertz.estimate.values.peak_force),
+            ),
             ("flores_hertz", format!("{:.3}", flores.estimate.values.peak_force / hertz.estimate.values.peak_force)),
             ("thornton_e", format!("{:.3}", thornton.estimate.values.restitution)),
             ("flores_e", format!("{:.3}", flores.estimate.values.restitution)),

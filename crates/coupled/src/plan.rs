@@ -424,23 +424,22 @@ pub fn run(
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
                         let imp = impact_of(scene, body, v);
-                        let outcome = match &estimate {
-                            Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
-                            Ok(est) => {
-                                let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
-                                let (_, values) =
-                                    quasi_static_values(scene, set, &imp, est, d_my, period).map_err(|source| {
-                                        ModelError::NotConverged {
+                        let outcome =
+                            match &estimate {
+                                Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
+                                Ok(est) => {
+                                    let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
+                                    let (_, values) = quasi_static_values(scene, set, &imp, est, d_my, period)
+                                        .map_err(|source| ModelError::NotConverged {
                                             context: format!(
                                                 "{} on {} at (x, z) = ({x}, {z}) m, v = {v} m/s",
                                                 body.name, set.name
                                             ),
                                             source,
-                                        }
-                                    })?;
-                                RowOutcome::Computed(values)
-                            }
-                        };
+                                        })?;
+                                    RowOutcome::Computed(values)
+                                }
+                            };
                         responses.push(ResponseRow {
                             model: kind,
                             body: body.name.clone(),

@@ -3,8 +3,8 @@
 
 use analytic::{contact_stiffness, respond, Elastic, Impact, Method, Plate, RockStrength, Sphere};
 use coupled::regimes::{
-    mass_ratio, measure, period_estimate, quasi_static_run, ChristoforouYigit, ContactSpeed, OlssonRegime,
-    RuleInputs, SLOW_FACTOR,
+    mass_ratio, measure, period_estimate, quasi_static_run, ChristoforouYigit, ContactSpeed, OlssonRegime, RuleInputs,
+    SLOW_FACTOR,
 };
 use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
@@ -127,7 +127,8 @@ fn period_estimate_is_the_beam_with_dunkerley() {
     let t3 = period_estimate(&plate, &SupportSet::new("Con 3", Supports::con3(k))).unwrap();
     let bounce = |n: f64| 2.0 * std::f64::consts::PI * (m_p / (n * k)).sqrt();
     assert!((t2 / bounce(4.0) - 1.0).abs() < 1e-5 && (t3 / bounce(6.0) - 1.0).abs() < 1e-5);
-    let general = SupportSet::new("clamped", Supports { edges: [plate_fem::EdgeSupport::Clamped; 4], ..Supports::con1() });
+    let general =
+        SupportSet::new("clamped", Supports { edges: [plate_fem::EdgeSupport::Clamped; 4], ..Supports::con1() });
     assert!(period_estimate(&plate, &general).is_none());
     let case = TransientCase::new(&plate, TransientSettings { elements: 16, ..Default::default() }).unwrap();
     for (set, k) in [(Supports::con1(), None), (Supports::con2(1e6), Some(1e6)), (Supports::con3(1e6), Some(1e6))] {

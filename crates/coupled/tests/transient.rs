@@ -596,7 +596,8 @@ fn the_default_discretisation_is_covered_by_its_estimate() {
         while fine.settings().elements < 4 * e.elements {
             fine = fine.refined(&p).unwrap();
         }
-        let reference = Quantities::of(&fine.first_contact(&con(ci), &s, pt.0, pt.1, 4.0 * e.steps_per_contact).unwrap(), &s);
+        let reference =
+            Quantities::of(&fine.first_contact(&con(ci), &s, pt.0, pt.1, 4.0 * e.steps_per_contact).unwrap(), &s);
         let ref_secs = t1.elapsed().as_secs_f64();
         let actual = deviations(&e.values, &reference);
         let est = as_array(&e.error);

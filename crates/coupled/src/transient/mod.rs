@@ -35,7 +35,9 @@ pub mod target;
 
 pub use case::{TransientCase, TransientSettings};
 pub use contact::{contact_force, contact_force_after, Striker, HERTZ_TIME};
-pub use estimate::{choose, choose_on, estimate, Budget, Discretisation, Estimated, Ladder, Quantities, DEFAULT_TOLERANCE};
+pub use estimate::{
+    choose, choose_on, estimate, Budget, Discretisation, Estimated, Ladder, Quantities, DEFAULT_TOLERANCE,
+};
 pub use law::{thornton_restitution, ContactLaw, LawKind};
 pub use reference::zener;
 pub use target::{SpringMass, Target};
