@@ -32,6 +32,8 @@ const FINDING_HELD: &str = include_str!("templates/identify/finding-held.md");
 const FINDING_RESOLUTION: &str = include_str!("templates/identify/finding-resolution.md");
 const CONDITION: &str = include_str!("templates/identify/condition.md");
 const METHOD: &str = include_str!("templates/identify/method.md");
+const LAW_ELASTIC: &str = include_str!("templates/identify/law-elastic.md");
+const LAW_PLASTIC: &str = include_str!("templates/identify/law-plastic.md");
 
 /// Entries of the ranking that get a bootstrap interval (the rest carry DeLong's error).
 const TOP: usize = 10;
@@ -773,6 +775,7 @@ fn run_set(
     let markdown = condition_markdown(
         &result,
         settings.modes,
+        scene.contact_law,
         &maps_md,
         &hist_md,
         reference.map(|(k, f)| {
@@ -850,10 +853,17 @@ fn percent(n: usize, of: usize) -> String {
 fn condition_markdown(
     r: &ConditionResult,
     modes: usize,
+    law: coupled::transient::LawKind,
     maps: &str,
     hists: &str,
     reference: Option<String>,
 ) -> Result<String, Failure> {
+    let law_note = if law.is_elastic() {
+        render("identify/law-elastic.md", LAW_ELASTIC, &[("law", law.key().to_string())])?
+    } else {
+        render("identify/law-plastic.md", LAW_PLASTIC, &[("law", law.key().to_string())])?
+    };
+    let law_note = law_note.trim_end();
     let mut ranking = Table::new(
         "",
         &["channel", "feature", "AUC", "DeLong SE", "95 % bootstrap CI", "AUC(N) - AUC(N/2)", "direction"],
@@ -940,6 +950,7 @@ fn condition_markdown(
             ("not_quasi_static", percent(v.not_quasi_static, v.impacts)),
             ("recontact", percent(v.recontact, v.impacts)),
             ("unfinished", percent(v.unfinished, v.impacts)),
+            ("law", law_note.to_string()),
         ],
     )?)
 }
@@ -1158,20 +1169,35 @@ pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary)
 pub fn summary_tables(s: &Summary) -> Vec<Table> {
     let mut t = Table::new(
         format!(
-            "{}: coal against gangue over {} impacts per support set ({} coal, {} gangue)",
+            "{}: coal against gangue over {} impacts per support set ({} coal, {} gangue); AUC with 95 % CI, and its change from N/2 to N modes",
             s.scene, s.impacts, s.classes.0, s.classes.1
         ),
-        &["support set", "best feature", "AUC", "95 % CI", "P_max AUC", "best accuracy", "beyond elastic", "impacts/s"],
+        &[
+            "support set",
+            "best feature",
+            "AUC",
+            "N/2 to N",
+            "best feature resolved in N",
+            "AUC",
+            "P_max AUC",
+            "best accuracy",
+            "beyond elastic",
+            "impacts/s",
+        ],
     );
+    let auc = |r: &Ranked| Cell::Text(format!("{} ({})", sig(r.auc.auc, 3), ci(r)));
+    let name = |r: &Ranked| Cell::Text(format!("{} {}", feature_label(r.feature), r.channel));
     for c in &s.conditions {
         let top = c.ranking.first();
         let acc = c.classifiers.iter().map(|a| a.result.accuracy).fold(f64::NAN, f64::max);
         t.push(vec![
             c.condition.clone().into(),
-            top.map_or(Cell::Empty, |r| format!("{} {}", r.channel, feature_label(r.feature)).into()),
-            top.map_or(Cell::Empty, |r| Cell::Text(sig(r.auc.auc, 3))),
-            top.map_or(Cell::Empty, |r| ci(r).into()),
-            Cell::Text(sig(c.force_max.auc.auc, 3)),
+            top.map_or(Cell::Empty, name),
+            top.map_or(Cell::Empty, auc),
+            top.and_then(|r| r.resolution).map_or(Cell::Empty, |d| Cell::Text(sig(d, 2))),
+            c.best_converged.as_ref().map_or(Cell::Empty, name),
+            c.best_converged.as_ref().map_or(Cell::Empty, auc),
+            auc(&c.force_max),
             if acc.is_finite() { Cell::Text(sig(acc, 3)) } else { Cell::Empty },
             percent(c.validity.beyond_elastic, c.validity.impacts).into(),
             Cell::Text(sig(c.impacts_per_second, 3)),
