@@ -2,7 +2,7 @@
 //! balance and yield model, and where and by how much they differ.
 
 use crate::output::Artifacts;
-use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::plot::{line_plot, Axis, ColourMap, Scale, Series};
 use crate::present::rows::slug;
 use crate::present::table::{sig, Cell, Table};
 use crate::report::paper::Paper;
@@ -309,80 +309,6 @@ pub fn maps_from(scene: &Scene, model: &PlateModel) -> Result<Maps, Failure> {
     Ok(Maps { xs, zs, plate, error, beam: beam_c })
 }
 
-/// A heat map as SVG: value(ix, iz) over x (mm) and z (mm), NaN drawn grey.
-pub fn heat_map(title: &str, xs: &[f64], zs: &[f64], value: impl Fn(usize, usize) -> f64, legend: &str) -> String {
-    use plotters::prelude::*;
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (760, 420)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing to memory");
-        let vals: Vec<f64> = (0..xs.len())
-            .flat_map(|i| (0..zs.len()).map(move |j| (i, j)))
-            .map(|(i, j)| value(i, j))
-            .filter(|v| v.is_finite())
-            .collect();
-        let (lo, hi) = vals.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-        let (lo, hi) = if lo.is_finite() && hi > lo { (lo, hi) } else { (0.0, 1.0) };
-        let (main, bar) = root.split_horizontally(640);
-        let mut chart = ChartBuilder::on(&main)
-            .caption(title, ("sans-serif", 16))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(55)
-            .build_cartesian_2d(0.0..xs[xs.len() - 1] * 1e3, 0.0..zs[zs.len() - 1] * 1e3)
-            .expect("valid ranges");
-        chart.configure_mesh().x_desc("x (mm)").y_desc("z (mm)").disable_mesh().draw().expect("drawing to memory");
-        let color = |v: f64| {
-            if !v.is_finite() {
-                return RGBColor(200, 200, 200);
-            }
-            let t = ((v - lo) / (hi - lo)).clamp(0.0, 1.0);
-            // Blue -> white -> red.
-            if t < 0.5 {
-                let u = t / 0.5;
-                RGBColor((255.0 * u) as u8, (255.0 * u) as u8, 255)
-            } else {
-                let u = (t - 0.5) / 0.5;
-                RGBColor(255, (255.0 * (1.0 - u)) as u8, (255.0 * (1.0 - u)) as u8)
-            }
-        };
-        let half = |v: &[f64], i: usize| {
-            let lo = if i == 0 { v[0] } else { 0.5 * (v[i - 1] + v[i]) };
-            let hi = if i + 1 == v.len() { v[i] } else { 0.5 * (v[i] + v[i + 1]) };
-            (lo * 1e3, hi * 1e3)
-        };
-        chart
-            .draw_series((0..xs.len()).flat_map(|i| (0..zs.len()).map(move |j| (i, j))).map(|(i, j)| {
-                let (x0, x1) = half(xs, i);
-                let (z0, z1) = half(zs, j);
-                Rectangle::new([(x0, z0), (x1, z1)], color(value(i, j)).filled())
-            }))
-            .expect("drawing to memory");
-        let mut cb = ChartBuilder::on(&bar)
-            .margin_top(40)
-            .margin_bottom(45)
-            .y_label_area_size(60)
-            .caption(legend, ("sans-serif", 12))
-            .build_cartesian_2d(0.0..1.0, lo..hi)
-            .expect("valid ranges");
-        cb.configure_mesh()
-            .disable_x_axis()
-            .disable_mesh()
-            .y_label_formatter(&|v| sig(*v, 3))
-            .draw()
-            .expect("drawing to memory");
-        let steps = 60;
-        cb.draw_series((0..steps).map(|k| {
-            let a = lo + (hi - lo) * k as f64 / steps as f64;
-            let b = lo + (hi - lo) * (k + 1) as f64 / steps as f64;
-            Rectangle::new([(0.0, a), (1.0, b)], color(0.5 * (a + b)).filled())
-        }))
-        .expect("drawing to memory");
-        root.present().expect("drawing to memory");
-    }
-    svg
-}
-
 fn nearest(v: &[f64], x: f64) -> usize {
     v.iter().enumerate().min_by(|a, b| (a.1 - x).abs().total_cmp(&(b.1 - x).abs())).map_or(0, |(i, _)| i)
 }
@@ -532,22 +458,25 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                 }
             }
             let stem = format!("map-{}", slug(&c.name));
-            a.add(
-                format!("{stem}.svg"),
-                heat_map(
-                    &format!("{}: log10(C_plate / C_beam), {} L to {} L", c.name, INNER.0, INNER.1),
-                    &mp.xs,
-                    &mp.zs,
-                    |i, j| {
-                        if (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length())) {
-                            (ratio(i, j) + 1.0).log10()
-                        } else {
-                            f64::NAN
-                        }
-                    },
-                    "log10 ratio",
-                ),
-            );
+            let inner_x = |i: usize| (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length()));
+            let colour_map = ColourMap {
+                title: format!("{}: C_plate / C_beam over the plate", c.name),
+                x: Axis::linear("x (mm)"),
+                y: Axis::linear("z (mm)"),
+                xs: mp.xs.iter().map(|x| x * 1e3).collect(),
+                ys: mp.zs.iter().map(|z| z * 1e3).collect(),
+                values: (0..mp.xs.len())
+                    .map(|i| (0..mp.zs.len()).map(|j| if inner_x(i) { ratio(i, j) + 1.0 } else { f64::NAN }).collect())
+                    .collect(),
+                bar: Axis::log("C_plate / C_beam"),
+                missing: Some(format!(
+                    "x < {} L and x > {} L, where the beam's C falls to 0 and the ratio diverges",
+                    INNER.0, INNER.1
+                )),
+                marks: vec![],
+                notes: vec!["Supports at the four corners; the beam has the same C across the width.".into()],
+            };
+            a.add(format!("{stem}.svg"), colour_map.svg());
             // Interior statistics (away from the ends, where the beam ratio is singular).
             let inner: Vec<f64> = (0..mp.xs.len())
                 .filter(|&i| (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length())))

@@ -1233,7 +1233,7 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
     for p in &panels {
         let svg = line_plot(&p.title, "Impact position x (mm)", &p.y_label, &p.series, p.scale);
         a.add(format!("{}.svg", p.stem), svg);
-        a.add(format!("{}.csv", p.stem), crate::present::plot::series_csv(&p.series));
+        a.add(format!("{}.csv", p.stem), crate::present::plot::series_csv(&p.series, "x (mm)", &p.y_label));
         let fig = p.stem[..5].to_string();
         if fig != last_fig {
             let _ = writeln!(fig_md, "\n### Fig. {}\n", fig[3..].trim_start_matches('0'));

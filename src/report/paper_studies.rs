@@ -78,7 +78,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         crate::report::conclusions::study_figures()?
     {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
-        a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series));
+        a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series, "x (mm)", &ylabel));
         figures.push_str(&format!("![{title}]({stem}.svg)\n\n"));
     }
     // The template ends the last figure's line itself.

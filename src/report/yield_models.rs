@@ -443,7 +443,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         let stem = format!("fig{fig:02}-yield-{}-three-models", crate::present::rows::slug(&body.name));
         let title = format!("Fig. {fig} redone: {} yield velocity on the centreline, three models", body.name);
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", "v_y (m/s)", &series, Scale::Linear));
-        a.add(format!("{stem}.csv"), series_csv(&series));
+        a.add(format!("{stem}.csv"), series_csv(&series, "x (mm)", "v_y (m/s)"));
         figures.push_str(&format!("![{title}]({stem}.svg)\n\n"));
     }
     let secs_figs = t0.elapsed().as_secs_f64();
