@@ -252,8 +252,11 @@ pub fn log_ticks(lo: f64, hi: f64) -> Ticks {
         return Ticks { major, minor, factor: None };
     }
     let mut values = multiples(&[1.0, 2.0, 5.0]);
-    if values.len() < 3 {
-        values = multiples(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+    if values.len() < 4 {
+        values = multiples(&[1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.0]);
+    }
+    if values.len() < 4 {
+        values = multiples(&[1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
     }
     if values.len() < 3 {
         // Less than a factor of two: linear steps read best, placed on the log axis.
@@ -437,10 +440,16 @@ fn axes(out: &mut String, x: &Map, y: &Map, xt: &Ticks, yt: &Ticks) {
     }
 }
 
+/// The axis label with the ticks' common factor: into the unit, "C (10⁻⁶ m/N)", or after
+/// the label of a dimensionless quantity, "ratio (×10⁻³)".
 fn axis_label(a: &Axis, t: &Ticks) -> String {
-    match &t.factor {
-        Some(f) => format!("{} {f}", a.label),
-        None => a.label.clone(),
+    let Some(f) = &t.factor else { return a.label.clone() };
+    let power = f.trim_start_matches('×');
+    match (a.label.rfind('('), a.label.ends_with(')')) {
+        (Some(i), true) if !matches!(&a.label[i..], "(log)" | "(rel.)") => {
+            format!("{}({power} {}", &a.label[..i], &a.label[i + 1..])
+        }
+        _ => format!("{} ({f})", a.label),
     }
 }
 
@@ -522,6 +531,8 @@ impl Plot {
             cursor += 10.0 + 18.0 * named.len() as f64;
         }
         let note_top = cursor + 6.0;
+        let per_line = ((width - 24.0) / (11.0 * CHAR_EM)) as usize;
+        let notes: Vec<String> = notes.iter().flat_map(|n| wrap(n, per_line)).collect();
         let height = note_top + 16.0 * notes.len() as f64 + 6.0;
 
         let mut out = String::new();
@@ -684,9 +695,11 @@ pub struct ColourMap {
     pub x: Axis,
     pub y: Axis,
     /// Cell centres along x and y (the cells reach halfway to the neighbours, and to the
-    /// first and last centre at the border).
+    /// first and last centre at the border); with `edges`, the cells' edges instead (one
+    /// more than the values).
     pub xs: Vec<f64>,
     pub ys: Vec<f64>,
+    pub edges: bool,
     /// values[i][j] at (xs[i], ys[j]); NaN where nothing is shown (drawn grey).
     pub values: Vec<Vec<f64>>,
     /// The colour bar's label (the quantity with its unit) and scale.
@@ -711,7 +724,11 @@ impl ColourMap {
             (lo, hi) = if log { (lo / 1.1, hi * 1.1) } else { (lo - 0.5 * lo.abs().max(1.0), hi + 0.5 * hi.abs().max(1.0)) };
         }
         let t_of = |v: f64| if log { (v / lo).ln() / (hi / lo).ln() } else { (v - lo) / (hi - lo) };
+        let by_edges = self.edges;
         let edges = |c: &[f64], i: usize| {
+            if by_edges {
+                return (c[i], c[i + 1]);
+            }
             let a = if i == 0 { c[0] } else { 0.5 * (c[i - 1] + c[i]) };
             let b = if i + 1 == c.len() { c[i] } else { 0.5 * (c[i] + c[i + 1]) };
             (a, b)
@@ -737,12 +754,14 @@ impl ColourMap {
         let bar_title_w = text_width(&bar_title, 13.0);
         let width = (bar_x + bar_w + 8.0 + bar_lab_w + 30.0).max(left + pw + 24.0 + 16.0);
         let xlab_y = top + ph + 40.0;
-        let mut lines: Vec<String> = self.marks.iter().filter(|m| !m.label.is_empty()).map(|m| format!("◆ {}", m.label)).collect();
+        let mut lines: Vec<String> = self.marks.iter().filter(|m| !m.label.is_empty()).map(|m| format!("◇ {}", m.label)).collect();
         if let Some(m) = &self.missing {
             lines.push(format!("grey: {m}"));
         }
         lines.extend(self.notes.iter().cloned());
         let note_top = xlab_y + 10.0;
+        let per_line = ((width - 24.0) / (11.0 * CHAR_EM)) as usize;
+        let lines: Vec<String> = lines.iter().flat_map(|n| wrap(n, per_line)).collect();
         let height = (note_top + 16.0 * lines.len() as f64 + 8.0).max(top + ph + 30.0);
         // The bar's title runs along the bar, so it needs the bar's height, not width.
         let _ = bar_title_w;
@@ -762,9 +781,10 @@ impl ColourMap {
             out,
             r#"<clipPath id="field"><rect x="{left:.2}" y="{top:.2}" width="{pw:.2}" height="{ph:.2}"/></clipPath><g clip-path="url(#field)">"#
         );
-        for i in 0..self.xs.len() {
+        let (nx, ny) = (self.values.len(), self.values.first().map_or(0, Vec::len));
+        for i in 0..nx {
             let (a, b) = edges(&self.xs, i);
-            for j in 0..self.ys.len() {
+            for j in 0..ny {
                 let (c, d) = edges(&self.ys, j);
                 let v = self.values[i][j];
                 let fill = if ok(v) { hex(viridis(t_of(v))) } else { "#c8c8c8".into() };
@@ -819,10 +839,18 @@ impl ColourMap {
         );
         for m in &self.marks {
             let (px, py) = (x.at(m.x), y.at(m.y));
-            let r = 6.0;
+            let r = 5.0;
             let _ = write!(
                 out,
-                r#"<path d="M{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}Z" fill="white" stroke="black" stroke-width="1.5"/>"#,
+                r#"<path d="M{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}Z" fill="none" stroke="white" stroke-width="3"/><path d="M{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}L{:.2},{:.2}Z" fill="none" stroke="black" stroke-width="1.5"/>"#,
+                px,
+                py - r,
+                px + r,
+                py,
+                px,
+                py + r,
+                px - r,
+                py,
                 px,
                 py - r,
                 px + r,
@@ -902,14 +930,35 @@ pub struct Matrix {
     pub cells: Vec<Vec<Option<bool>>>,
 }
 
+/// `text` broken at spaces into lines of at most `width` characters.
+fn wrap(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = vec![];
+    let mut line = String::new();
+    for word in text.split(' ') {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    lines.push(line);
+    lines
+}
+
 impl Matrix {
-    /// The SVG document: green "yes", orange "no" (colour-blind-safe pair, and the words say it).
+    /// The SVG document: green "yes", orange "no" (a colour-blind-safe pair, and the words
+    /// say it too); long statements wrap.
     pub fn svg(&self) -> String {
-        let row_w = self.rows.iter().map(|r| text_width(r, 12.0)).fold(0.0, f64::max) + 16.0;
+        const WRAP: usize = 70;
+        let rows: Vec<Vec<String>> = self.rows.iter().map(|r| wrap(r, WRAP)).collect();
+        let row_w = rows.iter().flatten().map(|r| text_width(r, 12.0)).fold(0.0, f64::max) + 16.0;
         let col_w = self.columns.iter().map(|c| text_width(c, 12.0)).fold(56.0, f64::max) + 16.0;
-        let (cell_h, top) = (22.0, if self.title.is_empty() { 30.0 } else { 52.0 });
+        let top = if self.title.is_empty() { 30.0 } else { 52.0 };
+        let heights: Vec<f64> = rows.iter().map(|r| 15.0 * r.len() as f64 + 8.0).collect();
         let width = row_w + col_w * self.columns.len() as f64 + 12.0;
-        let height = top + cell_h * self.rows.len() as f64 + 12.0;
+        let height = top + heights.iter().sum::<f64>() + 12.0;
         let mut out = String::new();
         svg_open(&mut out, width, height);
         if !self.title.is_empty() {
@@ -924,14 +973,23 @@ impl Matrix {
                 esc(name)
             );
         }
-        for (r, name) in self.rows.iter().enumerate() {
-            let y = top + cell_h * r as f64;
-            let _ = write!(
-                out,
-                r#"<text x="8" y="{:.2}" font-size="12">{}</text>"#,
-                y + cell_h / 2.0 + 4.0,
-                esc(name)
-            );
+        let mut y = top;
+        for (r, lines) in rows.iter().enumerate() {
+            let h = heights[r];
+            if r % 2 == 1 {
+                let _ = write!(
+                    out,
+                    r##"<rect x="0" y="{y:.2}" width="{row_w:.2}" height="{h:.2}" fill="#f4f4f4"/>"##
+                );
+            }
+            for (k, line) in lines.iter().enumerate() {
+                let _ = write!(
+                    out,
+                    r#"<text x="8" y="{:.2}" font-size="12">{}</text>"#,
+                    y + 4.0 + 12.0 + 15.0 * k as f64,
+                    esc(line)
+                );
+            }
             for (c, v) in self.cells[r].iter().enumerate() {
                 let (fill, word, ink) = match v {
                     Some(true) => ("#009E73", "yes", "white"),
@@ -941,15 +999,12 @@ impl Matrix {
                 let x = row_w + col_w * c as f64;
                 let _ = write!(
                     out,
-                    r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" fill="{fill}" stroke="white" stroke-width="2"/><text x="{:.2}" y="{:.2}" text-anchor="middle" font-size="12" fill="{ink}">{word}</text>"#,
-                    x,
-                    y,
-                    col_w,
-                    cell_h,
+                    r#"<rect x="{x:.2}" y="{y:.2}" width="{col_w:.2}" height="{h:.2}" fill="{fill}" stroke="white" stroke-width="2"/><text x="{:.2}" y="{:.2}" text-anchor="middle" font-size="12" font-weight="bold" fill="{ink}">{word}</text>"#,
                     x + col_w / 2.0,
-                    y + cell_h / 2.0 + 4.0
+                    y + h / 2.0 + 4.0
                 );
             }
+            y += h;
         }
         out.push_str("</svg>\n");
         out

@@ -48,6 +48,7 @@ const ERROR_PAGE: &str = include_str!("templates/comparison/error-vs-time-page.m
 const ERROR_LINK: &str = include_str!("templates/comparison/error-vs-time.md");
 const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
 const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
+const FIELD: &str = include_str!("templates/comparison/field.md");
 
 /// A round number as the prose writes it: small integers as they are, the rest in
 /// exponent form (`1e15`).
@@ -417,6 +418,14 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         let _ = writeln!(md, "\n## {}\n\n{}", t.title, t.to_markdown());
     }
 
+    if scene.wants(Analysis::Responses) {
+        if let Some((md_field, w_svg, s_svg)) = peak_field_section(scene, &pr)? {
+            a.add("field-w.svg", w_svg);
+            a.add("field-stress.svg", s_svg);
+            md.push_str(&md_field);
+        }
+    }
+
     if let Some(mp) = &mp {
         // Maps and lines.
         md.push_str(&render(
@@ -465,6 +474,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                 y: Axis::linear("z (mm)"),
                 xs: mp.xs.iter().map(|x| x * 1e3).collect(),
                 ys: mp.zs.iter().map(|z| z * 1e3).collect(),
+                edges: false,
                 values: (0..mp.xs.len())
                     .map(|i| (0..mp.zs.len()).map(|j| if inner_x(i) { ratio(i, j) + 1.0 } else { f64::NAN }).collect())
                     .collect(),
@@ -606,6 +616,51 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let json = serde_json::json!({ "scene": scene.name, "beam": pr.beam, "plate": pr.plate, "mesh_levels": levels });
     a.add("results.json", serde_json::to_string_pretty(&json)?);
     Ok(a)
+}
+
+/// The plate at the maximum force of one impact: the first support set, body and velocity
+/// of the scene at its point nearest the plate's centre (the typical impact), as the plate
+/// FE model answers it. `None` when the scene has no such plate row.
+fn peak_field_section(scene: &Scene, pr: &Pair) -> Result<Option<(String, String, String)>, Failure> {
+    let (Some(cond), Some(body), Some(&v)) = (scene.conditions.first(), scene.bodies.first(), scene.velocities.first())
+    else {
+        return Ok(None);
+    };
+    let (cx, cz) = (scene.plate.length() / 2.0, scene.plate.width() / 2.0);
+    let row = pr
+        .plate
+        .responses
+        .iter()
+        .filter(|r| r.condition == cond.name && r.body == body.name && r.velocity == v && r.values().is_some())
+        .min_by(|a, b| (a.x - cx).hypot(a.z - cz).total_cmp(&(b.x - cx).hypot(b.z - cz)));
+    let Some(row) = row else { return Ok(None) };
+    let p_max = row.values().map_or(f64::NAN, |r| r.contact_force);
+    let what = format!(
+        "{} at {} m/s on {} at ({:.1}, {:.1}) mm",
+        body.name,
+        v,
+        cond.name,
+        row.x * 1e3,
+        row.z * 1e3
+    );
+    let f = crate::report::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &what)?;
+    let md = render(
+        "comparison/field.md",
+        FIELD,
+        &[
+            ("what", what),
+            ("p_max", sig(p_max, 3)),
+            ("mesh", crate::report::plate_field::FIELD_ELEMENTS.to_string()),
+            ("w_max", sig(f.w_max * 1e6, 3)),
+            ("w_x", format!("{:.1}", f.w_max_at.0 * 1e3)),
+            ("w_z", format!("{:.1}", f.w_max_at.1 * 1e3)),
+            ("left_out", f.left_out.to_string()),
+            ("stress_max", sig(f.stress_max / 1e3, 3)),
+            ("s_x", format!("{:.1}", f.stress_max_at.0 * 1e3)),
+            ("s_z", format!("{:.1}", f.stress_max_at.1 * 1e3)),
+        ],
+    )?;
+    Ok(Some((md, f.deflection_svg, f.stress_svg)))
 }
 
 /// The error-against-run-time study.

@@ -2,6 +2,7 @@
 //! with its reference, measured convergence rates and the extreme cases.
 
 use crate::output::Artifacts;
+use crate::present::plot::{series_csv, Axis, Plot, Series};
 use crate::present::table::{Cell, Table};
 use crate::scene::Scene;
 use analytic::Condition;
@@ -33,6 +34,29 @@ const SHORT_SIDE: usize = 16;
 /// A length in mm as the prose writes it: to 0.1 mm, no trailing zeros.
 fn mm(v: f64) -> String {
     ((v * 1e4).round() / 10.0).to_string()
+}
+
+/// The convergence figure: relative error of the point compliance against the element size
+/// h (over the plate length L) on log-log axes, with the slope-2 line the r² ln r singularity
+/// of the point-load Green's function predicts, drawn through the finest point of the first
+/// ladder.
+fn convergence_figure(ladders: &[(String, Vec<(f64, f64)>)]) -> Plot {
+    let mut plot = Plot::new(
+        "Plate FE: error of the point compliance against element size",
+        Axis::log("h / L"),
+        Axis::log("|C_FE / C_exact - 1|"),
+    );
+    for (name, pts) in ladders {
+        plot = plot.with(Series::new(name.clone(), pts.clone()));
+    }
+    if let Some(&(h0, e0)) = ladders.first().and_then(|l| l.1.last()) {
+        let (lo, hi) = ladders
+            .iter()
+            .flat_map(|l| l.1.iter().map(|p| p.0))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), h| (a.min(h), b.max(h)));
+        plot = plot.with(Series::guide("slope 2 (O(h²))", vec![(lo, e0 * (lo / h0).powi(2)), (hi, e0 * (hi / h0).powi(2))]));
+    }
+    plot
 }
 
 /// FE compliance at `p` for a ladder of meshes (n·2^k by m·2^k).
@@ -97,6 +121,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let exact = navier.converged((0.5, 0.0), (0.5, 0.0), 1e-12);
     let rows = ladder(sq, &Supports::all_edges_simple(), 4, 4, 6, (0.5, 0.5))?;
     let navier_table = convergence_table(&rows, exact);
+    let navier_errors: Vec<(f64, f64)> = rows.iter().map(|r| (1.0 / r.0 as f64, (r.2 - exact).abs() / exact)).collect();
     a.add("navier-square.csv", navier_table.to_csv());
     let navier_coefficient = format!("{:.7}", exact * d);
 
@@ -108,6 +133,19 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let exact = np.converged((ox, oz - ow / 2.0), (ox, oz - ow / 2.0), 1e-12);
     let rows = ladder(rect, &Supports::all_edges_simple(), 10, 7, 4, (ox, oz))?;
     let off_centre_table = convergence_table(&rows, exact);
+    let off_errors: Vec<(f64, f64)> = rows.iter().map(|r| (ol / r.0 as f64 / ol, (r.2 - exact).abs() / exact)).collect();
+    let convergence = convergence_figure(&[
+        ("Navier, square, centre".to_string(), navier_errors),
+        (format!("Navier, {ol} x {ow} m, at ({ox}, {oz})"), off_errors),
+    ]);
+    let finest_rate = |pts: &[(f64, f64)]| match pts {
+        [.., a, b] => format!("{:.3}", (a.1 / b.1).ln() / (a.0 / b.0).ln()),
+        _ => "-".into(),
+    };
+    let (navier_rate, off_rate) =
+        (finest_rate(&convergence.series[0].points), finest_rate(&convergence.series[1].points));
+    a.add("convergence.svg", convergence.svg());
+    a.add("convergence.csv", series_csv(&convergence.series, "h/L", "rel. error"));
     a.add("navier-off-centre.csv", off_centre_table.to_csv());
 
     // 3. Lévy SS-free-SS-free.
@@ -511,6 +549,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ("argyris_finest", argyris_finest),
             ("skfem_table", st.to_markdown()),
             ("timing_table", tt.to_markdown()),
+            ("navier_rate", navier_rate),
+            ("off_rate", off_rate),
         ],
     )?;
     a.add("index.md", md);

@@ -12,6 +12,7 @@ pub mod field;
 pub mod identify;
 pub mod paper;
 pub mod paper_studies;
+pub mod plate_field;
 pub mod signals;
 pub mod skfem;
 pub mod studies;
