@@ -42,6 +42,9 @@ pub enum Style {
     Points,
     /// A thin dashed grey reference (a slope guide, a closed form, a limit).
     Guide,
+    /// A dashed line in the colour of the series before it: a value that belongs to that
+    /// curve (its quasi-static counterpart, its limit).
+    Level,
 }
 
 /// A named series of (x, y) points.
@@ -59,6 +62,10 @@ impl Series {
     /// Markers only.
     pub fn points(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
         Self { name: name.into(), points, style: Style::Points }
+    }
+    /// A dashed line in the previous series' colour.
+    pub fn level(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self { name: name.into(), points, style: Style::Level }
     }
     /// A dashed reference line.
     pub fn guide(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
@@ -371,22 +378,42 @@ fn marker(out: &mut String, shape: usize, x: f64, y: f64, colour: &str) {
     }
 }
 
-/// Index of an earlier drawn series that `s` coincides with, on the plot's scales.
+/// `o`'s value at `x` by linear interpolation between its points (which must rise in x);
+/// `None` outside its range.
+fn value_at(o: &[(f64, f64)], x: f64) -> Option<f64> {
+    let k = o.partition_point(|p| p.0 < x);
+    match (k.checked_sub(1).and_then(|i| o.get(i)), o.get(k)) {
+        (_, Some(b)) if b.0 == x => Some(b.1),
+        (Some(a), Some(b)) if b.0 > a.0 => Some(a.1 + (x - a.0) / (b.0 - a.0) * (b.1 - a.1)),
+        _ => None,
+    }
+}
+
+/// Index of an earlier drawn series that `s` coincides with, on the plot's scales: every
+/// point of `s` within [`COINCIDE`] of the axis span of the other curve (interpolated, so the
+/// two need not share their x values) and the two spanning the same x range.
 fn coincides_with(series: &[Series], i: usize, x: &Map, y: &Map) -> Option<usize> {
-    let s = &series[i];
+    let fin = |s: &Series| -> Vec<(f64, f64)> {
+        s.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite()).collect()
+    };
+    let rising = |p: &[(f64, f64)]| p.windows(2).all(|w| w[1].0 > w[0].0);
+    let s = fin(&series[i]);
+    if s.len() < 2 || !rising(&s) {
+        return None;
+    }
     let span = |m: &Map| (m.p1 - m.p0).abs();
     (0..i).find(|&j| {
         let o = &series[j];
-        o.style != Style::Guide
-            && o.points.len() == s.points.len()
-            && !s.points.is_empty()
-            && s.points.iter().zip(&o.points).all(|(a, b)| {
-                let fa = a.0.is_finite() && a.1.is_finite();
-                let fb = b.0.is_finite() && b.1.is_finite();
-                if !fa || !fb {
-                    return fa == fb;
-                }
-                (x.at(a.0) - x.at(b.0)).abs() <= COINCIDE * span(x) && (y.at(a.1) - y.at(b.1)).abs() <= COINCIDE * span(y)
+        let op = fin(o);
+        if !matches!(o.style, Style::Line | Style::Points) || op.len() < 2 || !rising(&op) {
+            return false;
+        }
+        let ends = |a: f64, b: f64| (x.at(a) - x.at(b)).abs() <= COINCIDE * span(x);
+        ends(s[0].0, op[0].0)
+            && ends(s[s.len() - 1].0, op[op.len() - 1].0)
+            && s.iter().all(|p| {
+                let v = value_at(&op, p.0.clamp(op[0].0, op[op.len() - 1].0));
+                v.is_some_and(|v| (y.at(p.1) - y.at(v)).abs() <= COINCIDE * span(y))
             })
     })
 }
@@ -496,7 +523,7 @@ impl Plot {
         let mut coincide = vec![None; self.series.len()];
         for (i, s) in self.series.iter().enumerate() {
             let mut label = s.name.clone();
-            if s.style != Style::Guide {
+            if matches!(s.style, Style::Line | Style::Points) {
                 coincide[i] = coincides_with(&self.series, i, &x, &y);
             }
             if let Some(j) = coincide[i] {
@@ -563,11 +590,12 @@ impl Plot {
             r#"<clipPath id="area"><rect x="{left:.2}" y="{top:.2}" width="{pw:.2}" height="{ph:.2}"/></clipPath><g clip-path="url(#area)">"#
         );
         let mut colour_of = Vec::new();
-        let mut k = 0;
+        let mut k: usize = 0;
         let mut over = 0;
         for (i, s) in self.series.iter().enumerate() {
             let (colour, dash, width_px, shape) = match s.style {
                 Style::Guide => ("#555555", "5 4".to_string(), 1.2, 0),
+                Style::Level => (PALETTE[k.saturating_sub(1) % PALETTE.len()], "6 4".to_string(), 1.4, 0),
                 _ => {
                     let c = PALETTE[k % PALETTE.len()];
                     let d = DASHES[(k / PALETTE.len()) % DASHES.len()].to_string();
@@ -576,7 +604,11 @@ impl Plot {
                         over += 1;
                         (c, OVER_DASHES[(over - 1) % OVER_DASHES.len()].to_string(), 1.8, k - 1)
                     } else {
-                        (c, d, 2.0, k - 1)
+                        // Earlier curves a little wider, so a later curve drawn on top of one
+                        // it nearly follows leaves a visible rim of it.
+                        let lines = self.series.iter().filter(|s| s.style == Style::Line).count();
+                        let rank = (k - 1) as f64 / (lines.max(2) - 1) as f64;
+                        (c, d, 3.2 - 1.6 * rank.min(1.0), k - 1)
                     }
                 }
             };

@@ -621,6 +621,13 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         st.push(row);
     }
     let held = |m: usize| statements.iter().filter(|s| s.holds[m]).count();
+    let matrix = crate::present::plot::Matrix {
+        title: "The paper's yield statements under three models".into(),
+        columns: vec!["beam".into(), "plate".into(), "transient".into()],
+        rows: statements.iter().map(|s| s.text.clone()).collect(),
+        cells: statements.iter().map(|s| s.holds.iter().map(|&h| Some(h)).collect()).collect(),
+    };
+    a.add("statements.svg", matrix.svg());
 
     // ---------------------------------------------------------------- the prose
     let mid =
