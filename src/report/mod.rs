@@ -9,6 +9,7 @@ pub mod conclusions;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;
+pub mod field_series;
 pub mod identify;
 pub mod paper;
 pub mod paper_studies;
@@ -21,6 +22,7 @@ pub mod transient;
 pub mod yield_models;
 
 use crate::output::Artifacts;
+use crate::provenance::Provenance;
 use coupled::{Analysis, Scene};
 
 /// Any failure of a study, with its source.
@@ -31,29 +33,39 @@ pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 
 /// Everything a scene asks `impact compare` for: the beam-against-plate comparison, and
 /// beside it, each in its own folder, the paper's studies and the transient study when
-/// the scene names them.
+/// the scene names them. Every CSV and JSON carries its scene's provenance.
 pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let studies: [(Analysis, &str, Report); 3] = [
-        (Analysis::PaperStudies, "paper-studies", paper_studies::report),
-        (Analysis::PaperStudies, "yield-three-models", yield_models::report),
-        (Analysis::Transient, "dynamic", transient::report),
+    // The paper's studies run on the paper's own scene, whatever `scene` is: their files
+    // carry that scene's provenance.
+    let paper_scene = paper::Paper::new().scene;
+    let studies: [(Analysis, &str, Report, &Scene); 3] = [
+        (Analysis::PaperStudies, "paper-studies", paper_studies::report, &paper_scene),
+        (Analysis::PaperStudies, "yield-three-models", yield_models::report, &paper_scene),
+        (Analysis::Transient, "dynamic", transient::report, scene),
     ];
     let mut a = comparison::report(scene)?;
-    for (analysis, dir, report) in studies {
+    for (analysis, dir, report, of) in studies {
         if scene.wants(analysis) {
-            a.nest(dir, report(scene)?);
+            let mut part = report(scene)?;
+            Provenance::of(of).stamp(&mut part);
+            a.nest(dir, part);
         }
     }
+    Provenance::of(scene).stamp(&mut a);
     Ok(a)
 }
 
 /// The main job: the paper's reproduction, the plate FE verification, and the scene report
 /// of the default scene.
 pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let reports: [(&str, Report); 2] = [("paper", paper::report), ("fem", fem_verification::report)];
+    let paper_scene = paper::Paper::new().scene;
+    let reports: [(&str, Report, &Scene); 2] =
+        [("paper", paper::report, &paper_scene), ("fem", fem_verification::report, scene)];
     let mut all = Artifacts::new();
-    for (dir, report) in reports {
-        all.nest(dir, report(scene)?);
+    for (dir, report, of) in reports {
+        let mut part = report(scene)?;
+        Provenance::of(of).stamp(&mut part);
+        all.nest(dir, part);
     }
     all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene)?);
     Ok(all)

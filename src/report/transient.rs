@@ -42,7 +42,8 @@ pub const STEPS_PER_CONTACT: f64 = 200.0;
 pub const DYNAMIC_MESH: usize = 20;
 const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
 
-fn striker(scene: &Scene, body: &Sphere, v: f64) -> Striker {
+/// The scene's sphere `body` at `v` with the scene's contact law.
+pub fn striker(scene: &Scene, body: &Sphere, v: f64) -> Striker {
     let imp = impact_of(scene, body, v);
     Striker {
         k: imp.contact_stiffness,
