@@ -96,13 +96,15 @@ pub fn pair_on(scene: &Scene, model: PlateModel) -> Result<Pair, Failure> {
     Ok(Pair { beam, plate, model })
 }
 
+/// plate/beam - 1; none (an empty cell) where the beam's value is 0 and the ratio has no
+/// value, so a numeric column holds numbers only.
 fn rel(p: f64, b: f64) -> Cell {
     if b != 0.0 && b.is_finite() && p.is_finite() {
         Cell::Num(p / b - 1.0)
     } else if p == b {
         Cell::Num(0.0)
     } else {
-        Cell::Text("beam 0".into())
+        Cell::Empty
     }
 }
 
@@ -147,8 +149,8 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                 let z = pr.z;
                 let Some(p) = pr.values() else { continue };
                 let b = br.values();
-                let bv = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Text("n/a".into()), |b| Cell::Num(f(b)));
-                let brel = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Text("n/a".into()), |b| rel(f(p), f(b)));
+                let bv = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Empty, |b| Cell::Num(f(b)));
+                let brel = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Empty, |b| rel(f(p), f(b)));
                 let c = |v: &ResponseValues| v.compliance.unwrap_or(0.0);
                 let mut row: Vec<Cell> = vec![
                     pr.body.clone().into(),
@@ -186,19 +188,19 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                         "x (mm)",
                         "z (mm)",
                         "v (m/s)",
-                        "beam left",
-                        "plate (0, 0)",
-                        "plate (0, B)",
-                        "beam right",
-                        "plate (L, 0)",
-                        "plate (L, B)",
+                        "beam left (N)",
+                        "plate (0, 0) (N)",
+                        "plate (0, B) (N)",
+                        "beam right (N)",
+                        "plate (L, 0) (N)",
+                        "plate (L, B) (N)",
                     ],
                 );
                 for pr in pair.plate.responses.iter().filter(|r| r.condition == cond.name) {
                     let Some(br) = same_case(&pair.beam, pr) else { continue };
                     let Some(p) = pr.values() else { continue };
                     let bf = |n: &str| match br.values() {
-                        None => Cell::Text("n/a".into()),
+                        None => Cell::Empty,
                         Some(b) => b
                             .spring_forces
                             .iter()
@@ -242,9 +244,9 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                         py.body.clone().into(),
                         (py.x * 1e3).into(),
                         (py.z * 1e3).into(),
-                        b.map_or(Cell::Text("n/a".into()), |b| Cell::Num(b.yield_velocity)),
+                        b.map_or(Cell::Empty, |b| Cell::Num(b.yield_velocity)),
                         p.yield_velocity.into(),
-                        b.map_or(Cell::Text("n/a".into()), |b| rel(p.yield_velocity, b.yield_velocity)),
+                        b.map_or(Cell::Empty, |b| rel(p.yield_velocity, b.yield_velocity)),
                     ]);
                 }
             }
@@ -440,7 +442,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ],
         )?);
         let mut map_csv =
-            Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
+            Table::new("", &["condition", "x (mm)", "z (mm)", "C beam (m/N)", "C plate (m/N)", "FE ± (m/N)", "C plate/beam - 1"]);
         for (ci, c) in scene.conditions.iter().enumerate() {
             if c.beam_condition().is_none() {
                 md.push_str(&render("comparison/no-map.md", NO_MAP, &[("condition", c.name.clone())])?);

@@ -785,9 +785,9 @@ fn comparison_markdown(
             "quantity",
             "printed",
             "equations (converged)",
-            "rel. dev.",
+            "rel. dev. (converged)",
             "recursion ğ=1e-6",
-            "rel. dev.",
+            "rel. dev. (recursion)",
             "verdict",
         ],
     );
@@ -802,9 +802,9 @@ fn comparison_markdown(
                 "quantity",
                 "printed",
                 "equations (converged)",
-                "rel. dev.",
+                "rel. dev. (converged)",
                 "recursion ğ=1e-6",
-                "rel. dev.",
+                "rel. dev. (recursion)",
                 "verdict",
             ],
         );
