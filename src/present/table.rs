@@ -10,6 +10,17 @@ pub enum Cell {
     Num(f64),
     /// An integer count.
     Int(u64),
+    /// A number shown with the given significant digits (CSV: in full).
+    Sig(f64, usize),
+    /// A relative difference (a fraction), shown in percent to 3 significant figures;
+    /// below 1e-12 it is round-off and shown as 0 (never "-0 %").
+    Rel(f64),
+    /// An input as given (a position, a velocity): shortest form, to 9 significant digits,
+    /// so a unit conversion's round-off does not show (13.752, not 13.75199999).
+    Given(f64),
+    /// A value with its error estimate, shown to the digit the error supports (the error's
+    /// leading two digits); a value within its error of zero is shown as 0.
+    Measured { value: f64, error: f64 },
     /// Not applicable here.
     Empty,
 }
@@ -140,9 +151,55 @@ pub fn csv_key(header: &str) -> (String, f64) {
     (if u.is_empty() { name } else { format!("{name}_{u}") }, f)
 }
 
+/// A relative difference in percent, 3 significant figures, with its sign; round-off
+/// (|v| < 1e-12) is 0.
+pub fn percent(v: f64) -> String {
+    if !v.is_finite() {
+        return "-".into();
+    }
+    if v.abs() < 1e-12 {
+        return "0 %".into();
+    }
+    let p = 100.0 * v;
+    let mag = p.abs().log10().floor() as i32;
+    // Three significant figures also above 1000 %: 18559 % is 18600 %.
+    let s = if mag >= 3 {
+        let unit = 10f64.powi(mag - 2);
+        format!("{:.0}", (p.abs() / unit).round() * unit)
+    } else {
+        sig(p.abs(), 3)
+    };
+    format!("{}{s} %", if p < 0.0 { "−" } else { "+" })
+}
+
+/// `value` rounded to what `error` supports: the decimal place of the error's second
+/// significant digit (at most 7 significant digits; 0 when the value is within its error of 0).
+pub fn measured(value: f64, error: f64) -> String {
+    if !value.is_finite() {
+        return "-".into();
+    }
+    if !(error.is_finite() && error > 0.0) {
+        return sig(value, 7);
+    }
+    if value.abs() <= error {
+        return "0".into();
+    }
+    let digits = (value.abs().log10().floor() - error.log10().floor() + 2.0).clamp(1.0, 7.0) as usize;
+    sig(value, digits)
+}
+
 impl Cell {
     fn show(&self) -> String {
         match self {
+            Cell::Sig(v, _) | Cell::Rel(v) | Cell::Measured { value: v, .. } if !v.is_finite() => "-".into(),
+            Cell::Sig(v, d) => sig(*v, *d),
+            Cell::Given(v) if !v.is_finite() => "-".into(),
+            Cell::Given(v) => {
+                let r: f64 = format!("{v:.8e}").parse().unwrap_or(*v);
+                format!("{r}")
+            }
+            Cell::Rel(v) => percent(*v),
+            Cell::Measured { value, error } => measured(*value, *error),
             Cell::Text(s) => s.clone(),
             // No value (a ratio to zero, a contact that never ended) is shown as none, never
             // as NaN or inf.
@@ -156,8 +213,19 @@ impl Cell {
         match self {
             Cell::Text(s) => s.clone(),
             Cell::Num(v) if !v.is_finite() => String::new(),
-            Cell::Num(v) if factor == 1.0 => format!("{v:e}"),
-            Cell::Num(v) => format!("{:e}", v * factor),
+            Cell::Num(v) | Cell::Sig(v, _) | Cell::Rel(v) | Cell::Given(v) | Cell::Measured { value: v, .. }
+                if !v.is_finite() =>
+            {
+                String::new()
+            }
+            Cell::Num(v) | Cell::Sig(v, _) | Cell::Rel(v) | Cell::Given(v) | Cell::Measured { value: v, .. }
+                if factor == 1.0 =>
+            {
+                format!("{v:e}")
+            }
+            Cell::Num(v) | Cell::Sig(v, _) | Cell::Rel(v) | Cell::Given(v) | Cell::Measured { value: v, .. } => {
+                format!("{:e}", v * factor)
+            }
             Cell::Int(i) => i.to_string(),
             Cell::Empty => String::new(),
         }
@@ -265,6 +333,19 @@ mod tests {
         assert_eq!(sig(0.00876323, 7), "0.008763230");
         assert_eq!(sig(2.4275e-6, 4), "2.428e-6");
         assert_eq!(sig(0.0, 7), "0");
+    }
+
+    #[test]
+    fn round_off_is_not_data() {
+        assert_eq!(percent(-0.2068189), "−20.7 %");
+        assert_eq!(percent(1.12), "+112 %");
+        assert_eq!(percent(185.59), "+18600 %");
+        assert_eq!(percent(-4.985435e-20), "0 %");
+        assert_eq!(percent(0.0), "0 %");
+        // C = 6.221534e-7 with an error of 3.3e-11: digits to the 1e-12 place.
+        assert_eq!(measured(6.221534e-7, 3.3e-11), "6.22153e-7");
+        assert_eq!(measured(2.237948e-31, 1.4e-31), "0");
+        assert_eq!(measured(1.712807, 1.7e-3), "1.7128");
     }
 
     #[test]
