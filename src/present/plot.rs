@@ -550,7 +550,11 @@ impl Plot {
         let widest = named.iter().map(|&i| text_width(&labels[i], 12.0)).fold(0.0, f64::max);
         let legend_right = widest <= 260.0;
         let legend_w = if named.is_empty() { 0.0 } else { widest + 46.0 };
-        let width = left + pw + if legend_right { legend_w.max(16.0) + 8.0 } else { 24.0 };
+        let width = if legend_right {
+            left + pw + legend_w.max(16.0) + 8.0
+        } else {
+            (left + pw + 24.0).max(left + legend_w + 12.0)
+        };
         let xlab_y = top + ph + 40.0;
         let mut cursor = xlab_y + 10.0;
         let legend_top = if legend_right { top } else { cursor + 6.0 };

@@ -656,7 +656,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         "findings.json",
         serde_json::to_string_pretty(&serde_json::json!({
             "report": "beam against plate",
-            "findings": findings.iter().map(|f| f.trim().trim_start_matches("- ")).collect::<Vec<_>>(),
+            "findings": findings.iter().map(|f| f.trim().trim_start_matches("- ").replace("**", "")).collect::<Vec<_>>(),
             "numbers": numbers,
         }))?,
     );

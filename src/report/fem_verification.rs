@@ -121,6 +121,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let exact = navier.converged((0.5, 0.0), (0.5, 0.0), 1e-12);
     let rows = ladder(sq, &Supports::all_edges_simple(), 4, 4, 6, (0.5, 0.5))?;
     let navier_table = convergence_table(&rows, exact);
+    let navier_vals: Vec<f64> = rows.iter().map(|r| r.2).collect();
+    let navier_richardson = richardson(&navier_vals).map_or(f64::NAN, |r| (r.extrapolated - exact).abs() / exact);
     let navier_errors: Vec<(f64, f64)> = rows.iter().map(|r| (1.0 / r.0 as f64, (r.2 - exact).abs() / exact)).collect();
     a.add("navier-square.csv", navier_table.to_csv());
     let navier_coefficient = format!("{:.7}", exact * d);
@@ -164,11 +166,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             "Richardson rel. error",
         ],
     );
+    let mut levy_worst = 0.0f64;
     for (x, z) in [(0.5, 0.3), (0.25, 0.3), (0.5, 0.15), (0.5, 0.6), (0.1, 0.6)] {
         let exact = levy.converged((x, z - LEVY.1 / 2.0), (x, z - LEVY.1 / 2.0), 1e-12);
         let rows = ladder(lp, &Supports::simple_free(), 24, 16, 3, (x, z))?;
         let v: Vec<f64> = rows.iter().map(|r| r.2).collect();
         let ext = richardson(&v).expect("three values");
+        levy_worst = levy_worst.max((ext.extrapolated - exact).abs() / exact);
         lt.push(vec![
             format!("({x}, {z})").into(),
             exact.into(),
@@ -423,7 +427,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         "",
         &[
             "case",
-            "point (mm)",
+            "x (mm)",
+            "z (mm)",
             "BFS extrapolated (m/N)",
             "± estimate",
             "Argyris extrapolated (m/N)",
@@ -434,6 +439,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         ],
     );
     let (mut bfs_finest, mut argyris_finest) = (String::new(), String::new());
+    let mut skfem_worst = 0.0f64;
     for name in crate::report::skfem::CASES {
         let case = crate::report::skfem::load(name)?;
         let bfs = crate::report::skfem::rust_runs(&case, 4)?;
@@ -446,15 +452,20 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         for (i, (r, g)) in ours.iter().zip(&arg).enumerate() {
             let (x, z) = case.points[i];
             let zero = g.extrapolated.abs() < 1e-20;
+            if !zero {
+                skfem_worst = skfem_worst.max((r.extrapolated - g.extrapolated).abs() / g.extrapolated);
+            }
             st.push(vec![
                     name.into(),
-                    format!("({:.1}, {:.1})", x * 1e3, z * 1e3).into(),
+                    Cell::Given(x * 1e3),
+                    Cell::Given(z * 1e3),
                     r.extrapolated.into(),
                     r.error_estimate.into(),
                     g.extrapolated.into(),
                     g.error_estimate.into(),
+                    // Both 0 on a supported edge: no relative difference exists.
                     if zero {
-                        Cell::from("both 0 (supported edge)")
+                        Cell::Empty
                     } else {
                         Cell::Num((r.extrapolated - g.extrapolated).abs() / g.extrapolated)
                     },
@@ -549,7 +560,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ("argyris_finest", argyris_finest),
             ("skfem_table", st.to_markdown()),
             ("timing_table", tt.to_markdown()),
+            ("navier_rate_summary", navier_rate.clone()),
             ("navier_rate", navier_rate),
+            ("navier_richardson", format!("{navier_richardson:.1e}")),
+            ("levy_worst", format!("{levy_worst:.1e}")),
+            ("narrow_summary", format!("{:.2}", -narrow_coefficient)),
+            ("update_summary", format!("{update_difference:.0e}")),
+            ("skfem_worst", format!("{skfem_worst:.1e}")),
             ("off_rate", off_rate),
         ],
     )?;
