@@ -471,7 +471,11 @@ fn execute(command: Command) -> Result<(), Failure> {
                 };
                 let v = match velocity_m_per_s {
                     Some(v) if (1e-9..=1000.0).contains(&v) => v,
-                    Some(v) => return Err(format!("--velocity-m-per-s {v} is outside the allowed range [1e-9, 1000] m/s").into()),
+                    Some(v) => {
+                        return Err(
+                            format!("--velocity-m-per-s {v} is outside the allowed range [1e-9, 1000] m/s").into()
+                        )
+                    }
                     None => *scene.velocities.first().ok_or("the scene has no velocity; give --velocity-m-per-s")?,
                 };
                 let dir = out.unwrap_or_else(|| PathBuf::from("field-series"));

@@ -53,7 +53,10 @@ impl Provenance {
     pub fn csv_line(&self) -> String {
         // A name with a line break or ';' would break the one-line form.
         let name: String = self.scene.chars().map(|c| if c.is_control() || c == ';' { ' ' } else { c }).collect();
-        format!("# {} {}; scene {name}; scene_sha256 {}; units {}\n", self.program, self.version, self.scene_sha256, self.units)
+        format!(
+            "# {} {}; scene {name}; scene_sha256 {}; units {}\n",
+            self.program, self.version, self.scene_sha256, self.units
+        )
     }
 
     /// `csv` with the provenance line first (unchanged if it already has one).
@@ -71,9 +74,10 @@ impl Provenance {
     pub fn stamp_json(&self, json: &[u8]) -> Vec<u8> {
         let Ok(text) = std::str::from_utf8(json) else { return json.to_vec() };
         let trimmed = text.trim_start();
-        if !trimmed.starts_with('{') || serde_json::from_str::<serde_json::Value>(text).map_or(true, |v| {
-            v.as_object().is_none_or(|o| o.contains_key("provenance"))
-        }) {
+        if !trimmed.starts_with('{')
+            || serde_json::from_str::<serde_json::Value>(text)
+                .map_or(true, |v| v.as_object().is_none_or(|o| o.contains_key("provenance")))
+        {
             return json.to_vec();
         }
         let at = text.len() - trimmed.len() + 1;
@@ -115,8 +119,8 @@ mod tests {
         text.insert_str(0, "# a comment\n");
         let b = Scene::parse(&text, "same").unwrap();
         assert_eq!(Provenance::of(&a).scene_sha256, Provenance::of(&b).scene_sha256);
-        let c = Scene::parse(&crate::scene::DEFAULT_SCENE.replace("length_mm = 458.4", "length_mm = 458.5"), "x")
-            .unwrap();
+        let c =
+            Scene::parse(&crate::scene::DEFAULT_SCENE.replace("length_mm = 458.4", "length_mm = 458.5"), "x").unwrap();
         assert_ne!(Provenance::of(&a).scene_sha256, Provenance::of(&c).scene_sha256);
         assert_eq!(Provenance::of(&a).scene_sha256.len(), 64);
     }

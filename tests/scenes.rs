@@ -211,7 +211,10 @@ fn command_line_writes_csv_and_json() {
     let con1 = std::fs::read_to_string(dir.path().join("responses-1.csv")).unwrap();
     // The first line is the provenance comment, the second the header.
     let mut lines = con1.lines();
-    assert!(lines.next().unwrap().starts_with(&format!("# impact {}; scene paper-table-1; scene_sha256 ", env!("CARGO_PKG_VERSION"))));
+    assert!(lines
+        .next()
+        .unwrap()
+        .starts_with(&format!("# impact {}; scene paper-table-1; scene_sha256 ", env!("CARGO_PKG_VERSION"))));
     let header = lines.next().unwrap();
     assert!(header.starts_with("model,body,x_m,z_m,v_m_per_s,") && !header.contains("spring"), "{header}");
     assert_eq!(v["provenance"]["scene"], "paper-table-1");

@@ -757,7 +757,8 @@ impl ColourMap {
             (lo, hi) = if log { (1.0, 10.0) } else { (0.0, 1.0) };
         }
         if hi <= lo {
-            (lo, hi) = if log { (lo / 1.1, hi * 1.1) } else { (lo - 0.5 * lo.abs().max(1.0), hi + 0.5 * hi.abs().max(1.0)) };
+            (lo, hi) =
+                if log { (lo / 1.1, hi * 1.1) } else { (lo - 0.5 * lo.abs().max(1.0), hi + 0.5 * hi.abs().max(1.0)) };
         }
         let t_of = |v: f64| if log { (v / lo).ln() / (hi / lo).ln() } else { (v - lo) / (hi - lo) };
         let by_edges = self.edges;
@@ -790,7 +791,8 @@ impl ColourMap {
         let bar_title_w = text_width(&bar_title, 13.0);
         let width = (bar_x + bar_w + 8.0 + bar_lab_w + 30.0).max(left + pw + 24.0 + 16.0);
         let xlab_y = top + ph + 40.0;
-        let mut lines: Vec<String> = self.marks.iter().filter(|m| !m.label.is_empty()).map(|m| format!("◇ {}", m.label)).collect();
+        let mut lines: Vec<String> =
+            self.marks.iter().filter(|m| !m.label.is_empty()).map(|m| format!("◇ {}", m.label)).collect();
         if let Some(m) = &self.missing {
             lines.push(format!("grey: {m}"));
         }
@@ -1013,10 +1015,7 @@ impl Matrix {
         for (r, lines) in rows.iter().enumerate() {
             let h = heights[r];
             if r % 2 == 1 {
-                let _ = write!(
-                    out,
-                    r##"<rect x="0" y="{y:.2}" width="{row_w:.2}" height="{h:.2}" fill="#f4f4f4"/>"##
-                );
+                let _ = write!(out, r##"<rect x="0" y="{y:.2}" width="{row_w:.2}" height="{h:.2}" fill="#f4f4f4"/>"##);
             }
             for (k, line) in lines.iter().enumerate() {
                 let _ = write!(

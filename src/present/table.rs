@@ -20,7 +20,10 @@ pub enum Cell {
     Given(f64),
     /// A value with its error estimate, shown to the digit the error supports (the error's
     /// leading two digits); a value within its error of zero is shown as 0.
-    Measured { value: f64, error: f64 },
+    Measured {
+        value: f64,
+        error: f64,
+    },
     /// Not applicable here.
     Empty,
 }

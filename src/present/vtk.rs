@@ -73,7 +73,12 @@ pub fn to_vtu(field: &FieldFile, force_n: f64) -> Result<Vec<u8>, vtkio::Error> 
 /// A deflection field alone as a `.vtu`: the mesh (nodes (x, z) in m, counter-clockwise
 /// quads) with the point data `displacement` = (0, 0, w) and `w`, m. One frame of a time
 /// series.
-pub fn deflection_vtu(title: &str, nodes: &[[f64; 2]], quads: &[[usize; 4]], w: &[f64]) -> Result<Vec<u8>, vtkio::Error> {
+pub fn deflection_vtu(
+    title: &str,
+    nodes: &[[f64; 2]],
+    quads: &[[usize; 4]],
+    w: &[f64],
+) -> Result<Vec<u8>, vtkio::Error> {
     let points: Vec<f64> = nodes.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
     let connectivity: Vec<u64> = quads.iter().flatten().map(|&n| n as u64).collect();
     let offsets: Vec<u64> = (1..=quads.len() as u64).map(|i| 4 * i).collect();

@@ -2,7 +2,7 @@
 //! balance and yield model, and where and by how much they differ.
 
 use crate::output::Artifacts;
-use crate::present::plot::{line_plot, Axis, ColourMap, Scale, Series};
+use crate::present::plot::{line_plot, Axis, ColourMap, Plot, Scale, Series};
 use crate::present::rows::slug;
 use crate::present::table::{percent, sig, Cell, Table};
 use crate::report::paper::Paper;
@@ -705,9 +705,11 @@ fn point_findings(
             .iter()
             .filter(|r| r.condition == cond.name)
             .filter_map(|py| {
-                let by = pr.beam.yields.iter().find(|b| {
-                    b.condition == py.condition && b.body == py.body && b.x == py.x && b.z == py.z
-                })?;
+                let by = pr
+                    .beam
+                    .yields
+                    .iter()
+                    .find(|b| b.condition == py.condition && b.body == py.body && b.x == py.x && b.z == py.z)?;
                 Some(py.values()?.yield_velocity / by.values()?.yield_velocity - 1.0)
             })
             .collect();
@@ -716,7 +718,8 @@ fn point_findings(
         }
         let (lo, hi) = range(&ratios);
         let ends_text = if ends > 0 {
-            let count = if ends == 1 { "1 supported-end point".to_string() } else { format!("{ends} supported-end points") };
+            let count =
+                if ends == 1 { "1 supported-end point".to_string() } else { format!("{ends} supported-end points") };
             render("comparison/finding-ends.md", FINDING_ENDS, &[("count", count), ("plate_c", sig(ends_c, 3))])?
                 .trim_end()
                 .to_string()
@@ -781,23 +784,12 @@ fn peak_field_section(scene: &Scene, pr: &Pair) -> Result<Option<(String, String
         .min_by(|a, b| (a.x - cx).hypot(a.z - cz).total_cmp(&(b.x - cx).hypot(b.z - cz)));
     let Some(row) = row else { return Ok(None) };
     let p_max = row.values().map_or(f64::NAN, |r| r.contact_force);
-    let what = format!(
-        "{} at {} m/s on {} at ({:.1}, {:.1}) mm",
-        body.name,
-        v,
-        cond.name,
-        row.x * 1e3,
-        row.z * 1e3
-    );
+    let what = format!("{} at {} m/s on {} at ({:.1}, {:.1}) mm", body.name, v, cond.name, row.x * 1e3, row.z * 1e3);
     let f = crate::report::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &what)?;
     let finding = render(
         "comparison/finding-field.md",
         FINDING_FIELD,
-        &[
-            ("what", what.clone()),
-            ("w_max", sig(f.w_max * 1e6, 3)),
-            ("stress_max", sig(f.stress_max / 1e3, 3)),
-        ],
+        &[("what", what.clone()), ("w_max", sig(f.w_max * 1e6, 3)), ("stress_max", sig(f.stress_max / 1e3, 3))],
     )?;
     let md = render(
         "comparison/field.md",
@@ -878,13 +870,10 @@ pub fn error_vs_time(scene: &Scene) -> Result<ErrorVsTime, Failure> {
             }
         }
     }
-    let svg = line_plot(
-        "Plate FE: max error against run time",
-        "time (s)",
-        "max relative error",
-        &[Series::new("BFS ladder", pts_plot)],
-        Scale::Log,
-    );
+    // Both axes span decades: log-log, each mesh a marked point.
+    let svg = Plot::new("Plate FE: max error against run time", Axis::log("time (s)"), Axis::log("max relative error"))
+        .with(Series::new("BFS mesh ladder (each point a mesh)", pts_plot))
+        .svg();
     let mesh = |r: &(usize, usize, usize, f64, Vec<f64>)| format!("{} x {}", r.0, r.1);
     Ok(ErrorVsTime { table: t, recommended: rec, svg, reference_meshes: [mesh(&runs[n - 2]), mesh(&runs[n - 1])] })
 }

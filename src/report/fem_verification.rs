@@ -54,7 +54,8 @@ fn convergence_figure(ladders: &[(String, Vec<(f64, f64)>)]) -> Plot {
             .iter()
             .flat_map(|l| l.1.iter().map(|p| p.0))
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), h| (a.min(h), b.max(h)));
-        plot = plot.with(Series::guide("slope 2 (O(h²))", vec![(lo, e0 * (lo / h0).powi(2)), (hi, e0 * (hi / h0).powi(2))]));
+        plot = plot
+            .with(Series::guide("slope 2 (O(h²))", vec![(lo, e0 * (lo / h0).powi(2)), (hi, e0 * (hi / h0).powi(2))]));
     }
     plot
 }
@@ -135,7 +136,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let exact = np.converged((ox, oz - ow / 2.0), (ox, oz - ow / 2.0), 1e-12);
     let rows = ladder(rect, &Supports::all_edges_simple(), 10, 7, 4, (ox, oz))?;
     let off_centre_table = convergence_table(&rows, exact);
-    let off_errors: Vec<(f64, f64)> = rows.iter().map(|r| (ol / r.0 as f64 / ol, (r.2 - exact).abs() / exact)).collect();
+    let off_errors: Vec<(f64, f64)> =
+        rows.iter().map(|r| (ol / r.0 as f64 / ol, (r.2 - exact).abs() / exact)).collect();
     let convergence = convergence_figure(&[
         ("Navier, square, centre".to_string(), navier_errors),
         (format!("Navier, {ol} x {ow} m, at ({ox}, {oz})"), off_errors),

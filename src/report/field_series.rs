@@ -104,7 +104,7 @@ pub fn contact_series(
     // The last step of the contact (separation) as the closing frame.
     if rec.commits % FRAME_EVERY != 0 {
         rec.snapshot();
-        frames.extend(rec.frames.drain(..));
+        frames.append(&mut rec.frames);
     }
     let (nx, nz) = (mesh.nx(), mesh.nz());
     let mut points = Vec::with_capacity(mesh.nodes());
@@ -133,10 +133,8 @@ pub fn contact_series(
         listed.push((t, file));
     }
     a.add("contact.pvd", pvd(&listed));
-    let mut h = Table::new(
-        "",
-        &["t (s)", "force (N)", "compression (m)", "plate displacement (m)", "sphere velocity (m/s)"],
-    );
+    let mut h =
+        Table::new("", &["t (s)", "force (N)", "compression (m)", "plate displacement (m)", "sphere velocity (m/s)"]);
     for smp in &o.history {
         h.push(vec![
             smp.t.into(),

@@ -1406,5 +1406,20 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
         ("solvers", solvers.to_markdown()),
     ];
     a.add("index.md", crate::report::template::render("paper.md", PAPER_TEMPLATE, &values)?);
+    // The findings the page opens with, as numbers.
+    a.add(
+        "findings.json",
+        serde_json::to_string_pretty(&serde_json::json!({
+            "report": "the paper reproduced",
+            "printed_numbers_compared": rows.len(),
+            "within_print_rounding": counts[0],
+            "within_explain_threshold": counts[1],
+            "explained": counts[2],
+            "unexplained": counts[3],
+            "table3_con3_deflection_unit_factor": 10i64.pow(slip_exponent.unsigned_abs()),
+            "table2_delta_my_ratio": { "coal": d_my_coal, "gangue 1": d_my_gangue },
+            "table5_overall_min_yield_velocity_m_per_s": overall_min,
+        }))?,
+    );
     Ok(a)
 }

@@ -90,12 +90,9 @@ pub fn peak_field(
     // contact's 3-D stress state) and the sampled singularity still dominates.
     let h = scene.plate.thickness();
     let touching = f.near_load();
-    let near: Vec<bool> = (0..sx.len())
-        .map(|e| touching[e] || (cx[e % ne] - x).hypot(cz[e / ne] - z) < h)
-        .collect();
-    let vm: Vec<f64> = (0..sx.len())
-        .map(|e| if near[e] { f64::NAN } else { p_max * von_mises(sx[e], sz[e], sxz[e]) })
-        .collect();
+    let near: Vec<bool> = (0..sx.len()).map(|e| touching[e] || (cx[e % ne] - x).hypot(cz[e / ne] - z) < h).collect();
+    let vm: Vec<f64> =
+        (0..sx.len()).map(|e| if near[e] { f64::NAN } else { p_max * von_mises(sx[e], sz[e], sxz[e]) }).collect();
     let (emax, smax) =
         vm.iter().enumerate().fold((0, f64::NEG_INFINITY), |a, (e, &v)| if v > a.1 { (e, v) } else { a });
     let (unit, unit_name) = if smax >= 1e6 { (1e6, "MPa") } else { (1e3, "kPa") };

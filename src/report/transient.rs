@@ -298,9 +298,11 @@ pub fn size_map(scene: &Scene) -> Result<(Table, Vec<Series>), Failure> {
 /// transient point, each with its quasi-static plate P_max (dashed, same colour), beside the
 /// Hertz history of the same sphere on a rigid target (the stiff limit).
 fn history_figure(scene: &Scene, cases: &[TransientCase]) -> Plot {
-    let mut plot = Plot::new("Contact force: transient against quasi-static", Axis::linear("t (ms)"), Axis::linear("P (N)"));
+    let mut plot =
+        Plot::new("Contact force: transient against quasi-static", Axis::linear("t (ms)"), Axis::linear("P (N)"));
     let Some(first) = cases.first() else { return plot };
-    let same = |c: &&TransientCase| c.condition == first.condition && c.body == first.body && c.velocity == first.velocity;
+    let same =
+        |c: &&TransientCase| c.condition == first.condition && c.body == first.body && c.velocity == first.velocity;
     let mut t_end: f64 = 0.0;
     for c in cases.iter().filter(same) {
         let h = &c.outcome.history;
@@ -320,7 +322,8 @@ fn history_figure(scene: &Scene, cases: &[TransientCase]) -> Plot {
         let hertz = Striker { restitution: 1.0, law: ContactLaw::Flores, ..s };
         let tc = hertz.hertz_time();
         let o = simulate(&hertz, None, tc / STEPS_PER_CONTACT, 1.5 * tc);
-        plot = plot.with(Series::guide("Hertz, rigid target", o.history.iter().map(|s| (s.t * 1e3, s.force)).collect()));
+        plot =
+            plot.with(Series::guide("Hertz, rigid target", o.history.iter().map(|s| (s.t * 1e3, s.force)).collect()));
     }
     plot.note(format!(
         "{}, {} at {} m/s. Dashed: the quasi-static plate's P_max of the curve above it, drawn up to the transient maximum compression.",
@@ -361,8 +364,12 @@ fn ratio_figure(size_map: &[Series], cases: &[TransientCase]) -> Plot {
     let (ylo, yhi) = all.iter().fold((1.0f64, 1.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
     let limit = coupled::validity::QUASI_STATIC_MIN_RATIO;
     if xlo.is_finite() {
-        plot = plot.with(Series::guide("ratio 1 (quasi-static exact)", vec![(xlo.min(limit), 1.0), (xhi.max(limit), 1.0)]));
-        plot = plot.with(Series::guide(format!("t_c/T₁ = {limit} (quasi-static criterion)"), vec![(limit, ylo), (limit, yhi)]));
+        plot = plot
+            .with(Series::guide("ratio 1 (quasi-static exact)", vec![(xlo.min(limit), 1.0), (xhi.max(limit), 1.0)]));
+        plot = plot.with(Series::guide(
+            format!("t_c/T₁ = {limit} (quasi-static criterion)"),
+            vec![(limit, ylo), (limit, yhi)],
+        ));
     }
     plot.note("Thickness varies along each size-map line; a thick plate is nearly rigid for the sphere, so its ratio returns to 1 whatever t_c/T₁.")
 }
