@@ -19,7 +19,7 @@ pub enum Cell {
     /// so a unit conversion's round-off does not show (13.752, not 13.75199999).
     Given(f64),
     /// A value with its error estimate, shown to the digit the error supports (the error's
-    /// leading two digits); a value within its error of zero is shown as 0.
+    /// leading two digits); a value not resolved from zero is shown as 0 ([`measured`]).
     Measured {
         value: f64,
         error: f64,
@@ -176,7 +176,8 @@ pub fn percent(v: f64) -> String {
 }
 
 /// `value` rounded to what `error` supports: the decimal place of the error's second
-/// significant digit (at most 7 significant digits; 0 when the value is within its error of 0).
+/// significant digit (at most 7 significant digits). A value not resolved from zero (at most
+/// twice its error, as round-off at a held point is) is shown as 0.
 pub fn measured(value: f64, error: f64) -> String {
     if !value.is_finite() {
         return "-".into();
@@ -184,7 +185,7 @@ pub fn measured(value: f64, error: f64) -> String {
     if !(error.is_finite() && error > 0.0) {
         return sig(value, 7);
     }
-    if value.abs() <= error {
+    if value.abs() <= 2.0 * error {
         return "0".into();
     }
     let digits = (value.abs().log10().floor() - error.log10().floor() + 2.0).clamp(1.0, 7.0) as usize;

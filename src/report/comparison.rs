@@ -894,7 +894,8 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
             "P_max beam (N)",
             "P_max plate (N)",
             "plate/beam - 1",
-            "balance residual (beam, plate)",
+            "balance residual beam",
+            "balance residual plate",
             "FE ± rel.",
             "stable",
         ],
@@ -947,8 +948,9 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
                 pb.into(),
                 pp.into(),
                 rel(pp, pb),
-                format!("{}, {}", sig(res(&rb), 2), sig(res(&rp), 2)).into(),
-                fe_rel.into(),
+                Cell::Sig(res(&rb), 2),
+                Cell::Sig(res(&rp), 2),
+                Cell::Sig(fe_rel, 2),
                 (if stable { "yes" } else { "NO" }).into(),
             ]);
         }
