@@ -90,6 +90,7 @@ fn si_unit(unit: &str) -> (String, f64) {
         "GPa" => ("Pa", 1e9),
         "MPa" => ("Pa", 1e6),
         "kN" => ("N", 1e3),
+        "m/s^2" | "m/s²" => ("m_per_s2", 1.0),
         "%" => ("", 0.01),
         "rel." | "log" | "-" | "" => ("", 1.0),
         other => return (key_part(other), 1.0),
