@@ -7,5 +7,6 @@
 
 pub mod output;
 pub mod present;
+pub mod provenance;
 pub mod report;
 pub mod scene;

@@ -6,6 +6,7 @@ use coupled::transient::{Discretisation, DEFAULT_TOLERANCE};
 use coupled::{BeamModel, PlateModel};
 use impact::output::{Artifacts, OutputDir, OutputFile};
 use impact::present::rows::{response_tables, slug, yield_tables};
+use impact::provenance::Provenance;
 use impact::report::studies::{BASE_MESH, LEVELS};
 use impact::report::Failure;
 use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
@@ -71,6 +72,9 @@ enum FieldFormat {
     Json,
     /// VTK XML UnstructuredGrid, with stresses and the near-load flag.
     Vtu,
+    /// The transient model's deflection during contact: a ParaView time series (`.pvd`
+    /// with one `.vtu` per frame, and the run's history.csv) into a directory.
+    Pvd,
 }
 
 /// The `--model` choice.
@@ -117,6 +121,9 @@ enum Command {
         out: Option<PathBuf>,
         #[command(flatten)]
         transient: TransientArgs,
+        /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
+        #[arg(long)]
+        json: bool,
     },
     /// Transient impact against the quasi-static models for a scene (default out:
     /// impact-out/<scene name>/dynamic).
@@ -128,6 +135,9 @@ enum Command {
         out: Option<PathBuf>,
         #[command(flatten)]
         transient: TransientArgs,
+        /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
+        #[arg(long)]
+        json: bool,
     },
     /// Sensor signals of the scene's impacts by the reduced-order model (its `[signals]`
     /// table): every support set, body, transient point and velocity; the time series as CSV
@@ -160,11 +170,17 @@ enum Command {
     Paper {
         #[arg(long, value_name = "DIR", default_value = "impact-out/paper")]
         out: PathBuf,
+        /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
+        #[arg(long)]
+        json: bool,
     },
     /// The main job on the default scene: every report into DIR.
     Report {
         #[arg(long, value_name = "DIR", default_value = "reports")]
         out: PathBuf,
+        /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
+        #[arg(long)]
+        json: bool,
     },
     /// Time the plate FE compliance map (101 x 21 points, Con 1-3) on the mesh that
     /// reaches the tolerance at the centre.
@@ -220,6 +236,12 @@ enum Command {
         /// is always per unit load.
         #[arg(long, default_value_t = 1.0, value_name = "F")]
         force_n: f64,
+        /// --format pvd: the striking body (a name from the scene; default its first).
+        #[arg(long)]
+        body: Option<String>,
+        /// --format pvd: impact velocity, m/s (default the scene's first).
+        #[arg(long, value_name = "V")]
+        velocity_m_per_s: Option<f64>,
     },
     /// Print a shell completion script to standard output (e.g. `impact completions bash >
     /// ~/.local/share/bash-completion/completions/impact`).
@@ -357,21 +379,27 @@ fn execute(command: Command) -> Result<(), Failure> {
             let r = results(&scene, &c.model.kinds())?;
             emit(&c, target, &scene, r)
         }
-        Command::Paper { out } => {
+        Command::Paper { out, json } => {
             let target = OutputDir::prepare(&out)?;
-            commit(target, &impact::report::paper::reproduce()?)
+            let scene = impact::report::paper::Paper::new().scene;
+            let mut a = impact::report::paper::reproduce()?;
+            Provenance::of(&scene).stamp(&mut a);
+            commit_reporting(target, &a, &scene, json)
         }
-        Command::Dynamic { scene, out, transient } => {
+        Command::Dynamic { scene, out, transient, json } => {
             let scene = transient.apply(load_bodies(&scene, "dynamic")?)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            commit(target, &impact::report::transient::report(&scene)?)
+            let mut a = impact::report::transient::report(&scene)?;
+            Provenance::of(&scene).stamp(&mut a);
+            commit_reporting(target, &a, &scene, json)
         }
         Command::Signals { scene, out: dir, json } => {
             let scene = load(&scene)?;
             let dir = dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-signals", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            let (run, tables, artifacts) = impact::report::signals::signals(&scene)?;
+            let (run, tables, mut artifacts) = impact::report::signals::signals(&scene)?;
+            Provenance::of(&scene).stamp(&mut artifacts);
             commit(target, &artifacts)?;
             if json {
                 out(&format!("{}\n", serde_json::to_string_pretty(&run)?))
@@ -380,11 +408,11 @@ fn execute(command: Command) -> Result<(), Failure> {
                 out(&format!("scene: {} ({})\n\n{}", scene.name, scene.description, text.join("\n")))
             }
         }
-        Command::Compare { scene, out, transient } => {
+        Command::Compare { scene, out, transient, json } => {
             let scene = transient.apply(load_bodies(&scene, "compare")?)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            commit(target, &impact::report::scene_report(&scene)?)
+            commit_reporting(target, &impact::report::scene_report(&scene)?, &scene, json)
         }
         Command::Identify { scene, out: dir, json } => {
             let scene = Scene::load(&scene)?;
@@ -414,7 +442,8 @@ fn execute(command: Command) -> Result<(), Failure> {
             let dir =
                 dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-identify", slug(&scene.name))));
             let mut target = OutputDir::prepare(&dir)?;
-            let (artifacts, summary) = impact::report::identify::report(&scene, &mut target)?;
+            let (mut artifacts, summary) = impact::report::identify::report(&scene, &mut target)?;
+            Provenance::of(&scene).stamp(&mut artifacts);
             commit(target, &artifacts)?;
             if json {
                 out(&format!("{}\n", serde_json::to_string_pretty(&summary)?))?;
@@ -425,9 +454,10 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Report { out } => {
+        Command::Report { out, json } => {
             let target = OutputDir::prepare(&out)?;
-            commit(target, &impact::report::main_report(&Scene::default_scene())?)
+            let scene = Scene::default_scene();
+            commit_reporting(target, &impact::report::main_report(&scene)?, &scene, json)
         }
         Command::FemBench { scene, json, tolerance, nx, nz } => {
             let scene = load(&scene)?;
@@ -439,7 +469,8 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             let r = impact::report::fem_bench::bench(&scene, tolerance, nx, nz)?;
             if json {
-                out(&format!("{}\n", serde_json::to_string_pretty(&r)?))?;
+                let doc = Provenance::of(&scene).stamp_json(serde_json::to_string_pretty(&r)?.as_bytes());
+                out(&format!("{}\n", String::from_utf8(doc)?))?;
             } else {
                 for t in impact::report::fem_bench::bench_tables(&r) {
                     out(&format!("\n{}", t.to_text()))?;
@@ -447,7 +478,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Field { scene, condition, x_mm, z_mm, elements, out, format, force_n } => {
+        Command::Field { scene, condition, x_mm, z_mm, elements, out, format, force_n, body, velocity_m_per_s } => {
             let scene = load(&scene)?;
             let cond = scene.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
                 let names: Vec<&str> = scene.conditions.iter().map(|c| c.name.as_str()).collect();
@@ -469,20 +500,55 @@ fn execute(command: Command) -> Result<(), Failure> {
                 return Err(format!("--force-n {force_n} must be a positive number of newtons").into());
             }
             // The JSON format is defined per unit load; a scaled JSON would read as one.
-            if format == FieldFormat::Json && force_n != 1.0 {
-                return Err("--force-n scales the .vtu only; add --format vtu (the JSON is per unit load)".into());
+            if format != FieldFormat::Vtu && force_n != 1.0 {
+                return Err("--force-n scales the .vtu only; add --format vtu (the JSON is per unit load, the .pvd at the impact's own force)".into());
+            }
+            if format != FieldFormat::Pvd && (body.is_some() || velocity_m_per_s.is_some()) {
+                return Err("--body and --velocity-m-per-s choose the impact of --format pvd only".into());
+            }
+            if format == FieldFormat::Pvd {
+                let sphere = match &body {
+                    None => scene.bodies.first().ok_or("the scene has no body")?,
+                    Some(b) => scene.bodies.iter().find(|s| &s.name == b).ok_or_else(|| {
+                        let names: Vec<&str> = scene.bodies.iter().map(|s| s.name.as_str()).collect();
+                        format!("--body '{b}' is not in the scene; it has {names:?}")
+                    })?,
+                };
+                let v = match velocity_m_per_s {
+                    Some(v) if (1e-9..=1000.0).contains(&v) => v,
+                    Some(v) => {
+                        return Err(
+                            format!("--velocity-m-per-s {v} is outside the allowed range [1e-9, 1000] m/s").into()
+                        )
+                    }
+                    None => *scene.velocities.first().ok_or("the scene has no velocity; give --velocity-m-per-s")?,
+                };
+                let dir = out.unwrap_or_else(|| PathBuf::from("field-series"));
+                let target = OutputDir::prepare(&dir)?;
+                let mut a = impact::report::field_series::contact_series(
+                    &scene,
+                    cond,
+                    sphere,
+                    v,
+                    (x_mm * 1e-3, z_mm * 1e-3),
+                    elements,
+                )?;
+                Provenance::of(&scene).stamp(&mut a);
+                return commit(target, &a);
             }
             let out = out.unwrap_or_else(|| {
                 PathBuf::from(match format {
                     FieldFormat::Json => "field.json",
-                    FieldFormat::Vtu => "field.vtu",
+                    FieldFormat::Vtu | FieldFormat::Pvd => "field.vtu",
                 })
             });
             let target = OutputFile::prepare(&out)?;
             let f = impact::report::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
             let bytes = match format {
-                FieldFormat::Json => format!("{}\n", serde_json::to_string(&f)?).into_bytes(),
-                FieldFormat::Vtu => impact::present::vtk::to_vtu(&f, force_n)?,
+                FieldFormat::Json => {
+                    Provenance::of(&scene).stamp_json(format!("{}\n", serde_json::to_string(&f)?).as_bytes())
+                }
+                FieldFormat::Vtu | FieldFormat::Pvd => impact::present::vtk::to_vtu(&f, force_n)?,
             };
             if target.is_stdout() {
                 let mut o = std::io::stdout().lock();
@@ -522,6 +588,40 @@ fn commit(target: OutputDir, artifacts: &Artifacts) -> Result<(), Failure> {
     Ok(())
 }
 
+/// Commits a report's files and, with `json`, prints what a program needs to use them: the
+/// provenance, the directory, every file with its size and SHA-256, and the findings the
+/// report opens with (`findings.json`, when it has one).
+fn commit_reporting(target: OutputDir, artifacts: &Artifacts, scene: &Scene, json: bool) -> Result<(), Failure> {
+    let dir = target.path().to_path_buf();
+    commit(target, artifacts)?;
+    if json {
+        let files: Vec<serde_json::Value> = artifacts
+            .paths()
+            .map(|p| {
+                let bytes = artifacts.get(&p.to_string_lossy()).unwrap_or_default();
+                serde_json::json!({
+                    "path": p.to_string_lossy(),
+                    "bytes": bytes.len(),
+                    "sha256": impact::output::sha256_hex(bytes),
+                })
+            })
+            .collect();
+        let findings: Vec<serde_json::Value> = artifacts
+            .paths()
+            .filter(|p| p.file_name().is_some_and(|n| n == "findings.json"))
+            .filter_map(|p| serde_json::from_slice(artifacts.get(&p.to_string_lossy())?).ok())
+            .collect();
+        let doc = serde_json::json!({
+            "provenance": Provenance::of(scene),
+            "directory": dir.to_string_lossy(),
+            "findings": findings,
+            "files": files,
+        });
+        out(&format!("{}\n", serde_json::to_string_pretty(&doc)?))?;
+    }
+    Ok(())
+}
+
 /// One line on the rows: how many, how many valid, and what the others are beyond.
 fn status_line(results: &Results) -> String {
     let s = results.summary();
@@ -544,6 +644,7 @@ fn status_line(results: &Results) -> String {
 /// The JSON document of a run: the results with what a reader needs to trust them.
 #[derive(serde::Serialize)]
 struct Document<'a> {
+    provenance: Provenance,
     program: &'static str,
     version: &'static str,
     units: &'static str,
@@ -558,6 +659,7 @@ fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) 
     // a sweep of many points must not hold its results several times over.
     let json = || -> Result<String, Failure> {
         Ok(serde_json::to_string_pretty(&Document {
+            provenance: Provenance::of(scene),
             program: "impact",
             version: env!("CARGO_PKG_VERSION"),
             units: "SI (m, m/s, N, m/N, J ratios)",
@@ -575,6 +677,7 @@ fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) 
             }
         }
         a.add("results.json", json()?);
+        Provenance::of(scene).stamp(&mut a);
         commit(target, &a)?;
     }
     if c.json {

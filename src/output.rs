@@ -116,6 +116,13 @@ impl Artifacts {
         }
     }
 
+    /// Replaces every file's content by `f(path, content)`.
+    pub fn map_files(&mut self, mut f: impl FnMut(&Path, &[u8]) -> Vec<u8>) {
+        for (p, b) in &mut self.files {
+            *b = f(p, b);
+        }
+    }
+
     pub fn paths(&self) -> impl Iterator<Item = &Path> {
         self.files.iter().map(|(p, _)| p.as_path())
     }

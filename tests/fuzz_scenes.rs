@@ -1083,7 +1083,8 @@ fn check_rendered(stats: &mut Stats, label: &str, results: &Results) {
                 continue;
             }
         };
-        let text_columns = ["model", "body", "validity", "validity at v_y"];
+        // The CSV names its columns in key form (`validity_at_v_y`).
+        let text_columns = ["model", "body", "validity", "validity_at_v_y"];
         for rec in reader.records() {
             let rec = match rec {
                 Ok(r) => r,

@@ -204,3 +204,54 @@ fn oversized_requests_are_refused_with_their_size() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("100000 points") && err.contains("GB") && err.contains("at most"), "{err}");
 }
+
+/// `--json` on the report commands: the run's provenance and every file written, each
+/// listed with the size and SHA-256 it has on disk; every CSV opens with the same provenance
+/// line and every JSON with the same provenance object; the findings are those the report
+/// wrote. The scene's hash does not change with how the file is written (comments, spacing).
+#[test]
+fn report_commands_print_json_with_provenance() {
+    let dir = tempfile::tempdir().unwrap();
+    let small = SMALL.replace("analyses = [\"responses\", \"yield-velocity\"]", "analyses = [\"responses\"]");
+    let hash_of = |text: &str, name: &str| -> String {
+        let scene = dir.path().join(name);
+        std::fs::write(&scene, text).unwrap();
+        let out = dir.path().join(format!("{name}-out"));
+        let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+            .args(["compare", "--json", "--scene"])
+            .arg(&scene)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("stdout is JSON");
+        let hash = v["provenance"]["scene_sha256"].as_str().unwrap().to_string();
+        assert_eq!(hash.len(), 64);
+        assert_eq!(v["provenance"]["version"], env!("CARGO_PKG_VERSION"));
+        let files = v["files"].as_array().unwrap();
+        assert!(files.len() >= 4);
+        for f in files {
+            let path = out.join(f["path"].as_str().unwrap());
+            let bytes = std::fs::read(&path).unwrap();
+            assert_eq!(bytes.len() as u64, f["bytes"].as_u64().unwrap(), "{}", path.display());
+            let text = String::from_utf8_lossy(&bytes);
+            if path.extension().is_some_and(|e| e == "csv") {
+                let first = text.lines().next().unwrap();
+                assert!(first.starts_with("# impact ") && first.contains(&hash), "{}: {first}", path.display());
+            }
+            if path.extension().is_some_and(|e| e == "json") {
+                let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+                assert_eq!(doc["provenance"]["scene_sha256"], hash.as_str(), "{}", path.display());
+            }
+        }
+        let findings = v["findings"][0]["findings"].as_array().expect("the comparison's findings");
+        assert!(findings.iter().any(|f| f.as_str().unwrap().contains("more compliant than the beam")));
+        hash
+    };
+    let a = hash_of(&small, "a.toml");
+    let b = hash_of(&format!("# the same scene\n{}", small.replace(" = ", "  =  ")), "b.toml");
+    assert_eq!(a, b, "comments and spacing do not change the scene's hash");
+    let c = hash_of(&small.replace("restitution = 0.65", "restitution = 0.66"), "c.toml");
+    assert_ne!(a, c, "a different scene has a different hash");
+}

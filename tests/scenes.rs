@@ -209,7 +209,15 @@ fn command_line_writes_csv_and_json() {
     assert!(dir.path().join("responses-2.csv").exists());
     // Con 1 has no springs: its table has no spring column.
     let con1 = std::fs::read_to_string(dir.path().join("responses-1.csv")).unwrap();
-    assert!(!con1.lines().next().unwrap().contains("spring"));
+    // The first line is the provenance comment, the second the header.
+    let mut lines = con1.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .starts_with(&format!("# impact {}; scene paper-table-1; scene_sha256 ", env!("CARGO_PKG_VERSION"))));
+    let header = lines.next().unwrap();
+    assert!(header.starts_with("model,body,x_m,z_m,v_m_per_s,") && !header.contains("spring"), "{header}");
+    assert_eq!(v["provenance"]["scene"], "paper-table-1");
 }
 
 /// Huge values that pass a "positive" check would overflow after conversion to SI (1e300 mm

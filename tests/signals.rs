@@ -66,14 +66,16 @@ fn writes_time_series_with_units_and_a_json_summary() {
     assert_eq!(v["models"][0]["settings"]["modes"], 40);
     let csv = std::fs::read_to_string(out.join(file)).unwrap();
     let mut lines = csv.lines();
+    // The provenance comment, then the header in the CSV key style (quantity, SI unit).
+    assert!(lines.next().unwrap().starts_with("# impact "));
     let header = lines.next().unwrap();
     for h in [
-        "t (s)",
-        "displacement s1 (m)",
-        "velocity s1 (m/s)",
-        "acceleration s1 (m/s^2)",
-        "\"reaction corner (0, 0) (N)\"",
-        "\"spring force corner (L, B) (N)\"",
+        "t_s",
+        "displacement_s1_m",
+        "velocity_s1_m_per_s",
+        "acceleration_s1_m_per_s2",
+        "reaction_corner_0_0_N",
+        "spring_force_corner_L_B_N",
     ] {
         assert!(header.contains(h), "{header}");
     }

@@ -10,6 +10,10 @@
    the same points, quads and fields as the JSON, displacement = (0, 0, w), the stresses
    6M/h², the near-load flag on the elements touching the load, and --force-n scaling
    every value.
+6. `impact field --format pvd` (the transient deflection during contact, a ParaView time
+   series): the .pvd parsed as XML, every .vtu it names read by meshio on the same mesh,
+   displacement = (0, 0, w), times rising from 0, and the struck node's w at each frame equal
+   to the plate displacement of the history.csv row of the same time.
 
 Prints one line per check and a closing 'N passed, N failed'; exits non-zero on failure.
 Usage: python check_roundtrip.py [--impact PATH_TO_BINARY]
@@ -67,6 +71,43 @@ def check_rust_vtu(check, path, doc, force, h, load):
           f"({int(near.sum())} elements)")
 
 
+def check_rust_pvd(check, series_dir, doc, load):
+    """meshio reads every frame the .pvd names; each frame's struck-node deflection is the
+    history's plate displacement at the same time. The history's value is N^T w with the
+    element's shape functions evaluated at the node, which are 1 and 0 up to the round-off of
+    the node coordinates: hence a 1e-12 relative tolerance rather than equality."""
+    import csv
+    import xml.etree.ElementTree as ET
+
+    tag = ".pvd from Rust"
+    root = ET.parse(series_dir / "contact.pvd").getroot()
+    sets = root.findall("./Collection/DataSet")
+    check(f"{tag} is a VTK collection with frames", root.get("type") == "Collection" and len(sets) >= 10, f"({len(sets)} frames)")
+    times = [float(d.get("timestep")) for d in sets]
+    check(f"{tag} times start at 0 and rise", times[0] == 0.0 and all(b > a for a, b in zip(times, times[1:])))
+    with open(series_dir / "history.csv", newline="") as f:
+        rows = [r for r in csv.DictReader(line for line in f if not line.startswith("#"))]
+    by_time = {float(r["t_s"]): float(r["plate_displacement_m"]) for r in rows}
+    pts = np.asarray(doc["points"])
+    node = int(np.argmin((pts[:, 0] - load[0]) ** 2 + (pts[:, 1] - load[1]) ** 2))
+    same_mesh, warp, matched, worst, peak = True, True, 0, 0.0, 0.0
+    for d, t in zip(sets, times):
+        m = meshio.read(series_dir / d.get("file"))
+        same_mesh &= np.array_equal(m.points[:, :2], pts) and np.array_equal(m.cells_dict["quad"], np.asarray(doc["quads"]))
+        w = np.asarray(m.point_data["w"])
+        w = w[:, 0] if w.ndim == 2 else w
+        disp = m.point_data["displacement"]
+        warp &= disp.shape == (len(w), 3) and np.array_equal(disp, np.column_stack([0 * w, 0 * w, w]))
+        peak = max(peak, float(np.abs(w).max()))
+        if t in by_time:
+            matched += 1
+            worst = max(worst, abs(w[node] - by_time[t]))
+    check(f"{tag} every frame on the same mesh", same_mesh)
+    check(f"{tag} every frame: displacement = (0, 0, w)", warp)
+    check(f"{tag} frames after t = 0 found in history.csv", matched == len(sets) - 1, f"({matched} of {len(sets) - 1})")
+    check(f"{tag} struck-node w = history plate displacement", peak > 0 and worst <= 1e-12 * peak, f"(worst {worst:.1e} m of {peak:.2e} m)")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--impact", default=str(ROOT / "target" / "release" / "impact"))
@@ -119,6 +160,15 @@ def main(argv=None):
                 check=True,
             )
             check_rust_vtu(check, rust_vtu, doc, force, plate["thickness"], (x, z))
+
+        # The transient time series, on the same mesh as the JSON.
+        series = Path(tmp) / "series"
+        subprocess.run(
+            [args.impact, "field", "--condition", "Con 1", "--x-mm", str(x_mm), "--z-mm", str(z_mm), "--elements", "20",
+             "--format", "pvd", "--out", str(series)],
+            check=True,
+        )
+        check_rust_pvd(check, series, doc, (x, z))
 
     passed = sum(results)
     failed = len(results) - passed

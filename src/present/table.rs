@@ -10,6 +10,20 @@ pub enum Cell {
     Num(f64),
     /// An integer count.
     Int(u64),
+    /// A number shown with the given significant digits (CSV: in full).
+    Sig(f64, usize),
+    /// A relative difference (a fraction), shown in percent to 3 significant figures;
+    /// below 1e-12 it is round-off and shown as 0 (never "-0 %").
+    Rel(f64),
+    /// An input as given (a position, a velocity): shortest form, to 9 significant digits,
+    /// so a unit conversion's round-off does not show (13.752, not 13.75199999).
+    Given(f64),
+    /// A value with its error estimate, shown to the digit the error supports (the error's
+    /// leading two digits); a value not resolved from zero is shown as 0 ([`measured`]).
+    Measured {
+        value: f64,
+        error: f64,
+    },
     /// Not applicable here.
     Empty,
 }
@@ -57,9 +71,140 @@ pub fn sig(v: f64, sig: usize) -> String {
     }
 }
 
+/// The SI unit key and the factor to SI of a display unit ("mm" -> ("m", 1e-3)); a leading
+/// scale ("1e-7 m") multiplies in. Units this table does not know are kept as written, in key
+/// form, with factor 1.
+fn si_unit(unit: &str) -> (String, f64) {
+    let unit = unit.trim();
+    if let Some((scale, rest)) = unit.split_once(' ') {
+        if let Ok(k) = scale.parse::<f64>() {
+            let (u, f) = si_unit(rest);
+            return (u, k * f);
+        }
+    }
+    let (u, f) = match unit {
+        "mm" => ("m", 1e-3),
+        "µm" | "μm" | "um" => ("m", 1e-6),
+        "ms" => ("s", 1e-3),
+        "µs" | "μs" => ("s", 1e-6),
+        "GPa" => ("Pa", 1e9),
+        "MPa" => ("Pa", 1e6),
+        "kN" => ("N", 1e3),
+        "m/s^2" | "m/s²" => ("m_per_s2", 1.0),
+        "%" => ("", 0.01),
+        "rel." | "log" | "-" | "" => ("", 1.0),
+        other => return (key_part(other), 1.0),
+    };
+    (u.to_string(), f)
+}
+
+/// A name in key form: symbols kept in their case (P_max, C), Greek letters and sub- and
+/// superscripts spelt out, operators as words, everything else an underscore.
+fn key_part(name: &str) -> String {
+    let mut s = String::new();
+    let spaced = name.replace(" - ", " minus ").replace(" + ", " plus ");
+    for c in spaced.chars() {
+        let word = match c {
+            'δ' => "delta",
+            'Δ' => "Delta",
+            'σ' => "sigma",
+            'ν' => "nu",
+            'ρ' => "rho",
+            'τ' => "tau",
+            'ω' => "omega",
+            'θ' | 'Θ' => "theta",
+            'ζ' => "zeta",
+            'φ' => "phi",
+            'μ' | 'µ' => "mu",
+            '±' => "error",
+            '/' => "_per_",
+            '₀' | '⁰' => "0",
+            '₁' | '¹' => "1",
+            '₂' | '²' => "2",
+            '³' => "3",
+            c if c.is_ascii_alphanumeric() => {
+                s.push(c);
+                continue;
+            }
+            _ => "_",
+        };
+        s.push_str(word);
+    }
+    let mut out = String::new();
+    for part in s.split('_').filter(|p| !p.is_empty()) {
+        if !out.is_empty() {
+            out.push('_');
+        }
+        out.push_str(part);
+    }
+    out
+}
+
+/// The CSV column name of a display header, and the factor that takes its values to SI:
+/// `"x (mm)"` -> `("x_m", 1e-3)`, `"P_max (N)"` -> `("P_max_N", 1.0)`,
+/// `"C (m/N)"` -> `("C_m_per_N", 1.0)`. One style for every CSV the program writes: the
+/// quantity in key form, then its SI unit; a dimensionless column has no unit part.
+pub fn csv_key(header: &str) -> (String, f64) {
+    let h = header.trim();
+    let (name, unit) = match (h.rfind('('), h.ends_with(')')) {
+        (Some(i), true) => (&h[..i], &h[i + 1..h.len() - 1]),
+        _ => (h, ""),
+    };
+    let (u, f) = si_unit(unit);
+    let name = key_part(name);
+    (if u.is_empty() { name } else { format!("{name}_{u}") }, f)
+}
+
+/// A relative difference in percent, 3 significant figures, with its sign; round-off
+/// (|v| < 1e-12) is 0.
+pub fn percent(v: f64) -> String {
+    if !v.is_finite() {
+        return "-".into();
+    }
+    if v.abs() < 1e-12 {
+        return "0 %".into();
+    }
+    let p = 100.0 * v;
+    let mag = p.abs().log10().floor() as i32;
+    // Three significant figures also above 1000 %: 18559 % is 18600 %.
+    let s = if mag >= 3 {
+        let unit = 10f64.powi(mag - 2);
+        format!("{:.0}", (p.abs() / unit).round() * unit)
+    } else {
+        sig(p.abs(), 3)
+    };
+    format!("{}{s} %", if p < 0.0 { "−" } else { "+" })
+}
+
+/// `value` rounded to what `error` supports: the decimal place of the error's second
+/// significant digit (at most 7 significant digits). A value not resolved from zero (at most
+/// twice its error, as round-off at a held point is) is shown as 0.
+pub fn measured(value: f64, error: f64) -> String {
+    if !value.is_finite() {
+        return "-".into();
+    }
+    if !(error.is_finite() && error > 0.0) {
+        return sig(value, 7);
+    }
+    if value.abs() <= 2.0 * error {
+        return "0".into();
+    }
+    let digits = (value.abs().log10().floor() - error.log10().floor() + 2.0).clamp(1.0, 7.0) as usize;
+    sig(value, digits)
+}
+
 impl Cell {
     fn show(&self) -> String {
         match self {
+            Cell::Sig(v, _) | Cell::Rel(v) | Cell::Measured { value: v, .. } if !v.is_finite() => "-".into(),
+            Cell::Sig(v, d) => sig(*v, *d),
+            Cell::Given(v) if !v.is_finite() => "-".into(),
+            Cell::Given(v) => {
+                let r: f64 = format!("{v:.8e}").parse().unwrap_or(*v);
+                format!("{r}")
+            }
+            Cell::Rel(v) => percent(*v),
+            Cell::Measured { value, error } => measured(*value, *error),
             Cell::Text(s) => s.clone(),
             // No value (a ratio to zero, a contact that never ended) is shown as none, never
             // as NaN or inf.
@@ -69,11 +214,23 @@ impl Cell {
             Cell::Empty => "-".into(),
         }
     }
-    fn csv(&self) -> String {
+    fn csv(&self, factor: f64) -> String {
         match self {
             Cell::Text(s) => s.clone(),
             Cell::Num(v) if !v.is_finite() => String::new(),
-            Cell::Num(v) => format!("{v:e}"),
+            Cell::Num(v) | Cell::Sig(v, _) | Cell::Rel(v) | Cell::Given(v) | Cell::Measured { value: v, .. }
+                if !v.is_finite() =>
+            {
+                String::new()
+            }
+            Cell::Num(v) | Cell::Sig(v, _) | Cell::Rel(v) | Cell::Given(v) | Cell::Measured { value: v, .. }
+                if factor == 1.0 =>
+            {
+                format!("{v:e}")
+            }
+            Cell::Num(v) | Cell::Sig(v, _) | Cell::Rel(v) | Cell::Given(v) | Cell::Measured { value: v, .. } => {
+                format!("{:e}", v * factor)
+            }
             Cell::Int(i) => i.to_string(),
             Cell::Empty => String::new(),
         }
@@ -143,12 +300,29 @@ impl Table {
         out
     }
 
-    /// CSV with full-precision numbers.
+    /// The CSV column names ([`csv_key`]), made unique: a repeated name gets `_2`, `_3`.
+    pub fn csv_headers(&self) -> Vec<(String, f64)> {
+        let mut out: Vec<(String, f64)> = Vec::new();
+        for h in &self.headers {
+            let (key, f) = csv_key(h);
+            let mut k = key.clone();
+            let mut n = 1;
+            while out.iter().any(|(o, _)| *o == k) {
+                n += 1;
+                k = format!("{key}_{n}");
+            }
+            out.push((k, f));
+        }
+        out
+    }
+
+    /// CSV with full-precision numbers in SI units, under [`csv_key`] column names.
     pub fn to_csv(&self) -> String {
+        let heads = self.csv_headers();
         let mut w = csv::Writer::from_writer(vec![]);
-        w.write_record(&self.headers).expect("writing to memory cannot fail");
+        w.write_record(heads.iter().map(|h| &h.0)).expect("writing to memory cannot fail");
         for r in &self.rows {
-            w.write_record(r.iter().map(Cell::csv)).expect("writing to memory cannot fail");
+            w.write_record(r.iter().zip(&heads).map(|(c, h)| c.csv(h.1))).expect("writing to memory cannot fail");
         }
         String::from_utf8(w.into_inner().expect("flush to memory")).expect("csv of UTF-8 cells is UTF-8")
     }
@@ -164,6 +338,34 @@ mod tests {
         assert_eq!(sig(0.00876323, 7), "0.008763230");
         assert_eq!(sig(2.4275e-6, 4), "2.428e-6");
         assert_eq!(sig(0.0, 7), "0");
+    }
+
+    #[test]
+    fn round_off_is_not_data() {
+        assert_eq!(percent(-0.2068189), "−20.7 %");
+        assert_eq!(percent(1.12), "+112 %");
+        assert_eq!(percent(185.59), "+18600 %");
+        assert_eq!(percent(-4.985435e-20), "0 %");
+        assert_eq!(percent(0.0), "0 %");
+        // C = 6.221534e-7 with an error of 3.3e-11: digits to the 1e-12 place.
+        assert_eq!(measured(6.221534e-7, 3.3e-11), "6.22153e-7");
+        assert_eq!(measured(2.237948e-31, 1.4e-31), "0");
+        assert_eq!(measured(1.712807, 1.7e-3), "1.7128");
+    }
+
+    #[test]
+    fn csv_keys_are_si_in_one_style() {
+        assert_eq!(csv_key("x (mm)"), ("x_m".into(), 1e-3));
+        assert_eq!(csv_key("P_max (N)"), ("P_max_N".into(), 1.0));
+        assert_eq!(csv_key("C (m/N)"), ("C_m_per_N".into(), 1.0));
+        assert_eq!(csv_key("v (m/s)"), ("v_m_per_s".into(), 1.0));
+        assert_eq!(csv_key("δ_max (1e-7 m)"), ("delta_max_m".into(), 1e-7));
+        assert_eq!(csv_key("FE ± (m/N)"), ("FE_error_m_per_N".into(), 1.0));
+        assert_eq!(csv_key("C plate/beam - 1"), ("C_plate_per_beam_minus_1".into(), 1.0));
+        assert_eq!(csv_key("t_c / T₁"), ("t_c_per_T1".into(), 1.0));
+        let mut t = Table::new("", &["a (mm)", "a (mm)", "b"]);
+        t.push(vec![Cell::Num(2.0), Cell::Num(3.0), Cell::Empty]);
+        assert_eq!(t.to_csv(), "a_m,a_m_2,b\n2e-3,3e-3,\n");
     }
 
     #[test]

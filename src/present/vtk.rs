@@ -69,3 +69,41 @@ pub fn to_vtu(field: &FieldFile, force_n: f64) -> Result<Vec<u8>, vtkio::Error> 
     vtk.write_xml(&mut bytes)?;
     Ok(bytes)
 }
+
+/// A deflection field alone as a `.vtu`: the mesh (nodes (x, z) in m, counter-clockwise
+/// quads) with the point data `displacement` = (0, 0, w) and `w`, m. One frame of a time
+/// series.
+pub fn deflection_vtu(
+    title: &str,
+    nodes: &[[f64; 2]],
+    quads: &[[usize; 4]],
+    w: &[f64],
+) -> Result<Vec<u8>, vtkio::Error> {
+    let points: Vec<f64> = nodes.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
+    let connectivity: Vec<u64> = quads.iter().flatten().map(|&n| n as u64).collect();
+    let offsets: Vec<u64> = (1..=quads.len() as u64).map(|i| 4 * i).collect();
+    let displacement: Vec<f64> = w.iter().flat_map(|&w| [0.0, 0.0, w]).collect();
+    let vtk = Vtk {
+        version: Version::new((1, 0)),
+        title: title.to_string(),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(UnstructuredGridPiece {
+            points: points.into(),
+            cells: Cells {
+                cell_verts: VertexNumbers::XML { connectivity, offsets },
+                types: vec![CellType::Quad; quads.len()],
+            },
+            data: Attributes {
+                point: vec![
+                    Attribute::vectors("displacement").with_data(displacement),
+                    Attribute::scalars("w", 1).with_data(w.to_vec()),
+                ],
+                cell: vec![],
+            },
+        }),
+    };
+    let mut bytes = Vec::new();
+    vtk.write_xml(&mut bytes)?;
+    Ok(bytes)
+}

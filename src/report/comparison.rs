@@ -2,9 +2,9 @@
 //! balance and yield model, and where and by how much they differ.
 
 use crate::output::Artifacts;
-use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::plot::{line_plot, Axis, ColourMap, Plot, Scale, Series};
 use crate::present::rows::slug;
-use crate::present::table::{sig, Cell, Table};
+use crate::present::table::{percent, sig, Cell, Table};
 use crate::report::paper::Paper;
 use crate::scene::{even_points, Analysis, Scene, SupportSet};
 use analytic::Condition;
@@ -48,6 +48,15 @@ const ERROR_PAGE: &str = include_str!("templates/comparison/error-vs-time-page.m
 const ERROR_LINK: &str = include_str!("templates/comparison/error-vs-time.md");
 const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
 const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
+const FIELD: &str = include_str!("templates/comparison/field.md");
+const METHOD_TEXT: &str = include_str!("templates/comparison/method.md");
+const SUMMARY: &str = include_str!("templates/comparison/summary.md");
+const FINDING_COMPLIANCE: &str = include_str!("templates/comparison/finding-compliance.md");
+const FINDING_ENDS: &str = include_str!("templates/comparison/finding-ends.md");
+const FINDING_FORCE: &str = include_str!("templates/comparison/finding-force.md");
+const FINDING_MAP: &str = include_str!("templates/comparison/finding-map.md");
+const FINDING_FIELD: &str = include_str!("templates/comparison/finding-field.md");
+const FINDING_WIDTH: &str = include_str!("templates/comparison/finding-width.md");
 
 /// A round number as the prose writes it: small integers as they are, the rest in
 /// exponent form (`1e15`).
@@ -95,13 +104,15 @@ pub fn pair_on(scene: &Scene, model: PlateModel) -> Result<Pair, Failure> {
     Ok(Pair { beam, plate, model })
 }
 
+/// plate/beam - 1; none (an empty cell) where the beam's value is 0 and the ratio has no
+/// value, so a numeric column holds numbers only.
 fn rel(p: f64, b: f64) -> Cell {
     if b != 0.0 && b.is_finite() && p.is_finite() {
-        Cell::Num(p / b - 1.0)
+        Cell::Rel(p / b - 1.0)
     } else if p == b {
-        Cell::Num(0.0)
+        Cell::Rel(0.0)
     } else {
-        Cell::Text("beam 0".into())
+        Cell::Empty
     }
 }
 
@@ -146,30 +157,33 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                 let z = pr.z;
                 let Some(p) = pr.values() else { continue };
                 let b = br.values();
-                let bv = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Text("n/a".into()), |b| Cell::Num(f(b)));
-                let brel = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Text("n/a".into()), |b| rel(f(p), f(b)));
+                // Beam values are closed forms (4 significant digits shown); plate C and P_max to
+                // the digit their FE error supports; the rest of the plate's to 4 digits, which its
+                // relative FE error (below 1e-4) supports.
+                let bv = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Empty, |b| Cell::Sig(f(b), 4));
+                let brel = |f: &dyn Fn(&ResponseValues) -> f64| b.map_or(Cell::Empty, |b| rel(f(p), f(b)));
                 let c = |v: &ResponseValues| v.compliance.unwrap_or(0.0);
                 let mut row: Vec<Cell> = vec![
                     pr.body.clone().into(),
-                    (pr.x * 1e3).into(),
-                    (z * 1e3).into(),
-                    pr.velocity.into(),
+                    Cell::Given(pr.x * 1e3),
+                    Cell::Given(z * 1e3),
+                    Cell::Given(pr.velocity),
                     bv(&c),
-                    c(p).into(),
-                    p.compliance_error.map_or(Cell::Empty, Cell::Num),
+                    Cell::Measured { value: c(p), error: p.compliance_error.unwrap_or(0.0) },
+                    p.compliance_error.map_or(Cell::Empty, |e| Cell::Sig(e, 2)),
                     brel(&c),
                     bv(&|v| v.contact_force),
-                    p.contact_force.into(),
+                    Cell::Measured { value: p.contact_force, error: p.contact_force_error.unwrap_or(0.0) },
                     brel(&|v| v.contact_force),
                     bv(&|v| v.compression),
-                    p.compression.into(),
+                    Cell::Sig(p.compression, 4),
                     bv(&|v| v.deflection),
-                    p.deflection.into(),
+                    Cell::Sig(p.deflection, 4),
                     bv(&|v| v.plate_ratio),
-                    p.plate_ratio.into(),
+                    Cell::Sig(p.plate_ratio, 4),
                 ];
                 if springs {
-                    row.extend([bv(&|v| v.spring_ratio), Cell::Num(p.spring_ratio)]);
+                    row.extend([bv(&|v| v.spring_ratio), Cell::Sig(p.spring_ratio, 4)]);
                 }
                 t.push(row);
             }
@@ -185,19 +199,19 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                         "x (mm)",
                         "z (mm)",
                         "v (m/s)",
-                        "beam left",
-                        "plate (0, 0)",
-                        "plate (0, B)",
-                        "beam right",
-                        "plate (L, 0)",
-                        "plate (L, B)",
+                        "beam left (N)",
+                        "plate (0, 0) (N)",
+                        "plate (0, B) (N)",
+                        "beam right (N)",
+                        "plate (L, 0) (N)",
+                        "plate (L, B) (N)",
                     ],
                 );
                 for pr in pair.plate.responses.iter().filter(|r| r.condition == cond.name) {
                     let Some(br) = same_case(&pair.beam, pr) else { continue };
                     let Some(p) = pr.values() else { continue };
                     let bf = |n: &str| match br.values() {
-                        None => Cell::Text("n/a".into()),
+                        None => Cell::Empty,
                         Some(b) => b
                             .spring_forces
                             .iter()
@@ -209,9 +223,9 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                     };
                     t.push(vec![
                         pr.body.clone().into(),
-                        (pr.x * 1e3).into(),
-                        (pr.z * 1e3).into(),
-                        pr.velocity.into(),
+                        Cell::Given(pr.x * 1e3),
+                        Cell::Given(pr.z * 1e3),
+                        Cell::Given(pr.velocity),
                         bf("left"),
                         pf("(0, 0)"),
                         pf("(0, B)"),
@@ -239,11 +253,11 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
                     let b = by.values();
                     t.push(vec![
                         py.body.clone().into(),
-                        (py.x * 1e3).into(),
-                        (py.z * 1e3).into(),
-                        b.map_or(Cell::Text("n/a".into()), |b| Cell::Num(b.yield_velocity)),
-                        p.yield_velocity.into(),
-                        b.map_or(Cell::Text("n/a".into()), |b| rel(p.yield_velocity, b.yield_velocity)),
+                        Cell::Given(py.x * 1e3),
+                        Cell::Given(py.z * 1e3),
+                        b.map_or(Cell::Empty, |b| Cell::Sig(b.yield_velocity, 4)),
+                        Cell::Measured { value: p.yield_velocity, error: p.yield_velocity_error.unwrap_or(0.0) },
+                        b.map_or(Cell::Empty, |b| rel(p.yield_velocity, b.yield_velocity)),
                     ]);
                 }
             }
@@ -307,80 +321,6 @@ pub fn maps_from(scene: &Scene, model: &PlateModel) -> Result<Maps, Failure> {
         beam_c.push(brow);
     }
     Ok(Maps { xs, zs, plate, error, beam: beam_c })
-}
-
-/// A heat map as SVG: value(ix, iz) over x (mm) and z (mm), NaN drawn grey.
-pub fn heat_map(title: &str, xs: &[f64], zs: &[f64], value: impl Fn(usize, usize) -> f64, legend: &str) -> String {
-    use plotters::prelude::*;
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (760, 420)).into_drawing_area();
-        root.fill(&WHITE).expect("drawing to memory");
-        let vals: Vec<f64> = (0..xs.len())
-            .flat_map(|i| (0..zs.len()).map(move |j| (i, j)))
-            .map(|(i, j)| value(i, j))
-            .filter(|v| v.is_finite())
-            .collect();
-        let (lo, hi) = vals.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-        let (lo, hi) = if lo.is_finite() && hi > lo { (lo, hi) } else { (0.0, 1.0) };
-        let (main, bar) = root.split_horizontally(640);
-        let mut chart = ChartBuilder::on(&main)
-            .caption(title, ("sans-serif", 16))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(55)
-            .build_cartesian_2d(0.0..xs[xs.len() - 1] * 1e3, 0.0..zs[zs.len() - 1] * 1e3)
-            .expect("valid ranges");
-        chart.configure_mesh().x_desc("x (mm)").y_desc("z (mm)").disable_mesh().draw().expect("drawing to memory");
-        let color = |v: f64| {
-            if !v.is_finite() {
-                return RGBColor(200, 200, 200);
-            }
-            let t = ((v - lo) / (hi - lo)).clamp(0.0, 1.0);
-            // Blue -> white -> red.
-            if t < 0.5 {
-                let u = t / 0.5;
-                RGBColor((255.0 * u) as u8, (255.0 * u) as u8, 255)
-            } else {
-                let u = (t - 0.5) / 0.5;
-                RGBColor(255, (255.0 * (1.0 - u)) as u8, (255.0 * (1.0 - u)) as u8)
-            }
-        };
-        let half = |v: &[f64], i: usize| {
-            let lo = if i == 0 { v[0] } else { 0.5 * (v[i - 1] + v[i]) };
-            let hi = if i + 1 == v.len() { v[i] } else { 0.5 * (v[i] + v[i + 1]) };
-            (lo * 1e3, hi * 1e3)
-        };
-        chart
-            .draw_series((0..xs.len()).flat_map(|i| (0..zs.len()).map(move |j| (i, j))).map(|(i, j)| {
-                let (x0, x1) = half(xs, i);
-                let (z0, z1) = half(zs, j);
-                Rectangle::new([(x0, z0), (x1, z1)], color(value(i, j)).filled())
-            }))
-            .expect("drawing to memory");
-        let mut cb = ChartBuilder::on(&bar)
-            .margin_top(40)
-            .margin_bottom(45)
-            .y_label_area_size(60)
-            .caption(legend, ("sans-serif", 12))
-            .build_cartesian_2d(0.0..1.0, lo..hi)
-            .expect("valid ranges");
-        cb.configure_mesh()
-            .disable_x_axis()
-            .disable_mesh()
-            .y_label_formatter(&|v| sig(*v, 3))
-            .draw()
-            .expect("drawing to memory");
-        let steps = 60;
-        cb.draw_series((0..steps).map(|k| {
-            let a = lo + (hi - lo) * k as f64 / steps as f64;
-            let b = lo + (hi - lo) * (k + 1) as f64 / steps as f64;
-            Rectangle::new([(0.0, a), (1.0, b)], color(0.5 * (a + b)).filled())
-        }))
-        .expect("drawing to memory");
-        root.present().expect("drawing to memory");
-    }
-    svg
 }
 
 fn nearest(v: &[f64], x: f64) -> usize {
@@ -456,7 +396,8 @@ pub fn width_table(rows: &[WidthRow]) -> Table {
     t
 }
 
-/// Everything `impact compare` writes for `scene`.
+/// Everything `impact compare` writes for `scene`: the findings first (computed here), the
+/// figures, the detail tables, the studies the scene names, the method last.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let t0 = Instant::now();
     let pb = progress(5, "plate FE at all points");
@@ -472,28 +413,40 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let mp = if want_maps { Some(maps_from(scene, &pr.model)?) } else { None };
     pb.inc(1);
     let mut a = Artifacts::new();
-    let mut md = String::new();
+    let mut findings: Vec<String> = Vec::new();
+    let mut numbers = serde_json::Map::new();
     let levels: Vec<String> =
         pr.model.levels.iter().map(|c| format!("{} x {} ({} DOFs)", c.nx, c.nz, c.dofs)).collect();
-    md.push_str(&render(
+    let head = render(
         "comparison/head.md",
         HEAD,
-        &[
-            ("scene", scene.name.clone()),
-            ("description", scene.description.clone()),
-            ("mesh_levels", levels.join(" and ")),
-        ],
-    )?);
+        &[("scene", scene.name.clone()), ("description", scene.description.clone())],
+    )?;
+    let method = render("comparison/method.md", METHOD_TEXT, &[("mesh_levels", levels.join(" and "))])?;
 
+    // Findings at the scene's points, per support set the beam describes.
+    findings.extend(point_findings(scene, &pr, &mut numbers)?);
+
+    let mut figures = String::new();
+    if scene.wants(Analysis::Responses) {
+        if let Some((md_field, w_svg, s_svg, finding)) = peak_field_section(scene, &pr)? {
+            a.add("field-w.svg", w_svg);
+            a.add("field-stress.svg", s_svg);
+            figures.push_str(&md_field);
+            findings.push(finding);
+        }
+    }
+
+    let mut tables = String::from("\n## Detail tables\n");
     for t in pair_tables(scene, &pr) {
         let stem = format!("table-{}", slug(&t.title));
         a.add(format!("{stem}.csv"), t.to_csv());
-        let _ = writeln!(md, "\n## {}\n\n{}", t.title, t.to_markdown());
+        let _ = writeln!(tables, "\n### {}\n\n{}", t.title, t.to_markdown());
     }
 
     if let Some(mp) = &mp {
         // Maps and lines.
-        md.push_str(&render(
+        figures.push_str(&render(
             "comparison/across.md",
             ACROSS,
             &[
@@ -504,11 +457,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                 ("areas", AREAS.len().to_string()),
             ],
         )?);
-        let mut map_csv =
-            Table::new("", &["condition", "x_mm", "z_mm", "C_beam", "C_plate", "FE_error", "ratio_minus_1"]);
+        let mut map_csv = Table::new(
+            "",
+            &["condition", "x (mm)", "z (mm)", "C beam (m/N)", "C plate (m/N)", "FE ± (m/N)", "C plate/beam - 1"],
+        );
         for (ci, c) in scene.conditions.iter().enumerate() {
             if c.beam_condition().is_none() {
-                md.push_str(&render("comparison/no-map.md", NO_MAP, &[("condition", c.name.clone())])?);
+                figures.push_str(&render("comparison/no-map.md", NO_MAP, &[("condition", c.name.clone())])?);
                 continue;
             }
             let ratio = |i: usize, j: usize| {
@@ -532,25 +487,29 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                 }
             }
             let stem = format!("map-{}", slug(&c.name));
-            a.add(
-                format!("{stem}.svg"),
-                heat_map(
-                    &format!("{}: log10(C_plate / C_beam), {} L to {} L", c.name, INNER.0, INNER.1),
-                    &mp.xs,
-                    &mp.zs,
-                    |i, j| {
-                        if (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length())) {
-                            (ratio(i, j) + 1.0).log10()
-                        } else {
-                            f64::NAN
-                        }
-                    },
-                    "log10 ratio",
-                ),
-            );
+            let inner_x = |i: usize| (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length()));
+            let colour_map = ColourMap {
+                title: format!("{}: C_plate / C_beam over the plate", c.name),
+                x: Axis::linear("x (mm)"),
+                y: Axis::linear("z (mm)"),
+                xs: mp.xs.iter().map(|x| x * 1e3).collect(),
+                ys: mp.zs.iter().map(|z| z * 1e3).collect(),
+                edges: false,
+                values: (0..mp.xs.len())
+                    .map(|i| (0..mp.zs.len()).map(|j| if inner_x(i) { ratio(i, j) + 1.0 } else { f64::NAN }).collect())
+                    .collect(),
+                bar: Axis::log("C_plate / C_beam"),
+                missing: Some(format!(
+                    "x < {} L and x > {} L, where the beam's C falls to 0 and the ratio diverges",
+                    INNER.0, INNER.1
+                )),
+                marks: vec![],
+                notes: vec!["Supports at the four corners; the beam has the same C across the width.".into()],
+            };
+            a.add(format!("{stem}.svg"), colour_map.svg());
             // Interior statistics (away from the ends, where the beam ratio is singular).
             let inner: Vec<f64> = (0..mp.xs.len())
-                .filter(|&i| (INNER.0..=INNER.1).contains(&(mp.xs[i] / scene.plate.length())))
+                .filter(|&i| inner_x(i))
                 .flat_map(|i| (0..mp.zs.len()).map(move |j| (i, j)))
                 .map(|(i, j)| ratio(i, j))
                 .filter(|v| v.is_finite())
@@ -558,16 +517,20 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             let (lo, hi) = inner.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
             let mid = nearest(&mp.xs, scene.plate.length() / 2.0);
             let (zc, ze) = (nearest(&mp.zs, scene.plate.width() / 2.0), 0);
+            numbers.insert(
+                format!("{}: map C_plate/C_beam - 1", c.name),
+                serde_json::json!({ "lowest": lo, "highest": hi, "centre": ratio(mid, zc), "free_edge": ratio(mid, ze) }),
+            );
             let map_values = [
                 ("condition", c.name.clone()),
-                ("stem", stem.clone()),
                 ("inner_from", INNER.0.to_string()),
                 ("inner_to", INNER.1.to_string()),
-                ("lowest", format!("{:+.1}", 100.0 * lo)),
-                ("highest", format!("{:+.1}", 100.0 * hi)),
-                ("centre", format!("{:+.2}", 100.0 * ratio(mid, zc))),
-                ("edge", format!("{:+.2}", 100.0 * ratio(mid, ze))),
+                ("lowest", percent(lo)),
+                ("highest", percent(hi)),
+                ("centre", percent(ratio(mid, zc))),
+                ("edge", percent(ratio(mid, ze))),
             ];
+            findings.push(render("comparison/finding-map.md", FINDING_MAP, &map_values)?);
             let line = |j: usize| {
                 Series::new(
                     format!("plate, z = {:.0} mm", mp.zs[j] * 1e3),
@@ -610,17 +573,33 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
                     Scale::Log,
                 ),
             );
-            md.push_str(&render("comparison/map.md", MAP, &map_values)?);
+            let mut with_stem = map_values.to_vec();
+            with_stem.push(("stem", stem.clone()));
+            figures.push_str(&render("comparison/map.md", MAP, &with_stem)?);
         }
         a.add("maps.csv", map_csv.to_csv());
     }
     pb.inc(1);
 
+    let mut studies = String::new();
     pb.set_message("width dependence");
     if scene.wants(Analysis::AspectRatio) {
-        let wd = width_table(&width_dependence(scene)?);
+        let rows = width_dependence(scene)?;
+        let wd = width_table(&rows);
         a.add("width-dependence.csv", wd.to_csv());
-        md.push_str(&render("comparison/width.md", WIDTH, &[("table", wd.to_markdown())])?);
+        if let (Some(n), Some(w)) = (rows.first(), rows.last()) {
+            findings.push(render(
+                "comparison/finding-width.md",
+                FINDING_WIDTH,
+                &[
+                    ("narrow", sig(n.centre, 3)),
+                    ("narrow_bl", n.width_ratio.to_string()),
+                    ("wide", sig(w.centre, 3)),
+                    ("wide_bl", w.width_ratio.to_string()),
+                ],
+            )?);
+        }
+        studies.push_str(&render("comparison/width.md", WIDTH, &[("table", wd.to_markdown())])?);
     }
     pb.inc(1);
 
@@ -629,7 +608,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         let xt = extreme_cases(scene)?;
         a.add("extreme-cases.csv", xt.to_csv());
         let decades = (EXTREME_VELOCITIES[EXTREME_VELOCITIES.len() - 1] / EXTREME_VELOCITIES[0]).log10();
-        md.push_str(&render(
+        studies.push_str(&render(
             "comparison/extreme.md",
             EXTREME,
             &[
@@ -660,23 +639,175 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ],
         )?;
         a.add("error-vs-time.md", timing);
-        md.push_str(&render("comparison/error-vs-time.md", ERROR_LINK, &[])?);
+        studies.push_str(&render("comparison/error-vs-time.md", ERROR_LINK, &[])?);
     }
     pb.inc(1);
     pb.finish_and_clear();
 
     if scene.wants(Analysis::PaperStudies) {
-        md.push_str(&render("comparison/paper-studies.md", PAPER_STUDIES, &[])?);
+        studies.push_str(&render("comparison/paper-studies.md", PAPER_STUDIES, &[])?);
     }
     if scene.wants(Analysis::Transient) {
-        md.push_str(&render("comparison/transient.md", TRANSIENT, &[])?);
+        studies.push_str(&render("comparison/transient.md", TRANSIENT, &[])?);
     }
-    a.add("index.md", md);
+    let summary = render("comparison/summary.md", SUMMARY, &[("findings", findings.join(""))])?;
+    a.add("index.md", [head, summary, figures, tables, studies, method].concat());
+    a.add(
+        "findings.json",
+        serde_json::to_string_pretty(&serde_json::json!({
+            "report": "beam against plate",
+            "findings": findings.iter().map(|f| f.trim().trim_start_matches("- ").replace("**", "")).collect::<Vec<_>>(),
+            "numbers": numbers,
+        }))?,
+    );
     let levels: Vec<serde_json::Value> =
         pr.model.levels.iter().map(|c| serde_json::json!({ "nx": c.nx, "nz": c.nz, "dofs": c.dofs })).collect();
     let json = serde_json::json!({ "scene": scene.name, "beam": pr.beam, "plate": pr.plate, "mesh_levels": levels });
     a.add("results.json", serde_json::to_string_pretty(&json)?);
     Ok(a)
+}
+
+/// The findings at the scene's own points, one line per support set the beam describes:
+/// the range of C_plate/C_beam - 1 (and the supported-end points where the beam's C is 0),
+/// of P_max and of v_y, plate against beam. The numbers go into `numbers` too.
+fn point_findings(
+    scene: &Scene,
+    pr: &Pair,
+    numbers: &mut serde_json::Map<String, serde_json::Value>,
+) -> Result<Vec<String>, Failure> {
+    let range = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    let mut out = Vec::new();
+    for cond in scene.conditions.iter().filter(|c| c.beam_condition().is_some()) {
+        let (mut ratios, mut fe, mut ends, mut ends_c, mut forces) = (vec![], 0.0f64, 0usize, 0.0f64, vec![]);
+        let mut seen: Vec<(f64, f64)> = Vec::new();
+        for pr_row in pr.plate.responses.iter().filter(|r| r.condition == cond.name) {
+            let (Some(p), Some(b)) = (pr_row.values(), same_case(&pr.beam, pr_row).and_then(|b| b.values())) else {
+                continue;
+            };
+            let (cp, cb) = (p.compliance.unwrap_or(f64::NAN), b.compliance.unwrap_or(f64::NAN));
+            if !seen.contains(&(pr_row.x, pr_row.z)) {
+                seen.push((pr_row.x, pr_row.z));
+                if cb > 0.0 {
+                    ratios.push(cp / cb - 1.0);
+                    fe = fe.max(p.compliance_error.unwrap_or(0.0) / cp);
+                } else {
+                    ends += 1;
+                    ends_c = ends_c.max(cp);
+                }
+            }
+            if b.contact_force > 0.0 {
+                forces.push(p.contact_force / b.contact_force - 1.0);
+            }
+        }
+        let yields: Vec<f64> = pr
+            .plate
+            .yields
+            .iter()
+            .filter(|r| r.condition == cond.name)
+            .filter_map(|py| {
+                let by = pr
+                    .beam
+                    .yields
+                    .iter()
+                    .find(|b| b.condition == py.condition && b.body == py.body && b.x == py.x && b.z == py.z)?;
+                Some(py.values()?.yield_velocity / by.values()?.yield_velocity - 1.0)
+            })
+            .collect();
+        if ratios.is_empty() && forces.is_empty() {
+            continue;
+        }
+        let (lo, hi) = range(&ratios);
+        let ends_text = if ends > 0 {
+            let count =
+                if ends == 1 { "1 supported-end point".to_string() } else { format!("{ends} supported-end points") };
+            render("comparison/finding-ends.md", FINDING_ENDS, &[("count", count), ("plate_c", sig(ends_c, 3))])?
+                .trim_end()
+                .to_string()
+        } else {
+            String::new()
+        };
+        if !ratios.is_empty() {
+            out.push(render(
+                "comparison/finding-compliance.md",
+                FINDING_COMPLIANCE,
+                &[
+                    ("condition", cond.name.clone()),
+                    ("points", ratios.len().to_string()),
+                    ("lowest", percent(lo)),
+                    ("highest", percent(hi)),
+                    ("fe_error", percent(fe).trim_start_matches('+').to_string()),
+                    ("ends", ends_text),
+                ],
+            )?);
+        }
+        let (flo, fhi) = range(&forces);
+        let (ylo, yhi) = range(&yields);
+        if !forces.is_empty() {
+            out.push(render(
+                "comparison/finding-force.md",
+                FINDING_FORCE,
+                &[
+                    ("condition", cond.name.clone()),
+                    ("lowest", percent(flo)),
+                    ("highest", percent(fhi)),
+                    ("cases", forces.len().to_string()),
+                    ("vy_lowest", if yields.is_empty() { "-".into() } else { percent(ylo) }),
+                    ("vy_highest", if yields.is_empty() { "-".into() } else { percent(yhi) }),
+                ],
+            )?);
+        }
+        numbers.insert(
+            format!("{}: plate/beam - 1 at the scene's points", cond.name),
+            serde_json::json!({
+                "compliance": [lo, hi], "contact_force": [flo, fhi], "yield_velocity": [ylo, yhi],
+                "fe_error_relative": fe, "ends_with_beam_c_zero": ends, "plate_c_at_those_ends_max": ends_c,
+            }),
+        );
+    }
+    Ok(out)
+}
+
+/// The plate at the maximum force of one impact: the first support set, body and velocity
+/// of the scene at its point nearest the plate's centre (the typical impact), as the plate
+/// FE model answers it. `None` when the scene has no such plate row.
+fn peak_field_section(scene: &Scene, pr: &Pair) -> Result<Option<(String, String, String, String)>, Failure> {
+    let (Some(cond), Some(body), Some(&v)) = (scene.conditions.first(), scene.bodies.first(), scene.velocities.first())
+    else {
+        return Ok(None);
+    };
+    let (cx, cz) = (scene.plate.length() / 2.0, scene.plate.width() / 2.0);
+    let row = pr
+        .plate
+        .responses
+        .iter()
+        .filter(|r| r.condition == cond.name && r.body == body.name && r.velocity == v && r.values().is_some())
+        .min_by(|a, b| (a.x - cx).hypot(a.z - cz).total_cmp(&(b.x - cx).hypot(b.z - cz)));
+    let Some(row) = row else { return Ok(None) };
+    let p_max = row.values().map_or(f64::NAN, |r| r.contact_force);
+    let what = format!("{} at {} m/s on {} at ({:.1}, {:.1}) mm", body.name, v, cond.name, row.x * 1e3, row.z * 1e3);
+    let f = crate::report::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &what)?;
+    let finding = render(
+        "comparison/finding-field.md",
+        FINDING_FIELD,
+        &[("what", what.clone()), ("w_max", sig(f.w_max * 1e6, 3)), ("stress_max", sig(f.stress_max / 1e3, 3))],
+    )?;
+    let md = render(
+        "comparison/field.md",
+        FIELD,
+        &[
+            ("what", what),
+            ("p_max", sig(p_max, 3)),
+            ("mesh", crate::report::plate_field::FIELD_ELEMENTS.to_string()),
+            ("w_max", sig(f.w_max * 1e6, 3)),
+            ("w_x", format!("{:.1}", f.w_max_at.0 * 1e3)),
+            ("w_z", format!("{:.1}", f.w_max_at.1 * 1e3)),
+            ("left_out", f.left_out.to_string()),
+            ("stress_max", sig(f.stress_max / 1e3, 3)),
+            ("s_x", format!("{:.1}", f.stress_max_at.0 * 1e3)),
+            ("s_z", format!("{:.1}", f.stress_max_at.1 * 1e3)),
+        ],
+    )?;
+    Ok(Some((md, f.deflection_svg, f.stress_svg, finding)))
 }
 
 /// The error-against-run-time study.
@@ -739,13 +870,10 @@ pub fn error_vs_time(scene: &Scene) -> Result<ErrorVsTime, Failure> {
             }
         }
     }
-    let svg = line_plot(
-        "Plate FE: max error against run time",
-        "time (s)",
-        "max relative error",
-        &[Series::new("BFS ladder", pts_plot)],
-        Scale::Log,
-    );
+    // Both axes span decades: log-log, each mesh a marked point.
+    let svg = Plot::new("Plate FE: max error against run time", Axis::log("time (s)"), Axis::log("max relative error"))
+        .with(Series::new("BFS mesh ladder (each point a mesh)", pts_plot))
+        .svg();
     let mesh = |r: &(usize, usize, usize, f64, Vec<f64>)| format!("{} x {}", r.0, r.1);
     Ok(ErrorVsTime { table: t, recommended: rec, svg, reference_meshes: [mesh(&runs[n - 2]), mesh(&runs[n - 1])] })
 }
@@ -766,7 +894,8 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
             "P_max beam (N)",
             "P_max plate (N)",
             "plate/beam - 1",
-            "balance residual (beam, plate)",
+            "balance residual beam",
+            "balance residual plate",
             "FE ± rel.",
             "stable",
         ],
@@ -819,8 +948,9 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
                 pb.into(),
                 pp.into(),
                 rel(pp, pb),
-                format!("{}, {}", sig(res(&rb), 2), sig(res(&rp), 2)).into(),
-                fe_rel.into(),
+                Cell::Sig(res(&rb), 2),
+                Cell::Sig(res(&rp), 2),
+                Cell::Sig(fe_rel, 2),
                 (if stable { "yes" } else { "NO" }).into(),
             ]);
         }

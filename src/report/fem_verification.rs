@@ -2,6 +2,7 @@
 //! with its reference, measured convergence rates and the extreme cases.
 
 use crate::output::Artifacts;
+use crate::present::plot::{series_csv, Axis, Plot, Series};
 use crate::present::table::{Cell, Table};
 use crate::scene::Scene;
 use analytic::Condition;
@@ -35,6 +36,32 @@ fn mm(v: f64) -> String {
     ((v * 1e4).round() / 10.0).to_string()
 }
 
+/// The convergence figure: relative error of the point compliance against the element size
+/// h (over the plate length L) on log-log axes, with the slope-2 line the r² ln r singularity
+/// of the point-load Green's function predicts, drawn parallel to the first ladder (a third
+/// below its finest point).
+fn convergence_figure(ladders: &[(String, Vec<(f64, f64)>)]) -> Plot {
+    let mut plot = Plot::new(
+        "Plate FE: error of the point compliance against element size",
+        Axis::log("h / L"),
+        Axis::log("|C_FE / C_exact - 1|"),
+    );
+    for (name, pts) in ladders {
+        plot = plot.with(Series::new(name.clone(), pts.clone()));
+    }
+    if let Some(&(h0, e0)) = ladders.first().and_then(|l| l.1.last()) {
+        let (lo, hi) = ladders
+            .iter()
+            .flat_map(|l| l.1.iter().map(|p| p.0))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), h| (a.min(h), b.max(h)));
+        // A third below the first ladder's finest point, so it runs beside the data, not on it.
+        let e0 = e0 / 3.0;
+        plot = plot
+            .with(Series::guide("slope 2 (O(h²))", vec![(lo, e0 * (lo / h0).powi(2)), (hi, e0 * (hi / h0).powi(2))]));
+    }
+    plot
+}
+
 /// FE compliance at `p` for a ladder of meshes (n·2^k by m·2^k).
 fn ladder(
     props: PlateProperties,
@@ -60,20 +87,20 @@ fn convergence_table(rows: &[(usize, usize, f64)], exact: f64) -> Table {
     let vals: Vec<f64> = rows.iter().map(|r| r.2).collect();
     for (i, r) in rows.iter().enumerate() {
         let rate = if i >= 2 {
-            observed_rate(vals[i - 2], vals[i - 1], vals[i]).map_or(Cell::Empty, Cell::Num)
+            observed_rate(vals[i - 2], vals[i - 1], vals[i]).map_or(Cell::Empty, |r| Cell::Sig(r, 4))
         } else {
             Cell::Empty
         };
         let (rv, re) = if i >= 1 {
             let e = richardson(&vals[..=i]).expect("two values").extrapolated;
-            (Cell::Num(e), Cell::Num((e - exact).abs() / exact))
+            (Cell::Num(e), Cell::Sig((e - exact).abs() / exact, 2))
         } else {
             (Cell::Empty, Cell::Empty)
         };
         t.push(vec![
             format!("{} x {}", r.0, r.1).into(),
             r.2.into(),
-            ((r.2 - exact).abs() / exact).into(),
+            Cell::Sig((r.2 - exact).abs() / exact, 3),
             rate,
             rv,
             re,
@@ -97,6 +124,9 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let exact = navier.converged((0.5, 0.0), (0.5, 0.0), 1e-12);
     let rows = ladder(sq, &Supports::all_edges_simple(), 4, 4, 6, (0.5, 0.5))?;
     let navier_table = convergence_table(&rows, exact);
+    let navier_vals: Vec<f64> = rows.iter().map(|r| r.2).collect();
+    let navier_richardson = richardson(&navier_vals).map_or(f64::NAN, |r| (r.extrapolated - exact).abs() / exact);
+    let navier_errors: Vec<(f64, f64)> = rows.iter().map(|r| (1.0 / r.0 as f64, (r.2 - exact).abs() / exact)).collect();
     a.add("navier-square.csv", navier_table.to_csv());
     let navier_coefficient = format!("{:.7}", exact * d);
 
@@ -108,6 +138,20 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let exact = np.converged((ox, oz - ow / 2.0), (ox, oz - ow / 2.0), 1e-12);
     let rows = ladder(rect, &Supports::all_edges_simple(), 10, 7, 4, (ox, oz))?;
     let off_centre_table = convergence_table(&rows, exact);
+    let off_errors: Vec<(f64, f64)> =
+        rows.iter().map(|r| (ol / r.0 as f64 / ol, (r.2 - exact).abs() / exact)).collect();
+    let convergence = convergence_figure(&[
+        ("Navier, square, centre".to_string(), navier_errors),
+        (format!("Navier, {ol} x {ow} m, at ({ox}, {oz})"), off_errors),
+    ]);
+    let finest_rate = |pts: &[(f64, f64)]| match pts {
+        [.., a, b] => format!("{:.3}", (a.1 / b.1).ln() / (a.0 / b.0).ln()),
+        _ => "-".into(),
+    };
+    let (navier_rate, off_rate) =
+        (finest_rate(&convergence.series[0].points), finest_rate(&convergence.series[1].points));
+    a.add("convergence.svg", convergence.svg());
+    a.add("convergence.csv", series_csv(&convergence.series, "h/L", "rel. error"));
     a.add("navier-off-centre.csv", off_centre_table.to_csv());
 
     // 3. Lévy SS-free-SS-free.
@@ -126,11 +170,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             "Richardson rel. error",
         ],
     );
+    let mut levy_worst = 0.0f64;
     for (x, z) in [(0.5, 0.3), (0.25, 0.3), (0.5, 0.15), (0.5, 0.6), (0.1, 0.6)] {
         let exact = levy.converged((x, z - LEVY.1 / 2.0), (x, z - LEVY.1 / 2.0), 1e-12);
         let rows = ladder(lp, &Supports::simple_free(), 24, 16, 3, (x, z))?;
         let v: Vec<f64> = rows.iter().map(|r| r.2).collect();
         let ext = richardson(&v).expect("three values");
+        levy_worst = levy_worst.max((ext.extrapolated - exact).abs() / exact);
         lt.push(vec![
             format!("({x}, {z})").into(),
             exact.into(),
@@ -385,7 +431,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         "",
         &[
             "case",
-            "point (mm)",
+            "x (mm)",
+            "z (mm)",
             "BFS extrapolated (m/N)",
             "± estimate",
             "Argyris extrapolated (m/N)",
@@ -396,6 +443,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         ],
     );
     let (mut bfs_finest, mut argyris_finest) = (String::new(), String::new());
+    let mut skfem_worst = 0.0f64;
     for name in crate::report::skfem::CASES {
         let case = crate::report::skfem::load(name)?;
         let bfs = crate::report::skfem::rust_runs(&case, 4)?;
@@ -408,15 +456,20 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         for (i, (r, g)) in ours.iter().zip(&arg).enumerate() {
             let (x, z) = case.points[i];
             let zero = g.extrapolated.abs() < 1e-20;
+            if !zero {
+                skfem_worst = skfem_worst.max((r.extrapolated - g.extrapolated).abs() / g.extrapolated);
+            }
             st.push(vec![
                     name.into(),
-                    format!("({:.1}, {:.1})", x * 1e3, z * 1e3).into(),
+                    Cell::Given(x * 1e3),
+                    Cell::Given(z * 1e3),
                     r.extrapolated.into(),
                     r.error_estimate.into(),
                     g.extrapolated.into(),
                     g.error_estimate.into(),
+                    // Both 0 on a supported edge: no relative difference exists.
                     if zero {
-                        Cell::from("both 0 (supported edge)")
+                        Cell::Empty
                     } else {
                         Cell::Num((r.extrapolated - g.extrapolated).abs() / g.extrapolated)
                     },
@@ -511,6 +564,14 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ("argyris_finest", argyris_finest),
             ("skfem_table", st.to_markdown()),
             ("timing_table", tt.to_markdown()),
+            ("navier_rate_summary", navier_rate.clone()),
+            ("navier_rate", navier_rate),
+            ("navier_richardson", format!("{navier_richardson:.1e}")),
+            ("levy_worst", format!("{levy_worst:.1e}")),
+            ("narrow_summary", format!("{:.2}", -narrow_coefficient)),
+            ("update_summary", format!("{update_difference:.0e}")),
+            ("skfem_worst", format!("{skfem_worst:.1e}")),
+            ("off_rate", off_rate),
         ],
     )?;
     a.add("index.md", md);

@@ -7,9 +7,8 @@
 //! histograms, and fills the templates.
 
 use crate::output::{Artifacts, OutputDir, StreamedFile};
-use crate::present::plot::{line_plot, Scale, Series};
+use crate::present::plot::{line_plot, Axis, ColourMap, Scale, Series};
 use crate::present::table::{sig, Cell, Table};
-use crate::report::comparison::heat_map;
 use crate::report::template::render;
 use crate::report::Failure;
 use coupled::identification::{
@@ -606,13 +605,22 @@ fn run_set(
             let Some(top) = best(&all, &chans) else { continue };
             let values = map(&all, &chans, top.feature);
             let nz = study.candidates_z.len();
-            let svg = heat_map(
-                &format!("{}: separability of {} {}", set.name, quantity_name(q), feature_label(top.feature)),
-                &study.candidates_x,
-                &study.candidates_z,
-                |i, j| values[i * nz + j].separability(),
-                "max(AUC, 1-AUC)",
-            );
+            let svg = ColourMap {
+                title: format!("{}: separability of {} {}", set.name, quantity_name(q), feature_label(top.feature)),
+                x: Axis::linear("x (mm)"),
+                y: Axis::linear("z (mm)"),
+                xs: study.candidates_x.iter().map(|x| x * 1e3).collect(),
+                ys: study.candidates_z.iter().map(|z| z * 1e3).collect(),
+                edges: false,
+                values: (0..study.candidates_x.len())
+                    .map(|i| (0..nz).map(|j| values[i * nz + j].separability()).collect())
+                    .collect(),
+                bar: Axis::linear("max(AUC, 1 - AUC)"),
+                missing: None,
+                marks: vec![],
+                notes: vec![],
+            }
+            .svg();
             let file = format!("{stem}-map-{}.svg", quantity_name(q));
             maps_md.push_str(&format!("![{} map]({file})\n\n", quantity_name(q)));
             artifacts.add(file, svg);

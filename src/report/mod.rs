@@ -9,9 +9,11 @@ pub mod conclusions;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;
+pub mod field_series;
 pub mod identify;
 pub mod paper;
 pub mod paper_studies;
+pub mod plate_field;
 pub mod regimes;
 pub mod signals;
 pub mod skfem;
@@ -21,6 +23,7 @@ pub mod transient;
 pub mod yield_models;
 
 use crate::output::Artifacts;
+use crate::provenance::Provenance;
 use coupled::{Analysis, Scene};
 
 /// Any failure of a study, with its source.
@@ -31,20 +34,26 @@ pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 
 /// Everything a scene asks `impact compare` for: the beam-against-plate comparison, and
 /// beside it, each in its own folder, the paper's studies and the transient study when
-/// the scene names them.
+/// the scene names them. Every CSV and JSON carries its scene's provenance.
 pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let studies: [(Analysis, &str, Report); 4] = [
-        (Analysis::PaperStudies, "paper-studies", paper_studies::report),
-        (Analysis::PaperStudies, "yield-three-models", yield_models::report),
-        (Analysis::Transient, "dynamic", transient::report),
-        (Analysis::RegimeMaps, "regimes", regimes::report),
+    // The paper's studies run on the paper's own scene, whatever `scene` is: their files
+    // carry that scene's provenance.
+    let paper_scene = paper::Paper::new().scene;
+    let studies: [(Analysis, &str, Report, &Scene); 4] = [
+        (Analysis::PaperStudies, "paper-studies", paper_studies::report, &paper_scene),
+        (Analysis::PaperStudies, "yield-three-models", yield_models::report, &paper_scene),
+        (Analysis::Transient, "dynamic", transient::report, scene),
+        (Analysis::RegimeMaps, "regimes", regimes::report, scene),
     ];
     let mut a = comparison::report(scene)?;
-    for (analysis, dir, report) in studies {
+    for (analysis, dir, report, of) in studies {
         if scene.wants(analysis) {
-            a.nest(dir, report(scene)?);
+            let mut part = report(scene)?;
+            Provenance::of(of).stamp(&mut part);
+            a.nest(dir, part);
         }
     }
+    Provenance::of(scene).stamp(&mut a);
     Ok(a)
 }
 
@@ -55,10 +64,14 @@ pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
         transient_discretisation: coupled::transient::Discretisation::tolerance(studies::REPORT_TOLERANCE),
         ..scene.clone()
     };
-    let reports: [(&str, Report); 2] = [("paper", paper::report), ("fem", fem_verification::report)];
+    let paper_scene = paper::Paper::new().scene;
+    let reports: [(&str, Report, &Scene); 2] =
+        [("paper", paper::report, &paper_scene), ("fem", fem_verification::report, scene)];
     let mut all = Artifacts::new();
-    for (dir, report) in reports {
-        all.nest(dir, report(scene)?);
+    for (dir, report, of) in reports {
+        let mut part = report(scene)?;
+        Provenance::of(of).stamp(&mut part);
+        all.nest(dir, part);
     }
     all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene)?);
     Ok(all)

@@ -785,9 +785,9 @@ fn comparison_markdown(
             "quantity",
             "printed",
             "equations (converged)",
-            "rel. dev.",
+            "rel. dev. (converged)",
             "recursion ğ=1e-6",
-            "rel. dev.",
+            "rel. dev. (recursion)",
             "verdict",
         ],
     );
@@ -802,9 +802,9 @@ fn comparison_markdown(
                 "quantity",
                 "printed",
                 "equations (converged)",
-                "rel. dev.",
+                "rel. dev. (converged)",
                 "recursion ğ=1e-6",
-                "rel. dev.",
+                "rel. dev. (recursion)",
                 "verdict",
             ],
         );
@@ -1233,7 +1233,7 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
     for p in &panels {
         let svg = line_plot(&p.title, "Impact position x (mm)", &p.y_label, &p.series, p.scale);
         a.add(format!("{}.svg", p.stem), svg);
-        a.add(format!("{}.csv", p.stem), crate::present::plot::series_csv(&p.series));
+        a.add(format!("{}.csv", p.stem), crate::present::plot::series_csv(&p.series, "x (mm)", &p.y_label));
         let fig = p.stem[..5].to_string();
         if fig != last_fig {
             let _ = writeln!(fig_md, "\n### Fig. {}\n", fig[3..].trim_start_matches('0'));
@@ -1406,5 +1406,20 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
         ("solvers", solvers.to_markdown()),
     ];
     a.add("index.md", crate::report::template::render("paper.md", PAPER_TEMPLATE, &values)?);
+    // The findings the page opens with, as numbers.
+    a.add(
+        "findings.json",
+        serde_json::to_string_pretty(&serde_json::json!({
+            "report": "the paper reproduced",
+            "printed_numbers_compared": rows.len(),
+            "within_print_rounding": counts[0],
+            "within_explain_threshold": counts[1],
+            "explained": counts[2],
+            "unexplained": counts[3],
+            "table3_con3_deflection_unit_factor": 10i64.pow(slip_exponent.unsigned_abs()),
+            "table2_delta_my_ratio": { "coal": d_my_coal, "gangue 1": d_my_gangue },
+            "table5_overall_min_yield_velocity_m_per_s": overall_min,
+        }))?,
+    );
     Ok(a)
 }

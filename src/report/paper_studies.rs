@@ -2,7 +2,7 @@
 //! Tables 6-8 and 11 at the midpoint, and its figures along the centreline.
 
 use crate::output::Artifacts;
-use crate::present::plot::{line_plot, Scale};
+use crate::present::plot::{line_plot, Matrix, Scale};
 use crate::present::table::Table;
 use crate::report::studies::{BASE_MESH, LEVELS};
 use crate::report::Failure;
@@ -21,6 +21,13 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let checks = crate::report::conclusions::checks()?;
     let t = crate::report::conclusions::table(&checks);
     a.add("conclusions.csv", t.to_csv());
+    let matrix = Matrix {
+        title: "Section V's conclusions: do they hold?".into(),
+        columns: vec!["beam".into(), "plate FE".into()],
+        rows: checks.iter().map(|c| format!("{}: {}", c.item, c.statement)).collect(),
+        cells: checks.iter().map(|c| vec![Some(c.beam_holds), Some(c.plate_holds)]).collect(),
+    };
+    a.add("conclusions.svg", matrix.svg());
     let held = |p: bool| checks.iter().filter(|c| if p { c.plate_holds } else { c.beam_holds }).count();
     let items = checks.iter().filter_map(|c| c.item.parse::<u32>().ok()).max().ok_or("no numbered item")?;
     // Tables 6-8 and 11 of the paper (midpoint, 0.0025 m/s, three spheres) under both models.
@@ -78,7 +85,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         crate::report::conclusions::study_figures()?
     {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
-        a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series));
+        a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series, "x (mm)", &ylabel));
         figures.push_str(&format!("![{title}]({stem}.svg)\n\n"));
     }
     // The template ends the last figure's line itself.

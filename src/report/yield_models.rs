@@ -443,7 +443,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         let stem = format!("fig{fig:02}-yield-{}-three-models", crate::present::rows::slug(&body.name));
         let title = format!("Fig. {fig} redone: {} yield velocity on the centreline, three models", body.name);
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", "v_y (m/s)", &series, Scale::Linear));
-        a.add(format!("{stem}.csv"), series_csv(&series));
+        a.add(format!("{stem}.csv"), series_csv(&series, "x (mm)", "v_y (m/s)"));
         figures.push_str(&format!("![{title}]({stem}.svg)\n\n"));
     }
     let secs_figs = t0.elapsed().as_secs_f64();
@@ -621,6 +621,13 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         st.push(row);
     }
     let held = |m: usize| statements.iter().filter(|s| s.holds[m]).count();
+    let matrix = crate::present::plot::Matrix {
+        title: "The paper's yield statements under three models".into(),
+        columns: vec!["beam".into(), "plate".into(), "transient".into()],
+        rows: statements.iter().map(|s| s.text.clone()).collect(),
+        cells: statements.iter().map(|s| s.holds.iter().map(|&h| Some(h)).collect()).collect(),
+    };
+    a.add("statements.svg", matrix.svg());
 
     // ---------------------------------------------------------------- the prose
     let mid =
