@@ -552,6 +552,32 @@ pub fn transient_values(
     }
 }
 
+/// The striker of `body` on the scene's plate at `velocity`, with the scene's restitution and
+/// contact law.
+pub fn scene_striker(scene: &Scene, body: &Sphere, velocity: f64) -> Striker {
+    Striker { law: scene.contact_law.law_for(body), ..striker(&scene.plate, body, scene.restitution, velocity) }
+}
+
+/// One transient response row's values with their error estimate, and the estimate itself
+/// (its `outcome` is the run the values come from, with its history): `[case, fine]` and
+/// `coarse` are the plate on n, 2n and n/2 elements ([`TransientCase::refined`],
+/// [`TransientCase::coarsened`]). What [`run_transient`] computes for each of its rows.
+pub fn transient_response(
+    scene: &Scene,
+    [case, fine]: [&TransientCase; 2],
+    coarse: Option<&TransientCase>,
+    set: &SupportSet,
+    body: &Sphere,
+    (x, z): (f64, f64),
+    velocity: f64,
+) -> Result<(ResponseValues, Estimated), ModelError> {
+    let s = scene_striker(scene, body, velocity);
+    let steps = case.settings().steps_per_contact;
+    let e = estimate_on(case, fine, coarse, set, &s, (x, z), steps)?;
+    let values = transient_values(scene, set, body, &e.outcome, &s, s.hertz_time() / steps, (x, z), Some(&e));
+    Ok((values, e))
+}
+
 /// Runs the scene's responses with the transient model (yield velocities by the transient
 /// model are the velocity at which the transient δ_max reaches δ_my). Every response carries
 /// the error estimate of [`crate::transient::estimate`]: each case also runs at half and
@@ -568,14 +594,8 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
             for &(x, z) in &points {
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
-                        let s = Striker {
-                            law: scene.contact_law.law_for(body),
-                            ..striker(&scene.plate, body, scene.restitution, v)
-                        };
-                        let e =
-                            estimate_on(&case, &fine, coarse.as_ref(), set, &s, (x, z), settings.steps_per_contact)?;
-                        let o = &e.outcome;
-                        let dt = s.hertz_time() / settings.steps_per_contact;
+                        let (values, _) =
+                            transient_response(scene, [&case, &fine], coarse.as_ref(), set, body, (x, z), v)?;
                         responses.push(ResponseRow {
                             model: ModelKind::Transient,
                             body: body.name.clone(),
@@ -583,16 +603,7 @@ pub fn run_transient(scene: &Scene, settings: TransientSettings) -> Result<Resul
                             x,
                             z,
                             velocity: v,
-                            outcome: RowOutcome::Computed(transient_values(
-                                scene,
-                                set,
-                                body,
-                                o,
-                                &s,
-                                dt,
-                                (x, z),
-                                Some(&e),
-                            )),
+                            outcome: RowOutcome::Computed(values),
                         });
                     }
                 }
@@ -691,10 +702,7 @@ pub fn dynamic_yield(
     let k = contact_stiffness(body, scene.plate.material());
     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
     let mut reach = |lv: f64| -> Result<f64, ModelError> {
-        let s = Striker {
-            law: scene.contact_law.law_for(body),
-            ..striker(&scene.plate, body, scene.restitution, lv.exp())
-        };
+        let s = scene_striker(scene, body, lv.exp());
         Ok((case.run(set, &s, x, z)?.compression_max / d_my).ln())
     };
     // On a rigid target the balance gives the smallest v that reaches δ_my: start there.
