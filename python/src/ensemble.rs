@@ -146,6 +146,9 @@ pub fn ensemble<'py>(
 
     let rows = py
         .detach(|| -> Result<Vec<_>, String> {
+            if start == stop {
+                return Ok(vec![]);
+            }
             let case = TransientCase::new(&s.plate, settings).map_err(|e| e.to_string())?;
             (start..stop)
                 .map(|i| {
