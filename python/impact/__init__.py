@@ -39,7 +39,13 @@ from typing import Any, Mapping, Sequence, Union
 
 import numpy as np
 
-from . import _impact
+try:
+    from . import _impact
+except ImportError as e:  # the source tree's python/impact, not the installed package
+    raise ImportError(
+        "impact's extension module impact._impact is not built here: install the package with "
+        "`pip install ./python` and import it from outside the python/ directory"
+    ) from e
 from ._impact import ModelError, Scene, SceneError
 
 __all__ = [
