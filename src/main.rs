@@ -5,6 +5,7 @@ use coupled::plan::{ModelKind, Results};
 use impact::output::{Artifacts, OutputDir, OutputFile};
 use impact::present::rows::{response_tables, slug, yield_tables};
 use impact::report::Failure;
+use impact::run::MEMORY_BUDGET_BYTES;
 use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
