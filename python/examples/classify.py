@@ -1,18 +1,26 @@
-"""Coal or gangue from the plate's response: a scikit-learn classifier on ensemble features.
+"""Coal or gangue from the support's response: a scikit-learn classifier on the features of
+the scene's coal-gangue ensemble, beside the Rust identify report's AUCs and accuracies.
 
-    python python/examples/classify.py [--n 400] [--workers 2]
+    python python/examples/classify.py [--scene scenes/paper-velocities-ensemble.toml]
+        [--condition "Con 2"] [--impact target/release/impact] [--workers 2]
 
-Runs a random impact ensemble (impact.ensemble over the transient model, sharded on a Dask
-LocalCluster), keeps only what a sensor could measure (the contact force peak, the contact
-time, the deflection, the impulse, the rebound), and prints per feature the ROC AUC of
-coal against gangue, then the 5-fold cross-validated accuracy of a logistic regression on
-all of them together. The ground truth the ensemble drew (radius, mass, velocity) is not a
-feature.
+1. Runs `impact identify --json` on the scene (the Rust report: AUC ranking with bootstrap
+   intervals, its own cross-validated classifiers).
+2. Runs the same ensemble from Python as Dask shards (impact.shards.run_identify) and trains a
+   scikit-learn logistic regression on every feature of the named sensors and the corners
+   (standardised, log of the scale features), 5-fold stratified cross-validation.
+3. Prints sklearn's accuracy beside the report's, and for the report's top features the AUC
+   scikit-learn computes from the Python columns beside the report's: the same impacts, so
+   the same numbers.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import subprocess
+import tempfile
+from pathlib import Path
 
 import numpy as np
 from dask.distributed import Client, LocalCluster
@@ -25,40 +33,52 @@ from sklearn.preprocessing import StandardScaler
 import impact
 import impact.shards as shards
 
-FEATURES = ["peak_force_n", "contact_time_s", "deflection_m", "impulse_n_s", "apparent_restitution"]
-
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--n", type=int, default=400, help="impacts (half coal, half gangue)")
+    ap.add_argument("--scene", default="scenes/paper-velocities-ensemble.toml")
+    ap.add_argument("--condition", default="Con 2")
+    ap.add_argument("--impact", default="target/release/impact", help="the impact binary")
     ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--seed", type=int, default=2026)
+    ap.add_argument("--shard-size", type=int, default=300)
     a = ap.parse_args()
-    scene = impact.Scene.default()
-    kw = dict(
-        condition="Con 2",
-        families=["coal", "gangue 1"],  # gangue 1 has the coal sphere's mass (Table 1)
-        seed=a.seed,
-        velocity_m_per_s=(0.002, 0.02),
-        radius_spread=0.2,
-        elements=12,
-        steps_per_contact=100.0,
-    )
+    scene = impact.Scene.from_toml(a.scene)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        out = subprocess.run(
+            [a.impact, "identify", "--scene", a.scene, "--out", str(Path(tmp) / "identify"), "--json"],
+            check=True, capture_output=True, text=True,
+        )
+    report = json.loads(out.stdout)
+    rust = next(c for c in report["conditions"] if c["condition"] == a.condition)
+
     with LocalCluster(n_workers=a.workers, threads_per_worker=1, dashboard_address=None) as c, Client(c) as client:
-        cols = shards.run_ensemble(client, scene, n=a.n, shard_size=25, **kw)
-    y = cols["family"] != "coal"
-    x = np.column_stack([cols[f] for f in FEATURES])
-    keep = np.isfinite(x).all(axis=1)
-    print(f"{a.n} impacts on {kw['condition']}, {int(keep.sum())} with every feature; "
-          f"{int(cols['valid'].sum())} inside every validity criterion")
-    print("ROC AUC, gangue against coal, per feature:")
-    for j, f in enumerate(FEATURES):
-        auc = roc_auc_score(y[keep], x[keep, j])
-        print(f"  {f:<22} {max(auc, 1 - auc):.3f}")
-    model = make_pipeline(StandardScaler(), LogisticRegression(max_iter=1000))
-    folds = StratifiedKFold(n_splits=5, shuffle=True, random_state=0)
-    acc = cross_val_score(model, x[keep], y[keep], cv=folds)
-    print(f"logistic regression on all features, 5-fold CV accuracy: {acc.mean():.3f} ± {acc.std():.3f}")
+        cols = shards.run_identify(client, scene, a.condition, shard_size=a.shard_size)
+    y = cols["class"] == "gangue"
+    features = [k for k in cols if ": " in k]
+    x = np.column_stack([cols[k] for k in features])
+    # Peaks, RMS and energies span decades: their logarithms are what a linear model can use.
+    scale = np.array([any(f"{w} (" in k for w in ("peak", "rms", "energy")) for k in features])
+    x[:, scale] = np.log10(np.abs(x[:, scale]) + 1e-300)
+    n_coal, n_gangue = int((~y).sum()), int(y.sum())
+    print(f"{scene.name} on {a.condition}: {len(y)} impacts ({n_coal} coal, {n_gangue} gangue), "
+          f"{len(features)} features; {int(cols['valid'].sum())} inside the elastic range")
+
+    model = make_pipeline(StandardScaler(), LogisticRegression(max_iter=2000))
+    acc = cross_val_score(model, x, y, cv=StratifiedKFold(n_splits=5, shuffle=True, random_state=0))
+    print(f"scikit-learn logistic regression, all features, 5-fold CV accuracy: {acc.mean():.3f} ± {acc.std():.3f}")
+    for cl in rust["classifiers"]:
+        r = cl["result"]
+        print(f"Rust report's logistic regression ({cl['features']}), {r['folds']}-fold CV accuracy: "
+              f"{r['accuracy']:.3f} ± {r['standard_error']:.3f}")
+
+    print("top features of the Rust report: its AUC [95 % bootstrap] | scikit-learn's AUC from the Python columns")
+    for rk in rust["ranking"][:8]:
+        key = f"{rk['channel']}: {rk['feature'].replace('-', '_')} ("
+        col = next((k for k in features if k.startswith(key)), None)
+        ours = roc_auc_score(y, cols[col]) if col else float("nan")
+        lo, hi = rk["interval"]
+        print(f"  {rk['channel']}: {rk['feature']:<20} {rk['auc']['auc']:.4f} [{lo:.3f}, {hi:.3f}] | {ours:.4f}")
 
 
 if __name__ == "__main__":

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any, Mapping, Sequence, Union
+from typing import Any, Mapping, Union
 
 import numpy as np
 
@@ -55,7 +55,8 @@ __all__ = [
     "Scene",
     "SceneError",
     "Transient",
-    "ensemble",
+    "ensemble_size",
+    "identify",
     "load_scene",
     "solve",
     "sweep",
@@ -223,46 +224,31 @@ def transient(
     )
 
 
-def ensemble(
-    scene: SceneLike,
-    condition: str,
-    families: Sequence[str],
-    start: int,
-    stop: int,
-    seed: int,
-    velocity_m_per_s: tuple[float, float],
-    *,
-    radius_spread: float = 0.0,
-    region_mm: tuple[float, float, float, float] | None = None,
-    elements: int = 12,
-    steps_per_contact: float = 100.0,
-) -> Columns:
-    """Impacts ``start`` to ``stop - 1`` of a random ensemble, as feature columns.
+def identify(scene: SceneLike, condition: str, start: int = 0, stop: int | None = None) -> Columns:
+    """Impacts ``start`` to ``stop - 1`` of the scene's coal-gangue ensemble on the support
+    set ``condition``, as ``impact identify`` runs them: the scene's ``[ensemble]`` draws,
+    the reduced-order transient model and the ``[signals]`` (window, rate, modes, damping,
+    named sensors), every channel reduced to its features.
 
-    Impact ``i`` is a transient run of the body ``families[i % len(families)]`` (so every
-    shard holds the families in turn) at a position uniform over ``region_mm`` = (x0, x1, z0,
-    z1) (default the whole plate), a velocity uniform in ``velocity_m_per_s`` and a radius
-    the body's times a factor uniform in [1 - radius_spread, 1 + radius_spread], drawn from
-    its own random stream (ChaCha8, the seed, stream i). A row depends only on (seed, i):
-    any split of [0, n) into shards gives, concatenated, the single run's rows bit for bit
-    (see :mod:`impact.shards`).
+    Impact ``i`` is drawn from its own stream (ChaCha8, the ensemble's seed, stream i), so
+    any split of [0, n) into index ranges gives, concatenated, the rows of one run of the
+    whole ensemble, bit for bit (:func:`impact.shards.run_identify` runs them on Dask).
+    ``stop`` defaults to the ensemble's size.
 
-    Columns: ``index``, ``family``, ``x_m``, ``z_m``, ``velocity_m_per_s``, ``radius_m``,
-    ``mass_kg``, the features ``peak_force_n``, ``compression_m``, ``deflection_m``,
-    ``plate_ratio``, ``contact_time_s``, ``apparent_restitution``, ``impulse_n_s``,
-    ``contacts``, and the validity ``valid``, ``flags``, ``elastic_ratio``.
+    Columns: ``index``, ``family``, ``class`` ("coal" | "gangue"), the draw (``x_m``,
+    ``z_m``, ``velocity_m_per_s``, ``radius_m``, ``density_kg_m3``, ``youngs_modulus_pa``,
+    ``poisson_ratio``, ``cohesion_pa``, ``friction_angle_deg``), the contact
+    (``force_max_n``, ``contact_time_s``, ``contacts``, ``unfinished``), the validity
+    (``valid``, ``flags``, ``elastic_ratio`` = delta_max/delta_my, ``quasi_static_ratio`` =
+    t_c/T1, a regime label here), and one column per channel and feature, named
+    "<channel>: <feature> (<unit>)" with the channel as the identify report names it, e.g.
+    "acceleration at (229.2, 180) mm: peak (m/s^2)". An empty range has no feature columns.
     """
-    raw = _impact.ensemble(
-        load_scene(scene),
-        condition,
-        list(families),
-        float(start),
-        float(stop),
-        int(seed),
-        (float(velocity_m_per_s[0]), float(velocity_m_per_s[1])),
-        radius_spread=float(radius_spread),
-        region_mm=None if region_mm is None else tuple(float(v) for v in region_mm),
-        elements=float(elements),
-        steps_per_contact=float(steps_per_contact),
-    )
-    return _columns(raw)
+    s = load_scene(scene)
+    n = ensemble_size(s)
+    return _columns(_impact.identify(s, condition, float(start), float(n if stop is None else stop)))
+
+
+def ensemble_size(scene: SceneLike) -> int:
+    """The number of impacts of the scene's ``[ensemble]`` (0 without one)."""
+    return int(load_scene(scene).ensemble_size)

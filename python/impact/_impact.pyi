@@ -48,6 +48,8 @@ class Scene:
     def analyses(self) -> list[str]: ...
     @property
     def plate_m(self) -> tuple[float, float, float]: ...
+    @property
+    def ensemble_size(self) -> int: ...
     def __reduce__(self) -> tuple[Any, tuple[str, str]]: ...
 
 def run(
@@ -65,16 +67,4 @@ def transient(
     steps_per_contact: float = 200.0,
     window_contacts: float = 20.0,
 ) -> dict[str, Any]: ...
-def ensemble(
-    scene: Scene,
-    condition: str,
-    families: list[str],
-    start: float,
-    stop: float,
-    seed: int,
-    velocity_m_per_s: tuple[float, float],
-    radius_spread: float = 0.0,
-    region_mm: tuple[float, float, float, float] | None = None,
-    elements: float = 12.0,
-    steps_per_contact: float = 100.0,
-) -> dict[str, Any]: ...
+def identify(scene: Scene, condition: str, start: float, stop: float) -> dict[str, Any]: ...

@@ -1,20 +1,21 @@
-"""Ensembles split into independent seeded shards, run as dask.distributed tasks.
+"""The scene's coal-gangue ensemble split into independent seeded shards, run as
+dask.distributed tasks.
 
-An ensemble of ``n`` impacts is the index range [0, n). Every impact draws from its own
-random stream (the seed, stream i), so a shard [start, stop) computes exactly the rows a
-single run would compute for those indices, on any machine and in any order. The shards run
-as tasks of a ``dask.distributed.Client`` and :func:`merge` puts them back in index order:
-the merged columns equal a single-process :func:`impact.ensemble` of the same seed, bit for
-bit (``tests/test_shards.py`` checks it on a ``LocalCluster``).
+An ensemble of ``n`` impacts is the index range [0, n). Every impact draws from its own random
+stream (ChaCha8 keyed by the ensemble's seed, stream i), so a shard [start, stop) computes
+exactly the rows a single run computes for those indices, on any machine and in any order. The
+shards run as tasks of a ``dask.distributed.Client`` and :func:`merge` puts them back in index
+order: the merged columns equal a single-process :func:`impact.identify` of the same scene,
+bit for bit (``python/tests/test_shards.py`` checks it on a ``LocalCluster``).
 
 On one machine::
 
     from dask.distributed import Client, LocalCluster
     with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
-        cols = impact.shards.run_ensemble(client, scene, n=1000, shard_size=50, seed=7, ...)
+        cols = impact.shards.run_identify(client, "scenes/caving-stream.toml", "Con 2", shard_size=500)
 
-On a Slurm cluster (``pip install dask-jobqueue``; every node sees the same Python
-environment with ``impact`` installed, e.g. a venv on a shared file system)::
+On a Slurm cluster (``pip install dask-jobqueue``; every node sees the same Python environment
+with ``impact`` installed, e.g. a venv on a shared file system)::
 
     from dask_jobqueue import SLURMCluster
     cluster = SLURMCluster(
@@ -25,12 +26,12 @@ environment with ``impact`` installed, e.g. a venv on a shared file system)::
     )
     cluster.scale(jobs=64)                           # or cluster.adapt(maximum_jobs=64)
     client = Client(cluster)
-    cols = impact.shards.run_ensemble(client, scene, n=100_000, shard_size=500, seed=7, ...)
+    cols = impact.shards.run_identify(client, scene, "Con 2", shard_size=2000)
 
-A shard should run for well over the per-task overhead (measured in the repository's README,
-a few milliseconds per task on a LocalCluster): with the transient model at about 0.01-0.1 s
-per impact, 100 or more impacts per shard. A shard that fails (a worker lost) is simply rerun
-by Dask: it has no state but its range.
+Each shard builds the reduced model of its support set once (the plate's modes: about a
+second for the default 80 modes) and then runs its impacts at a few milliseconds each, so a
+shard should hold well over a thousand impacts; the README gives the measured overhead. A
+shard that fails (a worker lost) is simply rerun by Dask: it has no state but its range.
 """
 
 from __future__ import annotations
@@ -39,7 +40,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from . import Columns, SceneLike, ensemble, load_scene
+from . import Columns, SceneLike, ensemble_size, identify, load_scene
 
 
 def shard_ranges(n: int, shard_size: int) -> list[tuple[int, int]]:
@@ -51,9 +52,11 @@ def shard_ranges(n: int, shard_size: int) -> list[tuple[int, int]]:
 
 def merge(parts: Sequence[Columns]) -> Columns:
     """Concatenates shards (in any order) into index order, checking that their ``index``
-    columns tile one contiguous range with no gap or overlap."""
+    columns tile one contiguous range with no gap or overlap. Empty shards add no rows."""
     if not parts:
         raise ValueError("no shards to merge")
+    # An empty shard has no feature columns (they follow from the data): leave it out.
+    parts = [p for p in parts if len(p["index"])] or list(parts[:1])
     names = list(parts[0])
     for p in parts:
         if list(p) != names:
@@ -79,7 +82,8 @@ def run_sharded(
     :func:`shard_ranges` as a task of ``client`` and merges the results.
 
     ``shard`` must be importable on the workers (a module-level function) and return
-    columns with an ``index`` column; its arguments are pickled to the workers.
+    columns with an ``index`` column; its arguments are pickled to the workers (a
+    :class:`impact.Scene` travels as its TOML text and is validated again there).
     """
     ranges = shard_ranges(n, shard_size)
     futures = [
@@ -88,14 +92,15 @@ def run_sharded(
     return merge(client.gather(futures))
 
 
-def _ensemble_shard(scene: SceneLike, *, start: int, stop: int, **kwargs: Any) -> Columns:
-    return ensemble(scene, start=start, stop=stop, **kwargs)
+def _identify_shard(scene: SceneLike, condition: str, *, start: int, stop: int) -> Columns:
+    return identify(scene, condition, start=start, stop=stop)
 
 
-def run_ensemble(client: Any, scene: SceneLike, *, n: int, shard_size: int, seed: int, **kwargs: Any) -> Columns:
-    """:func:`impact.ensemble` of impacts [0, n) with ``seed``, split into shards of
-    ``shard_size`` run on ``client``; the keyword arguments are :func:`impact.ensemble`'s
-    (``condition``, ``families``, ``velocity_m_per_s``, ...). Equal to
-    ``impact.ensemble(scene, start=0, stop=n, seed=seed, ...)`` bit for bit."""
+def run_identify(client: Any, scene: SceneLike, condition: str, *, shard_size: int) -> Columns:
+    """:func:`impact.identify` of the scene's whole ensemble on ``condition``, split into
+    shards of ``shard_size`` impacts run on ``client``; equal to ``impact.identify(scene,
+    condition)`` bit for bit."""
     scene = load_scene(scene)
-    return run_sharded(client, _ensemble_shard, n, shard_size, scene, key=f"impact-ensemble-{seed}", seed=seed, **kwargs)
+    return run_sharded(
+        client, _identify_shard, ensemble_size(scene), shard_size, scene, condition, key=f"impact-identify-{condition}"
+    )

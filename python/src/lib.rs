@@ -11,8 +11,8 @@
 #![warn(missing_docs)]
 
 mod columns;
-mod ensemble;
 mod errors;
+mod identify;
 mod scene;
 
 use analytic::params::{check, Range};
@@ -191,7 +191,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ModelError", py.get_type::<errors::ModelError>())?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(transient, m)?)?;
-    m.add_function(wrap_pyfunction!(ensemble::ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -176,6 +176,12 @@ impl Scene {
         self.scene.analyses.iter().map(|a| a.key()).collect()
     }
 
+    /// The number of impacts of the `[ensemble]` table (0 without one).
+    #[getter]
+    fn ensemble_size(&self) -> usize {
+        self.scene.ensemble.as_ref().map_or(0, |s| s.ensemble.len())
+    }
+
     /// Plate length, width and thickness, m.
     #[getter]
     fn plate_m(&self) -> (f64, f64, f64) {
