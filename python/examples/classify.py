@@ -18,8 +18,10 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import subprocess
 import tempfile
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -52,10 +54,19 @@ def main() -> None:
     report = json.loads(out.stdout)
     rust = next(c for c in report["conditions"] if c["condition"] == a.condition)
 
+    # The scene's named sensors, and the report's top-ranked points (from its placement grid), so
+    # that its AUCs can be recomputed from the Python columns.
+    named = [tuple(p) for p in tomllib.loads(Path(a.scene).read_text())["signals"]["sensors_mm"]]
+    ranked = [tuple(map(float, re.search(r"at \(([-\d.]+), ([-\d.]+)\) mm", r["channel"]).groups())) for r in rust["ranking"][:8]]
+    sensors = list(dict.fromkeys(named + [p for p in ranked if p not in named]))
     with LocalCluster(n_workers=a.workers, threads_per_worker=1, dashboard_address=None) as c, Client(c) as client:
-        cols = shards.run_identify(client, scene, a.condition, shard_size=a.shard_size)
+        cols = shards.run_identify(client, scene, a.condition, shard_size=a.shard_size, sensors_mm=sensors)
     y = cols["class"] == "gangue"
-    features = [k for k in cols if ": " in k]
+    at_named = tuple(f"at ({x:g}, {z:g}) mm" for x, z in named)
+    corners = tuple(f"{q} at" for q in ("spring force", "reaction"))
+    # The classifier sees the named sensors and the corners, as the report's "every named
+    # sensor and corner channel" classifier does.
+    features = [k for k in cols if ": " in k and (k.startswith(corners) or any(p in k for p in at_named))]
     x = np.column_stack([cols[k] for k in features])
     # Peaks, RMS and energies span decades: their logarithms are what a linear model can use.
     scale = np.array([any(f"{w} (" in k for w in ("peak", "rms", "energy")) for k in features])
@@ -75,10 +86,14 @@ def main() -> None:
     print("top features of the Rust report: its AUC [95 % bootstrap] | scikit-learn's AUC from the Python columns")
     for rk in rust["ranking"][:8]:
         key = f"{rk['channel']}: {rk['feature'].replace('-', '_')} ("
-        col = next((k for k in features if k.startswith(key)), None)
+        col = next((k for k in cols if k.startswith(key)), None)
         ours = roc_auc_score(y, cols[col]) if col else float("nan")
         lo, hi = rk["interval"]
         print(f"  {rk['channel']}: {rk['feature']:<20} {rk['auc']['auc']:.4f} [{lo:.3f}, {hi:.3f}] | {ours:.4f}")
+    for name, col in (("force_max", "force_max_n"), ("contact_time", "contact_time_s")):
+        rk = rust[name]
+        print(f"  {name:<50} {rk['auc']['auc']:.4f} [{rk['interval'][0]:.3f}, {rk['interval'][1]:.3f}] | "
+              f"{roc_auc_score(y, np.nan_to_num(cols[col], nan=0.0)):.4f}")
 
 
 if __name__ == "__main__":

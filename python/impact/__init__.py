@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any, Mapping, Union
+from typing import Any, Mapping, Sequence, Union
 
 import numpy as np
 
@@ -224,7 +224,14 @@ def transient(
     )
 
 
-def identify(scene: SceneLike, condition: str, start: int = 0, stop: int | None = None) -> Columns:
+def identify(
+    scene: SceneLike,
+    condition: str,
+    start: int = 0,
+    stop: int | None = None,
+    *,
+    sensors_mm: Sequence[tuple[float, float]] | None = None,
+) -> Columns:
     """Impacts ``start`` to ``stop - 1`` of the scene's coal-gangue ensemble on the support
     set ``condition``, as ``impact identify`` runs them: the scene's ``[ensemble]`` draws,
     the reduced-order transient model and the ``[signals]`` (window, rate, modes, damping,
@@ -233,7 +240,9 @@ def identify(scene: SceneLike, condition: str, start: int = 0, stop: int | None 
     Impact ``i`` is drawn from its own stream (ChaCha8, the ensemble's seed, stream i), so
     any split of [0, n) into index ranges gives, concatenated, the rows of one run of the
     whole ensemble, bit for bit (:func:`impact.shards.run_identify` runs them on Dask).
-    ``stop`` defaults to the ensemble's size.
+    ``stop`` defaults to the ensemble's size. The sensors are the scene's named ones
+    (``[signals] sensors_mm``) unless ``sensors_mm`` gives others ((x, z) in mm); a sensor's
+    features do not depend on the other sensors.
 
     Columns: ``index``, ``family``, ``class`` ("coal" | "gangue"), the draw (``x_m``,
     ``z_m``, ``velocity_m_per_s``, ``radius_m``, ``density_kg_m3``, ``youngs_modulus_pa``,
@@ -246,7 +255,10 @@ def identify(scene: SceneLike, condition: str, start: int = 0, stop: int | None 
     """
     s = load_scene(scene)
     n = ensemble_size(s)
-    return _columns(_impact.identify(s, condition, float(start), float(n if stop is None else stop)))
+    sensors = None if sensors_mm is None else [(float(x), float(z)) for x, z in sensors_mm]
+    return _columns(
+        _impact.identify(s, condition, float(start), float(n if stop is None else stop), sensors_mm=sensors)
+    )
 
 
 def ensemble_size(scene: SceneLike) -> int:

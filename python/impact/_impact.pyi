@@ -67,4 +67,10 @@ def transient(
     steps_per_contact: float = 200.0,
     window_contacts: float = 20.0,
 ) -> dict[str, Any]: ...
-def identify(scene: Scene, condition: str, start: float, stop: float) -> dict[str, Any]: ...
+def identify(
+    scene: Scene,
+    condition: str,
+    start: float,
+    stop: float,
+    sensors_mm: list[tuple[float, float]] | None = None,
+) -> dict[str, Any]: ...

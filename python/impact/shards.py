@@ -92,15 +92,29 @@ def run_sharded(
     return merge(client.gather(futures))
 
 
-def _identify_shard(scene: SceneLike, condition: str, *, start: int, stop: int) -> Columns:
-    return identify(scene, condition, start=start, stop=stop)
+def _identify_shard(scene: SceneLike, condition: str, *, start: int, stop: int, sensors_mm: Any = None) -> Columns:
+    return identify(scene, condition, start=start, stop=stop, sensors_mm=sensors_mm)
 
 
-def run_identify(client: Any, scene: SceneLike, condition: str, *, shard_size: int) -> Columns:
+def run_identify(
+    client: Any,
+    scene: SceneLike,
+    condition: str,
+    *,
+    shard_size: int,
+    sensors_mm: Sequence[tuple[float, float]] | None = None,
+) -> Columns:
     """:func:`impact.identify` of the scene's whole ensemble on ``condition``, split into
     shards of ``shard_size`` impacts run on ``client``; equal to ``impact.identify(scene,
-    condition)`` bit for bit."""
+    condition, sensors_mm=sensors_mm)`` bit for bit."""
     scene = load_scene(scene)
     return run_sharded(
-        client, _identify_shard, ensemble_size(scene), shard_size, scene, condition, key=f"impact-identify-{condition}"
+        client,
+        _identify_shard,
+        ensemble_size(scene),
+        shard_size,
+        scene,
+        condition,
+        key=f"impact-identify-{condition}",
+        sensors_mm=sensors_mm,
     )

@@ -66,16 +66,18 @@ fn flags(r: &ImpactRecord) -> Vec<&'static str> {
 }
 
 /// Impacts `start..stop` of the scene's ensemble on the support set `condition`, with the
-/// scene's signals (window, rate, modes, damping, named sensors, every quantity, the
-/// corners): draws, contact quantities, validity and every channel's features.
+/// scene's signals (window, rate, modes, damping, every quantity, the corners) at the scene's
+/// named sensors or at `sensors_mm` ((x, z) in mm): draws, contact quantities, validity and
+/// every channel's features.
 #[pyfunction]
-#[pyo3(signature = (scene, condition, start, stop))]
+#[pyo3(signature = (scene, condition, start, stop, sensors_mm = None))]
 pub fn identify<'py>(
     py: Python<'py>,
     scene: &crate::scene::Scene,
     condition: &str,
     start: f64,
     stop: f64,
+    sensors_mm: Option<Vec<(f64, f64)>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &scene.scene;
     let study = s.ensemble.as_ref().ok_or_else(|| {
@@ -98,10 +100,27 @@ pub fn identify<'py>(
     }
     let (start, stop) = (start as usize, stop as usize);
     let settings = &s.signals;
+    let sensors = match sensors_mm {
+        None => settings.sensors.clone(),
+        Some(list) => {
+            let (l_mm, b_mm) = (s.plate.length() * 1e3, s.plate.width() * 1e3);
+            list.iter()
+                .enumerate()
+                .map(|(j, &(x, z))| {
+                    let x = check(&format!("sensors_mm[{j}][0] (x)"), x, Range::closed(0.0, l_mm), "mm");
+                    let z = check(&format!("sensors_mm[{j}][1] (z)"), z, Range::closed(0.0, b_mm), "mm");
+                    match (x, z) {
+                        (Ok(x), Ok(z)) => Ok((x * 1e-3, z * 1e-3)),
+                        (Err(err), _) | (_, Err(err)) => Err(argument_error(&err)),
+                    }
+                })
+                .collect::<PyResult<Vec<_>>>()?
+        }
+    };
     let spec = SignalSpec {
         window: settings.window,
         rate_hz: settings.rate_hz,
-        sensors: settings.sensors.clone(),
+        sensors: sensors.clone(),
         quantities: Quantity::ALL.to_vec(),
         corners: true,
     };
@@ -125,8 +144,7 @@ pub fn identify<'py>(
         .map_err(model_error)?;
     let (channels, records) = computed;
     // Channels named as the identify report names them ("acceleration at (229.2, 180) mm").
-    let labels: Vec<String> =
-        channels.iter().map(|&c| ChannelInfo::new(c, &settings.sensors, &s.plate).label()).collect();
+    let labels: Vec<String> = channels.iter().map(|&c| ChannelInfo::new(c, &sensors, &s.plate).label()).collect();
     let mut t = Table::new(records.len(), &SCHEMA);
     for (row, (family, r)) in records.iter().enumerate() {
         let d = &r.draw;
