@@ -271,7 +271,7 @@ pub fn pair_tables(scene: &Scene, pair: &Pair) -> Vec<Table> {
 pub struct Maps {
     pub xs: Vec<f64>,
     pub zs: Vec<f64>,
-    /// condition -> [ix][iz] plate compliance, and beam compliance per ix.
+    /// condition -> `[ix][iz]` plate compliance, and beam compliance per ix.
     pub plate: Vec<Vec<Vec<f64>>>,
     pub error: Vec<Vec<Vec<f64>>>,
     pub beam: Vec<Vec<f64>>,

@@ -206,9 +206,10 @@ fn quantity_name(q: Quantity) -> &'static str {
     }
 }
 
-/// What a channel is and where, in words and as CSV fields.
+/// What a channel is and where, in words and as CSV fields (also the Python package's column
+/// names, so that its features and this report's rankings name a channel alike).
 #[derive(Debug, Clone)]
-struct ChannelInfo {
+pub struct ChannelInfo {
     kind: ChannelKind,
     quantity: &'static str,
     /// (x, z) of the sensor or corner, m.
@@ -219,7 +220,8 @@ struct ChannelInfo {
 }
 
 impl ChannelInfo {
-    fn new(kind: ChannelKind, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Self {
+    /// The channel `kind` of a run with `sensors` on `plate`.
+    pub fn new(kind: ChannelKind, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Self {
         let (quantity, sensor) = match kind {
             ChannelKind::Displacement { sensor } => ("displacement", Some(sensor)),
             ChannelKind::Velocity { sensor } => ("velocity", Some(sensor)),
@@ -236,7 +238,8 @@ impl ChannelInfo {
         Self { kind, quantity, at, sensor, unit: kind.unit() }
     }
 
-    fn label(&self) -> String {
+    /// "acceleration at (229.2, 180) mm", "spring force at (458.4, 0) mm".
+    pub fn label(&self) -> String {
         format!("{} at ({}, {}) mm", self.quantity, mm(self.at.0), mm(self.at.1))
     }
 }

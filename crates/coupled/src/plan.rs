@@ -12,7 +12,7 @@ use crate::compliance::{ComplianceModel, Estimate};
 use crate::error::ModelError;
 use crate::scene::{Analysis, Scene};
 use crate::supports::SupportSet;
-use crate::transient::estimate::{Estimated, Ladder};
+use crate::transient::estimate::{Discretisation, Estimated, Ladder};
 use crate::transient::{case::striker, Outcome, Striker, TransientCase, TransientSettings};
 use crate::validity::{self, Validity};
 use analytic::{
@@ -589,6 +589,33 @@ pub fn transient_values(
     }
 }
 
+/// The striker of `body` on the scene's plate at `velocity`, with the scene's restitution and
+/// contact law.
+pub fn scene_striker(scene: &Scene, body: &Sphere, velocity: f64) -> Striker {
+    Striker { law: scene.contact_law.law_for(body), ..striker(&scene.plate, body, scene.restitution, velocity) }
+}
+
+/// One transient response row's values with their error estimate, and the estimate itself
+/// (its `outcome` is the run the values come from, with its history), on the discretisation
+/// `disc` over the plate's mesh `ladder` ([`Discretisation::estimate`]). What
+/// [`run_transient`] computes for each of its rows.
+#[allow(clippy::too_many_arguments)]
+pub fn transient_response(
+    scene: &Scene,
+    disc: Discretisation,
+    ladder: &mut Ladder,
+    set: &SupportSet,
+    body: &Sphere,
+    (x, z): (f64, f64),
+    velocity: f64,
+) -> Result<(ResponseValues, Estimated), ModelError> {
+    let s = scene_striker(scene, body, velocity);
+    let e = disc.estimate(ladder, set, &s, (x, z))?;
+    let dt = s.hertz_time() / e.steps_per_contact;
+    let values = transient_values(scene, set, body, &e.outcome, &s, dt, (x, z), Some(&e));
+    Ok((values, e))
+}
+
 /// Runs the scene's responses with the transient model (yield velocities by the transient
 /// model are the velocity at which the transient δ_max reaches δ_my). Every response carries
 /// the error estimate of [`crate::transient::estimate`] on the discretisation the scene asks
@@ -605,12 +632,7 @@ pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {
             for &(x, z) in &points {
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
-                        let s = Striker {
-                            law: scene.contact_law.law_for(body),
-                            ..striker(&scene.plate, body, scene.restitution, v)
-                        };
-                        let e = disc.estimate(&mut ladder, set, &s, (x, z))?;
-                        let dt = s.hertz_time() / e.steps_per_contact;
+                        let (values, _) = transient_response(scene, disc, &mut ladder, set, body, (x, z), v)?;
                         responses.push(ResponseRow {
                             model: ModelKind::Transient,
                             body: body.name.clone(),
@@ -618,16 +640,7 @@ pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {
                             x,
                             z,
                             velocity: v,
-                            outcome: RowOutcome::Computed(transient_values(
-                                scene,
-                                set,
-                                body,
-                                &e.outcome,
-                                &s,
-                                dt,
-                                (x, z),
-                                Some(&e),
-                            )),
+                            outcome: RowOutcome::Computed(values),
                         });
                     }
                 }
@@ -758,10 +771,7 @@ pub fn dynamic_yield_with(
     let k = contact_stiffness(body, scene.plate.material());
     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
     let mut reach = |lv: f64| -> Result<f64, ModelError> {
-        let s = Striker {
-            law: scene.contact_law.law_for(body),
-            ..striker(&scene.plate, body, scene.restitution, lv.exp())
-        };
+        let s = scene_striker(scene, body, lv.exp());
         Ok((case.run_steps(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
     };
     // On a rigid target the balance gives the smallest v that reaches δ_my: start there.

@@ -1,0 +1,266 @@
+"""Rock-sphere impact on supported steel plates, from Python.
+
+The same library as the ``impact`` command line (Rust, through PyO3): the paper's beam model,
+Kirchhoff plate finite elements with Richardson error estimates, and the transient impact
+model (sphere, Flores/Hertz/Thornton contact and plate dynamics in time).
+
+Scenes are the command line's scene files (TOML, units in the key names), or the same
+layout as a dict, read by the same parser and validation::
+
+    import impact, pandas as pd
+    scene = impact.Scene.from_toml("scenes/clamped-edge-props.toml")
+    r = impact.solve(scene, model="plate")
+    pd.DataFrame(r.responses)
+
+Results are columnar: a dict of numpy arrays, one entry per row, ready for
+``pandas.DataFrame``. Conventions:
+
+- SI units, the unit in the column name (``contact_force_n``, ``x_m``, ``velocity_m_per_s``);
+  ratios are over the sphere's kinetic energy E0 = m v^2 / 2.
+- Every row carries its validity: ``valid`` (inside every criterion), ``flags`` (the
+  criteria it is beyond, "; "-separated) and the measured ratios ``elastic_ratio``
+  (delta_max/delta_my, limit 1), ``quasi_static_ratio`` (t_c/T1, limit 0.2),
+  ``thin_plate_ratio`` (h/min(L, B), limit 0.05) and ``contacts`` (transient, limit 1).
+  Beyond validity a number is still computed, and flagged.
+- ``applicable`` is False where the model does not describe a row (the beam and a general
+  support set); ``reason`` says why.
+- NaN only where a quantity does not apply to a row (a not-applicable row, an error
+  estimate a model does not give, a spring its support set lacks), never as a computed
+  value; a column that applies to no row is left out.
+
+Every long computation releases the GIL.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence, Union
+
+import numpy as np
+
+try:
+    from . import _impact
+except ImportError as e:  # the source tree's python/impact, not the installed package
+    raise ImportError(
+        "impact's extension module impact._impact is not built here: install the package with "
+        "`pip install ./python` and import it from outside the python/ directory"
+    ) from e
+from ._impact import ModelError, Scene, SceneError
+
+__all__ = [
+    "Columns",
+    "ModelError",
+    "Results",
+    "Scene",
+    "SceneError",
+    "Transient",
+    "ensemble_size",
+    "identify",
+    "load_scene",
+    "solve",
+    "sweep",
+    "transient",
+    "yield_velocity",
+]
+__version__: str = _impact.__version__
+
+#: A table as columns: name -> numpy array, every array one entry per row.
+Columns = dict[str, np.ndarray]
+
+#: What the functions accept as a scene: a Scene, a path to a scene file, or a dict with the
+#: layout of a scene file.
+SceneLike = Union[Scene, str, "os.PathLike[str]", Mapping[str, Any]]
+
+
+def load_scene(scene: SceneLike) -> Scene:
+    """A validated :class:`Scene` from a Scene, a scene-file path or a dict.
+
+    Raises :class:`SceneError` (a ``ValueError``) naming the field, the value as written and
+    the allowed range, exactly as the command line does.
+    """
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, Mapping):
+        return Scene.from_dict(dict(scene))
+    if isinstance(scene, (str, os.PathLike)):
+        return Scene.from_toml(os.fspath(scene))
+    raise TypeError(f"a scene is a Scene, a path or a dict, not {type(scene).__name__}")
+
+
+def _columns(raw: Mapping[str, Any]) -> Columns:
+    """numpy arrays for every column (texts come from Rust as lists)."""
+    return {k: (np.asarray(v, dtype=np.str_) if isinstance(v, list) else v) for k, v in raw.items()}
+
+
+@dataclass(frozen=True)
+class Results:
+    """The rows of one run, as columns.
+
+    Attributes:
+        scene: the scene's name.
+        responses: responses at maximum compression, one row per model, body, support set,
+            point and velocity (empty for :func:`yield_velocity`).
+        yields: yield velocities (eqs. 51-54), one row per model, body, support set and point.
+        status: the command line's status line ("status: N results, M inside every
+            validity criterion; ...").
+        summary: counts of rows by validity (computed, valid, beyond_elastic,
+            not_quasi_static, beyond_thin_plate, recontact, not_applicable).
+    """
+
+    scene: str
+    responses: Columns
+    yields: Columns
+    status: str
+    summary: dict[str, int]
+
+
+def _results(raw: Mapping[str, Any]) -> Results:
+    return Results(
+        scene=raw["scene"],
+        responses=_columns(raw["responses"]),
+        yields=_columns(raw["yields"]),
+        status=raw["status"],
+        summary=dict(raw["summary"]),
+    )
+
+
+def solve(scene: SceneLike, model: str = "beam") -> Results:
+    """Responses and yield velocities at the scene's points (``impact solve``).
+
+    Args:
+        scene: a :class:`Scene`, a scene-file path or a dict (see :func:`load_scene`).
+        model: "beam" (the paper's closed forms), "plate" (Kirchhoff plate finite elements,
+            quasi-static, Richardson-extrapolated with an error estimate), "transient" (the
+            plate in time, each response with its discretisation error) or "all".
+
+    The scene's ``analyses`` decide what is computed ("responses", "yield-velocity").
+    The numbers are those of ``impact solve --json`` for the same scene, bit for bit.
+    """
+    return _results(_impact.run(load_scene(scene), model))
+
+
+def sweep(scene: SceneLike, count: int = 101, model: str = "beam") -> Results:
+    """:func:`solve` on ``count`` evenly spaced points of the centreline z = B/2, from x = 0
+    to L (``impact sweep --count``; the paper uses 101)."""
+    return _results(_impact.run(load_scene(scene), model, sweep=float(count)))
+
+
+def yield_velocity(scene: SceneLike, model: str = "beam") -> Results:
+    """Yield velocities only (eqs. 51-54; ``impact yield``); for the transient model, the
+    velocity at which the transient delta_max reaches the paper's delta_my."""
+    return _results(_impact.run(load_scene(scene), model, yield_only=True))
+
+
+@dataclass(frozen=True)
+class Transient:
+    """One transient impact.
+
+    Attributes:
+        response: the responses at maximum compression, one row with the columns of
+            :attr:`Results.responses` (errors when run with ``error_estimate``).
+        history: time series, one entry per time step: ``t_s``, ``force_n``,
+            ``compression_m``, ``sphere_velocity_m_per_s``, ``plate_displacement_m`` (at the
+            impact point), the energies ``sphere_kinetic_j``, ``contact_j``,
+            ``plate_kinetic_j``, ``plate_strain_j``, ``springs_j``, ``dissipated_j``, and
+            ``first_contact`` (True up to the first separation).
+        contacts: one row per completed contact: ``start_s``, ``duration_s``,
+            ``peak_force_n``, ``impulse_n_s``, ``rebound_velocity_m_per_s``, ``steps``.
+        left_for_good: whether the run proved that the sphere cannot strike again (else the
+            window ended first).
+    """
+
+    response: Columns
+    history: Columns
+    contacts: Columns
+    left_for_good: bool
+
+
+def transient(
+    scene: SceneLike,
+    body: str,
+    condition: str,
+    x_mm: float,
+    z_mm: float,
+    velocity_m_per_s: float,
+    *,
+    error_estimate: bool = True,
+    elements: int = 20,
+    steps_per_contact: float = 200.0,
+    window_contacts: float = 20.0,
+) -> Transient:
+    """One transient impact with its histories.
+
+    Args:
+        scene: the scene (its plate, contact law and restitution).
+        body: a body of the scene, by name.
+        condition: a support set of the scene, by name.
+        x_mm, z_mm: the impact point, mm (x along the length from the left end, z across).
+        velocity_m_per_s: the impact velocity.
+        error_estimate: also run at half and twice the time step and on the meshes with h
+            halved and doubled, and give the error of every response (about 5x the cost).
+        elements: elements along the plate's longer side (4 to 80).
+        steps_per_contact: time steps per rigid-target Hertz contact time (20 to 2000).
+        window_contacts: the run stops after this many Hertz times if the sphere has not
+            provably left.
+    """
+    raw = _impact.transient(
+        load_scene(scene),
+        body,
+        condition,
+        float(x_mm),
+        float(z_mm),
+        float(velocity_m_per_s),
+        error_estimate=error_estimate,
+        elements=float(elements),
+        steps_per_contact=float(steps_per_contact),
+        window_contacts=float(window_contacts),
+    )
+    return Transient(
+        response=_columns(raw["response"]),
+        history=_columns(raw["history"]),
+        contacts=_columns(raw["contacts"]),
+        left_for_good=bool(raw["left_for_good"]),
+    )
+
+
+def identify(
+    scene: SceneLike,
+    condition: str,
+    start: int = 0,
+    stop: int | None = None,
+    *,
+    sensors_mm: Sequence[tuple[float, float]] | None = None,
+) -> Columns:
+    """Impacts ``start`` to ``stop - 1`` of the scene's coal-gangue ensemble on the support
+    set ``condition``, as ``impact identify`` runs them: the scene's ``[ensemble]`` draws,
+    the reduced-order transient model and the ``[signals]`` (window, rate, modes, damping,
+    named sensors), every channel reduced to its features.
+
+    Impact ``i`` is drawn from its own stream (ChaCha8, the ensemble's seed, stream i), so
+    any split of [0, n) into index ranges gives, concatenated, the rows of one run of the
+    whole ensemble, bit for bit (:func:`impact.shards.run_identify` runs them on Dask).
+    ``stop`` defaults to the ensemble's size. The sensors are the scene's named ones
+    (``[signals] sensors_mm``) unless ``sensors_mm`` gives others ((x, z) in mm); a sensor's
+    features do not depend on the other sensors.
+
+    Columns: ``index``, ``family``, ``class`` ("coal" | "gangue"), the draw (``x_m``,
+    ``z_m``, ``velocity_m_per_s``, ``radius_m``, ``density_kg_m3``, ``youngs_modulus_pa``,
+    ``poisson_ratio``, ``cohesion_pa``, ``friction_angle_deg``), the contact
+    (``force_max_n``, ``contact_time_s``, ``contacts``, ``unfinished``), the validity
+    (``valid``, ``flags``, ``elastic_ratio`` = delta_max/delta_my, ``quasi_static_ratio`` =
+    t_c/T1, a regime label here), and one column per channel and feature, named
+    "<channel>: <feature> (<unit>)" with the channel as the identify report names it, e.g.
+    "acceleration at (229.2, 180) mm: peak (m/s^2)". An empty range has no feature columns.
+    """
+    s = load_scene(scene)
+    n = ensemble_size(s)
+    sensors = None if sensors_mm is None else [(float(x), float(z)) for x, z in sensors_mm]
+    return _columns(
+        _impact.identify(s, condition, float(start), float(n if stop is None else stop), sensors_mm=sensors)
+    )
+
+
+def ensemble_size(scene: SceneLike) -> int:
+    """The number of impacts of the scene's ``[ensemble]`` (0 without one)."""
+    return int(load_scene(scene).ensemble_size)

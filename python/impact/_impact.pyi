@@ -1,0 +1,76 @@
+"""Type stubs of the extension module ``impact._impact`` (Rust, PyO3). Use the functions of
+:mod:`impact`; they wrap these and document the columns."""
+
+from os import PathLike
+from typing import Any
+
+__version__: str
+
+class SceneError(ValueError):
+    """An invalid scene or argument, with the command line's message."""
+
+    origin: str | None
+    field: str | None
+    value: float | None
+    allowed: str | None
+    low: float | None
+    high: float | None
+    unit: str | None
+
+class ModelError(RuntimeError):
+    """A model that could not answer (budget exceeded, solver not converged)."""
+
+class Scene:
+    """A validated scene (SI units inside)."""
+
+    @staticmethod
+    def from_toml(path: str | PathLike[str]) -> Scene: ...
+    @staticmethod
+    def from_str(text: str, origin: str = "<string>") -> Scene: ...
+    @staticmethod
+    def from_dict(d: dict[str, Any], origin: str = "<dict>") -> Scene: ...
+    @staticmethod
+    def default() -> Scene: ...
+    def to_toml_str(self) -> str: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def origin(self) -> str: ...
+    @property
+    def bodies(self) -> list[str]: ...
+    @property
+    def conditions(self) -> list[str]: ...
+    @property
+    def points_m(self) -> list[tuple[float, float]]: ...
+    @property
+    def velocities_m_per_s(self) -> list[float]: ...
+    @property
+    def analyses(self) -> list[str]: ...
+    @property
+    def plate_m(self) -> tuple[float, float, float]: ...
+    @property
+    def ensemble_size(self) -> int: ...
+    def __reduce__(self) -> tuple[Any, tuple[str, str]]: ...
+
+def run(
+    scene: Scene, model: str = "beam", sweep: float | None = None, yield_only: bool = False
+) -> dict[str, Any]: ...
+def transient(
+    scene: Scene,
+    body: str,
+    condition: str,
+    x_mm: float,
+    z_mm: float,
+    velocity_m_per_s: float,
+    error_estimate: bool = True,
+    elements: float = 20.0,
+    steps_per_contact: float = 200.0,
+    window_contacts: float = 20.0,
+) -> dict[str, Any]: ...
+def identify(
+    scene: Scene,
+    condition: str,
+    start: float,
+    stop: float,
+    sensors_mm: list[tuple[float, float]] | None = None,
+) -> dict[str, Any]: ...

@@ -1,0 +1,96 @@
+//! The package's exceptions. `SceneError` (a `ValueError`) carries what the command line's
+//! message says, as attributes a program can read: the scene field, the value as written,
+//! the allowed range and its unit. `ModelError` (a `RuntimeError`) is a model that could not
+//! answer (a solver that did not converge, a request beyond the budgets).
+
+use analytic::params::InvalidParameter;
+use impact::scene::SceneError as Invalid;
+use pyo3::prelude::*;
+
+pyo3::create_exception!(
+    impact,
+    SceneError,
+    pyo3::exceptions::PyValueError,
+    "An invalid scene or argument. Attributes: `field` (the scene field or argument, or None \
+     for a file that cannot be read or parsed), `value` (the number refused, or None), \
+     `allowed` (the allowed range as text, e.g. \"[1, 100000]\", or None), `low`/`high` (its \
+     ends), `unit` (of value and range, \"\" when dimensionless) and `origin` (where the scene \
+     came from)."
+);
+pyo3::create_exception!(
+    impact,
+    ModelError,
+    pyo3::exceptions::PyRuntimeError,
+    "A model that could not answer: a request beyond the memory or transient-run budget, or \
+     a solver that did not converge. The message says which."
+);
+
+/// Fields of a `SceneError`, each None where the error has no such thing.
+#[derive(Default)]
+struct Details {
+    origin: Option<String>,
+    field: Option<String>,
+    value: Option<f64>,
+    allowed: Option<String>,
+    low: Option<f64>,
+    high: Option<f64>,
+    unit: Option<String>,
+}
+
+fn raise(message: String, d: Details) -> PyErr {
+    Python::attach(|py| {
+        let err = SceneError::new_err(message);
+        let v = err.value(py);
+        // Attributes of a fresh exception instance: setting them cannot fail.
+        let _ = v.setattr("origin", d.origin);
+        let _ = v.setattr("field", d.field);
+        let _ = v.setattr("value", d.value);
+        let _ = v.setattr("allowed", d.allowed);
+        let _ = v.setattr("low", d.low);
+        let _ = v.setattr("high", d.high);
+        let _ = v.setattr("unit", d.unit);
+        err
+    })
+}
+
+fn range_details(origin: Option<String>, p: &InvalidParameter) -> Details {
+    Details {
+        origin,
+        field: Some(p.name.clone()),
+        value: Some(p.value),
+        allowed: Some(p.allowed.to_string()),
+        low: Some(p.allowed.lo),
+        high: Some(p.allowed.hi),
+        unit: Some(p.unit.to_string()),
+    }
+}
+
+/// A scene error as a Python `SceneError`, with the command line's message.
+pub fn scene_error(e: &Invalid) -> PyErr {
+    let details = match e {
+        Invalid::Read { path, .. } | Invalid::NotAFile { path, .. } => {
+            Details { origin: Some(path.clone()), ..Details::default() }
+        }
+        Invalid::Syntax { origin, .. } => Details { origin: Some(origin.clone()), ..Details::default() },
+        Invalid::OutOfRange { origin, source } => range_details(Some(origin.clone()), source),
+        Invalid::Inconsistent { origin, field, .. } => {
+            Details { origin: Some(origin.clone()), field: Some(field.clone()), ..Details::default() }
+        }
+    };
+    raise(e.to_string(), details)
+}
+
+/// An argument outside its range, as a `SceneError` naming the argument.
+pub fn argument_error(p: &InvalidParameter) -> PyErr {
+    raise(p.to_string(), range_details(None, p))
+}
+
+/// Any other refusal of an argument (an unknown name), as a `SceneError` naming it.
+pub fn argument_message(field: &str, message: String) -> PyErr {
+    raise(format!("{field}: {message}"), Details { field: Some(field.to_string()), ..Details::default() })
+}
+
+/// A model error as a Python `ModelError`.
+pub fn model_error(message: impl std::fmt::Display) -> PyErr {
+    ModelError::new_err(message.to_string())
+}

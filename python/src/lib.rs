@@ -1,0 +1,197 @@
+//! `impact._impact`: the Python extension module of `impact`, built by maturin from the same
+//! library crates as the command line. Scenes are read and validated by `impact::scene`,
+//! scenes are run by `impact::run` (the command line's own entry point), transient cases by
+//! `coupled::plan`; this crate only converts: Python values in, columns of numpy arrays out.
+//! Every long computation runs with the Python interpreter released (`Python::detach`), so
+//! other Python threads (a Dask worker's heartbeat, a GUI) go on meanwhile.
+//!
+//! The public API, its docstrings and its types are in `python/impact/__init__.py` and
+//! `python/impact/_impact.pyi`; the tests are `python/tests` (pytest).
+
+#![warn(missing_docs)]
+
+mod columns;
+mod errors;
+mod identify;
+mod scene;
+
+use analytic::params::{check, Range};
+use columns::Table;
+use coupled::plan::{scene_striker, transient_response, transient_values, ModelKind};
+use coupled::transient::{Discretisation, Ladder, Sample, TransientCase, TransientSettings};
+use errors::{argument_error, argument_message, model_error};
+use impact::scene::{limits, Analysis, MAX_POINTS};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use scene::Scene;
+
+/// Runs `scene` with the models named by `model` ("beam", "plate", "transient" or "all"),
+/// exactly as `impact solve` does (`impact::run::results`): on the scene's points, or on
+/// `sweep` evenly spaced centreline points (`impact sweep --count`), and only the yield
+/// velocities when `yield_only` (`impact yield`). Returns the columns of
+/// [`columns::results`].
+#[pyfunction]
+#[pyo3(signature = (scene, model = "beam", sweep = None, yield_only = false))]
+fn run<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    model: &str,
+    sweep: Option<f64>,
+    yield_only: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let models = impact::run::model_kinds(model).ok_or_else(|| {
+        argument_message(
+            "model",
+            format!("'{model}' is not a model; allowed: \"beam\", \"plate\", \"transient\", \"all\""),
+        )
+    })?;
+    let mut s = match sweep {
+        None => scene.scene.clone(),
+        Some(n) => {
+            let n = check("count", n, Range::closed(2.0, MAX_POINTS as f64), "").map_err(|e| argument_error(&e))?;
+            if n.fract() != 0.0 {
+                return Err(argument_message(
+                    "count",
+                    format!("{n} is not a whole number; the allowed range is [2, {MAX_POINTS}]"),
+                ));
+            }
+            scene.scene.with_sweep(n as usize)
+        }
+    };
+    if yield_only {
+        s.analyses = vec![Analysis::YieldVelocity];
+    }
+    let results = py.detach(|| impact::run::results(&s, &models).map_err(|e| e.to_string())).map_err(model_error)?;
+    columns::results(py, &results)
+}
+
+/// The history samples as columns (SI, unit in the name); `first_contact` marks the samples
+/// up to the first separation.
+fn history<'py>(py: Python<'py>, first: &[Sample], later: &[Sample]) -> PyResult<Bound<'py, PyDict>> {
+    let all: Vec<&Sample> = first.iter().chain(later).collect();
+    let d = PyDict::new(py);
+    let col = |f: fn(&Sample) -> f64| PyArray1::from_vec(py, all.iter().map(|s| f(s)).collect());
+    d.set_item("t_s", col(|s| s.t))?;
+    d.set_item("force_n", col(|s| s.force))?;
+    d.set_item("compression_m", col(|s| s.compression))?;
+    d.set_item("sphere_velocity_m_per_s", col(|s| s.sphere_velocity))?;
+    d.set_item("plate_displacement_m", col(|s| s.plate_displacement))?;
+    d.set_item("sphere_kinetic_j", col(|s| s.sphere_kinetic))?;
+    d.set_item("contact_j", col(|s| s.contact))?;
+    d.set_item("plate_kinetic_j", col(|s| s.plate_kinetic))?;
+    d.set_item("plate_strain_j", col(|s| s.plate_strain))?;
+    d.set_item("springs_j", col(|s| s.springs))?;
+    d.set_item("dissipated_j", col(|s| s.dissipated))?;
+    let first_flags: Vec<bool> = (0..all.len()).map(|i| i < first.len()).collect();
+    d.set_item("first_contact", PyArray1::from_vec(py, first_flags))?;
+    Ok(d)
+}
+
+/// Finds a name among `names`, or says which names there are.
+fn by_name(field: &str, name: &str, names: Vec<&str>) -> PyResult<usize> {
+    names
+        .iter()
+        .position(|n| *n == name)
+        .ok_or_else(|| argument_message(field, format!("'{name}' is not in the scene; it has {names:?}")))
+}
+
+/// One transient impact: `body` on the support set `condition` at (`x_mm`, `z_mm`) with
+/// `velocity_m_per_s`, with the scene's contact law and restitution. Returns
+/// `{"response": one-row response columns, "history": time series, "contacts": one row per
+/// contact}`. With `error_estimate` the case is also run at half and twice the time step
+/// and on the meshes with h halved and doubled (about 5x the cost), as `impact solve
+/// --model transient` does.
+#[pyfunction]
+#[pyo3(signature = (scene, body, condition, x_mm, z_mm, velocity_m_per_s, error_estimate = true, elements = 20.0, steps_per_contact = 200.0, window_contacts = 20.0))]
+#[allow(clippy::too_many_arguments)]
+fn transient<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    body: &str,
+    condition: &str,
+    x_mm: f64,
+    z_mm: f64,
+    velocity_m_per_s: f64,
+    error_estimate: bool,
+    elements: f64,
+    steps_per_contact: f64,
+    window_contacts: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = &scene.scene;
+    let b = &s.bodies[by_name("body", body, s.bodies.iter().map(|b| b.name.as_str()).collect())?];
+    let set = &s.conditions[by_name("condition", condition, s.conditions.iter().map(|c| c.name.as_str()).collect())?];
+    let (l_mm, b_mm) = (s.plate.length() * 1e3, s.plate.width() * 1e3);
+    let arg =
+        |name: &str, v: f64, r: Range, unit: &'static str| check(name, v, r, unit).map_err(|e| argument_error(&e));
+    let x = arg("x_mm", x_mm, Range::closed(0.0, l_mm), "mm")? * 1e-3;
+    let z = arg("z_mm", z_mm, Range::closed(0.0, b_mm), "mm")? * 1e-3;
+    let v = arg("velocity_m_per_s", velocity_m_per_s, limits::VELOCITY_M_PER_S, "m/s")?;
+    // 4 to 80 elements along the longer side: from the coarsest mesh whose error estimate
+    // still means something to a few seconds per run; 20 to 2000 steps per Hertz time.
+    let elements = arg("elements", elements, Range::closed(4.0, 80.0), "")?;
+    if elements.fract() != 0.0 {
+        return Err(argument_message(
+            "elements",
+            format!("{elements} is not a whole number; the allowed range is [4, 80]"),
+        ));
+    }
+    let steps = arg("steps_per_contact", steps_per_contact, Range::closed(20.0, 2000.0), "")?;
+    let window = arg("window_contacts", window_contacts, Range::closed(1.0, 1000.0), "")?;
+    let settings = TransientSettings { elements: elements as usize, steps_per_contact: steps, window_contacts: window };
+    let computed = py
+        .detach(|| -> Result<_, coupled::ModelError> {
+            if error_estimate {
+                let mut ladder = Ladder::new(&s.plate, settings)?;
+                let disc = Discretisation::Fixed { settings };
+                let (values, e) = transient_response(s, disc, &mut ladder, set, b, (x, z), v)?;
+                Ok((values, e.outcome))
+            } else {
+                let case = TransientCase::new(&s.plate, settings)?;
+                let striker = scene_striker(s, b, v);
+                let o = case.run(set, &striker, x, z)?;
+                let values = transient_values(s, set, b, &o, &striker, striker.hertz_time() / steps, (x, z), None);
+                Ok((values, o))
+            }
+        })
+        .map_err(model_error)?;
+    let (values, outcome) = computed;
+    let mut row = Table::new(1, &[]);
+    row.text("model", 0, ModelKind::Transient.key());
+    row.text("body", 0, &b.name);
+    row.text("condition", 0, &set.name);
+    row.num("x_m", 0, x);
+    row.num("z_m", 0, z);
+    row.num("velocity_m_per_s", 0, v);
+    row.flag("applicable", 0, true);
+    columns::response_values(&mut row, 0, &values);
+    let mut contacts = Table::new(outcome.contacts.len(), &[]);
+    for (i, c) in outcome.contacts.iter().enumerate() {
+        contacts.num("start_s", i, c.start);
+        contacts.num("duration_s", i, c.duration);
+        contacts.num("peak_force_n", i, c.peak_force);
+        contacts.num("impulse_n_s", i, c.impulse);
+        contacts.num("rebound_velocity_m_per_s", i, c.rebound_velocity);
+        contacts.num("steps", i, c.steps as f64);
+    }
+    let d = PyDict::new(py);
+    d.set_item("response", row.into_py(py)?)?;
+    d.set_item("history", history(py, &outcome.history, &outcome.later_history)?)?;
+    d.set_item("contacts", contacts.into_py(py)?)?;
+    d.set_item("left_for_good", outcome.left_at.is_some())?;
+    Ok(d)
+}
+
+/// The extension module.
+#[pymodule]
+fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<Scene>()?;
+    m.add("SceneError", py.get_type::<errors::SceneError>())?;
+    m.add("ModelError", py.get_type::<errors::ModelError>())?;
+    m.add_function(wrap_pyfunction!(run, m)?)?;
+    m.add_function(wrap_pyfunction!(transient, m)?)?;
+    m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,87 @@
+"""Scenes from Python: the same validation and messages as scene files, errors as SceneError
+with the field, the value and the allowed range as attributes; dict and file give the same
+scene; a scene survives pickling (how Dask ships it to a worker)."""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+import pytest
+
+import impact
+from conftest import REPO
+
+
+def test_out_of_range_names_field_value_and_range(paper_dict):
+    paper_dict["plate"]["length_mm"] = 1e300
+    with pytest.raises(impact.SceneError) as e:
+        impact.Scene.from_dict(paper_dict)
+    err = e.value
+    assert isinstance(err, ValueError)
+    assert (err.field, err.value, err.allowed, err.low, err.high, err.unit) == (
+        "plate.length_mm", 1e300, "[1, 100000]", 1.0, 1e5, "mm"
+    )
+    # The command line's message, word for word.
+    assert str(err) == "scene <dict>: plate.length_mm = 1e300 is outside the allowed range [1, 100000] mm"
+
+
+def test_inconsistent_and_unknown_fields_are_named(paper_dict):
+    d = dict(paper_dict, points={"x_mm": [1.0], "z_mm": [2.0]})
+    with pytest.raises(impact.SceneError, match="z_mm beside x_mm") as e:
+        impact.Scene.from_dict(d)
+    assert e.value.field == "points.z_mm" and e.value.value is None
+    with pytest.raises(impact.SceneError, match="unknown field `lenght_mm`"):
+        impact.Scene.from_dict(dict(paper_dict, plate=dict(paper_dict["plate"], lenght_mm=1.0)))
+    with pytest.raises(ValueError, match="plate.density_kg_m3 is None"):
+        impact.Scene.from_dict(dict(paper_dict, plate=dict(paper_dict["plate"], density_kg_m3=None)))
+    with pytest.raises(impact.SceneError) as e:
+        impact.Scene.from_toml(REPO / "no-such-scene.toml")
+    assert "cannot read scene file" in str(e.value)
+
+
+def test_bad_arguments_are_scene_errors():
+    scene = impact.Scene.default()
+    with pytest.raises(impact.SceneError, match="'fem' is not a model"):
+        impact.solve(scene, model="fem")
+    with pytest.raises(impact.SceneError) as e:
+        impact.sweep(scene, count=1)
+    assert e.value.field == "count" and e.value.allowed == "[2, 100000]"
+    with pytest.raises(impact.SceneError) as e:
+        impact.transient(scene, "coal", "Con 1", 500.0, 180.0, 0.008)
+    assert e.value.field == "x_mm" and e.value.high == pytest.approx(458.4)
+    with pytest.raises(impact.SceneError, match="'slate' is not in the scene"):
+        impact.transient(scene, "slate", "Con 1", 100.0, 180.0, 0.008)
+
+
+def test_dict_and_file_give_the_same_numbers(paper_dict):
+    from_file = impact.solve(REPO / "scenes" / "paper-table-1.toml")
+    # numpy scalars and arrays are taken as their Python values.
+    paper_dict["points"]["x_mm"] = np.asarray(paper_dict["points"]["x_mm"])
+    paper_dict["restitution"] = np.float64(paper_dict["restitution"])
+    from_dict = impact.solve(paper_dict)
+    for k, v in from_file.responses.items():
+        np.testing.assert_array_equal(v, from_dict.responses[k])
+
+
+def test_pickled_scene_is_the_same_scene():
+    scene = impact.Scene.from_toml(REPO / "scenes" / "clamped-edge-props.toml")
+    back = pickle.loads(pickle.dumps(scene))
+    assert back.to_toml_str() == scene.to_toml_str() and back.origin == scene.origin
+    assert back.conditions == scene.conditions and back.points_m == scene.points_m
+
+
+def test_columns_follow_the_conventions():
+    r = impact.solve(REPO / "scenes" / "clamped-edge-props.toml", model="beam")
+    cols = r.responses
+    n = len(cols["model"])
+    assert n > 0 and all(len(v) == n for v in cols.values())
+    assert all(isinstance(v, np.ndarray) for v in cols.values())
+    # NaN only where a quantity does not apply: every not-applicable row has no values, and
+    # every applicable row has all of the beam's.
+    na = ~cols["applicable"]
+    assert na.any() and (~na).any()
+    for c in ["contact_force_n", "compression_m", "deflection_m", "plate_ratio", "thin_plate_ratio"]:
+        assert np.isnan(cols[c][na]).all() and np.isfinite(cols[c][~na]).all()
+    assert all(s.startswith("the beam") or s for s in cols["reason"][na])
+    assert r.summary["not_applicable"] == int(na.sum()) + int((~r.yields["applicable"]).sum())

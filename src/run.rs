@@ -1,0 +1,116 @@
+//! Running a scene with the models a caller picks: the one entry point the command line and
+//! the Python package share, so that both give the same numbers for the same scene. It
+//! refuses requests beyond the memory and transient-run budgets before computing anything.
+
+use crate::report::studies::{BASE_MESH, LEVELS};
+use crate::report::Failure;
+use crate::scene::{Analysis, Scene};
+use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, Results};
+use coupled::{BeamModel, PlateModel};
+
+/// Most transient runs one request may ask for, in runs on the default 20-element mesh
+/// (0.05-0.3 s each here), so a few minutes: a response costs about 10 (its error estimate
+/// runs the case at half and double the step and the mesh), a yield velocity at most 25
+/// (a bracketed root in v to 1e-6, usually 5-10 runs; counted at the most).
+pub const MAX_TRANSIENT_RUNS: usize = 2000;
+
+/// Memory a result row takes, bytes, through to its JSON: measured 3.7 KB on a 10,000-point
+/// sweep of the default scene (240,000 rows in 0.9 GB).
+pub const BYTES_PER_ROW: f64 = 4096.0;
+/// What one request may hold in memory: a sixth of this machine's 24 GiB.
+pub const MEMORY_BUDGET_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
+
+/// The model named `key` ("beam", "plate", "transient"), or every model for "all".
+pub fn model_kinds(key: &str) -> Option<Vec<ModelKind>> {
+    if key == "all" {
+        return Some(ModelKind::ALL.to_vec());
+    }
+    ModelKind::ALL.into_iter().find(|m| m.key() == key).map(|m| vec![m])
+}
+
+/// Checks that the scene's rows fit the memory budget and its transient runs the run budget.
+pub fn check_budget(scene: &Scene, models: &[ModelKind]) -> Result<(), Failure> {
+    let per_point = scene.bodies.len()
+        * scene.conditions.len()
+        * models.len()
+        * (if scene.wants(Analysis::Responses) { scene.velocities.len() } else { 0 }
+            + usize::from(scene.wants(Analysis::YieldVelocity)));
+    let rows = per_point * scene.points.len();
+    let bytes = rows as f64 * BYTES_PER_ROW;
+    if bytes > MEMORY_BUDGET_BYTES {
+        let most = (MEMORY_BUDGET_BYTES / BYTES_PER_ROW) as usize / per_point.max(1);
+        return Err(format!(
+            "the request is {} points giving {rows} result rows, about {:.1} GB in memory; the budget is {:.0} GB, so at most {most} points for this scene and these models",
+            scene.points.len(),
+            bytes / 1e9,
+            MEMORY_BUDGET_BYTES / 1e9
+        )
+        .into());
+    }
+    if models.contains(&ModelKind::Transient) {
+        let cases = scene.bodies.len() * scene.conditions.len() * scene.points.len();
+        let responses = if scene.wants(Analysis::Responses) { 10 * cases * scene.velocities.len() } else { 0 };
+        let yields = if scene.wants(Analysis::YieldVelocity) { 25 * cases } else { 0 };
+        let runs = responses + yields;
+        if runs > MAX_TRANSIENT_RUNS {
+            return Err(format!(
+                "--model transient: the scene asks for about {runs} transient runs ({cases} body-support-point cases; {responses} for responses with their error estimates, {yields} for yield velocities), more than the {MAX_TRANSIENT_RUNS} one command runs (a few minutes); use fewer points or the plate model for the sweep"
+            )
+            .into());
+        }
+    }
+    Ok(())
+}
+
+/// The scene's rows by each requested model, in the order given: the responses and yield
+/// velocities the scene's analyses ask for, each row with its error estimate and validity.
+pub fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
+    check_budget(scene, models)?;
+    let mut all = Results { scene: scene.name.clone(), responses: vec![], yields: vec![] };
+    let quasi_static = models.iter().any(|m| *m != ModelKind::Transient);
+    let periods = if quasi_static { fundamental_periods(scene)? } else { vec![] };
+    for &kind in models {
+        let r = match kind {
+            ModelKind::Beam => run(scene, &BeamModel { plate: &scene.plate }, kind, &periods)?,
+            ModelKind::Plate => {
+                let model =
+                    PlateModel::compute(&scene.plate, &scene.conditions, &scene.point_pairs(), BASE_MESH, LEVELS)?;
+                run(scene, &model, kind, &periods)?
+            }
+            ModelKind::Transient => run_transient(scene)?,
+        };
+        all.extend(r);
+    }
+    Ok(all)
+}
+
+/// One line on the rows: how many, how many valid, and what the others are beyond.
+pub fn status_line(results: &Results) -> String {
+    let s = results.summary();
+    let mut parts = vec![format!("{} results, {} inside every validity criterion", s.computed, s.valid)];
+    for (n, what) in [
+        (s.beyond_elastic, "beyond the elastic range (v above the yield velocity of the same model)"),
+        (s.not_quasi_static, "not quasi-static (t_c/T₁ < 0.2)"),
+        (s.outside_regime_rule, "outside the quasi-static regime rule (closed-form bound on the force error > 3 %)"),
+        (s.beyond_thin_plate, "beyond the thin-plate range (h/min(L, B) > 0.05)"),
+        (s.recontact, "with a second contact to follow"),
+        (s.not_applicable, "not applicable (the beam describes only Con 1-3)"),
+    ] {
+        if n > 0 {
+            parts.push(format!("{n} {what}"));
+        }
+    }
+    format!("status: {}", parts.join("; "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn model_names_are_the_command_line_ones() {
+        assert_eq!(model_kinds("beam"), Some(vec![ModelKind::Beam]));
+        assert_eq!(model_kinds("all").map(|m| m.len()), Some(3));
+        assert_eq!(model_kinds("fem"), None);
+    }
+}
