@@ -370,6 +370,9 @@ fn execute(command: Command) -> Result<(), Failure> {
             // the memory budget before anything runs.
             for set in &scene.conditions {
                 let channels = impact::report::identify::channels_per_impact(&scene, study, set);
+                if channels == 0 {
+                    return Err(impact::report::identify::no_channels(&set.name));
+                }
                 let bytes = impact::report::identify::feature_bytes(study.ensemble.len(), channels);
                 if bytes as f64 > MEMORY_BUDGET_BYTES {
                     return Err(format!(

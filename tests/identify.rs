@@ -31,6 +31,10 @@ name = "Con 2"
 supports = "both-springs"
 spring_stiffness_n_per_m = 5.11545e8
 
+[signals]
+# Fewer modes than the default keep the test fast; the statistics do not need them.
+modes = 24
+
 [ensemble]
 seed = 11
 placement = { x_count = 3, z_count = 2 }
@@ -39,7 +43,7 @@ velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
 [[ensemble.families]]
 name = "coal"
 class = "coal"
-count = 24
+count = 20
 density_kg_m3 = 1380.0
 youngs_modulus_gpa = 2.26
 poisson_ratio = 0.28
@@ -50,7 +54,7 @@ radius_mm = { distribution = "lognormal", median = 25.0, sigma_log = 0.2, min = 
 [[ensemble.families]]
 name = "gangue"
 class = "gangue"
-count = 24
+count = 20
 density_kg_m3 = 2400.0
 youngs_modulus_gpa = 16.0
 poisson_ratio = 0.28
@@ -78,8 +82,8 @@ fn expect(text: &str, needles: &[&str]) {
 fn small_scene_is_valid_and_in_si() {
     let s = Scene::parse(SMALL, "small").unwrap();
     let study = s.ensemble.unwrap();
-    assert_eq!(study.ensemble.len(), 48);
-    assert_eq!(study.ensemble.class_counts(), (24, 24));
+    assert_eq!(study.ensemble.len(), 40);
+    assert_eq!(study.ensemble.class_counts(), (20, 20));
     // Radii converted from mm (the truncated law's median is the same law's in mm, times
     // 1e-3), moduli from GPa, the candidate grid spans the plate.
     let in_mm = identify::Distribution::LogNormal { median: 25.0, sigma_log: 0.2, min: 15.0, max: 40.0 };
@@ -147,9 +151,9 @@ fn ensemble_structure_is_checked() {
 
 #[test]
 fn counts_classes_regions_and_grids_are_checked() {
-    expect(&with("count = 24", "count = 0"), &["ensemble.families[0].count = 0", "[1, 1000000]"]);
-    expect(&with("count = 24", "count = 2.5"), &["ensemble.families[0].count", "not a whole number"]);
-    expect(&with("count = 24", "count = 2e6"), &["ensemble.families[0].count", "[1, 1000000]"]);
+    expect(&with("count = 20", "count = 0"), &["ensemble.families[0].count = 0", "[1, 1000000]"]);
+    expect(&with("count = 20", "count = 2.5"), &["ensemble.families[0].count", "not a whole number"]);
+    expect(&with("count = 20", "count = 2e6"), &["ensemble.families[0].count", "[1, 1000000]"]);
     expect(&with(r#"class = "gangue""#, r#"class = "coal""#), &["ensemble.families", "class = \"gangue\""]);
     expect(&with(r#"class = "gangue""#, r#"class = "rock""#), &["ensemble.families[1].class", "'rock'"]);
     expect(&with(r#"name = "gangue""#, r#"name = "coal""#), &["ensemble.families[1].name", "same file name"]);
@@ -157,7 +161,7 @@ fn counts_classes_regions_and_grids_are_checked() {
         &with("seed = 11", "seed = 11\nregion = { x_mm = [0.0, 500.0], z_mm = [0.0, 360.0] }"),
         &["ensemble.region.x_mm[1] = 500", "[0, 458.4] mm"],
     );
-    expect(&with("x_count = 3", "x_count = 100"), &["ensemble.placement.x_count = 100", "[1, 41]"]);
+    expect(&with("x_count = 3", "x_count = 100"), &["ensemble.placement.x_count = 100", "[2, 41]"]);
     expect(&with("seed = 11", "seed = 11\nhold = [\"colour\"]"), &["ensemble.hold[0]", "'colour'", "position"]);
     expect(&with("seed = 11", "seed = -1"), &["seed"]);
 }
@@ -197,10 +201,10 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
     // One row per impact and support set; one per impact, channel and support set: Con 1
     // records 3 quantities at 6 candidates and 4 corner reactions, Con 2 as many spring forces.
     let impacts = std::fs::read_to_string(one.join("impacts.csv")).unwrap();
-    assert_eq!(impacts.lines().count(), 1 + 2 * 48);
+    assert_eq!(impacts.lines().count(), 1 + 2 * 40);
     assert!(impacts.starts_with("condition,impact,family,class,x_mm,z_mm,radius_mm,velocity_m_per_s"));
     let features = std::fs::read_to_string(one.join("features.csv")).unwrap();
-    assert_eq!(features.lines().count(), 1 + 2 * 48 * (3 * 6 + 4));
+    assert_eq!(features.lines().count(), 1 + 2 * 40 * (3 * 6 + 4));
     assert!(!features.contains("NaN") && !features.contains("inf"));
 
     let summary: serde_json::Value = serde_json::from_slice(&a.stdout).unwrap();
@@ -222,6 +226,36 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
         let best = c["ranking"][0]["auc"]["auc"].as_f64().unwrap();
         assert!(best.max(1.0 - best) < 1.0);
     }
+}
+
+#[test]
+fn a_support_set_without_channels_is_refused_before_running() {
+    // A cantilever plate (left edge clamped, corners free), no sensors, no grid: nothing to record.
+    let text = SMALL
+        .replacen("placement = { x_count = 3, z_count = 2 }\n", "", 1)
+        .replacen(
+            "[[conditions]]\nname = \"Con 2\"\nsupports = \"both-springs\"\nspring_stiffness_n_per_m = 5.11545e8\n",
+            "",
+            1,
+        )
+        .replacen(
+            "name = \"Con 1\"\nsupports = \"both-fixed\"",
+            "name = \"cantilever\"\n[conditions.edges]\nleft = \"clamped\"",
+            1,
+        );
+    assert!(text.contains("cantilever") && !text.contains("Con 2") && !text.contains("placement"));
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("cantilever.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out = tmp.path().join("out");
+    let o = run(&out, &scene, "1");
+    assert!(!o.status.success());
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("records no channel"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!out.exists());
 }
 
 #[test]

@@ -496,6 +496,14 @@ fn histogram(title: &str, label: &str, coal: &[f64], gangue: &[f64], log: bool) 
     )
 }
 
+/// The error of a support set on which nothing is recorded.
+pub fn no_channels(set: &str) -> Failure {
+    format!(
+        "support set '{set}' records no channel (no named sensor, no candidate grid, no spring or fixed corner): give [signals] sensors_mm or [ensemble.placement]"
+    )
+    .into()
+}
+
 fn run_failure(set: &str, err: RunError<Failure>) -> Failure {
     match err {
         RunError::Model { index, source } => format!("{set}: impact {index}: {source}").into(),
@@ -533,6 +541,9 @@ fn run_set(
         Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
     let infos: Vec<ChannelInfo> =
         instrument.channels().into_iter().map(|k| ChannelInfo::new(k, &sensors, plate)).collect();
+    if infos.is_empty() {
+        return Err(no_channels(&set.name));
+    }
     let bar = progress(e.len(), format!("{}: ensemble", set.name));
     let t0 = Instant::now();
     let run: ConditionRun = run_condition(study, Held::NONE, &instrument, |r: &ImpactRecord| -> Result<(), Failure> {
@@ -751,7 +762,7 @@ fn run_set(
                 let (a, b) = r.table.split(c, f);
                 auc_with_error(&a, &b)
             });
-        let top = best(&seps, &[]).expect("a run has channels");
+        let Some(top) = best(&seps, &[]) else { continue };
         let (a, b) = r.table.split(top.channel, top.feature);
         let (pc, pg) = split(&r.force_max, r.table.classes());
         held.push(Held1 {

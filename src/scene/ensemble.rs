@@ -288,19 +288,11 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
     let (candidates_x, candidates_z) = match &raw.placement {
         None => (vec![], vec![]),
         Some(p) => {
-            let nx = count("ensemble.placement.x_count", p.x_count, 1, MAX_CANDIDATES_PER_SIDE)?;
-            let nz = count("ensemble.placement.z_count", p.z_count, 1, MAX_CANDIDATES_PER_SIDE)?;
-            (grid_line(length_mm * MM, nx), grid_line(width_mm * MM, nz))
+            // A map needs two points a side: the grid runs from edge to edge.
+            let nx = count("ensemble.placement.x_count", p.x_count, 2, MAX_CANDIDATES_PER_SIDE)?;
+            let nz = count("ensemble.placement.z_count", p.z_count, 2, MAX_CANDIDATES_PER_SIDE)?;
+            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz))
         }
     };
     Ok(Study { ensemble: Ensemble { region, speed, families, seed: raw.seed }, candidates_x, candidates_z, hold })
-}
-
-/// `n` candidate positions on [0, extent]: the ends included for n ≥ 2, the middle for one.
-fn grid_line(extent: f64, n: usize) -> Vec<f64> {
-    if n == 1 {
-        vec![0.5 * extent]
-    } else {
-        super::even_points(extent, n)
-    }
 }
