@@ -13,6 +13,9 @@
 //!   factorization per support set (faer), and point probes by reciprocity;
 //! - [`corners`]: any corner stiffness set from one factorization, by a rank-4 update
 //!   or, where that is ill conditioned, by condensation onto the corners;
+//! - [`dynamics`]: Newmark time stepping of the supported plate;
+//! - [`modes`]: its lowest eigenpairs (shift-invert block Krylov) and the residual
+//!   flexibility of the modes left out;
 //! - [`classical`]: Navier and Lévy series, the references of the tests;
 //! - [`convergence`]: Richardson extrapolation and observed rates.
 //!
