@@ -36,6 +36,14 @@ import impact
 import impact.shards as shards
 
 
+def point(channel: str) -> tuple[float, float]:
+    """(x, z) in mm of a channel named like "acceleration at (305.6, 360) mm"."""
+    m = re.search(r"at \(([-\d.]+), ([-\d.]+)\) mm", channel)
+    if m is None:
+        raise ValueError(f"no position in the channel name {channel!r}")
+    return float(m[1]), float(m[2])
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", default="scenes/paper-velocities-ensemble.toml")
@@ -57,7 +65,7 @@ def main() -> None:
     # The scene's named sensors, and the report's top-ranked points (from its placement grid), so
     # that its AUCs can be recomputed from the Python columns.
     named = [tuple(p) for p in tomllib.loads(Path(a.scene).read_text())["signals"]["sensors_mm"]]
-    ranked = [tuple(map(float, re.search(r"at \(([-\d.]+), ([-\d.]+)\) mm", r["channel"]).groups())) for r in rust["ranking"][:8]]
+    ranked = [point(r["channel"]) for r in rust["ranking"][:8]]
     sensors = list(dict.fromkeys(named + [p for p in ranked if p not in named]))
     with LocalCluster(n_workers=a.workers, threads_per_worker=1, dashboard_address=None) as c, Client(c) as client:
         cols = shards.run_identify(client, scene, a.condition, shard_size=a.shard_size, sensors_mm=sensors)

@@ -6,12 +6,12 @@ the same ensemble in the same run.
         [--condition "Con 2"] [--shard-size 250] [--empty 200]
 
 Prints:
-- the single-process time of the whole ensemble (impact.identify, no Dask), and the fixed cost
-  of a call (a one-impact range: the reduced model's set-up, once per shard);
+- the single-process time of the whole ensemble (impact.identify, no Dask), and the reduced
+  model's set-up (the first call in a process; later calls reuse the model);
 - the task overhead per shard: empty shards through the cluster (scheduling, pickling the
   scene and the result, the round trip);
 - the whole overhead per shard with work: (one worker's time - the single-process time) /
-  shards;
+  shards (it includes the worker's one model set-up);
 - the time on one and on two workers (LocalCluster, one single-threaded process each), the
   speed-up, and whether the merged result equals the single-process one bit for bit.
 
@@ -52,7 +52,7 @@ def main() -> None:
     _, t_one = timed(lambda: impact.identify(scene, a.condition, 0, 1))
     single, t_single = timed(lambda: impact.identify(scene, a.condition))
     print(f"single process: {t_single:.2f} s ({1e3 * (t_single - t_one) / (n - 1):.2f} ms per impact); "
-          f"fixed cost of a call (reduced model set-up): {t_one:.2f} s")
+          f"reduced model set-up (first call): {t_one:.2f} s")
     times = {}
     for workers in (1, 2):
         with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None) as c, Client(c) as client:

@@ -20,7 +20,9 @@ Results are columnar: a dict of numpy arrays, one entry per row, ready for
 - Every row carries its validity: ``valid`` (inside every criterion), ``flags`` (the
   criteria it is beyond, "; "-separated) and the measured ratios ``elastic_ratio``
   (delta_max/delta_my, limit 1), ``quasi_static_ratio`` (t_c/T1, limit 0.2),
-  ``thin_plate_ratio`` (h/min(L, B), limit 0.05) and ``contacts`` (transient, limit 1).
+  ``thin_plate_ratio`` (h/min(L, B), limit 0.05), ``regime_force_error`` (the closed-form
+  regime rule's bound on the quasi-static force error, limit 0.03) and ``contacts``
+  (transient, limit 1).
   Beyond validity a number is still computed, and flagged.
 - ``applicable`` is False where the model does not describe a row (the beam and a general
   support set); ``reason`` says why.
@@ -105,7 +107,8 @@ class Results:
         status: the command line's status line ("status: N results, M inside every
             validity criterion; ...").
         summary: counts of rows by validity (computed, valid, beyond_elastic,
-            not_quasi_static, beyond_thin_plate, recontact, not_applicable).
+            not_quasi_static, beyond_thin_plate, outside_regime_rule, recontact,
+            not_applicable).
     """
 
     scene: str
@@ -125,7 +128,7 @@ def _results(raw: Mapping[str, Any]) -> Results:
     )
 
 
-def solve(scene: SceneLike, model: str = "beam") -> Results:
+def solve(scene: SceneLike, model: str = "beam", *, tolerance: float | None = None) -> Results:
     """Responses and yield velocities at the scene's points (``impact solve``).
 
     Args:
@@ -133,23 +136,26 @@ def solve(scene: SceneLike, model: str = "beam") -> Results:
         model: "beam" (the paper's closed forms), "plate" (Kirchhoff plate finite elements,
             quasi-static, Richardson-extrapolated with an error estimate), "transient" (the
             plate in time, each response with its discretisation error) or "all".
+        tolerance: the transient model's relative tolerance on the forces and the contact
+            time, for which each case's mesh and step are chosen (1e-6 to 0.1; default 1e-4,
+            ``impact solve --tolerance``).
 
     The scene's ``analyses`` decide what is computed ("responses", "yield-velocity").
     The numbers are those of ``impact solve --json`` for the same scene, bit for bit.
     """
-    return _results(_impact.run(load_scene(scene), model))
+    return _results(_impact.run(load_scene(scene), model, tolerance=tolerance))
 
 
-def sweep(scene: SceneLike, count: int = 101, model: str = "beam") -> Results:
+def sweep(scene: SceneLike, count: int = 101, model: str = "beam", *, tolerance: float | None = None) -> Results:
     """:func:`solve` on ``count`` evenly spaced points of the centreline z = B/2, from x = 0
     to L (``impact sweep --count``; the paper uses 101)."""
-    return _results(_impact.run(load_scene(scene), model, sweep=float(count)))
+    return _results(_impact.run(load_scene(scene), model, sweep=float(count), tolerance=tolerance))
 
 
-def yield_velocity(scene: SceneLike, model: str = "beam") -> Results:
+def yield_velocity(scene: SceneLike, model: str = "beam", *, tolerance: float | None = None) -> Results:
     """Yield velocities only (eqs. 51-54; ``impact yield``); for the transient model, the
     velocity at which the transient delta_max reaches the paper's delta_my."""
-    return _results(_impact.run(load_scene(scene), model, yield_only=True))
+    return _results(_impact.run(load_scene(scene), model, yield_only=True, tolerance=tolerance))
 
 
 @dataclass(frozen=True)
@@ -185,9 +191,7 @@ def transient(
     velocity_m_per_s: float,
     *,
     error_estimate: bool = True,
-    elements: int = 20,
-    steps_per_contact: float = 200.0,
-    window_contacts: float = 20.0,
+    tolerance: float | None = None,
 ) -> Transient:
     """One transient impact with its histories.
 
@@ -197,12 +201,11 @@ def transient(
         condition: a support set of the scene, by name.
         x_mm, z_mm: the impact point, mm (x along the length from the left end, z across).
         velocity_m_per_s: the impact velocity.
-        error_estimate: also run at half and twice the time step and on the meshes with h
-            halved and doubled, and give the error of every response (about 5x the cost).
-        elements: elements along the plate's longer side (4 to 80).
-        steps_per_contact: time steps per rigid-target Hertz contact time (20 to 2000).
-        window_contacts: the run stops after this many Hertz times if the sphere has not
-            provably left.
+        error_estimate: choose the mesh and time step for the relative ``tolerance`` on the
+            forces and the contact time, and give every response its error, exactly as
+            ``impact solve --model transient`` computes a row; without, one run on the
+            starting mesh (20 elements, 200 steps per Hertz contact time).
+        tolerance: the relative tolerance (1e-6 to 0.1; default 1e-4, ``--tolerance``).
     """
     raw = _impact.transient(
         load_scene(scene),
@@ -212,9 +215,7 @@ def transient(
         float(z_mm),
         float(velocity_m_per_s),
         error_estimate=error_estimate,
-        elements=float(elements),
-        steps_per_contact=float(steps_per_contact),
-        window_contacts=float(window_contacts),
+        tolerance=None if tolerance is None else float(tolerance),
     )
     return Transient(
         response=_columns(raw["response"]),

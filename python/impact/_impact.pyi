@@ -53,7 +53,11 @@ class Scene:
     def __reduce__(self) -> tuple[Any, tuple[str, str]]: ...
 
 def run(
-    scene: Scene, model: str = "beam", sweep: float | None = None, yield_only: bool = False
+    scene: Scene,
+    model: str = "beam",
+    sweep: float | None = None,
+    yield_only: bool = False,
+    tolerance: float | None = None,
 ) -> dict[str, Any]: ...
 def transient(
     scene: Scene,
@@ -63,9 +67,7 @@ def transient(
     z_mm: float,
     velocity_m_per_s: float,
     error_estimate: bool = True,
-    elements: float = 20.0,
-    steps_per_contact: float = 200.0,
-    window_contacts: float = 20.0,
+    tolerance: float | None = None,
 ) -> dict[str, Any]: ...
 def identify(
     scene: Scene,

@@ -28,10 +28,11 @@ with ``impact`` installed, e.g. a venv on a shared file system)::
     client = Client(cluster)
     cols = impact.shards.run_identify(client, scene, "Con 2", shard_size=2000)
 
-Each shard builds the reduced model of its support set once (the plate's modes: about a
-second for the default 80 modes) and then runs its impacts at a few milliseconds each, so a
-shard should hold well over a thousand impacts; the README gives the measured overhead. A
-shard that fails (a worker lost) is simply rerun by Dask: it has no state but its range.
+A worker process builds the reduced model of a support set once (the plate's modes: about two
+seconds for the default 80 modes) and keeps it for its next shards; the impacts then cost a
+few milliseconds each, and a shard adds the Dask task overhead (milliseconds). The README
+gives the measured numbers. A shard that fails (a worker lost) is simply rerun by Dask: it has
+no state but its range.
 """
 
 from __future__ import annotations

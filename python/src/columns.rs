@@ -155,13 +155,15 @@ const KEYS: [(&str, Kind); 7] = [
 ];
 
 /// The validity columns: whether every criterion holds, the failing ones by name, and each
-/// criterion's measured ratio (its limit is in the column's doc: 1, 0.2, 0.05, 1 contact).
-const VALIDITY: [(&str, Kind); 6] = [
+/// criterion's measured value (its limit: 1, 0.2, 0.05, 3 % for the regime rule's bound on
+/// the quasi-static force error, 1 contact).
+const VALIDITY: [(&str, Kind); 7] = [
     ("valid", Flag),
     ("flags", Text),
     ("elastic_ratio", Num),
     ("quasi_static_ratio", Num),
     ("thin_plate_ratio", Num),
+    ("regime_force_error", Num),
     ("contacts", Num),
 ];
 
@@ -171,6 +173,7 @@ fn validity(t: &mut Table, row: usize, v: &Validity) {
     t.opt("elastic_ratio", row, v.elastic.map(|c| c.value));
     t.opt("quasi_static_ratio", row, v.quasi_static.map(|c| c.value));
     t.num("thin_plate_ratio", row, v.thin_plate.value);
+    t.opt("regime_force_error", row, v.regime.map(|c| c.value));
     t.opt("contacts", row, v.recontact.map(|c| c.value));
 }
 
@@ -183,7 +186,7 @@ fn keys(t: &mut Table, row: usize, model: &str, body: &str, condition: &str, (x,
 }
 
 /// Columns of the responses at maximum compression.
-const RESPONSES: [(&str, Kind); 27] = [
+const RESPONSES: [(&str, Kind); 31] = [
     ("velocity_m_per_s", Num),
     ("compliance_m_per_n", Num),
     ("compliance_error_m_per_n", Num),
@@ -208,6 +211,10 @@ const RESPONSES: [(&str, Kind); 27] = [
     ("apparent_restitution", Num),
     ("restitution_error", Num),
     ("elements", Num),
+    ("steps_per_contact", Num),
+    ("relative_error", Num),
+    ("tolerance", Num),
+    ("met_tolerance", Flag),
     ("total_impulse_n_s", Num),
     ("final_velocity_m_per_s", Num),
     ("left_for_good", Flag),
@@ -244,20 +251,16 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
             apparent_restitution,
             restitution_error,
             elements,
-            contacts: _,
-            total_impulse,
-            final_velocity,
-            left_for_good,
             steps_per_contact,
             relative_error,
             tolerance,
             met_tolerance,
+            contacts: _,
+            total_impulse,
+            final_velocity,
+            left_for_good,
         } => {
             t.num("steps", row, steps as f64);
-            t.num("steps_per_contact", row, steps_per_contact);
-            t.opt("relative_error_estimate", row, relative_error);
-            t.opt("tolerance", row, tolerance);
-            t.flag("met_tolerance", row, met_tolerance);
             t.num("time_step_s", row, time_step);
             t.num("peak_force_n", row, peak_force);
             t.opt("peak_force_error_n", row, peak_force_error);
@@ -267,6 +270,12 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
             t.opt("restitution_error", row, restitution_error);
             if elements > 0 {
                 t.num("elements", row, elements as f64);
+            }
+            t.num("steps_per_contact", row, steps_per_contact);
+            t.opt("relative_error", row, relative_error);
+            t.opt("tolerance", row, tolerance);
+            if tolerance.is_some() {
+                t.flag("met_tolerance", row, met_tolerance);
             }
             t.num("total_impulse_n_s", row, total_impulse);
             t.num("final_velocity_m_per_s", row, final_velocity);
@@ -351,6 +360,7 @@ pub fn results<'py>(py: Python<'py>, r: &Results) -> PyResult<Bound<'py, PyDict>
         ("beyond_elastic", s.beyond_elastic),
         ("not_quasi_static", s.not_quasi_static),
         ("beyond_thin_plate", s.beyond_thin_plate),
+        ("outside_regime_rule", s.outside_regime_rule),
         ("recontact", s.recontact),
         ("not_applicable", s.not_applicable),
     ] {

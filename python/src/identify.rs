@@ -5,8 +5,8 @@
 //! seed, stream `i`) and thrown on the reduced-order model (`coupled::identification`), so a
 //! row depends only on the scene and `i`: any split of the ensemble into index ranges gives,
 //! concatenated, the rows of one run of the whole ensemble, bit for bit. That is what
-//! `impact.shards` distributes. The reduced model (the plate's modes) is built once per call:
-//! a shard's fixed cost.
+//! `impact.shards` distributes. The reduced model (the plate's modes) is built once per process
+//! and support set and kept for the next shards ([`reduced_model`]).
 
 use crate::columns::{Kind, Table};
 use crate::errors::{argument_error, argument_message, model_error};
@@ -19,6 +19,34 @@ use coupled::validity::QUASI_STATIC_MIN_RATIO;
 use impact::report::identify::ChannelInfo;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::sync::{Arc, Mutex};
+
+/// Reduced models built in this process, most recent last, by (scene text, support set): a
+/// Dask worker runs many shards of one scene and support set, and their model (the plate's
+/// modes and residual flexibility, about a second to build) is the same for all of them, so it
+/// is built once per process instead of once per shard. A model is a pure function of the
+/// scene text and the support set, so a kept one gives the same numbers as a new one.
+static MODELS: Mutex<Vec<(String, String, Arc<ReducedModel>)>> = Mutex::new(Vec::new());
+/// Models kept: a few scenes or support sets at a time (each a few MB).
+const MODELS_KEPT: usize = 4;
+
+/// The reduced model of `set` for the scene read from `text`, kept or built.
+fn reduced_model(text: &str, s: &coupled::Scene, set: &coupled::SupportSet) -> Result<Arc<ReducedModel>, String> {
+    // A poisoned lock only means another thread panicked while building; the list is intact.
+    let mut kept = MODELS.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some(i) = kept.iter().position(|(t, c, _)| t == text && *c == set.name) {
+        let entry = kept.remove(i);
+        let model = entry.2.clone();
+        kept.push(entry);
+        return Ok(model);
+    }
+    let model = Arc::new(ReducedModel::new(&s.plate, set, s.signals.reduced()).map_err(|x| x.to_string())?);
+    if kept.len() == MODELS_KEPT {
+        kept.remove(0);
+    }
+    kept.push((text.to_string(), set.name.clone(), model.clone()));
+    Ok(model)
+}
 
 /// Most impacts one shard may hold: a shard is a unit of work of seconds to minutes.
 const MAX_SHARD: f64 = 1_000_000.0;
@@ -129,7 +157,7 @@ pub fn identify<'py>(
             if start == stop {
                 return Ok((vec![], vec![]));
             }
-            let model = ReducedModel::new(&s.plate, set, settings.reduced()).map_err(|x| x.to_string())?;
+            let model = reduced_model(scene.text(), s, set)?;
             let instrument =
                 Instrument::new(&model, &s.plate, &spec, s.restitution, s.contact_law).map_err(|x| x.to_string())?;
             let records = (start..stop)

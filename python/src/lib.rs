@@ -18,7 +18,7 @@ mod scene;
 use analytic::params::{check, Range};
 use columns::Table;
 use coupled::plan::{scene_striker, transient_response, transient_values, ModelKind};
-use coupled::transient::{Discretisation, Ladder, Sample, TransientCase, TransientSettings};
+use coupled::transient::{Discretisation, Ladder, Sample, TransientCase};
 use errors::{argument_error, argument_message, model_error};
 use impact::scene::{limits, Analysis, MAX_POINTS};
 use numpy::PyArray1;
@@ -29,16 +29,18 @@ use scene::Scene;
 /// Runs `scene` with the models named by `model` ("beam", "plate", "transient" or "all"),
 /// exactly as `impact solve` does (`impact::run::results`): on the scene's points, or on
 /// `sweep` evenly spaced centreline points (`impact sweep --count`), and only the yield
-/// velocities when `yield_only` (`impact yield`). Returns the columns of
+/// velocities when `yield_only` (`impact yield`); the transient model chooses each case's mesh
+/// and step for the relative `tolerance` (`--tolerance`, default 1e-4). Returns the columns of
 /// [`columns::results`].
 #[pyfunction]
-#[pyo3(signature = (scene, model = "beam", sweep = None, yield_only = false))]
+#[pyo3(signature = (scene, model = "beam", sweep = None, yield_only = false, tolerance = None))]
 fn run<'py>(
     py: Python<'py>,
     scene: &Scene,
     model: &str,
     sweep: Option<f64>,
     yield_only: bool,
+    tolerance: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let models = impact::run::model_kinds(model).ok_or_else(|| {
         argument_message(
@@ -61,6 +63,9 @@ fn run<'py>(
     };
     if yield_only {
         s.analyses = vec![Analysis::YieldVelocity];
+    }
+    if let Some(t) = tolerance {
+        s.transient_discretisation = Discretisation::tolerance(transient_tolerance(t)?);
     }
     let results = py.detach(|| impact::run::results(&s, &models).map_err(|e| e.to_string())).map_err(model_error)?;
     columns::results(py, &results)
@@ -96,14 +101,24 @@ fn by_name(field: &str, name: &str, names: Vec<&str>) -> PyResult<usize> {
         .ok_or_else(|| argument_message(field, format!("'{name}' is not in the scene; it has {names:?}")))
 }
 
+/// The transient model's relative tolerance, checked as `impact solve --tolerance` checks it.
+fn transient_tolerance(t: f64) -> PyResult<f64> {
+    check("tolerance", t, TRANSIENT_TOLERANCE, "").map_err(|e| argument_error(&e))
+}
+
+/// The relative tolerances the transient model accepts: below 1e-6 the ladder's budget
+/// cannot reach it, above 0.1 an estimate is no longer one.
+const TRANSIENT_TOLERANCE: Range = Range::closed(1e-6, 0.1);
+
 /// One transient impact: `body` on the support set `condition` at (`x_mm`, `z_mm`) with
 /// `velocity_m_per_s`, with the scene's contact law and restitution. Returns
 /// `{"response": one-row response columns, "history": time series, "contacts": one row per
-/// contact}`. With `error_estimate` the case is also run at half and twice the time step
-/// and on the meshes with h halved and doubled (about 5x the cost), as `impact solve
-/// --model transient` does.
+/// contact, "left_for_good": bool}`. With `error_estimate` the case's mesh and step are
+/// chosen for the relative `tolerance` and every response carries its error, exactly as
+/// `impact solve --model transient` computes a row; without, one run on the starting mesh
+/// (20 elements, 200 steps per Hertz time).
 #[pyfunction]
-#[pyo3(signature = (scene, body, condition, x_mm, z_mm, velocity_m_per_s, error_estimate = true, elements = 20.0, steps_per_contact = 200.0, window_contacts = 20.0))]
+#[pyo3(signature = (scene, body, condition, x_mm, z_mm, velocity_m_per_s, error_estimate = true, tolerance = None))]
 #[allow(clippy::too_many_arguments)]
 fn transient<'py>(
     py: Python<'py>,
@@ -114,9 +129,7 @@ fn transient<'py>(
     z_mm: f64,
     velocity_m_per_s: f64,
     error_estimate: bool,
-    elements: f64,
-    steps_per_contact: f64,
-    window_contacts: f64,
+    tolerance: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &scene.scene;
     let b = &s.bodies[by_name("body", body, s.bodies.iter().map(|b| b.name.as_str()).collect())?];
@@ -127,31 +140,22 @@ fn transient<'py>(
     let x = arg("x_mm", x_mm, Range::closed(0.0, l_mm), "mm")? * 1e-3;
     let z = arg("z_mm", z_mm, Range::closed(0.0, b_mm), "mm")? * 1e-3;
     let v = arg("velocity_m_per_s", velocity_m_per_s, limits::VELOCITY_M_PER_S, "m/s")?;
-    // 4 to 80 elements along the longer side: from the coarsest mesh whose error estimate
-    // still means something to a few seconds per run; 20 to 2000 steps per Hertz time.
-    let elements = arg("elements", elements, Range::closed(4.0, 80.0), "")?;
-    if elements.fract() != 0.0 {
-        return Err(argument_message(
-            "elements",
-            format!("{elements} is not a whole number; the allowed range is [4, 80]"),
-        ));
-    }
-    let steps = arg("steps_per_contact", steps_per_contact, Range::closed(20.0, 2000.0), "")?;
-    let window = arg("window_contacts", window_contacts, Range::closed(1.0, 1000.0), "")?;
-    let settings = TransientSettings { elements: elements as usize, steps_per_contact: steps, window_contacts: window };
+    let disc = match tolerance {
+        Some(t) => Discretisation::tolerance(transient_tolerance(t)?),
+        None => s.transient_discretisation,
+    };
     let computed = py
         .detach(|| -> Result<_, coupled::ModelError> {
             if error_estimate {
-                let mut ladder = Ladder::new(&s.plate, settings)?;
-                let disc = Discretisation::Fixed { settings };
+                let mut ladder = Ladder::new(&s.plate, disc.start())?;
                 let (values, e) = transient_response(s, disc, &mut ladder, set, b, (x, z), v)?;
                 Ok((values, e.outcome))
             } else {
-                let case = TransientCase::new(&s.plate, settings)?;
-                let striker = scene_striker(s, b, v);
-                let o = case.run(set, &striker, x, z)?;
-                let values = transient_values(s, set, b, &o, &striker, striker.hertz_time() / steps, (x, z), None);
-                Ok((values, o))
+                let start = disc.start();
+                let st = scene_striker(s, b, v);
+                let o = TransientCase::new(&s.plate, start)?.run(set, &st, x, z)?;
+                let dt = st.hertz_time() / start.steps_per_contact;
+                Ok((transient_values(s, set, b, &o, &st, dt, (x, z), None), o))
             }
         })
         .map_err(model_error)?;

@@ -24,6 +24,11 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The TOML text the scene was read from.
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
     fn parse(text: String, origin: String) -> PyResult<Self> {
         let scene = Validated::parse(&text, &origin).map_err(|e| scene_error(&e))?;
         Ok(Self { scene, text, origin })

@@ -51,6 +51,9 @@ EVIDENCE = {
     "contact_time_error": "contact_time_error_s",
     "apparent_restitution": "apparent_restitution",
     "restitution_error": "restitution_error",
+    "steps_per_contact": "steps_per_contact",
+    "relative_error": "relative_error",
+    "tolerance": "tolerance",
     "total_impulse": "total_impulse_n_s",
     "final_velocity": "final_velocity_m_per_s",
 }
@@ -58,6 +61,7 @@ CRITERIA = {
     "elastic": "elastic_ratio",
     "quasi_static": "quasi_static_ratio",
     "thin_plate": "thin_plate_ratio",
+    "regime": "regime_force_error",
     "recontact": "contacts",
 }
 
@@ -94,6 +98,8 @@ def compare(rows: list[dict], cols: dict[str, np.ndarray]) -> int:
                 got = float(cols[col][i]) if col in cols else None
                 assert same(out["evidence"][key], got), (i, key, out["evidence"][key], got)
                 n += 1
+        if "met_tolerance" in out.get("evidence", {}):
+            assert bool(cols["met_tolerance"][i]) == out["evidence"]["met_tolerance"]
         for s in out.get("spring_forces", []):
             assert cols[f"spring_force_n: {s['name']}"][i] == s["force"]
             n += 1
@@ -106,9 +112,9 @@ def compare(rows: list[dict], cols: dict[str, np.ndarray]) -> int:
     return n
 
 
-def cli(scene_file, model: str) -> dict:
+def cli(scene_file, model: str, *extra: str) -> dict:
     out = subprocess.run(
-        [str(BINARY), "solve", "--json", "--scene", str(scene_file), "--model", model],
+        [str(BINARY), "solve", "--json", "--scene", str(scene_file), "--model", model, *extra],
         check=True,
         capture_output=True,
         text=True,
@@ -142,7 +148,9 @@ def test_transient_identical_from_a_dict_scene(tmp_path, paper_dict):
     scene = impact.Scene.from_dict(d)
     path = tmp_path / "scene.toml"
     path.write_text(scene.to_toml_str())
-    doc = cli(path, "transient")
-    r = impact.solve(scene, model="transient")
+    # A loose tolerance keeps the test fast and checks that it reaches the model alike.
+    doc = cli(path, "transient", "--tolerance", "0.01")
+    r = impact.solve(scene, model="transient", tolerance=0.01)
+    assert (r.responses["tolerance"] == 0.01).all()
     assert r.status == doc["status"]
     assert compare(doc["results"]["responses"], r.responses) >= 25
