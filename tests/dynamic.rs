@@ -129,9 +129,10 @@ fn transient_force_lies_between_quasistatic_plate_and_rigid() {
     assert_eq!(cases.len(), 1);
     let case = &cases[0];
     let s = coal(0.008, scene.restitution);
-    // The force at the instant of maximum compression (δ̇ = 0 on the interpolant).
+    // The force at the instant of maximum compression (δ̇ = 0 on the interpolant) is Kδ^{3/2}
+    // (to rounding: this K is computed apart from the scene's).
     let p = s.k * case.outcome().compression_max_interpolated.powf(1.5);
-    assert_eq!(p, case.force_at_max_compression);
+    assert!((p / case.force_at_max_compression - 1.0).abs() < 1e-14, "{p} {}", case.force_at_max_compression);
     let qs = case.quasi_static_plate_force;
     let rigid = s.k * (5.0 * s.restitution * s.mass * 0.008f64.powi(2) / (4.0 * s.k)).powf(0.6);
     assert!(p > qs && p < 1.01 * rigid, "QS {qs}, transient {p}, rigid {rigid}");
