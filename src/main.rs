@@ -46,8 +46,8 @@ struct Common {
 /// How the transient model is discretised.
 #[derive(Args, Clone)]
 struct TransientArgs {
-    /// Relative error allowed on the transient model's peak force, force at maximum
-    /// compression and contact time: each case's mesh and time step are chosen so that its
+    /// Relative error allowed on the transient model's P_max (the force at maximum
+    /// compression) and contact time: each case's mesh and time step are chosen so that its
     /// error estimate is within it (in [1e-6, 0.1]).
     #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_name = "REL")]
     tolerance: f64,

@@ -8,10 +8,13 @@ use crate::scene::{Analysis, Scene};
 use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, Results};
 use coupled::{BeamModel, PlateModel};
 
-/// Most transient runs one request may ask for, in runs on the default 20-element mesh
-/// (0.05-0.3 s each here), so a few minutes: a response costs about 10 (its error estimate
-/// runs the case at half and double the step and the mesh), a yield velocity at most 25
-/// (a bracketed root in v to 1e-6, usually 5-10 runs; counted at the most).
+/// Most transient runs one request may ask for: a response costs about 10 (its error
+/// estimate runs the case at half and double the step and the mesh, and a finer level where
+/// the tolerance asks for one), a yield velocity at most 25 (the estimate at its start and a
+/// bracketed root in v to 1e-6, usually 5-10 runs; counted at the most). On the 20-element
+/// mesh a run takes 0.05-0.15 s here, so 2000 of them a few minutes; at the default tolerance
+/// some cases run on the 40-element mesh, about four times dearer, so a request at the limit
+/// can take tens of minutes (`--tolerance 1e-3` keeps the paper's cases on the first).
 pub const MAX_TRANSIENT_RUNS: usize = 2000;
 
 /// Memory a result row takes, bytes, through to its JSON: measured 3.7 KB on a 10,000-point

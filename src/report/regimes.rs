@@ -207,6 +207,7 @@ fn run_job(scene: &Scene, job: &Job, families: &[Family]) -> Result<Vec<MapRow>,
     )?;
     let body = scene.bodies.first().ok_or("the scene has no body")?;
     let v = scene.velocities.first().copied().ok_or("the scene has no velocity")?;
+    let on_plate = Scene { plate, ..scene.clone() };
     let mut rows = Vec::new();
     for (family, set, spring) in &sets {
         let period = case.fundamental_period(&set.supports)?;
@@ -216,8 +217,7 @@ fn run_job(scene: &Scene, job: &Job, families: &[Family]) -> Result<Vec<MapRow>,
             for factor in RADIUS_FACTORS {
                 let sphere = scaled_body(body, factor)?;
                 let s: Striker = striker(&plate, &sphere, scene.restitution, v);
-                let sc = Scene { plate, ..scene.clone() };
-                let imp = impact_of(&sc, &sphere, v);
+                let imp = impact_of(&on_plate, &sphere, v);
                 let qs_force = respond(&imp, &c.compliance, crate::report::studies::METHOD)?.contact_force;
                 let total = c.compliance.total();
                 let measured = measure(&case, set, facts, &s, (x, z), total, qs_force, MAP_STEPS)?;

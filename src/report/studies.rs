@@ -20,7 +20,7 @@ pub const STEPS_PER_CONTACT: f64 = 200.0;
 /// Elements along the longer side for the transient runs.
 pub const DYNAMIC_MESH: usize = 20;
 /// Relative tolerance of the main report's transient cases (the error estimate of every
-/// force and contact time within it). The report's transient conclusions are quasi-static
+/// P_max and contact time within it). The report's transient conclusions are quasi-static
 /// errors of 5-70 %; at 1e-3 nearly every case stays on 20 elements and 200 steps per Hertz
 /// time (about 0.7 s a case with its estimate), where `impact dynamic`'s default 1e-4 takes
 /// several seconds a case on the 40-element mesh.

@@ -229,15 +229,10 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
     Ok(cases)
 }
 
-/// A value with its estimated error, "v ± e" (the error to two digits).
-fn with_error(v: f64, e: f64) -> Cell {
-    if v.is_finite() && e.is_finite() {
-        Cell::Text(format!("{} ± {}", sig(v, 7), sig(e, 2)))
-    } else if v.is_finite() {
-        Cell::Num(v)
-    } else {
-        Cell::Empty
-    }
+/// A value and its estimated error as two cells (empty where there is none).
+fn with_error(v: f64, e: f64) -> [Cell; 2] {
+    let cell = |x: f64| if x.is_finite() { Cell::Num(x) } else { Cell::Empty };
+    [cell(v), if v.is_finite() { cell(e) } else { Cell::Empty }]
 }
 
 fn point(c: &TransientCase) -> Cell {
@@ -256,14 +251,18 @@ pub fn comparison_table(cases: &[TransientCase]) -> Table {
             "z (mm)",
             "v (m/s)",
             "t_c (ms)",
+            "t_c error (ms)",
             "t_c/T₁",
             "peak force, transient (N)",
+            "peak force error (N)",
             "P_max at δ_max, transient (N)",
+            "P_max error (N)",
             "P_max quasi-static plate (N)",
             "P_max quasi-static beam (N)",
             "P_max transient/QS plate - 1",
             "δ_max transient/QS plate - 1",
             "apparent e",
+            "apparent e error",
             "plate energy at δ_max (transient)",
             "plate energy (QS plate)",
             "sphere KE left at δ_max",
@@ -271,25 +270,20 @@ pub fn comparison_table(cases: &[TransientCase]) -> Table {
     );
     for c in cases {
         let (q, err) = (&c.estimate.values, &c.estimate.error);
-        t.push(vec![
-            c.condition.clone().into(),
-            c.body.clone().into(),
-            (c.x * 1e3).into(),
-            (c.z * 1e3).into(),
-            c.velocity.into(),
-            with_error(q.contact_time * 1e3, err.contact_time * 1e3),
-            opt(c.contact_ratio()),
-            with_error(q.peak_force, err.peak_force),
-            with_error(q.force_at_max_compression, err.force_at_max_compression),
-            c.quasi_static_plate_force.into(),
-            c.quasi_static_beam_force.map_or(Cell::Empty, Cell::Num),
-            c.force_error().into(),
-            (q.compression / c.quasi_static_plate_compression - 1.0).into(),
-            with_error(q.restitution, err.restitution),
-            c.plate_energy.into(),
-            c.quasi_static_plate_energy.into(),
-            c.sphere_energy_left.into(),
-        ]);
+        let mut row: Vec<Cell> =
+            vec![c.condition.clone().into(), c.body.clone().into(), (c.x * 1e3).into(), (c.z * 1e3).into()];
+        row.push(c.velocity.into());
+        row.extend(with_error(q.contact_time * 1e3, err.contact_time * 1e3));
+        row.push(opt(c.contact_ratio()));
+        row.extend(with_error(q.peak_force, err.peak_force));
+        row.extend(with_error(q.force_at_max_compression, err.force_at_max_compression));
+        row.push(c.quasi_static_plate_force.into());
+        row.push(c.quasi_static_beam_force.map_or(Cell::Empty, Cell::Num));
+        row.push(c.force_error().into());
+        row.push((q.compression / c.quasi_static_plate_compression - 1.0).into());
+        row.extend(with_error(q.restitution, err.restitution));
+        row.extend([c.plate_energy.into(), c.quasi_static_plate_energy.into(), c.sphere_energy_left.into()]);
+        t.push(row);
     }
     t
 }
@@ -390,9 +384,10 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
             "v (m/s)",
             "elements",
             "steps per t_H",
-            "estimate (relative, largest of the forces and t_c)",
+            "estimate on P_max and t_c (relative)",
             "time part",
             "mesh part",
+            "peak-force estimate (relative)",
             "tolerance met",
             "wall time (s)",
         ],
@@ -409,6 +404,7 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
             e.relative_error().into(),
             e.time_error.relative_to(&e.values).into(),
             e.mesh_error.relative_to(&e.values).into(),
+            e.error.relative_peak(&e.values).into(),
             match e.tolerance {
                 Some(tol) if e.met_tolerance => format!("yes (≤ {})", sig(tol, 2)),
                 Some(tol) => format!("no (> {}; budget reached)", sig(tol, 2)),
@@ -539,10 +535,13 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
             "v/v_y",
             "v (m/s)",
             "peak force (N)",
+            "peak force error (N)",
             "P_max at δ_max (N)",
+            "P_max error (N)",
             "δ_max/δ_my",
             "permanent set δ_p/δ_max",
             "apparent e",
+            "apparent e error",
             "at δ_max: rock elastic",
             "at δ_max: dissipated",
             "at δ_max: plate",
@@ -560,15 +559,12 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
         let m = o.at_max_compression_interpolated;
         let end = o.later_history.last().or(o.history.last()).copied().unwrap_or(m);
         let e0 = c.energy;
-        t.push(vec![
-            c.law.key().into(),
-            c.ratio.into(),
-            c.velocity.into(),
-            with_error(q.peak_force, err.peak_force),
-            with_error(q.force_at_max_compression, err.force_at_max_compression),
-            (q.compression / c.yield_compression).into(),
-            (c.permanent_set / q.compression).into(),
-            with_error(q.restitution, err.restitution),
+        let mut row: Vec<Cell> = vec![c.law.key().into(), c.ratio.into(), c.velocity.into()];
+        row.extend(with_error(q.peak_force, err.peak_force));
+        row.extend(with_error(q.force_at_max_compression, err.force_at_max_compression));
+        row.extend([(q.compression / c.yield_compression).into(), (c.permanent_set / q.compression).into()]);
+        row.extend(with_error(q.restitution, err.restitution));
+        row.extend([
             (m.contact / e0).into(),
             (m.dissipated / e0).into(),
             ((m.plate_kinetic + m.plate_strain) / e0).into(),
@@ -579,6 +575,7 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
             ((end.plate_kinetic + end.plate_strain + end.springs) / e0).into(),
             Cell::Int((o.contacts.len() + usize::from(o.unfinished_contact.is_some())) as u64),
         ]);
+        t.push(row);
     }
     t
 }

@@ -618,7 +618,7 @@ pub fn transient_response(
 
 /// Runs the scene's responses with the transient model (yield velocities by the transient
 /// model are the velocity at which the transient δ_max reaches δ_my). Every response carries
-/// the error estimate of [`crate::transient::estimate`] on the discretisation the scene asks
+/// the error estimate of [`mod@crate::transient::estimate`] on the discretisation the scene asks
 /// for ([`Scene::transient_discretisation`]): fixed settings, or per case the coarsest mesh
 /// and step whose estimate meets a tolerance.
 pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {

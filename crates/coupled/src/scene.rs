@@ -164,7 +164,7 @@ pub struct Scene {
     /// the scene has none).
     pub signals: SignalSettings,
     /// How the transient model is discretised: by default each case's mesh and step are
-    /// chosen so that its error estimate is within 1e-4 of the forces and the contact time.
+    /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.
     pub transient_discretisation: Discretisation,
 }
 

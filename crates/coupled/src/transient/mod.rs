@@ -5,10 +5,10 @@
 //!
 //! Both bodies use Newmark's average-acceleration rule (`plate_fem::dynamics`). Each step
 //! has three named parts: the contact solve ([`contact::contact_force`]), the energy
-//! bookkeeping ([`energies`]) and the separation test ([`separated`]). The run follows the
+//! bookkeeping (`energies`) and the separation test ([`separated`]). The run follows the
 //! impact past the first separation, through every later contact, until the sphere has
 //! provably left ([`simulate_with`]). Maxima between step ends come from the integrator's
-//! own interpolant ([`interpolate`]); [`estimate`] puts an error estimate on every number
+//! own interpolant ([`interpolate`]); [`mod@estimate`] puts an error estimate on every number
 //! from the case's own discretisation. [`target::SpringMass`] replaces the plate by one
 //! mass on a spring, for checks against an ODE solution.
 //!
