@@ -301,7 +301,7 @@ pub fn contacts_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (mm)",
+            "point (x, z) in mm",
             "v (m/s)",
             "contacts",
             "each contact: start (ms), duration (ms), peak force (N)",
@@ -386,7 +386,7 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (mm)",
+            "point (x, z) in mm",
             "v (m/s)",
             "elements",
             "steps per t_H",
@@ -429,7 +429,7 @@ pub fn regimes_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (mm)",
+            "point (x, z) in mm",
             "v (m/s)",
             "M_i/M_p (Olsson)",
             "lambda",
