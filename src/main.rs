@@ -403,7 +403,8 @@ fn execute(command: Command) -> Result<(), Failure> {
         Command::Report { out, json } => {
             let target = OutputDir::prepare(&out)?;
             let scene = Scene::default_scene();
-            commit_reporting(target, &impact::report::main_report(&scene)?, &scene, json)
+            // The provenance printed is that of the scene the report ran, as in its files.
+            commit_reporting(target, &impact::report::main_report(&scene)?, &impact::report::main_scene(&scene), json)
         }
         Command::FemBench { scene, json, tolerance, nx, nz } => {
             let scene = load(&scene)?;

@@ -57,13 +57,19 @@ pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
     Ok(a)
 }
 
+/// The scene the main report runs: `scene` with its transient cases to
+/// [`studies::REPORT_TOLERANCE`] (its files carry this scene's provenance).
+pub fn main_scene(scene: &Scene) -> Scene {
+    Scene {
+        transient_discretisation: coupled::transient::Discretisation::tolerance(studies::REPORT_TOLERANCE),
+        ..scene.clone()
+    }
+}
+
 /// The main job: the paper's reproduction, the plate FE verification, and the scene report
 /// of the default scene, its transient cases to [`studies::REPORT_TOLERANCE`].
 pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
-    let scene = &Scene {
-        transient_discretisation: coupled::transient::Discretisation::tolerance(studies::REPORT_TOLERANCE),
-        ..scene.clone()
-    };
+    let scene = &main_scene(scene);
     let paper_scene = paper::Paper::new().scene;
     let reports: [(&str, Report, &Scene); 2] =
         [("paper", paper::report, &paper_scene), ("fem", fem_verification::report, scene)];

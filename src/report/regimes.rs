@@ -597,7 +597,7 @@ fn points_table(rows: &[MapRow]) -> Table {
     let mut t = Table::new(
         "",
         &[
-            "point (mm)",
+            "point (x, z) in mm",
             "cases",
             "within 3 %",
             "the rule trusts",

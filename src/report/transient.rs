@@ -295,7 +295,7 @@ pub fn contacts_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (mm)",
+            "point (x, z) in mm",
             "v (m/s)",
             "contacts",
             "each contact: start (ms), duration (ms), peak force (N)",
@@ -380,7 +380,7 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (mm)",
+            "point (x, z) in mm",
             "v (m/s)",
             "elements",
             "steps per t_H",
@@ -425,7 +425,7 @@ pub fn regimes_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (mm)",
+            "point (x, z) in mm",
             "v (m/s)",
             "M_i/M_p (Olsson)",
             "lambda",
@@ -940,17 +940,20 @@ fn whole_run(o: &Outcome, name: &str, x: impl Fn(f64) -> f64, f: impl Fn(&Sample
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     let points = &scene.transient_points;
     let mut a = Artifacts::new();
-    let mut md = String::new();
-    md.push_str(&render(
+    // The page: findings first (computed below), the figures, the tables, the laws, and the
+    // verification last; each section is rendered into its own string and assembled at the end.
+    let head = render(
         "transient/head.md",
         HEAD,
         &[("scene", scene.name.clone()), ("discretisation", discretisation_prose(scene)?)],
-    )?);
-    if scene.wants(Analysis::Verification) {
-        md.push_str(&verification(scene)?);
+    )?;
+    let verification_md = if scene.wants(Analysis::Verification) {
+        verification(scene)?
     } else {
-        md.push_str(&render("transient/not-verified.md", NOT_VERIFIED, &[])?);
-    }
+        render("transient/not-verified.md", NOT_VERIFIED, &[])?
+    };
+    let mut md = String::new();
+    let mut figures = String::new();
 
     let t0 = Instant::now();
     let cases = comparison(scene, points)?;
@@ -1079,7 +1082,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ]);
         }
         a.add("history.csv", h.to_csv());
-        md.push_str(&render("transient/history.md", HISTORY, &[])?);
+        figures.push_str(&render("transient/history.md", HISTORY, &[])?);
     }
 
     // The contact laws side by side above the yield velocity.
@@ -1177,20 +1180,19 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ],
         )?);
     }
-    md.push_str(&render("transient/summary.md", SUMMARY, &[("bodies", summary)])?);
+    let mut summary_md = render("transient/summary.md", SUMMARY, &[("bodies", summary)])?;
 
-    if !scene.wants(Analysis::SizeMap) {
-        a.add("index.md", md);
-        return Ok(a);
+    let mut size_md = String::new();
+    if scene.wants(Analysis::SizeMap) {
+        let (st, series) = size_map(scene)?;
+        a.add("size-map.csv", st.to_csv());
+        a.add("size-map.svg", ratio_figure(&series, &cases).svg());
+        let findings = size_map_findings(&series);
+        let said = findings.trim_start_matches("Measured in this run:").trim();
+        summary_md = format!("{}\n", summary_md.trim_end());
+        summary_md.push_str(&format!("- Over plate size and thickness (Con 1, centre): {said}\n"));
+        size_md = render("transient/size-map.md", SIZE_MAP, &[("findings", findings), ("table", st.to_markdown())])?;
     }
-    let (st, series) = size_map(scene)?;
-    a.add("size-map.csv", st.to_csv());
-    a.add("size-map.svg", ratio_figure(&series, &cases).svg());
-    md.push_str(&render(
-        "transient/size-map.md",
-        SIZE_MAP,
-        &[("findings", size_map_findings(&series)), ("table", st.to_markdown())],
-    )?);
-    a.add("index.md", md);
+    a.add("index.md", [head, summary_md, figures, size_md, md, verification_md].concat());
     Ok(a)
 }
