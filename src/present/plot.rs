@@ -736,7 +736,7 @@ pub struct ColourMap {
     pub xs: Vec<f64>,
     pub ys: Vec<f64>,
     pub edges: bool,
-    /// values[i][j] at (xs[i], ys[j]); NaN where nothing is shown (drawn grey).
+    /// `values[i][j]` at (`xs[i]`, `ys[j]`); NaN where nothing is shown (drawn grey).
     pub values: Vec<Vec<f64>>,
     /// The colour bar's label (the quantity with its unit) and scale.
     pub bar: Axis,

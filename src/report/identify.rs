@@ -84,7 +84,7 @@ fn resolved(delta: f64, se: f64) -> bool {
 
 impl Ranked {
     /// Whether the modal truncation moves the AUC by less than its sampling error or
-    /// [`AUC_RESOLUTION`].
+    /// the AUC resolution (0.01).
     pub fn converged(&self) -> bool {
         self.resolution.is_some_and(|r| resolved(r, self.auc.standard_error))
     }
