@@ -186,7 +186,7 @@ fn keys(t: &mut Table, row: usize, model: &str, body: &str, condition: &str, (x,
 }
 
 /// Columns of the responses at maximum compression.
-const RESPONSES: [(&str, Kind); 31] = [
+const RESPONSES: [(&str, Kind); 39] = [
     ("velocity_m_per_s", Num),
     ("compliance_m_per_n", Num),
     ("compliance_error_m_per_n", Num),
@@ -195,11 +195,17 @@ const RESPONSES: [(&str, Kind); 31] = [
     ("compression_m", Num),
     ("compression_error_m", Num),
     ("deflection_m", Num),
+    ("deflection_error_m", Num),
     ("rock_total_ratio", Num),
+    ("rock_total_ratio_error", Num),
     ("rock_stored_ratio", Num),
+    ("rock_stored_ratio_error", Num),
     ("plate_ratio", Num),
+    ("plate_ratio_error", Num),
     ("spring_ratio", Num),
+    ("spring_ratio_error", Num),
     ("sphere_kinetic_ratio", Num),
+    ("sphere_kinetic_ratio_error", Num),
     ("solver_iterations", Num),
     ("solver_residual", Num),
     ("steps", Num),
@@ -216,7 +222,9 @@ const RESPONSES: [(&str, Kind); 31] = [
     ("tolerance", Num),
     ("met_tolerance", Flag),
     ("total_impulse_n_s", Num),
+    ("total_impulse_error_n_s", Num),
     ("final_velocity_m_per_s", Num),
+    ("final_velocity_error_m_per_s", Num),
     ("left_for_good", Flag),
 ];
 
@@ -235,6 +243,16 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
     t.num("sphere_kinetic_ratio", row, v.sphere_kinetic_ratio);
     if !v.spring_forces.is_empty() {
         t.num("spring_ratio", row, v.spring_ratio);
+    }
+    if let Some(e) = &v.state_errors {
+        t.num("deflection_error_m", row, e.deflection);
+        t.num("rock_total_ratio_error", row, e.rock_total_ratio);
+        t.num("rock_stored_ratio_error", row, e.rock_stored_ratio);
+        t.num("plate_ratio_error", row, e.plate_ratio);
+        t.num("sphere_kinetic_ratio_error", row, e.sphere_kinetic_ratio);
+        if !v.spring_forces.is_empty() {
+            t.num("spring_ratio_error", row, e.spring_ratio);
+        }
     }
     match v.evidence {
         Evidence::Balance { iterations, residual } => {
@@ -257,7 +275,9 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
             met_tolerance,
             contacts: _,
             total_impulse,
+            total_impulse_error,
             final_velocity,
+            final_velocity_error,
             left_for_good,
         } => {
             t.num("steps", row, steps as f64);
@@ -278,7 +298,9 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
                 t.flag("met_tolerance", row, met_tolerance);
             }
             t.num("total_impulse_n_s", row, total_impulse);
+            t.opt("total_impulse_error_n_s", row, total_impulse_error);
             t.num("final_velocity_m_per_s", row, final_velocity);
+            t.opt("final_velocity_error_m_per_s", row, final_velocity_error);
             t.flag("left_for_good", row, left_for_good);
         }
     }
@@ -286,6 +308,11 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
     // corner (L, 0)"); NaN in rows whose support set lacks that spring.
     for s in &v.spring_forces {
         t.num(&format!("spring_force_n: {}", s.name), row, s.force);
+    }
+    if let Some(e) = &v.state_errors {
+        for (s, err) in v.spring_forces.iter().zip(&e.spring_forces) {
+            t.num(&format!("spring_force_error_n: {}", s.name), row, *err);
+        }
     }
     validity(t, row, &v.validity);
 }

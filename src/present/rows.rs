@@ -97,6 +97,8 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
             }
             if transient {
                 headers.push("sphere kinetic".into());
+                headers.push("deflection error (m)".into());
+                headers.push("largest energy-share error".into());
                 headers.push("discretisation".into());
             }
             headers.extend(
@@ -142,6 +144,19 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
                         }
                         if transient {
                             row.push(v.sphere_kinetic_ratio.into());
+                            let e = v.state_errors.as_ref();
+                            row.push(opt(e.map(|e| e.deflection)));
+                            row.push(opt(e.map(|e| {
+                                [
+                                    e.rock_total_ratio,
+                                    e.rock_stored_ratio,
+                                    e.plate_ratio,
+                                    e.spring_ratio,
+                                    e.sphere_kinetic_ratio,
+                                ]
+                                .into_iter()
+                                .fold(0.0, f64::max)
+                            })));
                             row.push(discretisation_text(&v.evidence).into());
                         }
                         match v.evidence {

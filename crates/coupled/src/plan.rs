@@ -105,8 +105,14 @@ pub enum Evidence {
         contacts: usize,
         /// The impulse of all of them, N·s.
         total_impulse: f64,
+        /// Its estimated absolute error where the impact is one contact that ended (v₀ times
+        /// the restitution's error, impulse m(v₀ - v_f)); None after several contacts, whose
+        /// later ones the estimate's runs do not follow.
+        total_impulse_error: Option<f64>,
         /// Sphere velocity at the end of the run, m/s (negative: away from the plate).
         final_velocity: f64,
+        /// Its estimated absolute error, m/s (v₀ times the restitution's; one contact only).
+        final_velocity_error: Option<f64>,
         /// Whether the run proved that no further contact can occur (else the window ended).
         left_for_good: bool,
     },
@@ -143,10 +149,35 @@ pub struct ResponseValues {
     /// Kinetic energy the sphere still has at maximum compression over E₀ (0 when
     /// quasi-static).
     pub sphere_kinetic_ratio: f64,
+    /// Estimated absolute errors of the deflection, spring forces and energy shares (the
+    /// transient model, from each case's own discretisation; None for the quasi-static
+    /// models, whose error is the compliance's).
+    pub state_errors: Option<StateErrors>,
     /// How the values were found.
     pub evidence: Evidence,
     /// Whether the values are inside the model's assumptions.
     pub validity: Validity,
+}
+
+/// Estimated absolute errors of a transient row's values at maximum compression, from
+/// [`crate::transient::estimate::State`]'s error (Richardson in h and Δt).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StateErrors {
+    /// Of the deflection, m: that of w plus the weighted errors of the corner deflections the
+    /// bilinear support plane subtracts (a bound: the errors add).
+    pub deflection: f64,
+    /// Of each spring force, N, in the order of `spring_forces` (k times the corner's error).
+    pub spring_forces: Vec<f64>,
+    /// Of the rock's total energy over E₀.
+    pub rock_total_ratio: f64,
+    /// Of the rock's stored energy over E₀.
+    pub rock_stored_ratio: f64,
+    /// Of the plate's energy over E₀.
+    pub plate_ratio: f64,
+    /// Of the springs' energy over E₀.
+    pub spring_ratio: f64,
+    /// Of the sphere's kinetic energy over E₀.
+    pub sphere_kinetic_ratio: f64,
 }
 
 /// Responses of one body at one point and velocity, by one model.
@@ -382,6 +413,7 @@ fn quasi_static_values(
         plate_ratio: r.plate_ratio,
         spring_ratio: r.spring_ratio,
         sphere_kinetic_ratio: 0.0,
+        state_errors: None,
         evidence: Evidence::Balance { iterations: r.solution.iterations, residual: r.solution.residual },
         validity,
     };
@@ -534,14 +566,33 @@ pub fn transient_values(
     let weights = corner_weights(x, z, l, b);
     let mut support_plane = 0.0;
     let mut spring_forces = Vec::new();
+    let mut springs = Vec::new();
     for c in Corner::ALL {
         let i = c.index();
         if let plate_fem::CornerSupport::Spring(k) = set.supports.corners[i] {
             spring_forces
                 .push(analytic::SpringForce { name: format!("spring at {}", c.name()), force: k * corners[i] });
             support_plane += weights[i] * corners[i];
+            springs.push((i, k));
         }
     }
+    let state_errors = errors.map(|e| {
+        let se = e.state_error;
+        StateErrors {
+            deflection: se.plate_displacement
+                + springs.iter().map(|&(i, _)| weights[i].abs() * se.corners[i]).sum::<f64>(),
+            spring_forces: springs.iter().map(|&(i, k)| k * se.corners[i]).collect(),
+            rock_total_ratio: se.rock_total / e0,
+            rock_stored_ratio: se.rock_stored / e0,
+            plate_ratio: se.plate / e0,
+            spring_ratio: se.springs / e0,
+            sphere_kinetic_ratio: se.sphere_kinetic / e0,
+        }
+    });
+    // One contact that ended: the rebound is the first contact's, -e v₀, so the final
+    // velocity and the impulse m(v₀ - v_f) carry v₀ times the restitution's error.
+    let single = o.contacts.len() == 1 && o.unfinished_contact.is_none() && o.left_at.is_some();
+    let final_velocity_error = errors.filter(|_| single).map(|e| s.velocity * e.error.restitution.abs());
     // The first contact's numbers describe the whole impact only if there is no other.
     let recontact = Some(validity::Criterion::at_most("contacts", o.contacts.len() as f64, 1.0));
     ResponseValues {
@@ -558,6 +609,7 @@ pub fn transient_values(
         plate_ratio: (m.plate_kinetic + m.plate_strain) / e0,
         spring_ratio: m.springs / e0,
         sphere_kinetic_ratio: m.sphere_kinetic / e0,
+        state_errors,
         evidence: Evidence::Transient {
             steps: o.steps,
             time_step: dt,
@@ -574,7 +626,9 @@ pub fn transient_values(
             met_tolerance: errors.is_none_or(|e| e.met_tolerance),
             contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
             total_impulse: o.total_impulse,
+            total_impulse_error: final_velocity_error.map(|dv| s.mass * dv),
             final_velocity: o.final_velocity,
+            final_velocity_error,
             left_for_good: o.left_at.is_some(),
         },
         validity: Validity {

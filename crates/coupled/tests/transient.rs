@@ -3,7 +3,7 @@
 use analytic::{Elastic, Plate, RockStrength, Sphere};
 use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
-use coupled::transient::estimate::{choose, estimate, Budget, Quantities, DEFAULT_TOLERANCE};
+use coupled::transient::estimate::{choose, estimate, Budget, Quantities, State, DEFAULT_TOLERANCE};
 use coupled::transient::{
     simulate, simulate_with, Contact, ContactLaw, Outcome, PlateFacts, SpringMass, Striker, TransientCase,
     TransientSettings,
@@ -401,6 +401,51 @@ fn the_error_estimate_covers_the_error_on_cheap_cases() {
                 actual[i]
             );
         }
+    }
+}
+
+/// The state at maximum compression (deflection, corner deflections, energy split) carries
+/// an estimate from the same runs as the first-contact quantities: on the cheap cases
+/// (10 elements, 100 steps per t_c) it must cover the difference from a run four times finer
+/// in h and Δt (which has about 1/16 of the error, second order). Con 2 puts springs under
+/// all four corners, so their deflections and energy are covered too.
+#[test]
+fn the_state_error_estimate_covers_the_error_on_cheap_cases() {
+    let p = plate();
+    for (b, ci, point) in [("coal", 1, (p.length() / 2.0, p.width() / 2.0)), ("gangue 2", 2, (0.0, p.width() / 2.0))] {
+        let s = strike(b);
+        let settings = TransientSettings { elements: 10, steps_per_contact: 100.0, ..Default::default() };
+        let e = estimate(&p, &con(ci), &s, point, settings).unwrap();
+        let fine_case = TransientCase::new(&p, TransientSettings { elements: 10, ..Default::default() })
+            .unwrap()
+            .refined(&p)
+            .unwrap()
+            .refined(&p)
+            .unwrap();
+        let fine = State::of(&fine_case.run_steps(&con(ci), &s, point.0, point.1, 400.0).unwrap());
+        let value = State::of(&e.outcome);
+        let e0 = 0.5 * s.mass * s.velocity * s.velocity;
+        let w = value.plate_displacement.abs();
+        let rows: Vec<(&str, f64, f64, f64, f64)> = [
+            ("w", value.plate_displacement, fine.plate_displacement, e.state_error.plate_displacement, w),
+            ("rock total", value.rock_total, fine.rock_total, e.state_error.rock_total, e0),
+            ("rock stored", value.rock_stored, fine.rock_stored, e.state_error.rock_stored, e0),
+            ("plate", value.plate, fine.plate, e.state_error.plate, e0),
+            ("springs", value.springs, fine.springs, e.state_error.springs, e0),
+            ("sphere kinetic", value.sphere_kinetic, fine.sphere_kinetic, e.state_error.sphere_kinetic, e0),
+        ]
+        .into_iter()
+        .chain((0..4).map(|i| ("corner", value.corners[i], fine.corners[i], e.state_error.corners[i], w)))
+        .collect();
+        for (name, v, f, est, scale) in rows {
+            let actual = (v - f).abs();
+            println!("{b} Con {ci} {name}: value {v:.6e}, estimate {est:.2e}, actual {actual:.2e}");
+            // Round-off of the energies' sums (E₀ minus what is stored) is ~1e-14 E₀.
+            assert!(actual <= est + 1e-12 * scale, "{b} Con {ci} {name}: estimate {est:e} < actual {actual:e}");
+        }
+        // A held corner has no error; a sprung one has a non-zero one.
+        let sprung = e.state_error.corners.iter().filter(|c| **c > 0.0).count();
+        assert_eq!(sprung, if ci == 1 { 0 } else { 4 }, "{:?}", e.state_error.corners);
     }
 }
 

@@ -90,6 +90,81 @@ impl Quantities {
     }
 }
 
+/// The state at maximum compression (on the in-step interpolant, [`super::interpolate`])
+/// that the response rows report beside [`Quantities`]: the plate's deflection, the
+/// corners' and the energy split. Its error is estimated from the same runs, component by
+/// component, as that of [`Quantities`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct State {
+    /// Plate deflection w at the struck point, m.
+    pub plate_displacement: f64,
+    /// Corner deflections in [`plate_fem::Corner::ALL`] order (zero at held corners), m.
+    pub corners: [f64; 4],
+    /// Energy in the rock: stored in the contact plus dissipated by it, J.
+    pub rock_total: f64,
+    /// Energy stored in the contact, J.
+    pub rock_stored: f64,
+    /// Kinetic and strain energy of the plate, J.
+    pub plate: f64,
+    /// Energy of the corner springs, J.
+    pub springs: f64,
+    /// Kinetic energy of the sphere, J.
+    pub sphere_kinetic: f64,
+}
+
+impl State {
+    /// The state at maximum compression of a run.
+    pub fn of(o: &Outcome) -> Self {
+        let m = o.at_max_compression_interpolated;
+        Self {
+            plate_displacement: m.plate_displacement,
+            corners: o.corners_at_max_compression_interpolated,
+            rock_total: m.contact + m.dissipated,
+            rock_stored: m.contact,
+            plate: m.plate_kinetic + m.plate_strain,
+            springs: m.springs,
+            sphere_kinetic: m.sphere_kinetic,
+        }
+    }
+
+    fn to_array(self) -> [f64; 10] {
+        let [c0, c1, c2, c3] = self.corners;
+        [
+            self.plate_displacement,
+            c0,
+            c1,
+            c2,
+            c3,
+            self.rock_total,
+            self.rock_stored,
+            self.plate,
+            self.springs,
+            self.sphere_kinetic,
+        ]
+    }
+
+    fn from_array(a: [f64; 10]) -> Self {
+        let [plate_displacement, c0, c1, c2, c3, rock_total, rock_stored, plate, springs, sphere_kinetic] = a;
+        Self { plate_displacement, corners: [c0, c1, c2, c3], rock_total, rock_stored, plate, springs, sphere_kinetic }
+    }
+
+    /// Richardson's estimate of each component's absolute error, as [`combine`] gives that of
+    /// [`Quantities`]: F|Q(n, N) - Q(n, 2N)|/(1 - 2^{-p_t}) + F|Q(n, N) - Q(2n, N)|/(1 - 2^{-p_h}),
+    /// the orders observed from the third levels and clamped to [1, 2] (2 for the mesh without
+    /// a coarser level). Components that vanish on every level (a held corner, no springs)
+    /// have no error.
+    fn error(self, (q_2dt, q_dt): (State, State), (q_2h, q_h): (Option<State>, State)) -> State {
+        let (q, q_2dt, q_dt, q_h) = (self.to_array(), q_2dt.to_array(), q_dt.to_array(), q_h.to_array());
+        let q_2h = q_2h.map(State::to_array);
+        State::from_array(std::array::from_fn(|i| {
+            let p_t = observed_order(q_2dt[i], q[i], q_dt[i]);
+            let p_h = q_2h.map_or(2.0, |c| observed_order(c[i], q[i], q_h[i]));
+            let part = |fine: f64, p: f64| SAFETY * (q[i] - fine).abs() / (1.0 - 0.5f64.powf(p));
+            part(q_dt[i], p_t) + part(q_h[i], p_h)
+        }))
+    }
+}
+
 /// The five quantities as a tuple of anything, in [`Quantities`]' field order.
 #[derive(Debug, Clone, Copy)]
 struct Pair<T>([T; 5]);
@@ -140,6 +215,9 @@ pub struct Estimated {
     pub mesh_error: Quantities,
     /// Their sum: the estimate of the absolute error of `values`.
     pub error: Quantities,
+    /// The estimated absolute error of the state at maximum compression ([`State::of`] the
+    /// `outcome`), from the same runs.
+    pub state_error: State,
     /// The relative tolerance [`choose`] aimed at (None from [`estimate_on`]).
     pub tolerance: Option<f64>,
     /// Whether the error met that tolerance (true from [`estimate_on`]).
@@ -167,15 +245,25 @@ fn observed_order(coarse: f64, middle: f64, fine: f64) -> f64 {
     }
 }
 
+/// A run's first-contact quantities and its state at maximum compression.
+type Run = (Quantities, State);
+
+/// The run's [`Run`] numbers.
+fn run_of(o: &Outcome, s: &Striker) -> Run {
+    (Quantities::of(o, s), State::of(o))
+}
+
 /// The estimate from the runs: `q` the (n, N) values, `q_dt` (n, 2N), `q_2dt` (n, N/2),
 /// `q_h` (2n, N) and `q_2h` (n/2, N) where there is a coarser mesh.
 fn combine(
-    q: Quantities,
-    (q_2dt, q_dt): (Quantities, Quantities),
-    (q_2h, q_h): (Option<Quantities>, Quantities),
+    (q, state): Run,
+    ((q_2dt, s_2dt), (q_dt, s_dt)): (Run, Run),
+    (r_2h, (q_h, s_h)): (Option<Run>, Run),
     (elements, steps_per_contact): (usize, f64),
     outcome: Outcome,
 ) -> Estimated {
+    let state_error = state.error((s_2dt, s_dt), (r_2h.map(|r| r.1), s_h));
+    let q_2h = r_2h.map(|r| r.0);
     let time_order = q_2dt.zip(q, |a, b| (a, b)).zip3(q_dt, |(a, b), c| observed_order(a, b, c));
     let mesh_order = match q_2h {
         Some(c) => c.zip(q, |a, b| (a, b)).zip3(q_h, |(a, b), c| observed_order(a, b, c)),
@@ -195,6 +283,7 @@ fn combine(
         time_error,
         mesh_error,
         error: Quantities::from(time_error.zip(mesh_error, |a, b| a + b)),
+        state_error,
         tolerance: None,
         met_tolerance: true,
         outcome,
@@ -215,10 +304,9 @@ pub fn estimate_on(
     steps_per_contact: f64,
 ) -> Result<Estimated, ModelError> {
     let o = base.run_steps(set, s, x, z, steps_per_contact)?;
-    let q = Quantities::of(&o, s);
-    let first = |c: &TransientCase, n: f64| -> Result<Quantities, ModelError> {
-        Ok(Quantities::of(&c.first_contact(set, s, x, z, n)?, s))
-    };
+    let q = run_of(&o, s);
+    let first =
+        |c: &TransientCase, n: f64| -> Result<Run, ModelError> { Ok(run_of(&c.first_contact(set, s, x, z, n)?, s)) };
     let q_dt = first(base, 2.0 * steps_per_contact)?;
     let q_2dt = first(base, 0.5 * steps_per_contact)?;
     let q_h = first(fine, steps_per_contact)?;
@@ -377,16 +465,16 @@ pub fn choose_on(
     tolerance: f64,
     budget: Budget,
 ) -> Result<Estimated, ModelError> {
-    let mut runs: HashMap<(usize, u64), Quantities> = HashMap::new();
+    let mut runs: HashMap<(usize, u64), Run> = HashMap::new();
     let (mut level, mut steps) = (0usize, TransientSettings::default().steps_per_contact);
     let base_elements = ladder.levels(0)?.0.settings().elements;
     loop {
         let (base, fine, coarse) = ladder.levels(level)?;
-        let mut first = |c: &TransientCase, k: usize, n: f64| -> Result<Quantities, ModelError> {
+        let mut first = |c: &TransientCase, k: usize, n: f64| -> Result<Run, ModelError> {
             if let Some(q) = runs.get(&(k, n.to_bits())) {
                 return Ok(*q);
             }
-            let q = Quantities::of(&c.first_contact(set, s, x, z, n)?, s);
+            let q = run_of(&c.first_contact(set, s, x, z, n)?, s);
             runs.insert((k, n.to_bits()), q);
             Ok(q)
         };
@@ -397,7 +485,7 @@ pub fn choose_on(
         let q_h = first(fine, level + 1, steps)?;
         let q_2h = coarse.map(|c| first(c, coarse_key, steps)).transpose()?;
         let o = base.run_steps(set, s, x, z, steps)?;
-        let q = Quantities::of(&o, s);
+        let q = run_of(&o, s);
         runs.insert((level, steps.to_bits()), q);
         let mut e = combine(q, (q_2dt, q_dt), (q_2h, q_h), (base_elements << level, steps), o);
         e.tolerance = Some(tolerance);
