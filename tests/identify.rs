@@ -200,11 +200,16 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
     }
     // One row per impact and support set; one per impact, channel and support set: Con 1
     // records 3 quantities at 6 candidates and 4 corner reactions, Con 2 as many spring forces.
+    // Each after the provenance line and the header.
     let impacts = std::fs::read_to_string(one.join("impacts.csv")).unwrap();
-    assert_eq!(impacts.lines().count(), 1 + 2 * 40);
-    assert!(impacts.starts_with("condition,impact,family,class,x_mm,z_mm,radius_mm,velocity_m_per_s"));
+    assert_eq!(impacts.lines().count(), 2 + 2 * 40);
+    assert!(impacts
+        .lines()
+        .nth(1)
+        .unwrap()
+        .starts_with("condition,impact,family,class,x_m,z_m,radius_m,velocity_m_per_s"));
     let features = std::fs::read_to_string(one.join("features.csv")).unwrap();
-    assert_eq!(features.lines().count(), 1 + 2 * 40 * (3 * 6 + 4));
+    assert_eq!(features.lines().count(), 2 + 2 * 40 * (3 * 6 + 4));
     assert!(!features.contains("NaN") && !features.contains("inf"));
 
     let summary: serde_json::Value = serde_json::from_slice(&a.stdout).unwrap();
