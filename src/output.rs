@@ -116,6 +116,13 @@ impl Artifacts {
         }
     }
 
+    /// Adds every file of `other` at its own path.
+    pub fn extend(&mut self, other: Artifacts) {
+        for (p, b) in other.files {
+            self.add(p, b);
+        }
+    }
+
     /// Replaces every file's content by `f(path, content)`.
     pub fn map_files(&mut self, mut f: impl FnMut(&Path, &[u8]) -> Vec<u8>) {
         for (p, b) in &mut self.files {

@@ -286,3 +286,68 @@ fn identify_needs_an_ensemble_and_writes_nothing_without_one() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("[[bodies]]"), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// `impact report` writes the identification of its scenes through `impact identify`'s own
+/// code path: the same files (features.csv left out, as `--no-features-csv` does), the rows
+/// and figures byte for byte (the pages and the summary differ only in the timings).
+#[test]
+fn the_report_writes_what_identify_writes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene_path = tmp.path().join("small.toml");
+    std::fs::write(&scene_path, SMALL).unwrap();
+    let command = tmp.path().join("command");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["identify", "--no-features-csv", "--scene"])
+        .arg(&scene_path)
+        .arg("--out")
+        .arg(&command)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!command.join("features.csv").exists());
+
+    let scene = Scene::parse(SMALL, "small").unwrap();
+    let nested = tmp.path().join("report");
+    let mut out = impact::output::OutputDir::prepare(&nested).unwrap();
+    let (files, _) = impact::report::identify::write(
+        &scene,
+        &mut out,
+        "identify/small",
+        impact::report::identify::RowFiles::Impacts,
+    )
+    .unwrap();
+    out.commit(&files).unwrap();
+    let sub = nested.join("identify/small");
+    let names = |d: &Path| {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| !n.starts_with('.'))
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(names(&sub), names(&command));
+    for f in names(&command) {
+        if f != "index.md" && f != "summary.json" {
+            assert!(std::fs::read(sub.join(&f)).unwrap() == std::fs::read(command.join(&f)).unwrap(), "{f} differs");
+        }
+    }
+}
+
+/// The scenes `impact report` identifies are valid identification scenes with distinct
+/// directories.
+#[test]
+fn the_reports_identification_scenes_are_valid() {
+    let mut dirs = Vec::new();
+    for (file, text) in impact::report::IDENTIFY_SCENES {
+        let on_disk = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(file)).unwrap();
+        assert_eq!(text, on_disk, "{file} is embedded as shipped");
+        let s = Scene::parse(text, file).unwrap();
+        impact::report::identify::checked_study(&s).unwrap();
+        dirs.push(impact::present::rows::slug(&s.name));
+    }
+    dirs.sort();
+    dirs.dedup();
+    assert_eq!(dirs.len(), impact::report::IDENTIFY_SCENES.len());
+}

@@ -1263,6 +1263,16 @@ fn report(
             ("threshold", sig(identify::features::DURATION_THRESHOLD * 100.0, 3)),
             ("taper", sig(identify::features::TAPER_FRACTION * 100.0, 3)),
             ("chunk", CHUNK.to_string()),
+            (
+                "features_file",
+                match files {
+                    RowFiles::All => "Both are here.",
+                    RowFiles::Impacts => {
+                        "This run wrote `impacts.csv` only; `impact identify --scene FILE` writes `features.csv` too."
+                    }
+                }
+                .to_string(),
+            ),
         ],
     )?;
     artifacts.add("index.md", format!("{head}{sections}{method}"));

@@ -22,8 +22,12 @@ pub mod template;
 pub mod transient;
 pub mod yield_models;
 
-use crate::output::Artifacts;
+use crate::output::{Artifacts, OutputDir};
+use crate::present::rows::slug;
 use crate::provenance::Provenance;
+use crate::report::identify::RowFiles;
+use crate::report::template::render;
+use crate::scene::SceneSource;
 use coupled::{Analysis, Scene};
 
 /// Any failure of a study, with its source.
@@ -80,5 +84,54 @@ pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
         all.nest(dir, part);
     }
     all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene)?);
+    Ok(all)
+}
+
+/// The identification scenes `impact report` runs beside the default scene's reports (shipped
+/// in `scenes/`, embedded like the default scene): file name and text.
+pub const IDENTIFY_SCENES: [(&str, &str); 2] = [
+    ("caving-stream.toml", include_str!("../../scenes/caving-stream.toml")),
+    ("paper-velocities-ensemble.toml", include_str!("../../scenes/paper-velocities-ensemble.toml")),
+];
+
+const INDEX: &str = include_str!("templates/index/index.md");
+const INDEX_IDENTIFY: &str = include_str!("templates/index/identify.md");
+const INDEX_IDENTIFY_ROW: &str = include_str!("templates/index/identify-row.md");
+
+/// `impact report`: [`main_report`], then each of [`IDENTIFY_SCENES`] into
+/// `identify/<scene name>/` by `impact identify`'s own code path ([`identify::write`]; its
+/// rows streamed into `out`, `features.csv` left out: one row per impact and channel, 112 MB
+/// for the caving stream), and the index page that opens with the identification's answer.
+pub fn full_report(scene: &Scene, out: &mut OutputDir) -> Result<Artifacts, Failure> {
+    let mut all = main_report(scene)?;
+    let (mut sections, mut rows) = (String::new(), String::new());
+    for (file, text) in IDENTIFY_SCENES {
+        let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;
+        let dir = slug(&s.name);
+        let (files, summary) = identify::write(&s, out, &format!("identify/{dir}"), RowFiles::Impacts)?;
+        all.extend(files);
+        let table = identify::summary_tables(&summary).iter().map(|t| t.to_markdown()).collect::<Vec<_>>().join("\n");
+        sections.push_str(&render(
+            "index/identify.md",
+            INDEX_IDENTIFY,
+            &[
+                ("scene", s.name.clone()),
+                ("dir", dir.clone()),
+                ("description", s.description.trim_end_matches('.').to_string()),
+                ("impacts", summary.impacts.to_string()),
+                ("coal", summary.classes.0.to_string()),
+                ("gangue", summary.classes.1.to_string()),
+                ("law", summary.contact_law.to_string()),
+                ("table", table),
+            ],
+        )?);
+        sections.push('\n');
+        rows.push_str(&render(
+            "index/identify-row.md",
+            INDEX_IDENTIFY_ROW,
+            &[("dir", dir), ("file", file.to_string())],
+        )?);
+    }
+    all.add("index.md", render("index/index.md", INDEX, &[("identify", sections), ("identify_rows", rows)])?);
     Ok(all)
 }
