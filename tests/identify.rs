@@ -309,15 +309,22 @@ fn the_report_writes_what_identify_writes() {
     let scene = Scene::parse(SMALL, "small").unwrap();
     let nested = tmp.path().join("report");
     let mut out = impact::output::OutputDir::prepare(&nested).unwrap();
-    let (files, _) = impact::report::identify::write(
+    let (files, summary) = impact::report::identify::write(
         &scene,
         &mut out,
-        "identify/small",
+        "identify/small-identify",
         impact::report::identify::RowFiles::Impacts,
     )
     .unwrap();
     out.commit(&files).unwrap();
-    let sub = nested.join("identify/small");
+    let sub = nested.join("identify/small-identify");
+    // The index page links the report where it is and opens with its answer.
+    let index = impact::report::index_page(&[("small.toml", scene.clone(), summary)]).unwrap();
+    assert!(index.contains("](identify/small-identify/index.md)"), "{index}");
+    assert!(
+        index.contains("scenes/small.toml") && index.contains("| Con 1 |") && index.contains("| Con 2 |"),
+        "{index}"
+    );
     let names = |d: &Path| {
         let mut v: Vec<String> = std::fs::read_dir(d)
             .unwrap()

@@ -104,20 +104,46 @@ const INDEX_IDENTIFY_ROW: &str = include_str!("templates/index/identify-row.md")
 /// for the caving stream), and the index page that opens with the identification's answer.
 pub fn full_report(scene: &Scene, out: &mut OutputDir) -> Result<Artifacts, Failure> {
     let mut all = main_report(scene)?;
-    let (mut sections, mut rows) = (String::new(), String::new());
+    let mut identified = Vec::new();
     for (file, text) in IDENTIFY_SCENES {
         let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;
-        let dir = slug(&s.name);
-        let (files, summary) = identify::write(&s, out, &format!("identify/{dir}"), RowFiles::Impacts)?;
+        let (files, summary) = identify::write(&s, out, &format!("identify/{}", slug(&s.name)), RowFiles::Impacts)?;
         all.extend(files);
-        let table = identify::summary_tables(&summary).iter().map(|t| t.to_markdown()).collect::<Vec<_>>().join("\n");
+        identified.push((file, s, summary));
+    }
+    all.add("index.md", index_page(&identified)?);
+    Ok(all)
+}
+
+/// The report's index page: the identifications' answers (each scene's file name in
+/// `scenes/`, the scene, its summary), then what is where.
+pub fn index_page(identified: &[(&str, Scene, identify::Summary)]) -> Result<String, Failure> {
+    let (mut sections, mut rows) = (String::new(), String::new());
+    for (file, s, summary) in identified {
+        let dir = slug(&s.name);
+        // The terminal's summary without its timing, which would make the page change with
+        // every run.
+        let table = identify::summary_tables(summary)
+            .into_iter()
+            .map(|mut t| {
+                if let Some(k) = t.headers.iter().position(|h| h == "impacts/s") {
+                    t.headers.remove(k);
+                    t.rows.iter_mut().for_each(|r| {
+                        r.remove(k);
+                    });
+                }
+                t.to_markdown()
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let description = s.description.trim().trim_end_matches('.');
         sections.push_str(&render(
             "index/identify.md",
             INDEX_IDENTIFY,
             &[
                 ("scene", s.name.clone()),
                 ("dir", dir.clone()),
-                ("description", s.description.trim_end_matches('.').to_string()),
+                ("description", if description.is_empty() { String::new() } else { format!("{description}. ") }),
                 ("impacts", summary.impacts.to_string()),
                 ("coal", summary.classes.0.to_string()),
                 ("gangue", summary.classes.1.to_string()),
@@ -125,13 +151,11 @@ pub fn full_report(scene: &Scene, out: &mut OutputDir) -> Result<Artifacts, Fail
                 ("table", table),
             ],
         )?);
-        sections.push('\n');
         rows.push_str(&render(
             "index/identify-row.md",
             INDEX_IDENTIFY_ROW,
             &[("dir", dir), ("file", file.to_string())],
         )?);
     }
-    all.add("index.md", render("index/index.md", INDEX, &[("identify", sections), ("identify_rows", rows)])?);
-    Ok(all)
+    Ok(render("index/index.md", INDEX, &[("identify", sections), ("identify_rows", rows)])?)
 }
