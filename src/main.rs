@@ -553,16 +553,10 @@ fn commit_reporting(target: OutputDir, artifacts: &Artifacts, scene: &Scene, jso
     let dir = target.path().to_path_buf();
     commit(target, artifacts)?;
     if json {
-        let files: Vec<serde_json::Value> = artifacts
-            .paths()
-            .map(|p| {
-                let bytes = artifacts.get(&p.to_string_lossy()).unwrap_or_default();
-                serde_json::json!({
-                    "path": p.to_string_lossy(),
-                    "bytes": bytes.len(),
-                    "sha256": impact::output::sha256_hex(bytes),
-                })
-            })
+        // From the manifest just written: the files streamed during the run are in it too.
+        let files: Vec<serde_json::Value> = impact::output::listed_files(&dir)?
+            .into_iter()
+            .map(|(path, bytes, sha256)| serde_json::json!({ "path": path, "bytes": bytes, "sha256": sha256 }))
             .collect();
         let findings: Vec<serde_json::Value> = artifacts
             .paths()

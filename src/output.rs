@@ -247,6 +247,13 @@ fn read_manifest(dir: &Path) -> Result<Option<Manifest>, OutputError> {
     Ok(Some(m))
 }
 
+/// The files an output directory's manifest lists: relative path, size in bytes, SHA-256
+/// (hex); streamed files included.
+pub fn listed_files(dir: &Path) -> Result<Vec<(String, u64, String)>, OutputError> {
+    let m = read_manifest(dir)?.ok_or_else(|| OutputError::Foreign { path: dir.to_path_buf() })?;
+    Ok(m.files.into_iter().map(|f| (f.path, f.size, f.sha256)).collect())
+}
+
 /// Every entry under `dir`, relative and in `a/b` form, with its file type; symlinks are
 /// reported as such, never followed.
 fn walk(dir: &Path, rel: &str, out: &mut Vec<(String, fs::FileType)>) -> Result<(), OutputError> {

@@ -310,7 +310,18 @@ impl Scenes {
     fn check(&self, args: &[&str], scene: Option<&Path>) -> String {
         let dir = self.out(&args.join("-"));
         let o = run(&[args, &["--json", "--out", &dir]].concat(), scene);
-        let (_, hash) = printed(&o);
+        let (doc, hash) = printed(&o);
+        // A command that reports its files lists every one written, streamed ones included.
+        if let Some(listed) = doc["files"].as_array() {
+            let mut listed: Vec<&str> = listed.iter().map(|f| f["path"].as_str().unwrap()).collect();
+            listed.sort_unstable();
+            let written: Vec<String> = files(Path::new(&dir))
+                .into_iter()
+                .map(|(rel, _)| rel)
+                .filter(|r| r != ".impact-manifest.json")
+                .collect();
+            assert_eq!(listed, written, "impact {args:?} --json lists the files it wrote");
+        }
         let (problems, n) = check_dir(Path::new(&dir), &|_| Some(hash.clone()));
         assert!(n > 0, "impact {args:?} wrote no CSV");
         assert!(problems.is_empty(), "impact {args:?}: {} problems:\n{}", problems.len(), problems.join("\n"));
