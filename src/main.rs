@@ -6,8 +6,8 @@ use coupled::transient::{Discretisation, DEFAULT_TOLERANCE};
 use impact::output::{Artifacts, OutputDir, OutputFile};
 use impact::present::rows::{response_tables, slug, yield_tables};
 use impact::provenance::Provenance;
+use impact::report::identify::RowFiles;
 use impact::report::Failure;
-use impact::run::MEMORY_BUDGET_BYTES;
 use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -164,6 +164,10 @@ enum Command {
         /// Print the summary as JSON instead of a table.
         #[arg(long)]
         json: bool,
+        /// Leave out features.csv (one row per impact and channel; 112 MB for
+        /// scenes/caving-stream.toml); impacts.csv and the report are written as always.
+        #[arg(long)]
+        no_features_csv: bool,
     },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
@@ -173,7 +177,9 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// The main job on the default scene: every report into DIR.
+    /// The main job on the default scene: every report into DIR, and the coal-gangue
+    /// identification of the shipped scenes (scenes/caving-stream.toml,
+    /// scenes/paper-velocities-ensemble.toml) into DIR/identify/<scene name>/.
     Report {
         #[arg(long, value_name = "DIR", default_value = "reports")]
         out: PathBuf,
@@ -241,6 +247,10 @@ enum Command {
         /// --format pvd: impact velocity, m/s (default the scene's first).
         #[arg(long, value_name = "V")]
         velocity_m_per_s: Option<f64>,
+        /// Print a JSON summary of what was written (provenance, every file with its size and
+        /// SHA-256) to stdout; not with `--out -`, which prints the field itself.
+        #[arg(long)]
+        json: bool,
     },
     /// Print a shell completion script to standard output (e.g. `impact completions bash >
     /// ~/.local/share/bash-completion/completions/impact`).
@@ -345,7 +355,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             Provenance::of(&scene).stamp(&mut artifacts);
             commit(target, &artifacts)?;
             if json {
-                out(&format!("{}\n", serde_json::to_string_pretty(&run)?))
+                print_json(&scene, &run)
             } else {
                 let text: Vec<String> = tables.iter().map(|t| t.to_text()).collect();
                 out(&format!("scene: {} ({})\n\n{}", scene.name, scene.description, text.join("\n")))
@@ -357,42 +367,17 @@ fn execute(command: Command) -> Result<(), Failure> {
             let target = OutputDir::prepare(&dir)?;
             commit_reporting(target, &impact::report::scene_report(&scene)?, &scene, json)
         }
-        Command::Identify { scene, out: dir, json } => {
+        Command::Identify { scene, out: dir, json, no_features_csv } => {
             let scene = Scene::load(&scene)?;
-            let Some(study) = scene.ensemble.as_ref() else {
-                return Err(format!(
-                    "scene {}: impact identify needs an [ensemble] table and \"identify\" in analyses",
-                    scene.name
-                )
-                .into());
-            };
-            // Features of one support set are held while it is analysed: check them against
-            // the memory budget before anything runs.
-            for set in &scene.conditions {
-                let channels = impact::report::identify::channels_per_impact(&scene, study, set);
-                if channels == 0 {
-                    return Err(impact::report::identify::no_channels(&set.name));
-                }
-                let bytes = impact::report::identify::feature_bytes(study.ensemble.len(), channels);
-                if bytes as f64 > MEMORY_BUDGET_BYTES {
-                    return Err(format!(
-                        "the ensemble's features are {} impacts x {channels} channels x 6 features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
-                        study.ensemble.len(),
-                        bytes as f64 / 1e9,
-                        set.name,
-                        MEMORY_BUDGET_BYTES / 1e9
-                    )
-                    .into());
-                }
-            }
+            impact::report::identify::checked_study(&scene)?;
             let dir =
                 dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-identify", slug(&scene.name))));
             let mut target = OutputDir::prepare(&dir)?;
-            let (mut artifacts, summary) = impact::report::identify::report(&scene, &mut target)?;
-            Provenance::of(&scene).stamp(&mut artifacts);
+            let files = if no_features_csv { RowFiles::Impacts } else { RowFiles::All };
+            let (artifacts, summary) = impact::report::identify::write(&scene, &mut target, "", files)?;
             commit(target, &artifacts)?;
             if json {
-                out(&format!("{}\n", serde_json::to_string_pretty(&summary)?))?;
+                print_json(&scene, &summary)?;
             } else {
                 for t in impact::report::identify::summary_tables(&summary) {
                     out(&format!("{}\n", t.to_text()))?;
@@ -401,10 +386,11 @@ fn execute(command: Command) -> Result<(), Failure> {
             Ok(())
         }
         Command::Report { out, json } => {
-            let target = OutputDir::prepare(&out)?;
+            let mut target = OutputDir::prepare(&out)?;
             let scene = Scene::default_scene();
+            let artifacts = impact::report::full_report(&scene, &mut target)?;
             // The provenance printed is that of the scene the report ran, as in its files.
-            commit_reporting(target, &impact::report::main_report(&scene)?, &impact::report::main_scene(&scene), json)
+            commit_reporting(target, &artifacts, &impact::report::main_scene(&scene), json)
         }
         Command::FemBench { scene, json, tolerance, nx, nz } => {
             let scene = load(&scene)?;
@@ -416,8 +402,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             let r = impact::report::fem_bench::bench(&scene, tolerance, nx, nz)?;
             if json {
-                let doc = Provenance::of(&scene).stamp_json(serde_json::to_string_pretty(&r)?.as_bytes());
-                out(&format!("{}\n", String::from_utf8(doc)?))?;
+                print_json(&scene, &r)?;
             } else {
                 for t in impact::report::fem_bench::bench_tables(&r) {
                     out(&format!("\n{}", t.to_text()))?;
@@ -425,8 +410,23 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Field { scene, condition, x_mm, z_mm, elements, out, format, force_n, body, velocity_m_per_s } => {
+        Command::Field {
+            scene,
+            condition,
+            x_mm,
+            z_mm,
+            elements,
+            out: file,
+            format,
+            force_n,
+            body,
+            velocity_m_per_s,
+            json,
+        } => {
             let scene = load(&scene)?;
+            if json && file.as_deref() == Some(Path::new("-")) {
+                return Err("--json prints a summary of the files written; with --out - the field itself goes to standard output, so give one or the other".into());
+            }
             let cond = scene.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
                 let names: Vec<&str> = scene.conditions.iter().map(|c| c.name.as_str()).collect();
                 format!("--condition '{condition}' is not in the scene; it has {names:?}")
@@ -470,7 +470,7 @@ fn execute(command: Command) -> Result<(), Failure> {
                     }
                     None => *scene.velocities.first().ok_or("the scene has no velocity; give --velocity-m-per-s")?,
                 };
-                let dir = out.unwrap_or_else(|| PathBuf::from("field-series"));
+                let dir = file.unwrap_or_else(|| PathBuf::from("field-series"));
                 let target = OutputDir::prepare(&dir)?;
                 let mut a = impact::report::field_series::contact_series(
                     &scene,
@@ -481,15 +481,15 @@ fn execute(command: Command) -> Result<(), Failure> {
                     elements,
                 )?;
                 Provenance::of(&scene).stamp(&mut a);
-                return commit(target, &a);
+                return commit_reporting(target, &a, &scene, json);
             }
-            let out = out.unwrap_or_else(|| {
+            let file = file.unwrap_or_else(|| {
                 PathBuf::from(match format {
                     FieldFormat::Json => "field.json",
                     FieldFormat::Vtu | FieldFormat::Pvd => "field.vtu",
                 })
             });
-            let target = OutputFile::prepare(&out)?;
+            let target = OutputFile::prepare(&file)?;
             let f = impact::report::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
             let bytes = match format {
                 FieldFormat::Json => {
@@ -505,6 +505,17 @@ fn execute(command: Command) -> Result<(), Failure> {
             }
             if let Some(p) = target.commit(&bytes)? {
                 eprintln!("wrote {}", p.display());
+                if json {
+                    let doc = serde_json::json!({
+                        "provenance": Provenance::of(&scene),
+                        "files": [{
+                            "path": p.to_string_lossy(),
+                            "bytes": bytes.len(),
+                            "sha256": impact::output::sha256_hex(&bytes),
+                        }],
+                    });
+                    out(&format!("{}\n", serde_json::to_string_pretty(&doc)?))?;
+                }
             }
             Ok(())
         }
@@ -542,16 +553,10 @@ fn commit_reporting(target: OutputDir, artifacts: &Artifacts, scene: &Scene, jso
     let dir = target.path().to_path_buf();
     commit(target, artifacts)?;
     if json {
-        let files: Vec<serde_json::Value> = artifacts
-            .paths()
-            .map(|p| {
-                let bytes = artifacts.get(&p.to_string_lossy()).unwrap_or_default();
-                serde_json::json!({
-                    "path": p.to_string_lossy(),
-                    "bytes": bytes.len(),
-                    "sha256": impact::output::sha256_hex(bytes),
-                })
-            })
+        // From the manifest just written: the files streamed during the run are in it too.
+        let files: Vec<serde_json::Value> = impact::output::listed_files(&dir)?
+            .into_iter()
+            .map(|(path, bytes, sha256)| serde_json::json!({ "path": path, "bytes": bytes, "sha256": sha256 }))
             .collect();
         let findings: Vec<serde_json::Value> = artifacts
             .paths()
@@ -567,6 +572,12 @@ fn commit_reporting(target: OutputDir, artifacts: &Artifacts, scene: &Scene, jso
         out(&format!("{}\n", serde_json::to_string_pretty(&doc)?))?;
     }
     Ok(())
+}
+
+/// Prints `value` as JSON with the scene's provenance as its first key.
+fn print_json(scene: &Scene, value: &impl serde::Serialize) -> Result<(), Failure> {
+    let doc = Provenance::of(scene).stamp_json(serde_json::to_string_pretty(value)?.as_bytes());
+    out(&format!("{}\n", String::from_utf8(doc)?))
 }
 
 /// The JSON document of a run: the results with what a reader needs to trust them.

@@ -116,6 +116,13 @@ impl Artifacts {
         }
     }
 
+    /// Adds every file of `other` at its own path.
+    pub fn extend(&mut self, other: Artifacts) {
+        for (p, b) in other.files {
+            self.add(p, b);
+        }
+    }
+
     /// Replaces every file's content by `f(path, content)`.
     pub fn map_files(&mut self, mut f: impl FnMut(&Path, &[u8]) -> Vec<u8>) {
         for (p, b) in &mut self.files {
@@ -238,6 +245,13 @@ fn read_manifest(dir: &Path) -> Result<Option<Manifest>, OutputError> {
         return Err(OutputError::BadManifest { path, why: format!("written by {:?}, not impact", m.program) });
     }
     Ok(Some(m))
+}
+
+/// The files an output directory's manifest lists: relative path, size in bytes, SHA-256
+/// (hex); streamed files included.
+pub fn listed_files(dir: &Path) -> Result<Vec<(String, u64, String)>, OutputError> {
+    let m = read_manifest(dir)?.ok_or_else(|| OutputError::Foreign { path: dir.to_path_buf() })?;
+    Ok(m.files.into_iter().map(|f| (f.path, f.size, f.sha256)).collect())
 }
 
 /// Every entry under `dir`, relative and in `a/b` form, with its file type; symlinks are

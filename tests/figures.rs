@@ -11,7 +11,8 @@ use impact::report::plate_field::peak_field;
 use impact::scene::{Scene, SceneSource};
 use std::path::PathBuf;
 
-/// Renders `svg` to a pixmap (and to target/figures/NAME.png for a person to look at).
+/// Renders `svg` to a pixmap (and to target/tmp/figures/NAME.png, beside NAME.svg, for a person
+/// to look at).
 fn render(name: &str, svg: &str) -> resvg::tiny_skia::Pixmap {
     let mut opt = resvg::usvg::Options::default();
     opt.fontdb_mut().load_system_fonts();
@@ -22,6 +23,7 @@ fn render(name: &str, svg: &str) -> resvg::tiny_skia::Pixmap {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("figures");
     std::fs::create_dir_all(&dir).expect("figure directory");
     pixmap.save_png(dir.join(format!("{name}.png"))).expect("png written");
+    std::fs::write(dir.join(format!("{name}.svg")), svg).expect("svg written");
     pixmap
 }
 
@@ -139,6 +141,83 @@ fn colour_map_is_viridis_at_true_aspect() {
     assert!(!svg.contains("log10"));
 }
 
+/// Cells of equal colour are drawn merged (runs down a column widened across columns, one
+/// path per colour): every cell's centre still shows the colour of its value's band of the
+/// colour bar, on a field with plateaus, steps and missing cells, at cell sizes that are not
+/// whole pixels.
+#[test]
+fn merged_cells_show_every_value() {
+    let xs: Vec<f64> = (0..23).map(|i| i as f64 * 7.3).collect();
+    let ys: Vec<f64> = (0..17).map(|j| j as f64 * 5.9).collect();
+    let value = |i: usize, j: usize| -> f64 {
+        match (i, j) {
+            (5, 3) => f64::NAN,
+            _ if j < 6 => 1.0,
+            _ if i % 4 == 0 => (i + j) as f64,
+            _ => (j / 3) as f64 * 2.0,
+        }
+    };
+    let values: Vec<Vec<f64>> = (0..xs.len()).map(|i| (0..ys.len()).map(|j| value(i, j)).collect()).collect();
+    let (lo, hi) = values
+        .iter()
+        .flatten()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(*v), b.max(*v)));
+    let map = ColourMap {
+        title: "merged".into(),
+        x: Axis::linear("x (mm)"),
+        y: Axis::linear("z (mm)"),
+        xs: xs.clone(),
+        ys: ys.clone(),
+        edges: false,
+        values: values.clone(),
+        bar: Axis::linear("value"),
+        missing: Some("no value".into()),
+        marks: vec![],
+        notes: vec![],
+    };
+    let svg = map.svg();
+    let cells = xs.len() * ys.len();
+    let shapes = svg.matches(" d=\"").count();
+    assert!(shapes < 40, "{shapes} paths for {cells} cells");
+    let png = render("colour-map-merged", &svg);
+    let [x0, y0, w, h] = clip_rect(&svg, "field");
+    let (sx, sy) = (w / (xs[xs.len() - 1] - xs[0]), h / (ys[ys.len() - 1] - ys[0]));
+    for (i, col) in values.iter().enumerate() {
+        for (j, &v) in col.iter().enumerate() {
+            // Cells reach halfway to their neighbours; the border cells are half cells.
+            let cx = (xs[i]
+                + if i == 0 {
+                    1.8
+                } else if i + 1 == xs.len() {
+                    -1.8
+                } else {
+                    0.0
+                })
+                * sx
+                + x0;
+            let cy = y0 + h
+                - (ys[j]
+                    + if j == 0 {
+                        1.4
+                    } else if j + 1 == ys.len() {
+                        -1.4
+                    } else {
+                        0.0
+                    })
+                    * sy;
+            // The colour of the colour bar's band (of 100) the value falls in.
+            let band = ((v - lo) / (hi - lo) * 100.0).floor().min(99.0);
+            let expected = if v.is_finite() { viridis((band + 0.5) / 100.0) } else { [0xc8, 0xc8, 0xc8] };
+            let got = rgb(&png, cx, cy);
+            assert!(
+                got.iter().zip(expected).all(|(p, q)| (*p as i32 - q as i32).abs() <= 2),
+                "cell ({i}, {j}) = {v}: {got:?} against {expected:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn deflection_map_agrees_with_the_plate_compliance() {
     let scene = Scene::default_scene();
@@ -148,6 +227,11 @@ fn deflection_map_agrees_with_the_plate_compliance() {
     let f = peak_field(&scene, cond, x, z, p, "test").expect("field");
     render("deflection", &f.deflection_svg);
     render("stress", &f.stress_svg);
+    // One path per colour, not one element per cell: the 80-element maps were 360-370 kB.
+    for svg in [&f.deflection_svg, &f.stress_svg] {
+        eprintln!("map: {} bytes", svg.len());
+        assert!(svg.len() < 150_000, "{} bytes", svg.len());
+    }
     // Reciprocity: the largest deflection is under the load and equals P·C. Reference: the
     // plate model's Richardson-extrapolated compliance (20 x 16 and 40 x 32 meshes); the map's
     // 80-element mesh is within about 1e-5 of it (O(h²) from the 3.6e-5 of 40 x 32), so 2e-4.

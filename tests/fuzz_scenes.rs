@@ -1083,8 +1083,7 @@ fn check_rendered(stats: &mut Stats, label: &str, results: &Results) {
                 continue;
             }
         };
-        // The CSV names its columns in key form (`validity_at_v_y`).
-        let text_columns = ["model", "body", "validity", "validity_at_v_y"];
+        // Text columns are named as such (`impact::present::columns`, the rule's one place).
         for rec in reader.records() {
             let rec = match rec {
                 Ok(r) => r,
@@ -1098,7 +1097,7 @@ fn check_rendered(stats: &mut Stats, label: &str, results: &Results) {
                 continue;
             }
             for (h, cell) in headers.iter().zip(rec.iter()) {
-                if text_columns.contains(&h.as_str()) {
+                if impact::present::columns::is_text_column(h) {
                     continue;
                 }
                 if !cell.parse::<f64>().is_ok_and(f64::is_finite) {

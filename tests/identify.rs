@@ -200,11 +200,16 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
     }
     // One row per impact and support set; one per impact, channel and support set: Con 1
     // records 3 quantities at 6 candidates and 4 corner reactions, Con 2 as many spring forces.
+    // Each after the provenance line and the header.
     let impacts = std::fs::read_to_string(one.join("impacts.csv")).unwrap();
-    assert_eq!(impacts.lines().count(), 1 + 2 * 40);
-    assert!(impacts.starts_with("condition,impact,family,class,x_mm,z_mm,radius_mm,velocity_m_per_s"));
+    assert_eq!(impacts.lines().count(), 2 + 2 * 40);
+    assert!(impacts
+        .lines()
+        .nth(1)
+        .unwrap()
+        .starts_with("condition,impact,family,class,x_m,z_m,radius_m,velocity_m_per_s"));
     let features = std::fs::read_to_string(one.join("features.csv")).unwrap();
-    assert_eq!(features.lines().count(), 1 + 2 * 40 * (3 * 6 + 4));
+    assert_eq!(features.lines().count(), 2 + 2 * 40 * (3 * 6 + 4));
     assert!(!features.contains("NaN") && !features.contains("inf"));
 
     let summary: serde_json::Value = serde_json::from_slice(&a.stdout).unwrap();
@@ -280,4 +285,76 @@ fn identify_needs_an_ensemble_and_writes_nothing_without_one() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("[[bodies]]"), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// `impact report` writes the identification of its scenes through `impact identify`'s own
+/// code path: the same files (features.csv left out, as `--no-features-csv` does), the rows
+/// and figures byte for byte (the pages and the summary differ only in the timings).
+#[test]
+fn the_report_writes_what_identify_writes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene_path = tmp.path().join("small.toml");
+    std::fs::write(&scene_path, SMALL).unwrap();
+    let command = tmp.path().join("command");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["identify", "--no-features-csv", "--scene"])
+        .arg(&scene_path)
+        .arg("--out")
+        .arg(&command)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!command.join("features.csv").exists());
+
+    let scene = Scene::parse(SMALL, "small").unwrap();
+    let nested = tmp.path().join("report");
+    let mut out = impact::output::OutputDir::prepare(&nested).unwrap();
+    let (files, summary) = impact::report::identify::write(
+        &scene,
+        &mut out,
+        "identify/small-identify",
+        impact::report::identify::RowFiles::Impacts,
+    )
+    .unwrap();
+    out.commit(&files).unwrap();
+    let sub = nested.join("identify/small-identify");
+    // The index page links the report where it is and opens with its answer.
+    let index = impact::report::index_page(&[("small.toml", scene.clone(), summary)]).unwrap();
+    assert!(index.contains("](identify/small-identify/index.md)"), "{index}");
+    assert!(
+        index.contains("scenes/small.toml") && index.contains("| Con 1 |") && index.contains("| Con 2 |"),
+        "{index}"
+    );
+    let names = |d: &Path| {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| !n.starts_with('.'))
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(names(&sub), names(&command));
+    for f in names(&command) {
+        if f != "index.md" && f != "summary.json" {
+            assert!(std::fs::read(sub.join(&f)).unwrap() == std::fs::read(command.join(&f)).unwrap(), "{f} differs");
+        }
+    }
+}
+
+/// The scenes `impact report` identifies are valid identification scenes with distinct
+/// directories.
+#[test]
+fn the_reports_identification_scenes_are_valid() {
+    let mut dirs = Vec::new();
+    for (file, text) in impact::report::IDENTIFY_SCENES {
+        let on_disk = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(file)).unwrap();
+        assert_eq!(text, on_disk, "{file} is embedded as shipped");
+        let s = Scene::parse(text, file).unwrap();
+        impact::report::identify::checked_study(&s).unwrap();
+        dirs.push(impact::present::rows::slug(&s.name));
+    }
+    dirs.sort();
+    dirs.dedup();
+    assert_eq!(dirs.len(), impact::report::IDENTIFY_SCENES.len());
 }

@@ -712,6 +712,20 @@ pub fn viridis(t: f64) -> [u8; 3] {
     [0, 1, 2].map(|k| (a[k] as f64 + u * (b[k] as f64 - a[k] as f64)).round() as u8)
 }
 
+/// The colour bar's bands, and the colours a map's cells take.
+const BANDS: usize = 100;
+
+/// A pixel coordinate to 0.01 px, without trailing zeros ("63.3", "-0.3", "480").
+fn px_num(v: f64) -> String {
+    let t = format!("{:.2}", v);
+    let t = t.trim_end_matches('0').trim_end_matches('.');
+    if t == "-0" {
+        "0".into()
+    } else {
+        t.to_string()
+    }
+}
+
 fn hex(c: [u8; 3]) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
@@ -814,27 +828,70 @@ impl ColourMap {
                 esc(&self.title)
             );
         }
-        // Cells, each a little oversized so anti-aliasing leaves no hairline seams.
         let _ = write!(
             out,
             r#"<clipPath id="field"><rect x="{left:.2}" y="{top:.2}" width="{pw:.2}" height="{ph:.2}"/></clipPath><g clip-path="url(#field)">"#
         );
+        // Each cell takes the colour of the colour bar's band its value falls in (the bar is
+        // the legend of these colours, so the map shows no more than the bar can read back).
+        // Runs of one band down a column are one rectangle, equal runs in neighbouring
+        // columns widen it, and the rectangles of one colour are one path: a smooth field
+        // draws in a few thousand path commands, not one element per cell.
         let (nx, ny) = (self.values.len(), self.values.first().map_or(0, Vec::len));
-        for i in 0..nx {
-            let (a, b) = edges(&self.xs, i);
-            for j in 0..ny {
-                let (c, d) = edges(&self.ys, j);
-                let v = self.values[i][j];
-                let fill = if ok(v) { hex(viridis(t_of(v))) } else { "#c8c8c8".into() };
-                let _ = write!(
-                    out,
-                    r#"<rect x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" fill="{fill}"/>"#,
-                    x.at(a) - 0.3,
-                    y.at(d) - 0.3,
-                    x.at(b) - x.at(a) + 0.6,
-                    y.at(c) - y.at(d) + 0.6
-                );
+        let colour_of = |v: f64| -> String {
+            if ok(v) {
+                let band = (t_of(v).clamp(0.0, 1.0) * BANDS as f64).floor().min(BANDS as f64 - 1.0);
+                hex(viridis((band + 0.5) / BANDS as f64))
+            } else {
+                "#c8c8c8".into()
             }
+        };
+        // Rectangles still open for widening: (first row, last row, colour, first column).
+        let mut open: Vec<(usize, usize, String, usize)> = Vec::new();
+        let mut paths: Vec<(String, String)> = Vec::new();
+        let mut emit = |(j0, j1, colour, i0): (usize, usize, String, usize), i1: usize| {
+            let (a, _) = edges(&self.xs, i0);
+            let (_, b) = edges(&self.xs, i1);
+            let (c, _) = edges(&self.ys, j0);
+            let (_, d) = edges(&self.ys, j1);
+            // Each a little oversized so anti-aliasing leaves no hairline seams.
+            let (px, py) = (x.at(a) - 0.3, y.at(d) - 0.3);
+            let (w, h) = (x.at(b) - x.at(a) + 0.6, y.at(c) - y.at(d) + 0.6);
+            let d = format!("M{},{}h{}v{}h{}z", px_num(px), px_num(py), px_num(w), px_num(h), px_num(-w));
+            match paths.iter_mut().find(|(f, _)| *f == colour) {
+                Some((_, path)) => path.push_str(&d),
+                None => paths.push((colour, d)),
+            }
+        };
+        for i in 0..=nx {
+            let mut runs: Vec<(usize, usize, String)> = Vec::new();
+            if i < nx {
+                let mut j = 0;
+                while j < ny {
+                    let colour = colour_of(self.values[i][j]);
+                    let mut k = j + 1;
+                    while k < ny && colour_of(self.values[i][k]) == colour {
+                        k += 1;
+                    }
+                    runs.push((j, k - 1, colour));
+                    j = k;
+                }
+            }
+            let mut still = Vec::with_capacity(runs.len());
+            for r in open.drain(..) {
+                match runs.iter().position(|(j0, j1, c)| (*j0, *j1, c) == (r.0, r.1, &r.2)) {
+                    Some(p) => {
+                        runs.remove(p);
+                        still.push(r);
+                    }
+                    None => emit(r, i - 1),
+                }
+            }
+            still.extend(runs.into_iter().map(|(j0, j1, c)| (j0, j1, c, i)));
+            open = still;
+        }
+        for (fill, d) in &paths {
+            let _ = write!(out, r#"<path fill="{fill}" d="{d}"/>"#);
         }
         out.push_str("</g>");
         let _ = write!(
@@ -899,9 +956,9 @@ impl ColourMap {
                 py
             );
         }
-        // The colour bar: 100 bands, ticks in the quantity itself.
+        // The colour bar: its bands, ticks in the quantity itself.
         let bmap = Map { lo, hi, p0: top + ph, p1: top, log };
-        let bands = 100;
+        let bands = BANDS;
         for n in 0..bands {
             let (ta, tb) = (n as f64 / bands as f64, (n + 1) as f64 / bands as f64);
             let (ya, yb) = (top + ph - ta * ph, top + ph - tb * ph);

@@ -105,7 +105,15 @@ pub fn response_tables(results: &Results) -> Vec<Table> {
                 ["iterations or steps", "residual or peak force (N)", "validity"].iter().map(|s| s.to_string()),
             );
             let headers_len = headers.len();
-            let mut t = Table { title: format!("{cond}: responses at maximum compression"), headers, rows: vec![] };
+            let mut t = Table {
+                title: format!("{cond}: responses at maximum compression"),
+                headers,
+                rows: vec![],
+                csv_names: vec![],
+            };
+            if transient {
+                t = t.csv_name("discretisation", &["discretisation_note"]);
+            }
             for r in rows {
                 let mut row: Vec<Cell> = vec![
                     r.model.key().into(),
@@ -199,7 +207,8 @@ pub fn yield_tables(results: &Results) -> Vec<Table> {
                     "v_y error (m/s)",
                     "validity at v_y",
                 ],
-            );
+            )
+            .csv_name("validity at v_y", &["v_y_validity"]);
             for r in rows {
                 let mut row: Vec<Cell> =
                     vec![r.model.key().into(), r.body.clone().into(), (r.x * 1e3).into(), (r.z * 1e3).into()];

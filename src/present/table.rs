@@ -24,6 +24,28 @@ pub enum Cell {
         value: f64,
         error: f64,
     },
+    /// A yes/no answer, shown as `shown` ("yes", "no", or an emphasised "**no**"), written to
+    /// CSV as 1 or 0.
+    Flag {
+        yes: bool,
+        shown: &'static str,
+    },
+    /// A number with a remark after it in parentheses, "2.27 (beyond elastic range)", the
+    /// number with `digits` significant digits. CSV: the number in full, and the remark in a
+    /// column of its own (`<name>_note`).
+    Noted {
+        value: f64,
+        digits: usize,
+        note: String,
+    },
+    /// A point (x, z), stored in SI and shown as "(x, z)" scaled by `scale` to `decimals`
+    /// decimals. CSV: two columns (`<name>_x`, `<name>_z`), in SI.
+    Pair {
+        x: f64,
+        z: f64,
+        scale: f64,
+        decimals: usize,
+    },
     /// Not applicable here.
     Empty,
 }
@@ -36,6 +58,12 @@ impl From<&str> for Cell {
 impl From<String> for Cell {
     fn from(s: String) -> Self {
         Cell::Text(s)
+    }
+}
+impl From<bool> for Cell {
+    /// "yes" or "no".
+    fn from(yes: bool) -> Self {
+        Cell::Flag { yes, shown: if yes { "yes" } else { "no" } }
     }
 }
 impl From<f64> for Cell {
@@ -145,14 +173,29 @@ fn key_part(name: &str) -> String {
 /// `"C (m/N)"` -> `("C_m_per_N", 1.0)`. One style for every CSV the program writes: the
 /// quantity in key form, then its SI unit; a dimensionless column has no unit part.
 pub fn csv_key(header: &str) -> (String, f64) {
-    let h = header.trim();
-    let (name, unit) = match (h.rfind('('), h.ends_with(')')) {
+    let (name, u) = csv_name_and_unit(header);
+    let (_, f) = si_unit(unit_of(header.trim()).1);
+    (if u.is_empty() { name } else { format!("{name}_{u}") }, f)
+}
+
+/// The key form of an SI unit as written for display ("m/s^2" -> "m_per_s2", "N" -> "N"),
+/// for a column that names a row's unit.
+pub fn unit_key(unit: &str) -> String {
+    si_unit(unit).0
+}
+
+/// A display header split into its name and its parenthesised unit.
+fn unit_of(h: &str) -> (&str, &str) {
+    match (h.rfind('('), h.ends_with(')')) {
         (Some(i), true) => (&h[..i], &h[i + 1..h.len() - 1]),
         _ => (h, ""),
-    };
-    let (u, f) = si_unit(unit);
-    let name = key_part(name);
-    (if u.is_empty() { name } else { format!("{name}_{u}") }, f)
+    }
+}
+
+/// The name (key form) and the SI unit key of a display header.
+fn csv_name_and_unit(header: &str) -> (String, String) {
+    let (name, unit) = unit_of(header.trim());
+    (key_part(name), si_unit(unit).0)
 }
 
 /// A relative difference in percent, 3 significant figures, with its sign; round-off
@@ -196,6 +239,8 @@ pub fn measured(value: f64, error: f64) -> String {
 impl Cell {
     fn show(&self) -> String {
         match self {
+            // A note without its number (there is none) stands alone.
+            Cell::Noted { value, note, .. } if !value.is_finite() => note.clone(),
             Cell::Sig(v, _) | Cell::Rel(v) | Cell::Measured { value: v, .. } if !v.is_finite() => "-".into(),
             Cell::Sig(v, d) => sig(*v, *d),
             Cell::Given(v) if !v.is_finite() => "-".into(),
@@ -211,6 +256,9 @@ impl Cell {
             Cell::Num(v) if !v.is_finite() => "-".into(),
             Cell::Num(v) => sig(*v, 7),
             Cell::Int(i) => i.to_string(),
+            Cell::Flag { shown, .. } => shown.to_string(),
+            Cell::Noted { value, digits, note } => format!("{} ({note})", sig(*value, *digits)),
+            Cell::Pair { x, z, scale, decimals } => format!("({:.*}, {:.*})", decimals, x * scale, decimals, z * scale),
             Cell::Empty => "-".into(),
         }
     }
@@ -232,9 +280,32 @@ impl Cell {
                 format!("{:e}", v * factor)
             }
             Cell::Int(i) => i.to_string(),
+            Cell::Flag { yes, .. } => (if *yes { "1" } else { "0" }).into(),
+            Cell::Noted { value, .. } => Cell::Num(*value).csv(factor),
+            Cell::Pair { .. } => unreachable!("a pair is written as two columns"),
             Cell::Empty => String::new(),
         }
     }
+
+    /// The cells of a column of `shape` this cell writes, in SI (`factor` from the header).
+    fn csv_cells(&self, shape: Shape, factor: f64) -> Vec<String> {
+        match (shape, self) {
+            (Shape::Plain, c) => vec![c.csv(factor)],
+            (Shape::Noted, Cell::Noted { note, .. }) => vec![self.csv(factor), note.clone()],
+            (Shape::Noted, c) => vec![c.csv(factor), String::new()],
+            (Shape::Pair, Cell::Pair { x, z, .. }) => vec![Cell::Num(*x).csv(factor), Cell::Num(*z).csv(factor)],
+            (Shape::Pair, c) => vec![c.csv(factor), String::new()],
+        }
+    }
+}
+
+/// How a column is written to CSV: one column, a number and its note, or a point's two
+/// coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Shape {
+    Plain,
+    Noted,
+    Pair,
 }
 
 /// A titled table.
@@ -243,11 +314,30 @@ pub struct Table {
     pub title: String,
     pub headers: Vec<String>,
     pub rows: Vec<Vec<Cell>>,
+    /// CSV column names given explicitly (by column index), where the name made from the
+    /// display header ([`csv_key`]) would not say what the column holds; one name per CSV
+    /// column the column writes (two for a noted number or a point).
+    pub csv_names: Vec<(usize, Vec<String>)>,
 }
 
 impl Table {
     pub fn new(title: impl Into<String>, headers: &[&str]) -> Self {
-        Self { title: title.into(), headers: headers.iter().map(|s| s.to_string()).collect(), rows: vec![] }
+        Self {
+            title: title.into(),
+            headers: headers.iter().map(|s| s.to_string()).collect(),
+            rows: vec![],
+            csv_names: vec![],
+        }
+    }
+
+    /// The table with the CSV column(s) of the column headed `header` named `names` (the
+    /// values are still converted to SI by the header's unit). Panics if there is no such
+    /// column: a programming error, caught by the report's tests.
+    pub fn csv_name(mut self, header: &str, names: &[&str]) -> Self {
+        let i = self.headers.iter().position(|h| h == header).unwrap_or_else(|| panic!("no column '{header}'"));
+        self.csv_names.retain(|(j, _)| *j != i);
+        self.csv_names.push((i, names.iter().map(|s| s.to_string()).collect()));
+        self
     }
 
     pub fn push(&mut self, row: Vec<Cell>) {
@@ -300,29 +390,78 @@ impl Table {
         out
     }
 
-    /// The CSV column names ([`csv_key`]), made unique: a repeated name gets `_2`, `_3`.
-    pub fn csv_headers(&self) -> Vec<(String, f64)> {
-        let mut out: Vec<(String, f64)> = Vec::new();
-        for h in &self.headers {
-            let (key, f) = csv_key(h);
+    /// How column `i` is written: a point if any cell is one, a noted number if any is.
+    fn shape(&self, i: usize) -> Shape {
+        let cells = || self.rows.iter().filter_map(|r| r.get(i));
+        if cells().any(|c| matches!(c, Cell::Pair { .. })) {
+            Shape::Pair
+        } else if cells().any(|c| matches!(c, Cell::Noted { .. })) {
+            Shape::Noted
+        } else {
+            Shape::Plain
+        }
+    }
+
+    /// The CSV column names of each column ([`csv_key`], or as given by
+    /// [`Table::csv_name`]) with its factor to SI and its shape, made unique: a repeated
+    /// name gets `_2`, `_3`.
+    fn csv_layout(&self) -> Vec<(Vec<String>, f64, Shape)> {
+        let mut seen: Vec<String> = Vec::new();
+        let mut unique = |key: String| {
             let mut k = key.clone();
             let mut n = 1;
-            while out.iter().any(|(o, _)| *o == k) {
+            while seen.contains(&k) {
                 n += 1;
                 k = format!("{key}_{n}");
             }
-            out.push((k, f));
+            seen.push(k.clone());
+            k
+        };
+        let mut out = Vec::with_capacity(self.headers.len());
+        for (i, h) in self.headers.iter().enumerate() {
+            let (key, f) = csv_key(h);
+            let shape = self.shape(i);
+            let given = self.csv_names.iter().find(|(j, _)| *j == i).map(|(_, n)| n.clone());
+            let names = match (given, shape) {
+                (Some(n), _) => n,
+                (None, Shape::Plain) => vec![key],
+                (None, Shape::Noted) => {
+                    let (name, _) = csv_name_and_unit(h);
+                    vec![key, format!("{name}_note")]
+                }
+                (None, Shape::Pair) => {
+                    let (name, unit) = csv_name_and_unit(h);
+                    let with = |axis: &str| {
+                        [name.as_str(), axis, unit.as_str()]
+                            .iter()
+                            .filter(|s| !s.is_empty())
+                            .copied()
+                            .collect::<Vec<_>>()
+                            .join("_")
+                    };
+                    vec![with("x"), with("z")]
+                }
+            };
+            let width = if shape == Shape::Plain { 1 } else { 2 };
+            assert_eq!(names.len(), width, "column '{h}' writes {width} CSV column(s), named {names:?}");
+            out.push((names.into_iter().map(&mut unique).collect(), f, shape));
         }
         out
     }
 
+    /// The CSV column names, made unique: a repeated name gets `_2`, `_3`.
+    pub fn csv_headers(&self) -> Vec<String> {
+        self.csv_layout().into_iter().flat_map(|(names, _, _)| names).collect()
+    }
+
     /// CSV with full-precision numbers in SI units, under [`csv_key`] column names.
     pub fn to_csv(&self) -> String {
-        let heads = self.csv_headers();
+        let layout = self.csv_layout();
         let mut w = csv::Writer::from_writer(vec![]);
-        w.write_record(heads.iter().map(|h| &h.0)).expect("writing to memory cannot fail");
+        w.write_record(layout.iter().flat_map(|(n, _, _)| n)).expect("writing to memory cannot fail");
         for r in &self.rows {
-            w.write_record(r.iter().zip(&heads).map(|(c, h)| c.csv(h.1))).expect("writing to memory cannot fail");
+            let cells = r.iter().zip(&layout).flat_map(|(c, (_, f, shape))| c.csv_cells(*shape, *f));
+            w.write_record(cells.collect::<Vec<_>>()).expect("writing to memory cannot fail");
         }
         String::from_utf8(w.into_inner().expect("flush to memory")).expect("csv of UTF-8 cells is UTF-8")
     }

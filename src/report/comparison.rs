@@ -951,7 +951,7 @@ pub fn extreme_cases(scene: &Scene) -> Result<Table, Failure> {
                 Cell::Sig(res(&rb), 2),
                 Cell::Sig(res(&rp), 2),
                 Cell::Sig(fe_rel, 2),
-                (if stable { "yes" } else { "NO" }).into(),
+                Cell::Flag { yes: stable, shown: if stable { "yes" } else { "NO" } },
             ]);
         }
     }

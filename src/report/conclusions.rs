@@ -1,7 +1,7 @@
 //! The paper's conclusions (section V, items 1-5) tested under the beam and the plate FE
 //! model, with the numbers behind each verdict.
 
-use crate::present::table::{sig, Table};
+use crate::present::table::{sig, Cell, Table};
 use crate::report::paper::Paper;
 use crate::scene::{even_points, Scene, SupportSet};
 use analytic::{respond, yield_velocity, Condition, DruckerPrager, Method, Response, Sphere};
@@ -302,17 +302,19 @@ pub fn table(checks: &[Check]) -> Table {
     let mut t =
         Table::new("", &["item", "statement of section V", "beam", "holds (beam)", "plate FE", "holds (plate)"]);
     for c in checks {
-        let yn = |b: bool| if b { "yes" } else { "**no**" };
+        let yn = |yes: bool| Cell::Flag { yes, shown: if yes { "yes" } else { "**no**" } };
         t.push(vec![
             c.item.into(),
             c.statement.clone().into(),
             c.beam.clone().into(),
-            yn(c.beam_holds).into(),
+            yn(c.beam_holds),
             c.plate.clone().into(),
-            yn(c.plate_holds).into(),
+            yn(c.plate_holds),
         ]);
     }
-    t
+    t.csv_name("statement of section V", &["statement"])
+        .csv_name("beam", &["beam_evidence"])
+        .csv_name("plate FE", &["plate_FE_evidence"])
 }
 
 /// A figure of the paper redone: file stem, title, y label and curves.

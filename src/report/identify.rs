@@ -8,7 +8,8 @@
 
 use crate::output::{Artifacts, OutputDir, StreamedFile};
 use crate::present::plot::{line_plot, Axis, ColourMap, Scale, Series};
-use crate::present::table::{sig, Cell, Table};
+use crate::present::table::{sig, unit_key, Cell, Table};
+use crate::provenance::Provenance;
 use crate::report::template::render;
 use crate::report::Failure;
 use coupled::identification::{
@@ -23,6 +24,7 @@ use identify::placement::{best, classifier, map, separabilities, Separability};
 use identify::roc::{auc_with_error, bootstrap_interval, Auc, BOOTSTRAP_RESAMPLES};
 use identify::{Class, Feature, Held, Speed, Study};
 use serde::Serialize;
+use std::io::Write as _;
 use std::time::Instant;
 
 const HEAD: &str = include_str!("templates/identify/head.md");
@@ -296,48 +298,62 @@ fn held_label(h: Held) -> String {
 
 // ---------------------------------------------------------------- rows on disk
 
-/// The two streamed files: one row per impact, one row per impact and channel.
-struct Rows {
-    impacts: csv::Writer<StreamedFile>,
-    features: csv::Writer<StreamedFile>,
+/// Which row files an identification streams: `impacts.csv` always, `features.csv` (one row
+/// per impact and channel, about 19 kB per impact with the default candidate grid: 112 MB for
+/// `scenes/caving-stream.toml`) unless left out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RowFiles {
+    /// `impacts.csv` and `features.csv`.
+    All,
+    /// `impacts.csv` only.
+    Impacts,
 }
 
+/// The streamed files: one row per impact, one row per impact and channel.
+struct Rows {
+    impacts: csv::Writer<StreamedFile>,
+    features: Option<csv::Writer<StreamedFile>>,
+}
+
+/// The columns of `impacts.csv`, in SI (docs/output-format.md).
 const IMPACT_HEADERS: [&str; 19] = [
     "condition",
     "impact",
     "family",
     "class",
-    "x_mm",
-    "z_mm",
-    "radius_mm",
+    "x_m",
+    "z_m",
+    "radius_m",
     "velocity_m_per_s",
-    "density_kg_m3",
-    "youngs_modulus_gpa",
+    "density_kg_per_m3",
+    "youngs_modulus_Pa",
     "poisson_ratio",
-    "cohesion_mpa",
-    "friction_angle_deg",
-    "force_max_n",
+    "cohesion_Pa",
+    "friction_angle_rad",
+    "force_max_N",
     "contact_time_s",
     "contacts",
-    "compression_over_yield",
-    "hertz_time_over_t1",
+    "delta_max_per_delta_my",
+    "t_H_per_T1",
     "mass_kg",
 ];
 
+/// The columns of `features.csv`: a channel's features are in its own SI unit, named in the
+/// row's `unit` column (`m`, `m_per_s`, `m_per_s2`, `N`); `_unit` in a column name stands for it.
 const FEATURE_HEADERS: [&str; 13] = [
     "condition",
     "impact",
     "class",
     "quantity",
-    "x_mm",
-    "z_mm",
+    "x_m",
+    "z_m",
     "unit",
     "peak_unit",
     "rms_unit",
     "energy_unit2_s",
     "duration_s",
-    "dominant_frequency_hz",
-    "spectral_centroid_hz",
+    "dominant_frequency_Hz",
+    "spectral_centroid_Hz",
 ];
 
 fn num(v: f64) -> String {
@@ -348,12 +364,29 @@ fn num(v: f64) -> String {
     }
 }
 
+/// Opens `name` under `dir` in `out` with the provenance line first.
+fn open_stream(
+    out: &mut OutputDir,
+    dir: &str,
+    name: &str,
+    provenance: &Provenance,
+    headers: &[&str],
+) -> Result<csv::Writer<StreamedFile>, Failure> {
+    let path = if dir.is_empty() { name.to_string() } else { format!("{dir}/{name}") };
+    let mut file = out.stream(&path)?;
+    file.write_all(provenance.csv_line().as_bytes())?;
+    let mut w = csv::Writer::from_writer(file);
+    w.write_record(headers)?;
+    Ok(w)
+}
+
 impl Rows {
-    fn open(out: &mut OutputDir) -> Result<Self, Failure> {
-        let mut impacts = csv::Writer::from_writer(out.stream("impacts.csv")?);
-        impacts.write_record(IMPACT_HEADERS)?;
-        let mut features = csv::Writer::from_writer(out.stream("features.csv")?);
-        features.write_record(FEATURE_HEADERS)?;
+    fn open(out: &mut OutputDir, dir: &str, provenance: &Provenance, files: RowFiles) -> Result<Self, Failure> {
+        let impacts = open_stream(out, dir, "impacts.csv", provenance, &IMPACT_HEADERS)?;
+        let features = match files {
+            RowFiles::All => Some(open_stream(out, dir, "features.csv", provenance, &FEATURE_HEADERS)?),
+            RowFiles::Impacts => None,
+        };
         Ok(Self { impacts, features })
     }
 
@@ -371,15 +404,15 @@ impl Rows {
             d.index.to_string(),
             family.to_string(),
             d.class.key().to_string(),
-            num(d.x * 1e3),
-            num(d.z * 1e3),
-            num(d.radius * 1e3),
+            num(d.x),
+            num(d.z),
+            num(d.radius),
             num(d.velocity),
             num(d.density),
-            num(d.youngs_modulus / 1e9),
+            num(d.youngs_modulus),
             num(d.poisson_ratio),
-            num(d.cohesion / 1e6),
-            num(d.friction_angle_deg),
+            num(d.cohesion),
+            num(d.friction_angle_deg.to_radians()),
             num(r.force_max),
             r.contact_time.map_or(String::new(), num),
             r.contacts.to_string(),
@@ -387,15 +420,16 @@ impl Rows {
             num(r.hertz_time_ratio),
             num(mass),
         ])?;
+        let Some(features) = self.features.as_mut() else { return Ok(()) };
         for (c, f) in channels.iter().zip(&r.features) {
-            self.features.write_record([
+            features.write_record([
                 condition.to_string(),
                 d.index.to_string(),
                 d.class.key().to_string(),
                 c.quantity.to_string(),
-                num(c.at.0 * 1e3),
-                num(c.at.1 * 1e3),
-                c.unit.to_string(),
+                num(c.at.0),
+                num(c.at.1),
+                unit_key(c.unit),
                 num(f.peak),
                 num(f.rms),
                 num(f.energy),
@@ -408,7 +442,7 @@ impl Rows {
     }
 
     fn finish(self, out: &mut OutputDir) -> Result<(), Failure> {
-        for w in [self.impacts, self.features] {
+        for w in std::iter::once(self.impacts).chain(self.features) {
             let file = w.into_inner().map_err(|e| e.into_error())?;
             out.finish_stream(file)?;
         }
@@ -1039,12 +1073,61 @@ fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
     )?)
 }
 
-/// Runs the identification of `scene` (which must carry an ensemble), streaming the rows
-/// into `out`, and returns the report's files and the summary.
-pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary), Failure> {
-    let study = scene.ensemble.as_ref().ok_or("the scene has no [ensemble] table (the identify analysis)")?;
+/// The scene's ensemble, after checking before anything runs that every support set records
+/// a channel and that the features held for one support set fit the memory budget.
+pub fn checked_study(scene: &Scene) -> Result<&Study, Failure> {
+    let study = scene.ensemble.as_ref().ok_or_else(|| {
+        format!("scene {}: impact identify needs an [ensemble] table and \"identify\" in analyses", scene.name)
+    })?;
+    for set in &scene.conditions {
+        let channels = channels_per_impact(scene, study, set);
+        if channels == 0 {
+            return Err(no_channels(&set.name));
+        }
+        let bytes = feature_bytes(study.ensemble.len(), channels);
+        if bytes as f64 > crate::run::MEMORY_BUDGET_BYTES {
+            return Err(format!(
+                "the ensemble's features are {} impacts x {channels} channels x 6 features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
+                study.ensemble.len(),
+                bytes as f64 / 1e9,
+                set.name,
+                crate::run::MEMORY_BUDGET_BYTES / 1e9
+            )
+            .into());
+        }
+    }
+    Ok(study)
+}
+
+/// `impact identify`, also run by `impact report` for its identification scenes: the
+/// identification of `scene` (which must carry an ensemble), its row files streamed into
+/// `out` under `dir` ("" for the top), and the report's files, under `dir` and carrying the
+/// scene's provenance like the streamed ones, with the summary.
+pub fn write(scene: &Scene, out: &mut OutputDir, dir: &str, files: RowFiles) -> Result<(Artifacts, Summary), Failure> {
+    checked_study(scene)?;
+    let provenance = Provenance::of(scene);
+    let (mut artifacts, summary) = report(scene, out, dir, &provenance, files)?;
+    provenance.stamp(&mut artifacts);
+    if dir.is_empty() {
+        return Ok((artifacts, summary));
+    }
+    let mut nested = Artifacts::new();
+    nested.nest(dir, artifacts);
+    Ok((nested, summary))
+}
+
+/// Runs the identification, streaming the rows into `out` under `dir`; returns the report's
+/// files (relative to `dir`) and the summary.
+fn report(
+    scene: &Scene,
+    out: &mut OutputDir,
+    dir: &str,
+    provenance: &Provenance,
+    files: RowFiles,
+) -> Result<(Artifacts, Summary), Failure> {
+    let study = checked_study(scene)?;
     let settings = &scene.signals;
-    let mut rows = Rows::open(out)?;
+    let mut rows = Rows::open(out, dir, provenance, files)?;
     let mut artifacts = Artifacts::new();
     let mut conditions = Vec::new();
     let mut sections = String::new();
@@ -1180,6 +1263,16 @@ pub fn report(scene: &Scene, out: &mut OutputDir) -> Result<(Artifacts, Summary)
             ("threshold", sig(identify::features::DURATION_THRESHOLD * 100.0, 3)),
             ("taper", sig(identify::features::TAPER_FRACTION * 100.0, 3)),
             ("chunk", CHUNK.to_string()),
+            (
+                "features_file",
+                match files {
+                    RowFiles::All => "Both are here.",
+                    RowFiles::Impacts => {
+                        "This run wrote `impacts.csv` only; `impact identify --scene FILE` writes `features.csv` too."
+                    }
+                }
+                .to_string(),
+            ),
         ],
     )?;
     artifacts.add("index.md", format!("{head}{sections}{method}"));

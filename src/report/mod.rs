@@ -22,8 +22,12 @@ pub mod template;
 pub mod transient;
 pub mod yield_models;
 
-use crate::output::Artifacts;
+use crate::output::{Artifacts, OutputDir};
+use crate::present::rows::slug;
 use crate::provenance::Provenance;
+use crate::report::identify::RowFiles;
+use crate::report::template::render;
+use crate::scene::SceneSource;
 use coupled::{Analysis, Scene};
 
 /// Any failure of a study, with its source.
@@ -81,4 +85,77 @@ pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
     }
     all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene)?);
     Ok(all)
+}
+
+/// The identification scenes `impact report` runs beside the default scene's reports (shipped
+/// in `scenes/`, embedded like the default scene): file name and text.
+pub const IDENTIFY_SCENES: [(&str, &str); 2] = [
+    ("caving-stream.toml", include_str!("../../scenes/caving-stream.toml")),
+    ("paper-velocities-ensemble.toml", include_str!("../../scenes/paper-velocities-ensemble.toml")),
+];
+
+const INDEX: &str = include_str!("templates/index/index.md");
+const INDEX_IDENTIFY: &str = include_str!("templates/index/identify.md");
+const INDEX_IDENTIFY_ROW: &str = include_str!("templates/index/identify-row.md");
+
+/// `impact report`: [`main_report`], then each of [`IDENTIFY_SCENES`] into
+/// `identify/<scene name>/` by `impact identify`'s own code path ([`identify::write`]; its
+/// rows streamed into `out`, `features.csv` left out: one row per impact and channel, 112 MB
+/// for the caving stream), and the index page that opens with the identification's answer.
+pub fn full_report(scene: &Scene, out: &mut OutputDir) -> Result<Artifacts, Failure> {
+    let mut all = main_report(scene)?;
+    let mut identified = Vec::new();
+    for (file, text) in IDENTIFY_SCENES {
+        let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;
+        let (files, summary) = identify::write(&s, out, &format!("identify/{}", slug(&s.name)), RowFiles::Impacts)?;
+        all.extend(files);
+        identified.push((file, s, summary));
+    }
+    all.add("index.md", index_page(&identified)?);
+    Ok(all)
+}
+
+/// The report's index page: the identifications' answers (each scene's file name in
+/// `scenes/`, the scene, its summary), then what is where.
+pub fn index_page(identified: &[(&str, Scene, identify::Summary)]) -> Result<String, Failure> {
+    let (mut sections, mut rows) = (String::new(), String::new());
+    for (file, s, summary) in identified {
+        let dir = slug(&s.name);
+        // The terminal's summary without its timing, which would make the page change with
+        // every run.
+        let table = identify::summary_tables(summary)
+            .into_iter()
+            .map(|mut t| {
+                if let Some(k) = t.headers.iter().position(|h| h == "impacts/s") {
+                    t.headers.remove(k);
+                    t.rows.iter_mut().for_each(|r| {
+                        r.remove(k);
+                    });
+                }
+                t.to_markdown()
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let description = s.description.trim().trim_end_matches('.');
+        sections.push_str(&render(
+            "index/identify.md",
+            INDEX_IDENTIFY,
+            &[
+                ("scene", s.name.clone()),
+                ("dir", dir.clone()),
+                ("description", if description.is_empty() { String::new() } else { format!("{description}. ") }),
+                ("impacts", summary.impacts.to_string()),
+                ("coal", summary.classes.0.to_string()),
+                ("gangue", summary.classes.1.to_string()),
+                ("law", summary.contact_law.to_string()),
+                ("table", table),
+            ],
+        )?);
+        rows.push_str(&render(
+            "index/identify-row.md",
+            INDEX_IDENTIFY_ROW,
+            &[("dir", dir), ("file", file.to_string())],
+        )?);
+    }
+    Ok(render("index/index.md", INDEX, &[("identify", sections), ("identify_rows", rows)])?)
 }

@@ -1170,7 +1170,10 @@ pub fn solver_study(paper: &Paper) -> Table {
                     b.iterations.into(),
                     b.residual.into(),
                     ((r.delta - b.delta).abs() / b.delta).into(),
-                    (if r.converged && b.converged { "yes" } else { "NO" }).into(),
+                    {
+                        let yes = r.converged && b.converged;
+                        Cell::Flag { yes, shown: if yes { "yes" } else { "NO" } }
+                    },
                 ]);
             }
         }

@@ -418,6 +418,10 @@ fn olsson_table(rows: &[MapRow]) -> Table {
 
 /// Every case, for the CSV.
 fn full_table(rows: &[MapRow]) -> Table {
+    full_rows(rows).csv_name("Olsson", &["Olsson_regime"])
+}
+
+fn full_rows(rows: &[MapRow]) -> Table {
     let mut t = Table::new(
         "",
         &[
@@ -484,7 +488,7 @@ fn full_table(rows: &[MapRow]) -> Table {
             p.error_bound().into(),
             speed_key(r.rule.speed()).into(),
             r.rule.error_bound().into(),
-            (if r.rule.trusts() { "yes" } else { "no" }).into(),
+            r.rule.trusts().into(),
             m.transient_force.into(),
             m.impact_force.into(),
             m.quasi_static_force.into(),

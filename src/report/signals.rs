@@ -160,7 +160,7 @@ fn impact_table(run: &SignalRun) -> Table {
 }
 
 fn sensor_table(scene: &Scene) -> Table {
-    let mut t = Table::new("sensors", &["sensor", "x (mm)", "z (mm)"]);
+    let mut t = Table::new("sensors", &["sensor", "x (mm)", "z (mm)"]).csv_name("sensor", &["sensor_name"]);
     for (i, (x, z)) in scene.signals.sensors.iter().enumerate() {
         t.push(vec![format!("s{}", i + 1).into(), Cell::Num(x * 1e3), Cell::Num(z * 1e3)]);
     }

@@ -235,9 +235,17 @@ fn with_error(v: f64, e: f64) -> [Cell; 2] {
     [cell(v), if v.is_finite() { cell(e) } else { Cell::Empty }]
 }
 
+/// The impact point, shown in mm; in the CSV as x_m and z_m.
 fn point(c: &TransientCase) -> Cell {
-    format!("({:.1}, {:.1})", c.x * 1e3, c.z * 1e3).into()
+    Cell::Pair { x: c.x, z: c.z, scale: 1e3, decimals: 1 }
 }
+
+/// The CSV names of the columns every case table shares.
+fn case_columns(t: Table) -> Table {
+    t.csv_name(POINT, &["x_m", "z_m"])
+}
+
+const POINT: &str = "point (x, z) in mm";
 
 /// The transient comparison as the report prints it: every value at its instant, with its
 /// error estimate.
@@ -295,7 +303,7 @@ pub fn contacts_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (x, z) in mm",
+            POINT,
             "v (m/s)",
             "contacts",
             "each contact: start (ms), duration (ms), peak force (N)",
@@ -338,15 +346,15 @@ pub fn contact_rows(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "x_mm",
-            "z_mm",
-            "v_m_s",
+            "x (m)",
+            "z (m)",
+            "v (m/s)",
             "contact",
-            "start_s",
-            "duration_s",
-            "peak_force_n",
-            "impulse_n_s",
-            "velocity_after_m_s",
+            "start (s)",
+            "duration (s)",
+            "peak force (N)",
+            "impulse (N·s)",
+            "velocity after (m/s)",
             "finished",
         ],
     );
@@ -357,8 +365,8 @@ pub fn contact_rows(cases: &[TransientCase]) -> Table {
             t.push(vec![
                 c.condition.clone().into(),
                 c.body.clone().into(),
-                (c.x * 1e3).into(),
-                (c.z * 1e3).into(),
+                c.x.into(),
+                c.z.into(),
                 c.velocity.into(),
                 Cell::Int(i as u64 + 1),
                 k.start.into(),
@@ -366,7 +374,7 @@ pub fn contact_rows(cases: &[TransientCase]) -> Table {
                 k.peak_force.into(),
                 k.impulse.into(),
                 k.rebound_velocity.into(),
-                (if done { "yes" } else { "no" }).into(),
+                done.into(),
             ]);
         }
     }
@@ -380,7 +388,7 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (x, z) in mm",
+            POINT,
             "v (m/s)",
             "elements",
             "steps per t_H",
@@ -414,7 +422,7 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
             c.seconds.into(),
         ]);
     }
-    t
+    case_columns(t).csv_name("tolerance met", &["tolerance_verdict"])
 }
 
 /// Each case's regime: the closed-form criteria, the validity status, and the measured
@@ -425,7 +433,7 @@ pub fn regimes_table(cases: &[TransientCase]) -> Table {
         &[
             "condition",
             "body",
-            "point (x, z) in mm",
+            POINT,
             "v (m/s)",
             "M_i/M_p (Olsson)",
             "lambda",
@@ -450,16 +458,23 @@ pub fn regimes_table(cases: &[TransientCase]) -> Table {
             c.body.clone().into(),
             point(c),
             c.velocity.into(),
-            format!("{} ({})", sig(c.mass_ratio, 3), OlssonRegime::of(c.mass_ratio).key()).into(),
+            Cell::Noted { value: c.mass_ratio, digits: 3, note: OlssonRegime::of(c.mass_ratio).key().into() },
             r.parameters.relative_stiffness.into(),
             r.parameters.loss_factor.into(),
             r.parameters.error_bound().into(),
             r.period_ratio.map_or(Cell::Empty, Cell::Num),
-            format!("{} ({})", sig(r.error_bound(), 3), if trusted { "trusted" } else { "not quasi-static" }).into(),
-            (if c.hertz_time / c.period >= coupled::validity::QUASI_STATIC_MIN_RATIO { "yes" } else { "no" }).into(),
+            Cell::Noted {
+                value: r.error_bound(),
+                digits: 3,
+                note: (if trusted { "trusted" } else { "not quasi-static" }).into(),
+            },
+            (c.hertz_time / c.period >= coupled::validity::QUASI_STATIC_MIN_RATIO).into(),
             Cell::Int(contacts as u64),
-            format!("{}{}", sig(c.yield_ratio, 3), if c.yield_ratio > 1.0 { " (beyond elastic range)" } else { "" })
-                .into(),
+            if c.yield_ratio > 1.0 {
+                Cell::Noted { value: c.yield_ratio, digits: 3, note: "beyond elastic range".into() }
+            } else {
+                Cell::Sig(c.yield_ratio, 3)
+            },
             c.force_error().into(),
             match (trusted, within) {
                 (true, true) | (false, false) => "yes",
@@ -469,7 +484,10 @@ pub fn regimes_table(cases: &[TransientCase]) -> Table {
             .into(),
         ]);
     }
-    t
+    case_columns(t)
+        .csv_name("M_i/M_p (Olsson)", &["M_i_per_M_p", "Olsson_regime"])
+        .csv_name("rule: bound, verdict", &["rule_bound", "rule_verdict"])
+        .csv_name("rule right", &["rule_right_verdict"])
 }
 
 /// Multiples of the rigid-target yield velocity at which the contact laws are compared: one

@@ -143,7 +143,7 @@ impl<'a> Transients<'a> {
 }
 
 fn yes(b: bool) -> Cell {
-    (if b { "yes" } else { "no" }).into()
+    b.into()
 }
 
 /// Position as a fraction of a length, 2 decimals.
@@ -390,9 +390,9 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
                 mins[0].0.into(),
                 frac(mins[0].1, l).into(),
                 mins[1].0.into(),
-                format!("({}, {})", frac(mins[1].1, l), frac(mins[1].2, b)).into(),
+                Cell::Pair { x: mins[1].1 / l, z: mins[1].2 / b, scale: 1.0, decimals: 2 },
                 mins[2].0.into(),
-                format!("({}, {})", frac(mins[2].1, l), frac(mins[2].2, b)).into(),
+                Cell::Pair { x: mins[2].1 / l, z: mins[2].2 / b, scale: 1.0, decimals: 2 },
             ]);
         }
     }
@@ -733,7 +733,14 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let md = render("yield_models.md", TEMPLATE, &values)?;
     a.add("index.md", md);
     a.add("table2-three-models.csv", t2t.to_csv());
+    let t5 = t5
+        .csv_name("plate at (x/L, z/B)", &["plate_at_x_per_L", "plate_at_z_per_B"])
+        .csv_name("transient at (x/L, z/B)", &["transient_at_x_per_L", "transient_at_z_per_B"]);
     a.add("table5-three-models.csv", t5.to_csv());
+    let st = st
+        .csv_name("beam: data", &["beam_evidence"])
+        .csv_name("plate: data", &["plate_evidence"])
+        .csv_name("transient: data", &["transient_evidence"]);
     a.add("statements.csv", st.to_csv());
     a.add("transient-discretisation.csv", disc.to_csv());
     let total = t_start.elapsed().as_secs_f64();
