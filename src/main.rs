@@ -237,16 +237,23 @@ enum Command {
         /// File format.
         #[arg(long, value_enum, default_value_t = FieldFormat::Json)]
         format: FieldFormat,
-        /// Load, N, that scales every value in the .vtu (fields are linear in it); the JSON
-        /// is always per unit load.
-        #[arg(long, default_value_t = 1.0, value_name = "F")]
-        force_n: f64,
-        /// --format pvd: the striking body (a name from the scene; default its first).
+        /// Load, N, that scales every value in the .vtu (fields are linear in it), in
+        /// [1e-9, 1e12] N (default 1 N); the JSON is always per unit load.
+        #[arg(long, value_name = "F", allow_negative_numbers = true)]
+        force_n: Option<Written>,
+        /// Scale the .vtu by the impact's maximum force instead: P_max of --body at
+        /// --velocity-m-per-s at the load point by the quasi-static plate model (the paper's
+        /// energy balance on the plate FE compliance, as `impact solve --model plate`). The
+        /// terminal and the file say so, with P_max's error and the case's validity.
+        #[arg(long, conflicts_with = "force_n")]
+        force_of_impact: bool,
+        /// --format pvd or --force-of-impact: the striking body (a name from the scene;
+        /// default its first).
         #[arg(long)]
         body: Option<String>,
-        /// --format pvd: impact velocity, m/s (default the scene's first).
-        #[arg(long, value_name = "V")]
-        velocity_m_per_s: Option<f64>,
+        /// --format pvd or --force-of-impact: impact velocity, m/s (default the scene's first).
+        #[arg(long, value_name = "V", allow_negative_numbers = true)]
+        velocity_m_per_s: Option<Written>,
         /// Print a JSON summary of what was written (provenance, every file with its size and
         /// SHA-256) to stdout; not with `--out -`, which prints the field itself.
         #[arg(long)]
@@ -271,10 +278,69 @@ fn main() -> ExitCode {
             if e.downcast_ref::<std::io::Error>().is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
                 return ExitCode::SUCCESS;
             }
-            eprintln!("error: {e}");
+            note(&format!("error: {e}"));
             ExitCode::FAILURE
         }
     }
+}
+
+/// A number given on the command line, with the text it was written as: an error names the
+/// value as the user wrote it (`1e308`, not its 309 digits).
+#[derive(Clone, Debug)]
+struct Written {
+    text: String,
+    value: f64,
+}
+
+impl std::str::FromStr for Written {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        let value = s.trim().parse::<f64>().map_err(|_| format!("'{s}' is not a number"))?;
+        Ok(Written { text: s.to_string(), value })
+    }
+}
+
+/// The loads `impact field --force-n` accepts, N (see where it is checked).
+const FORCE_RANGE_N: (f64, f64) = (1e-9, 1e12);
+
+/// The impact `impact field` strikes: `--body` (default the scene's first) at
+/// `--velocity-m-per-s` (default the scene's first), checked against the scene's ranges.
+fn impact_of<'a>(
+    scene: &'a Scene,
+    body: &Option<String>,
+    velocity: &Option<Written>,
+) -> Result<(&'a analytic::Sphere, f64), Failure> {
+    let sphere = match body {
+        None => scene.bodies.first().ok_or("the scene has no body; give one in [[bodies]]")?,
+        Some(b) => scene.bodies.iter().find(|s| &s.name == b).ok_or_else(|| {
+            let names: Vec<&str> = scene.bodies.iter().map(|s| s.name.as_str()).collect();
+            format!("--body '{b}' is not in the scene; it has {names:?}")
+        })?,
+    };
+    let v = match velocity {
+        Some(v) if (1e-9..=1000.0).contains(&v.value) => v.value,
+        Some(v) => {
+            return Err(format!("--velocity-m-per-s {} is outside the allowed range [1e-9, 1000] m/s", v.text).into())
+        }
+        None => *scene.velocities.first().ok_or("the scene has no velocity; give --velocity-m-per-s")?,
+    };
+    Ok((sphere, v))
+}
+
+/// The field data of a .vtu scaled to a case's quasi-static P_max: the force's error, the
+/// velocity, and every validity criterion's value and limit with `valid` (1 or 0).
+fn case_numbers(case: &coupled::plan::ResponseValues, v: f64) -> Vec<(String, f64)> {
+    let mut n = vec![("P_max_N".to_string(), case.contact_force), ("velocity_m_per_s".into(), v)];
+    if let Some(e) = case.contact_force_error {
+        n.push(("P_max_error_N".into(), e));
+    }
+    for (name, c) in case.validity.criteria() {
+        let key = name.replace([' ', '-'], "_");
+        n.push((format!("{key}_value"), c.value));
+        n.push((format!("{key}_limit"), c.limit));
+    }
+    n.push(("valid".into(), f64::from(u8::from(case.validity.all_valid()))));
+    n
 }
 
 fn load(path: &Option<PathBuf>) -> Result<Scene, Failure> {
@@ -296,6 +362,13 @@ fn load_bodies(path: &Option<PathBuf>, command: &str) -> Result<Scene, Failure> 
         .into());
     }
     Ok(scene)
+}
+
+/// Writes a line to standard error, ignoring a failed write: a message nobody can receive (a
+/// closed pipe, `2>&1 | head`) must neither panic, as `eprintln!` does, nor turn the run's own
+/// outcome into another one; the exit code still says how the run ended.
+fn note(text: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
 }
 
 /// Writes to standard output; a closed pipe ends the program quietly (see `main`).
@@ -416,15 +489,16 @@ fn execute(command: Command) -> Result<(), Failure> {
             x_mm,
             z_mm,
             elements,
-            out: file,
+            out: dest,
             format,
             force_n,
+            force_of_impact,
             body,
             velocity_m_per_s,
             json,
         } => {
             let scene = load(&scene)?;
-            if json && file.as_deref() == Some(Path::new("-")) {
+            if json && dest.as_deref() == Some(Path::new("-")) {
                 return Err("--json prints a summary of the files written; with --out - the field itself goes to standard output, so give one or the other".into());
             }
             let cond = scene.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
@@ -443,68 +517,81 @@ fn execute(command: Command) -> Result<(), Failure> {
             if !(0.0..=b).contains(&z_mm) {
                 return Err(format!("--z-mm {z_mm} is outside the plate: the allowed range is [0, {b}] mm").into());
             }
-            if !(force_n.is_finite() && force_n > 0.0) {
-                return Err(format!("--force-n {force_n} must be a positive number of newtons").into());
+            // 1e12 N, a hundred thousand tonnes-force, is beyond any rock impact; under it every
+            // scaled value of every valid scene stays finite (the largest unit-load values, a
+            // deflection of about L²/(100 D) ≤ 1e22 m/N and a stress 6M/h² ≤ 1e13 Pa/N at the
+            // scene limits, times 1e12 are far below f64::MAX ≈ 1.8e308), and the writer still
+            // refuses any value that is not finite.
+            if let Some(f) = &force_n {
+                if !(FORCE_RANGE_N.0..=FORCE_RANGE_N.1).contains(&f.value) {
+                    return Err(format!(
+                        "--force-n {} is outside the allowed range [{:e}, {:e}] N",
+                        f.text, FORCE_RANGE_N.0, FORCE_RANGE_N.1
+                    )
+                    .into());
+                }
             }
+            let force_n = force_n.map(|f| f.value);
             // The JSON format is defined per unit load; a scaled JSON would read as one.
-            if format != FieldFormat::Vtu && force_n != 1.0 {
-                return Err("--force-n scales the .vtu only; add --format vtu (the JSON is per unit load, the .pvd at the impact's own force)".into());
+            if format != FieldFormat::Vtu && (force_n.is_some() || force_of_impact) {
+                return Err("--force-n and --force-of-impact scale the .vtu only; add --format vtu (the JSON is per unit load, the .pvd at the impact's own force)".into());
             }
-            if format != FieldFormat::Pvd && (body.is_some() || velocity_m_per_s.is_some()) {
-                return Err("--body and --velocity-m-per-s choose the impact of --format pvd only".into());
+            if !(format == FieldFormat::Pvd || force_of_impact) && (body.is_some() || velocity_m_per_s.is_some()) {
+                return Err(
+                    "--body and --velocity-m-per-s choose the impact of --format pvd or --force-of-impact only".into(),
+                );
             }
+            let (x, z) = (x_mm * 1e-3, z_mm * 1e-3);
             if format == FieldFormat::Pvd {
-                let sphere = match &body {
-                    None => scene.bodies.first().ok_or("the scene has no body")?,
-                    Some(b) => scene.bodies.iter().find(|s| &s.name == b).ok_or_else(|| {
-                        let names: Vec<&str> = scene.bodies.iter().map(|s| s.name.as_str()).collect();
-                        format!("--body '{b}' is not in the scene; it has {names:?}")
-                    })?,
-                };
-                let v = match velocity_m_per_s {
-                    Some(v) if (1e-9..=1000.0).contains(&v) => v,
-                    Some(v) => {
-                        return Err(
-                            format!("--velocity-m-per-s {v} is outside the allowed range [1e-9, 1000] m/s").into()
-                        )
-                    }
-                    None => *scene.velocities.first().ok_or("the scene has no velocity; give --velocity-m-per-s")?,
-                };
-                let dir = file.unwrap_or_else(|| PathBuf::from("field-series"));
+                let (sphere, v) = impact_of(&scene, &body, &velocity_m_per_s)?;
+                let dir = dest.unwrap_or_else(|| PathBuf::from("field-series"));
                 let target = OutputDir::prepare(&dir)?;
-                let mut a = impact::report::field_series::contact_series(
-                    &scene,
-                    cond,
-                    sphere,
-                    v,
-                    (x_mm * 1e-3, z_mm * 1e-3),
-                    elements,
-                )?;
+                let mut a = impact::report::field_series::contact_series(&scene, cond, sphere, v, (x, z), elements)?;
                 Provenance::of(&scene).stamp(&mut a);
                 return commit_reporting(target, &a, &scene, json);
             }
-            let file = file.unwrap_or_else(|| {
+            let path = dest.unwrap_or_else(|| {
                 PathBuf::from(match format {
                     FieldFormat::Json => "field.json",
                     FieldFormat::Vtu | FieldFormat::Pvd => "field.vtu",
                 })
             });
-            let target = OutputFile::prepare(&file)?;
-            let f = impact::report::field::field(&scene, cond, x_mm * 1e-3, z_mm * 1e-3, elements)?;
+            let target = OutputFile::prepare(&path)?;
+            let f = impact::report::field::field(&scene, cond, x, z, elements)?;
+            let mut said = None;
             let bytes = match format {
                 FieldFormat::Json => {
                     Provenance::of(&scene).stamp_json(format!("{}\n", serde_json::to_string(&f)?).as_bytes())
                 }
-                FieldFormat::Vtu | FieldFormat::Pvd => impact::present::vtk::to_vtu(&f, force_n)?,
+                FieldFormat::Vtu | FieldFormat::Pvd => {
+                    let mut meta = impact::present::vtk::Metadata {
+                        provenance: Provenance::of(&scene),
+                        lines: vec![format!(
+                            "impact field: the plate FE deflection, moments and stresses of '{}' under a point load at ({x_mm}, {z_mm}) mm on {elements} elements along the longer side",
+                            cond.name
+                        )],
+                        numbers: vec![("load_x_m".into(), x), ("load_z_m".into(), z)],
+                    };
+                    let force = if force_of_impact {
+                        let (sphere, v) = impact_of(&scene, &body, &velocity_m_per_s)?;
+                        let case = impact::report::field::quasi_static_impact(&scene, cond, sphere, v, x, z)?;
+                        let what = format!("{} at {v} m/s on {} at ({x_mm}, {z_mm}) mm", sphere.name, cond.name);
+                        let text = impact::report::field::p_max_text(&case, &what)?;
+                        meta.lines.push(text.clone());
+                        meta.numbers.extend(case_numbers(&case, v));
+                        said = Some(text);
+                        case.contact_force
+                    } else {
+                        meta.lines.push(format!("scaled by the load given, {} N", force_n.unwrap_or(1.0)));
+                        force_n.unwrap_or(1.0)
+                    };
+                    impact::present::vtk::to_vtu(&f, force, &meta)?
+                }
             };
             if target.is_stdout() {
-                let mut o = std::io::stdout().lock();
-                o.write_all(&bytes)?;
-                o.flush()?;
-                return Ok(());
-            }
-            if let Some(p) = target.commit(&bytes)? {
-                eprintln!("wrote {}", p.display());
+                out(std::str::from_utf8(&bytes)?)?;
+            } else if let Some(p) = target.commit(&bytes)? {
+                note(&format!("wrote {}", p.display()));
                 if json {
                     let doc = serde_json::json!({
                         "provenance": Provenance::of(&scene),
@@ -516,6 +603,9 @@ fn execute(command: Command) -> Result<(), Failure> {
                     });
                     out(&format!("{}\n", serde_json::to_string_pretty(&doc)?))?;
                 }
+            }
+            if let Some(text) = said {
+                note(&text);
             }
             Ok(())
         }
@@ -542,7 +632,7 @@ fn prepare(dir: Option<&Path>) -> Result<Option<OutputDir>, Failure> {
 fn commit(target: OutputDir, artifacts: &Artifacts) -> Result<(), Failure> {
     let dir = target.path().to_path_buf();
     let written = target.commit(artifacts)?;
-    eprintln!("wrote {} files under {}", written.len(), dir.display());
+    note(&format!("wrote {} files under {}", written.len(), dir.display()));
     Ok(())
 }
 
@@ -622,7 +712,7 @@ fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) 
     if c.json {
         out(&format!("{}\n", json()?))?;
         // The JSON carries the status too; the terminal gets it on standard error.
-        eprintln!("{status}");
+        note(&status);
     } else {
         let mut text = format!("scene: {} ({})\n", scene.name, scene.description);
         for t in response_tables(&results).iter().chain(&yield_tables(&results)) {

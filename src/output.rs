@@ -15,8 +15,10 @@
 //!
 //! Nothing that is not ours is ever replaced: an existing directory is replaced only if it is
 //! empty or carries our manifest and holds nothing the manifest does not list; an existing
-//! file only if it is a regular file (symlinks are not followed, so `/dev/null`, FIFOs and
-//! links to `/proc/self/fd/1` are refused rather than turned into regular files).
+//! file only if it is a regular file that is empty or carries our mark ([`FILE_MARK`], the
+//! opening of the provenance every file of ours carries near its start). Symlinks are not
+//! followed, so `/dev/null`, FIFOs and links to `/proc/self/fd/1` are refused rather than
+//! turned into regular files.
 //!
 //! Staging names carry the owning process's pid and start time. Every run first removes
 //! stale staging entries in the target's parent whose owner is no longer alive, and never
@@ -31,6 +33,15 @@ use serde::{Deserialize, Serialize};
 
 /// The manifest every output directory carries; its presence marks the directory as ours.
 pub const MANIFEST: &str = ".impact-manifest.json";
+
+/// The mark of a single output file of ours: the opening of the compact JSON of
+/// [`crate::provenance::Provenance`] (its first field is the program's name), which a JSON
+/// document carries as its first key and a `.vtu` in a comment before its root element. A
+/// single file has no room for a manifest; this is its signature instead.
+pub const FILE_MARK: &str = "{\"program\":\"impact\",";
+/// How far into an existing file [`FILE_MARK`] is looked for: the provenance comes first, so
+/// it lies within the first few hundred bytes of every file of ours.
+pub const FILE_MARK_WINDOW: usize = 4096;
 
 /// Name tags of the entries a run creates beside its target (see [`clean_stale`]).
 const STAGE_TAG: &str = ".impact-stage-";
@@ -72,6 +83,12 @@ pub enum OutputError {
         set.display()
     )]
     InsideOutputSet { path: PathBuf, set: PathBuf },
+    #[error(
+        "{} exists and was not written by impact (its first {FILE_MARK_WINDOW} bytes carry no impact \
+         provenance); refusing to replace it (choose another --out or remove it)",
+        path.display()
+    )]
+    ForeignFile { path: PathBuf },
     #[error("{}: the output must be named (not '.', '..' or '/'), because it is staged beside itself", path.display())]
     Unnamed { path: PathBuf },
     #[error("artifact path {} is unsafe: {why}", path.display())]
@@ -388,13 +405,28 @@ fn check_replaceable_dir(target: &Path) -> Result<(), OutputError> {
     }
 }
 
-/// Checks that `target` may be replaced by an output file: absent or a regular file.
+/// Checks that `target` may be replaced by an output file: absent, or a regular file that is
+/// empty or ours (carries [`FILE_MARK`] within its first [`FILE_MARK_WINDOW`] bytes).
 fn check_replaceable_file(target: &Path) -> Result<(), OutputError> {
-    match fs::symlink_metadata(target) {
-        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(io_err(target, "inspecting the output file")(e)),
-        Ok(m) if m.is_file() => Ok(()),
-        Ok(m) => Err(OutputError::NotRegularFile { path: target.to_path_buf(), kind: describe(m.file_type()) }),
+    let m = match fs::symlink_metadata(target) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(io_err(target, "inspecting the output file")(e)),
+        Ok(m) => m,
+    };
+    if !m.is_file() {
+        return Err(OutputError::NotRegularFile { path: target.to_path_buf(), kind: describe(m.file_type()) });
+    }
+    if m.len() == 0 {
+        return Ok(());
+    }
+    let mut head = Vec::with_capacity(FILE_MARK_WINDOW);
+    File::open(target)
+        .and_then(|f| io::Read::read_to_end(&mut io::Read::take(f, FILE_MARK_WINDOW as u64), &mut head))
+        .map_err(io_err(target, "reading the start of the existing output file"))?;
+    if head.windows(FILE_MARK.len()).any(|w| w == FILE_MARK.as_bytes()) {
+        Ok(())
+    } else {
+        Err(OutputError::ForeignFile { path: target.to_path_buf() })
     }
 }
 
@@ -795,10 +827,11 @@ fn swap_aside(parent: &Path, stage: &Path, target: &Path) -> Result<(), OutputEr
 /// to a temporary sibling and renamed over the target on commit; dropping an uncommitted
 /// `OutputFile` removes the temporary file.
 ///
-/// An existing target is replaced only if it is a regular file. It need not have been
-/// written by impact: a single file has no room for a marker, and overwriting one's own
-/// earlier result file is what `--out FILE` is for. Devices, FIFOs, sockets, directories and
-/// symlinks (not followed) are refused.
+/// An existing target is replaced only if it is a regular file that is empty or was written
+/// by impact (it carries [`FILE_MARK`] near its start), so `--out FILE` overwrites one's own
+/// earlier result but never a scene file or anything else of the user's. Devices, FIFOs,
+/// sockets, directories and symlinks (not followed) are refused. The bytes committed should
+/// carry the mark themselves, or the next run will refuse to replace them.
 #[derive(Debug)]
 pub struct OutputFile {
     target: Option<PathBuf>,
@@ -1283,12 +1316,39 @@ mod tests {
     }
 
     #[test]
+    fn the_file_mark_is_the_provenance_opening() {
+        use crate::scene::SceneSource;
+        let p = crate::provenance::Provenance::of(&crate::scene::Scene::default_scene());
+        assert!(serde_json::to_string(&p).unwrap().starts_with(FILE_MARK));
+    }
+
+    #[test]
     fn single_file_output() {
         let dir = tempfile::tempdir().unwrap();
         let f = dir.path().join("sub/field.json");
-        assert_eq!(OutputFile::prepare(&f).unwrap().commit(b"{}").unwrap(), Some(f.clone()));
-        OutputFile::prepare(&f).unwrap().commit(b"[]").unwrap();
-        assert_eq!(fs::read(&f).unwrap(), b"[]");
+        let ours = |n: u8| format!("{{\"provenance\":{FILE_MARK}\"n\":{n}}}}}").into_bytes();
+        assert_eq!(OutputFile::prepare(&f).unwrap().commit(&ours(1)).unwrap(), Some(f.clone()));
+        OutputFile::prepare(&f).unwrap().commit(&ours(2)).unwrap();
+        assert_eq!(fs::read(&f).unwrap(), ours(2));
+        // Not ours: a file without the mark (or with it only beyond the window) is refused
+        // and left byte for byte; an empty file holds nothing to lose.
+        let mut late = vec![b' '; FILE_MARK_WINDOW];
+        late.extend_from_slice(&ours(3));
+        for foreign in [b"{}".to_vec(), b"name = \"my scene\"\n".to_vec(), late] {
+            fs::write(&f, &foreign).unwrap();
+            let e = OutputFile::prepare(&f).unwrap_err();
+            assert!(matches!(e, OutputError::ForeignFile { .. }), "{e}");
+            assert!(e.to_string().contains("not written by impact"), "{e}");
+            assert_eq!(fs::read(&f).unwrap(), foreign);
+        }
+        fs::write(&f, b"").unwrap();
+        OutputFile::prepare(&f).unwrap().commit(&ours(4)).unwrap();
+        assert_eq!(fs::read(&f).unwrap(), ours(4));
+        // Taken over by someone else between prepare and commit: refused at commit.
+        let prepared = OutputFile::prepare(&f).unwrap();
+        fs::write(&f, b"theirs").unwrap();
+        assert!(matches!(prepared.commit(&ours(5)).unwrap_err(), OutputError::ForeignFile { .. }));
+        assert_eq!(fs::read(&f).unwrap(), b"theirs");
         let stdout = OutputFile::prepare("-").unwrap();
         assert!(stdout.is_stdout() && stdout.path().is_none());
         let e = OutputFile::prepare(dir.path()).unwrap_err();

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use impact::output::{sha256_hex, verify_set, Artifacts, OutputDir, OutputError, OutputFile, MANIFEST};
+use impact::output::{sha256_hex, verify_set, Artifacts, OutputDir, OutputError, OutputFile, FILE_MARK, MANIFEST};
 
 /// Set in a child process re-executed from this test binary: the target the writer loop
 /// commits into until it is killed.
@@ -66,9 +66,16 @@ fn single_file_refuses_what_is_not_a_regular_file() {
     assert!(fs::symlink_metadata(&stdout_link).unwrap().file_type().is_symlink());
     assert!(leftovers(dir.path()).is_empty());
 
-    // A regular file is replaced; "-" is standard output and touches no file.
-    assert_eq!(OutputFile::prepare(&victim).unwrap().commit(b"new").unwrap(), Some(victim.clone()));
-    assert_eq!(fs::read_to_string(&victim).unwrap(), "new");
+    // A regular file not written by impact is refused too and left as it was; one of ours
+    // (it carries the provenance mark) is replaced; "-" is standard output and touches no file.
+    let e = OutputFile::prepare(&victim).unwrap_err();
+    assert!(matches!(e, OutputError::ForeignFile { .. }) && e.to_string().contains("victim.json"), "{e}");
+    assert_eq!(fs::read_to_string(&victim).unwrap(), "precious");
+    let ours = format!("{{\"provenance\":{FILE_MARK}\"version\":\"0\"}}}}");
+    let earlier = dir.path().join("earlier.json");
+    fs::write(&earlier, &ours).unwrap();
+    assert_eq!(OutputFile::prepare(&earlier).unwrap().commit(ours.as_bytes()).unwrap(), Some(earlier.clone()));
+    assert_eq!(fs::read_to_string(&earlier).unwrap(), ours);
     assert!(OutputFile::prepare("-").unwrap().is_stdout());
     assert!(leftovers(dir.path()).is_empty());
 }

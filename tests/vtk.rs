@@ -1,8 +1,10 @@
 //! The .vtu of `impact field --format vtu` read back with vtkio's own parser: the same mesh
 //! and values as `impact::report::field::field`, the displacement vector (0, 0, w), the
-//! stresses 6M/h², the near-load flag; and the shell completions.
+//! stresses 6M/h², the near-load flag, its field data; the load's range and the scaling to
+//! an impact's P_max; `--out` refusing a file that is not ours; and the shell completions.
 
-use impact::present::vtk::{to_vtu, MOMENTS, POINT_SCALARS, STRESSES};
+use impact::present::vtk::{to_vtu, Metadata, MOMENTS, POINT_SCALARS, STRESSES};
+use impact::provenance::Provenance;
 use impact::report::field::{field, FieldFile};
 use impact::scene::{Scene, SceneSource};
 use std::collections::HashMap;
@@ -40,6 +42,31 @@ fn read(bytes: &[u8]) -> Read {
     };
     let (point, cell) = (map(&piece.data.point), map(&piece.data.cell));
     Read { piece, point, cell }
+}
+
+/// The provenance of the default scene and nothing else.
+fn meta() -> Metadata {
+    Metadata { provenance: Provenance::of(&Scene::default_scene()), lines: vec![], numbers: vec![] }
+}
+
+/// The dataset's FieldData, name to value, read from the XML text (vtkio's reader skips it):
+/// every array a single ascii Float64.
+fn field_data(bytes: &[u8]) -> HashMap<String, f64> {
+    let text = std::str::from_utf8(bytes).expect("UTF-8 XML");
+    let start = text.find("<FieldData>").expect("a FieldData element");
+    let end = text.find("</FieldData>").expect("its end");
+    text[start..end]
+        .split("<DataArray ")
+        .skip(1)
+        .map(|a| {
+            assert!(
+                a.contains("type=\"Float64\"") && a.contains("NumberOfTuples=\"1\"") && a.contains("format=\"ascii\"")
+            );
+            let name = a.split("Name=\"").nth(1).and_then(|r| r.split('"').next()).expect("a name");
+            let value = a.split('>').nth(1).and_then(|r| r.split('<').next()).expect("a value");
+            (name.to_string(), value.trim().parse::<f64>().expect("a number"))
+        })
+        .collect()
 }
 
 fn f64s(b: &IOBuffer) -> Vec<f64> {
@@ -97,7 +124,7 @@ fn check(f: &FieldFile, r: &Read, force: f64) {
 fn vtu_reads_back_with_the_field_values() {
     // The plate centre (458.4 x 360 mm) is a node of the 20 x 16 mesh: four elements touch it.
     let f = field_at(229.2, 180.0, 20);
-    let r = read(&to_vtu(&f, 1.0).unwrap());
+    let r = read(&to_vtu(&f, 1.0, &meta()).unwrap());
     check(&f, &r, 1.0);
     assert_eq!(f.near_load().iter().filter(|&&b| b).count(), 4);
     // The flagged elements carry the largest |M_x|: the singularity they mark.
@@ -110,7 +137,7 @@ fn vtu_reads_back_with_the_field_values() {
 fn load_inside_one_element_flags_one() {
     let f = field_at(100.0, 100.0, 10);
     assert_eq!(f.near_load().iter().filter(|&&b| b).count(), 1);
-    check(&f, &read(&to_vtu(&f, 1.0).unwrap()), 1.0);
+    check(&f, &read(&to_vtu(&f, 1.0, &meta()).unwrap()), 1.0);
 }
 
 #[test]
@@ -125,7 +152,10 @@ fn cli_writes_a_scaled_vtu() {
         .unwrap();
     assert!(s.success());
     let f = field_at(229.2, 180.0, 20);
-    check(&f, &read(&std::fs::read(&path).unwrap()), 2.5);
+    let bytes = std::fs::read(&path).unwrap();
+    check(&f, &read(&bytes), 2.5);
+    let fd = field_data(&bytes);
+    assert_eq!((fd["force_N"], fd["load_x_m"], fd["load_z_m"]), (2.5, 0.2292, 0.18));
 
     // The JSON stays per unit load: a force with it is refused, not silently ignored.
     let o = Command::new(BIN)
@@ -144,5 +174,162 @@ fn completions_for_every_shell() {
     for shell in ["zsh", "fish", "powershell", "elvish"] {
         let o = Command::new(BIN).args(["completions", shell]).output().unwrap();
         assert!(o.status.success() && !o.stdout.is_empty(), "{shell}");
+    }
+}
+
+fn run(args: &[&str]) -> std::process::Output {
+    Command::new(BIN).args(args).output().unwrap()
+}
+
+#[test]
+fn force_outside_its_range_is_refused_naming_flag_value_and_range() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.vtu");
+    let out = out.to_str().unwrap();
+    for bad in ["1e308", "1.5e12", "0", "-5", "NaN", "inf", "1e-10"] {
+        let o = run(&["field", "--format", "vtu", "--x-mm", "100", "--z-mm", "200", "--force-n", bad, "--out", out]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{bad}: {err}");
+        assert!(err.contains(&format!("--force-n {bad} is outside the allowed range [1e-9, 1e12] N")), "{bad}: {err}");
+        assert!(!std::path::Path::new(out).exists());
+    }
+}
+
+/// The worst valid scene for overflow: the largest, thinnest, softest plate the scene limits
+/// allow (100 m square, 1 µm, 1 kPa), where a unit load deflects it by about 1e18 m and the
+/// surface stress 6M/h² is about 1e12 Pa. At the largest load accepted, 1e12 N, every value
+/// written must still be finite.
+#[test]
+fn the_largest_load_on_the_weakest_plate_stays_finite() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = impact::scene::DEFAULT_SCENE
+        .replace("length_mm = 458.4", "length_mm = 100000.0")
+        .replace("width_mm = 360.0", "width_mm = 100000.0")
+        .replace("thickness_mm = 8.0", "thickness_mm = 0.001")
+        .replace("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = 1e-6");
+    let scene = dir.path().join("weak.toml");
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.path().join("weak.vtu");
+    let o = Command::new(BIN)
+        .args([
+            "field",
+            "--format",
+            "vtu",
+            "--x-mm",
+            "30000",
+            "--z-mm",
+            "40000",
+            "--elements",
+            "8",
+            "--force-n",
+            "1e12",
+        ])
+        .arg("--scene")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&out).unwrap();
+    let r = read(&bytes);
+    let mut largest = 0.0f64;
+    for (name, b) in r.point.iter().chain(&r.cell) {
+        if name == "near_load" {
+            continue;
+        }
+        let v = f64s(b);
+        assert!(v.iter().all(|x| x.is_finite()), "{name} has a value that is not finite");
+        largest = largest.max(v.iter().fold(0.0, |a, x| a.max(x.abs())));
+    }
+    // The scene is what the test says: deflections far beyond any physical plate.
+    assert!(largest > 1e25, "largest value {largest:e}");
+    assert!(field_data(&bytes).values().all(|v| v.is_finite()));
+}
+
+/// `--force-of-impact` scales by the quasi-static plate model's P_max of the case, the one
+/// `impact solve --model plate` gives for it, and says so with the case's validity.
+#[test]
+fn scaled_to_the_impacts_quasi_static_p_max() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.vtu");
+    let o = Command::new(BIN)
+        .args(["field", "--format", "vtu", "--x-mm", "229.2", "--z-mm", "180", "--elements", "20", "--force-of-impact"])
+        .args(["--body", "gangue 1", "--velocity-m-per-s", "0.008", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr).to_string();
+    assert!(o.status.success(), "{err}");
+    let bytes = std::fs::read(&out).unwrap();
+    let fd = field_data(&bytes);
+
+    // The same case through `impact solve --model plate`: its P_max and error, bit for bit.
+    let solved = run(&["solve", "--model", "plate", "--json"]);
+    let doc: serde_json::Value = serde_json::from_slice(&solved.stdout).unwrap();
+    let row = doc["results"]["responses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| {
+            r["body"] == "gangue 1"
+                && r["condition"] == "Con 1"
+                && r["velocity"] == 0.008
+                && (r["x"].as_f64().unwrap() - 0.2292).abs() < 1e-12
+                && (r["z"].as_f64().unwrap() - 0.18).abs() < 1e-12
+        })
+        .expect("the default scene has gangue 1 at the centre at 0.008 m/s");
+    let v = &row["outcome"];
+    assert_eq!(v["status"], "computed");
+    // The field computes the case alone and `solve` with the scene's other points in one
+    // block of solves, so the two differ by the solves' round-off (about 1e-15 here), far
+    // below the FE error estimate (about 1e-5 relative).
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    assert!(close(fd["force_N"], v["contact_force"].as_f64().unwrap()), "{} vs {}", fd["force_N"], v["contact_force"]);
+    assert!(close(fd["P_max_error_N"], v["contact_force_error"].as_f64().unwrap()));
+    assert_eq!(fd["velocity_m_per_s"], 0.008);
+    // The values are the unit-load field times that force.
+    check(&field_at(229.2, 180.0, 20), &read(&bytes), fd["force_N"]);
+    // The case is not quasi-static (t_c/T₁ about 0.08 for gangue 1 on Con 1): the file and the terminal
+    // say which model and that the transient deflection differs.
+    assert_eq!(fd["valid"], 0.0);
+    assert!(fd["quasi_static_value"] < fd["quasi_static_limit"]);
+    let xml = String::from_utf8_lossy(&bytes);
+    for text in [xml.as_ref(), err.as_str()] {
+        assert!(text.contains("quasi-static plate model"), "{text}");
+        assert!(text.contains("t_c/T₁ = "), "{text}");
+        assert!(text.contains("the transient deflection differs"), "{text}");
+    }
+}
+
+/// `--out` never replaces a file that is not ours: a scene file given as --out is refused with
+/// the reason and left byte for byte; our own earlier .vtu and .json are replaced.
+#[test]
+fn out_refuses_a_file_that_is_not_ours() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("mine.toml");
+    std::fs::write(&scene, impact::scene::DEFAULT_SCENE).unwrap();
+    for format in ["vtu", "json"] {
+        let o = Command::new(BIN)
+            .args(["field", "--format", format, "--x-mm", "100", "--z-mm", "200", "--elements", "4", "--scene"])
+            .arg(&scene)
+            .arg("--out")
+            .arg(&scene)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(err.contains("mine.toml") && err.contains("not written by impact"), "{err}");
+        assert_eq!(std::fs::read_to_string(&scene).unwrap(), impact::scene::DEFAULT_SCENE);
+
+        let ours = dir.path().join(format!("field.{format}"));
+        for _ in 0..2 {
+            let o = Command::new(BIN)
+                .args(["field", "--format", format, "--x-mm", "100", "--z-mm", "200", "--elements", "4", "--out"])
+                .arg(&ours)
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        }
     }
 }

@@ -49,6 +49,10 @@ def check_rust_vtu(check, path, doc, force, h, load):
         a = np.asarray(a)
         return a[:, 0] if a.ndim == 2 and a.shape[1] == 1 else a
 
+    # The file says what it is: its load and the load point in the dataset's FieldData.
+    fd = {k: float(np.asarray(v).ravel()[0]) for k, v in m.field_data.items()}
+    check(f"{tag} field_data force_N, load_x_m, load_z_m",
+          (fd.get("force_N"), fd.get("load_x_m"), fd.get("load_z_m")) == (float(force), load[0], load[1]), str(fd))
     pts = np.asarray(doc["points"])
     check(f"{tag} points", np.array_equal(m.points, np.column_stack([pts, np.zeros(len(pts))])))
     check(f"{tag} quads", list(m.cells_dict) == ["quad"] and np.array_equal(m.cells_dict["quad"], np.asarray(doc["quads"])))

@@ -12,8 +12,17 @@
 //! the load point, whose moments are a sampled point-load singularity and grow with
 //! refinement; exclude them when reading off a maximum stress). Every value is for the load
 //! `force_n` (N): linear elasticity, so the unit-load field times the force.
+//!
+//! What the file is: an XML comment before the root element carries the provenance (whose
+//! opening is [`crate::output::FILE_MARK`], so a later `--out` of the same name knows the file
+//! as ours) and lines saying what the values are; the dataset's `FieldData` carries the load
+//! and, where the load is an impact's P_max, the case's numbers and validity (ParaView shows
+//! them in its Information panel, meshio reads them as `field_data`). No value that is not
+//! finite is written: such a field is an error.
 
+use crate::provenance::Provenance;
 use crate::report::field::FieldFile;
+use crate::report::Failure;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, IOBuffer, UnstructuredGridPiece, Version,
     VertexNumbers, Vtk,
@@ -24,8 +33,24 @@ pub const POINT_SCALARS: [&str; 3] = ["w", "w_x", "w_z"];
 pub const MOMENTS: [&str; 3] = ["M_x", "M_z", "M_xz"];
 pub const STRESSES: [&str; 3] = ["sigma_x", "sigma_z", "sigma_xz"];
 
-/// The `.vtu` document for `field` under the load `force_n` (N).
-pub fn to_vtu(field: &FieldFile, force_n: f64) -> Result<Vec<u8>, vtkio::Error> {
+/// What a `.vtu` says about itself beyond its arrays.
+#[derive(Debug, Clone)]
+pub struct Metadata {
+    /// Where it came from; the first line of the comment.
+    pub provenance: Provenance,
+    /// Further comment lines: what the values are.
+    pub lines: Vec<String>,
+    /// Numbers for the dataset's `FieldData`, one single-value Float64 array each (the load
+    /// `force_N` is always added).
+    pub numbers: Vec<(String, f64)>,
+}
+
+/// The `.vtu` document for `field` under the load `force_n` (N), with `meta` in its comment
+/// and field data. Refuses a load or a value that is not finite.
+pub fn to_vtu(field: &FieldFile, force_n: f64, meta: &Metadata) -> Result<Vec<u8>, Failure> {
+    if !(force_n.is_finite() && force_n > 0.0) {
+        return Err(format!("the load of a .vtu must be a positive finite force, not {force_n} N").into());
+    }
     let scale = |v: &[f64]| -> Vec<f64> { v.iter().map(|x| x * force_n).collect() };
     let points: Vec<f64> = field.points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
     let connectivity: Vec<u64> = field.quads.iter().flatten().map(|&n| n as u64).collect();
@@ -47,6 +72,9 @@ pub fn to_vtu(field: &FieldFile, force_n: f64) -> Result<Vec<u8>, vtkio::Error> 
     for (name, v) in STRESSES.iter().zip(field.stresses()) {
         cell.push(Attribute::scalars(*name, 1).with_data(scale(&v)));
     }
+    for a in point.iter().chain(&cell) {
+        check_finite(a, force_n)?;
+    }
     let near: Vec<u8> = field.near_load().into_iter().map(u8::from).collect();
     cell.push(Attribute::scalars("near_load", 1).with_data(IOBuffer::U8(near)));
 
@@ -67,7 +95,67 @@ pub fn to_vtu(field: &FieldFile, force_n: f64) -> Result<Vec<u8>, vtkio::Error> 
     };
     let mut bytes = Vec::new();
     vtk.write_xml(&mut bytes)?;
-    Ok(bytes)
+    let mut numbers = vec![("force_N".to_string(), force_n)];
+    numbers.extend(meta.numbers.iter().cloned());
+    with_metadata(bytes, meta, &numbers)
+}
+
+/// An error if an array of `a` holds a value that is not finite (the load times a unit-load
+/// value beyond f64's range).
+fn check_finite(a: &Attribute, force_n: f64) -> Result<(), Failure> {
+    if let Attribute::DataArray(d) = a {
+        if let IOBuffer::F64(v) = &d.data {
+            if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
+                return Err(format!(
+                    "the field under {force_n} N has {} = {bad}: the load is too large for the numbers to be represented",
+                    d.name
+                )
+                .into());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// An XML comment's text: `--` may not occur in one, nor may it end in `-`.
+fn comment_safe(text: &str) -> String {
+    let mut s = text.replace('\n', " ");
+    while s.contains("--") {
+        s = s.replace("--", "- -");
+    }
+    if s.ends_with('-') {
+        s.push(' ');
+    }
+    s
+}
+
+/// `xml` (vtkio's document, which starts at its root element) with an XML declaration, the
+/// comment of `meta` before the root, and `numbers` as `FieldData` of the dataset element
+/// (where VTK's own writers put it, before the first `Piece`).
+fn with_metadata(xml: Vec<u8>, meta: &Metadata, numbers: &[(String, f64)]) -> Result<Vec<u8>, Failure> {
+    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(format!("field data {name} = {v} is not finite").into());
+    }
+    let xml = String::from_utf8(xml)?;
+    let grid = "<UnstructuredGrid>";
+    let at = xml.find(grid).ok_or("vtkio wrote no <UnstructuredGrid> element")? + grid.len();
+    let mut out = String::with_capacity(xml.len() + 1024);
+    out.push_str("<?xml version=\"1.0\"?>\n");
+    let provenance = serde_json::to_string(&meta.provenance)?;
+    for line in std::iter::once(format!("provenance {provenance}")).chain(meta.lines.iter().cloned()) {
+        out.push_str(&format!("<!-- {} -->\n", comment_safe(&line)));
+    }
+    out.push_str(&xml[..at]);
+    out.push_str("<FieldData>");
+    for (name, v) in numbers {
+        // `{:e}`: shortest round-trip digits, which VTK and numpy parse back exactly.
+        out.push_str(&format!(
+            "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfTuples=\"1\" format=\"ascii\">{v:e}</DataArray>"
+        ));
+    }
+    out.push_str("</FieldData>");
+    out.push_str(&xml[at..]);
+    Ok(out.into_bytes())
 }
 
 /// A deflection field alone as a `.vtu`: the mesh (nodes (x, z) in m, counter-clockwise

@@ -8,10 +8,18 @@
 //! touching the load point grow without bound as the mesh is refined. `near_load` marks those
 //! elements; deflections and the moments away from the load converge.
 
-use crate::scene::{Scene, SupportSet};
+use crate::report::template::render;
+use crate::report::Failure;
+use crate::scene::{Analysis, Points, Scene, SupportSet};
+use analytic::Sphere;
 use coupled::discretisation::{mesh_for, plate_properties};
+use coupled::plan::{ModelKind, ResponseValues};
+use coupled::Validity;
 use plate_fem::{FemError, Model};
 use serde::Serialize;
+
+const P_MAX: &str = include_str!("templates/field/p-max.md");
+const CAVEAT: &str = include_str!("templates/field/caveat.md");
 
 /// The JSON document.
 #[derive(Debug, Serialize)]
@@ -123,4 +131,51 @@ pub fn field(scene: &Scene, condition: &SupportSet, x: f64, z: f64, n: usize) ->
         residual,
         thickness: scene.plate.thickness(),
     })
+}
+
+/// The quasi-static plate model's response to one impact, `sphere` at `v` (m/s) on
+/// `condition` at (x, z) (m): the row `impact solve --model plate` gives for that case, with
+/// P_max, its error and the case's validity.
+pub fn quasi_static_impact(
+    scene: &Scene,
+    condition: &SupportSet,
+    sphere: &Sphere,
+    v: f64,
+    x: f64,
+    z: f64,
+) -> Result<ResponseValues, Failure> {
+    let mut one = scene.clone();
+    one.bodies = vec![sphere.clone()];
+    one.conditions = vec![condition.clone()];
+    one.velocities = vec![v];
+    one.points = Points::Pairs { pairs: vec![(x, z)] };
+    one.analyses = vec![Analysis::Responses];
+    let rows = crate::run::results(&one, &[ModelKind::Plate])?;
+    let row = rows.responses.first().and_then(|r| r.values()).ok_or("the plate model gave no response row")?;
+    Ok(row.clone())
+}
+
+/// The sentence that a quasi-static field does not describe the plate of a case the
+/// quasi-static balance is not trusted for (its quasi-static or regime-rule criterion fails);
+/// empty where it is trusted.
+pub fn quasi_static_caveat(v: &Validity) -> Result<String, Failure> {
+    let untrusted = v.quasi_static.is_some_and(|c| !c.valid) || v.regime.is_some_and(|c| !c.valid);
+    Ok(if untrusted { render("field/caveat.md", CAVEAT, &[])? } else { String::new() })
+}
+
+/// What a field scaled to the quasi-static P_max of `case` is, in words: the force, its
+/// error, the model, the case (`what`) and its validity.
+pub fn p_max_text(case: &ResponseValues, what: &str) -> Result<String, Failure> {
+    use crate::present::table::sig;
+    Ok(render(
+        "field/p-max.md",
+        P_MAX,
+        &[
+            ("p_max", sig(case.contact_force, 4)),
+            ("p_max_error", case.contact_force_error.map_or("not estimated".into(), |e| sig(e, 2))),
+            ("what", what.to_string()),
+            ("validity", crate::present::rows::validity_text(&case.validity)),
+            ("caveat", quasi_static_caveat(&case.validity)?),
+        ],
+    )?)
 }
