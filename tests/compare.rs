@@ -141,3 +141,26 @@ fn command_line_compare() {
     assert_eq!(o.status.code(), Some(1));
     assert!(!out2.exists());
 }
+
+/// The findings say only what the scene asked for: without yield velocities the force
+/// finding has no yield clause (no "from - to -"); with them it has one with numbers.
+#[test]
+fn force_finding_has_a_yield_clause_only_when_yield_velocities_are_asked_for() {
+    let finding = |s: &Scene| {
+        let a = report(s).unwrap();
+        let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
+        let findings = String::from_utf8(a.get("findings.json").unwrap().to_vec()).unwrap();
+        let line = index.lines().find(|l| l.contains("P_max of the plate against the beam")).unwrap().to_string();
+        (line, findings)
+    };
+    let (line, findings) = finding(&small_scene());
+    assert!(!line.contains("yield velocity") && !line.contains(" - "), "{line}");
+    assert!(line.ends_with("cases."), "{line}");
+    assert!(!findings.contains("from - to -") && !findings.contains("yield velocity v_y"), "{findings}");
+
+    let mut s = small_scene();
+    s.analyses.push(Analysis::YieldVelocity);
+    let (line, findings) = finding(&s);
+    assert!(line.contains("the rock's yield velocity v_y from ") && line.contains(" %"), "{line}");
+    assert!(findings.contains("yield velocity v_y from"), "{findings}");
+}

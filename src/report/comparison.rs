@@ -54,6 +54,7 @@ const SUMMARY: &str = include_str!("templates/comparison/summary.md");
 const FINDING_COMPLIANCE: &str = include_str!("templates/comparison/finding-compliance.md");
 const FINDING_ENDS: &str = include_str!("templates/comparison/finding-ends.md");
 const FINDING_FORCE: &str = include_str!("templates/comparison/finding-force.md");
+const FINDING_FORCE_YIELD: &str = include_str!("templates/comparison/finding-force-yield.md");
 const FINDING_MAP: &str = include_str!("templates/comparison/finding-map.md");
 const FINDING_FIELD: &str = include_str!("templates/comparison/finding-field.md");
 const FINDING_WIDTH: &str = include_str!("templates/comparison/finding-width.md");
@@ -743,6 +744,16 @@ fn point_findings(
         let (flo, fhi) = range(&forces);
         let (ylo, yhi) = range(&yields);
         if !forces.is_empty() {
+            // The yield clause only where the scene asked for yield velocities.
+            let yield_text = if yields.is_empty() {
+                String::new()
+            } else {
+                render(
+                    "comparison/finding-force-yield.md",
+                    FINDING_FORCE_YIELD,
+                    &[("lowest", percent(ylo)), ("highest", percent(yhi))],
+                )?
+            };
             out.push(render(
                 "comparison/finding-force.md",
                 FINDING_FORCE,
@@ -751,15 +762,23 @@ fn point_findings(
                     ("lowest", percent(flo)),
                     ("highest", percent(fhi)),
                     ("cases", forces.len().to_string()),
-                    ("vy_lowest", if yields.is_empty() { "-".into() } else { percent(ylo) }),
-                    ("vy_highest", if yields.is_empty() { "-".into() } else { percent(yhi) }),
+                    ("yield", yield_text),
                 ],
             )?);
         }
+        // A range over no cases is null, not a pair of infinities.
+        let span = |v: &[f64], (a, b): (f64, f64)| {
+            if v.is_empty() {
+                serde_json::Value::Null
+            } else {
+                serde_json::json!([a, b])
+            }
+        };
         numbers.insert(
             format!("{}: plate/beam - 1 at the scene's points", cond.name),
             serde_json::json!({
-                "compliance": [lo, hi], "contact_force": [flo, fhi], "yield_velocity": [ylo, yhi],
+                "compliance": span(&ratios, (lo, hi)), "contact_force": span(&forces, (flo, fhi)),
+                "yield_velocity": span(&yields, (ylo, yhi)),
                 "fe_error_relative": fe, "ends_with_beam_c_zero": ends, "plate_c_at_those_ends_max": ends_c,
             }),
         );
