@@ -164,3 +164,40 @@ fn force_finding_has_a_yield_clause_only_when_yield_velocities_are_asked_for() {
     assert!(line.contains("the rock's yield velocity v_y from ") && line.contains(" %"), "{line}");
     assert!(findings.contains("yield velocity v_y from"), "{findings}");
 }
+
+/// The plate at P_max is the quasi-static field at the quasi-static P_max, and the report
+/// says so with the case's validity: coal at the centre under Con 1 at 0.008 m/s is not
+/// quasi-static (t_c/T₁ = 0.085); at 1e-6 m/s t_c/T₁ = 0.51 passes but the regime rule's
+/// bound (4.4 %) does not; at 1e-8 m/s every criterion holds and no caveat is written.
+#[test]
+fn the_plate_at_p_max_carries_its_cases_validity() {
+    let caveat = "the transient deflection differs from this quasi-static field";
+    for (v, untrusted, measure) in [
+        (0.008, true, "t_c/T₁ = "),
+        (1e-6, true, "closed-form bound on the quasi-static force error = "),
+        (1e-8, false, ""),
+    ] {
+        let mut s = small_scene();
+        s.velocities = vec![v];
+        let a = report(&s).unwrap();
+        let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
+        let finding =
+            index.lines().find(|l| l.starts_with("- **The plate at the quasi-static P_max**")).expect("the finding");
+        let section = &index[index.find("## The plate at the impact's quasi-static maximum force").expect("section")..];
+        let svg = String::from_utf8(a.get("field-w.svg").unwrap().to_vec()).unwrap();
+        assert!(svg.contains("quasi-static deflection w at the quasi-static P_max"), "{v}");
+        assert!(
+            section.contains("This is the\nquasi-static field at the quasi-static P_max; validity of the case:"),
+            "{v}"
+        );
+        if untrusted {
+            for text in [finding, section, svg.as_str()] {
+                assert!(text.contains(measure), "{v}: {text}");
+            }
+            assert!(finding.contains(caveat) && section.contains(caveat), "{v}: {finding}");
+        } else {
+            assert!(finding.contains("; valid)") && !finding.contains(caveat), "{v}: {finding}");
+            assert!(!section.contains(caveat), "{v}");
+        }
+    }
+}

@@ -802,19 +802,31 @@ fn peak_field_section(scene: &Scene, pr: &Pair) -> Result<Option<(String, String
         .filter(|r| r.condition == cond.name && r.body == body.name && r.velocity == v && r.values().is_some())
         .min_by(|a, b| (a.x - cx).hypot(a.z - cz).total_cmp(&(b.x - cx).hypot(b.z - cz)));
     let Some(row) = row else { return Ok(None) };
-    let p_max = row.values().map_or(f64::NAN, |r| r.contact_force);
+    let Some(values) = row.values() else { return Ok(None) };
+    let p_max = values.contact_force;
     let what = format!("{} at {} m/s on {} at ({:.1}, {:.1}) mm", body.name, v, cond.name, row.x * 1e3, row.z * 1e3);
-    let f = crate::report::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &what)?;
+    let validity = crate::present::rows::validity_text(&values.validity);
+    let caveat = crate::report::field::quasi_static_caveat(&values.validity)?;
+    let f =
+        crate::report::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &[what.clone(), validity.clone()])?;
     let finding = render(
         "comparison/finding-field.md",
         FINDING_FIELD,
-        &[("what", what.clone()), ("w_max", sig(f.w_max * 1e6, 3)), ("stress_max", sig(f.stress_max / 1e3, 3))],
+        &[
+            ("what", what.clone()),
+            ("validity", validity.clone()),
+            ("w_max", sig(f.w_max * 1e6, 3)),
+            ("stress_max", sig(f.stress_max / 1e3, 3)),
+            ("caveat", caveat.clone()),
+        ],
     )?;
     let md = render(
         "comparison/field.md",
         FIELD,
         &[
             ("what", what),
+            ("validity", validity),
+            ("caveat", caveat),
             ("p_max", sig(p_max, 3)),
             ("mesh", crate::report::plate_field::FIELD_ELEMENTS.to_string()),
             ("w_max", sig(f.w_max * 1e6, 3)),

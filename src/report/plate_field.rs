@@ -2,7 +2,9 @@
 //! bending stress, as colour maps.
 //!
 //! The plate model is linear, so the field under the quasi-static maximum force P_max is the
-//! unit-load field ([`crate::report::field`]) times P_max. The stress is the von Mises stress
+//! unit-load field ([`crate::report::field`]) times P_max. It is the quasi-static field: where
+//! the case is not quasi-static the transient deflection differs, and the captions carry the
+//! case's validity to say so. The stress is the von Mises stress
 //! of the surface bending stresses σ = 6M/h² (M_x, M_z, M_xz at the element centres),
 //! σ_vM = √(σ_x² − σ_xσ_z + σ_z² + 3τ_xz²), the quantity a steel plate's yield is judged by.
 //! It is shown away from the load only: under a point load the Kirchhoff moment is
@@ -51,14 +53,15 @@ fn node_grid(f: &FieldFile, v: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<Vec<f64>>) {
     (xs, zs, grid)
 }
 
-/// The field of `cond` under the force `p_max` (N) at (x, z) (m), with the caption's words.
+/// The quasi-static field of `cond` under the quasi-static force `p_max` (N) at (x, z) (m),
+/// with the caption's notes (the case, its validity).
 pub fn peak_field(
     scene: &Scene,
     cond: &SupportSet,
     x: f64,
     z: f64,
     p_max: f64,
-    what: &str,
+    notes: &[String],
 ) -> Result<PeakField, Failure> {
     let f = field(scene, cond, x, z, FIELD_ELEMENTS)?;
     let w: Vec<f64> = f.point_data.w.iter().map(|w| w * p_max).collect();
@@ -67,7 +70,11 @@ pub fn peak_field(
     let mm = |v: &[f64]| v.iter().map(|v| v * 1e3).collect::<Vec<_>>();
     let impact = Mark { x: x * 1e3, y: z * 1e3, label: format!("impact point ({:.1}, {:.1}) mm", x * 1e3, z * 1e3) };
     let deflection = ColourMap {
-        title: format!("{}: deflection w at P_max = {} N", cond.name, crate::present::table::sig(p_max, 3)),
+        title: format!(
+            "{}: quasi-static deflection w at the quasi-static P_max = {} N",
+            cond.name,
+            crate::present::table::sig(p_max, 3)
+        ),
         x: Axis::linear("x (mm)"),
         y: Axis::linear("z (mm)"),
         xs: mm(&xs),
@@ -77,7 +84,7 @@ pub fn peak_field(
         bar: Axis::linear("w (µm)"),
         missing: None,
         marks: vec![impact.clone()],
-        notes: vec![what.to_string()],
+        notes: notes.to_vec(),
     };
 
     let [sx, sz, sxz] = f.stresses();
@@ -97,7 +104,7 @@ pub fn peak_field(
         vm.iter().enumerate().fold((0, f64::NEG_INFINITY), |a, (e, &v)| if v > a.1 { (e, v) } else { a });
     let (unit, unit_name) = if smax >= 1e6 { (1e6, "MPa") } else { (1e3, "kPa") };
     let stress = ColourMap {
-        title: format!("{}: surface bending stress (von Mises) at P_max", cond.name),
+        title: format!("{}: quasi-static surface bending stress (von Mises) at P_max", cond.name),
         x: Axis::linear("x (mm)"),
         y: Axis::linear("z (mm)"),
         xs: mm(&xs),
@@ -109,7 +116,7 @@ pub fn peak_field(
             "within one plate thickness of the load: thin-plate theory does not hold there, and the point-load moment is singular".into(),
         ),
         marks: vec![impact],
-        notes: vec![what.to_string()],
+        notes: notes.to_vec(),
     };
     Ok(PeakField {
         deflection_svg: deflection.svg(),
