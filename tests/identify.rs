@@ -358,3 +358,45 @@ fn the_reports_identification_scenes_are_valid() {
     dirs.dedup();
     assert_eq!(dirs.len(), impact::report::IDENTIFY_SCENES.len());
 }
+
+/// A named sensor on the candidate grid is one sensor: its channels are recorded, written and
+/// ranked once (not once as the named sensor and again as the grid point), and the placement
+/// maps still cover the whole grid.
+#[test]
+fn a_named_sensor_on_the_grid_is_ranked_once() {
+    // The 3 x 2 grid has (229.2, 360) mm, the middle of the far free edge; Con 1 only.
+    let text = with("modes = 24", "modes = 24\nsensors_mm = [[229.2, 360.0], [100.0, 100.0]]").replacen(
+        "[[conditions]]\nname = \"Con 2\"\nsupports = \"both-springs\"\nspring_stiffness_n_per_m = 5.11545e8\n",
+        "",
+        1,
+    );
+    assert!(!text.contains("Con 2"));
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("on-grid.toml");
+    std::fs::write(&scene, &text).unwrap();
+    let out = tmp.path().join("out");
+    let o = run(&out, &scene, "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+
+    // 2 named sensors and the 5 grid points not at one: 7 sensors x 3 quantities, 4 corners.
+    let features = std::fs::read_to_string(out.join("features.csv")).unwrap();
+    let rows: Vec<&str> = features.lines().filter(|l| !l.starts_with('#')).skip(1).collect();
+    assert_eq!(rows.len(), 40 * (3 * 7 + 4));
+    // No impact has a channel twice: (condition, impact, class, quantity, x, z) are unique.
+    let mut seen = std::collections::HashSet::new();
+    for r in &rows {
+        let key: Vec<&str> = r.split(',').take(6).collect();
+        assert!(seen.insert(key.clone()), "channel recorded twice: {key:?}");
+    }
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let ranking = summary["conditions"][0]["ranking"].as_array().unwrap();
+    assert!(ranking.len() >= 5);
+    let mut entries = std::collections::HashSet::new();
+    for r in ranking {
+        let key = (r["channel"].as_str().unwrap().to_string(), r["feature"].to_string());
+        assert!(entries.insert(key.clone()), "ranked twice: {key:?}");
+    }
+    for q in ["displacement", "velocity", "acceleration"] {
+        assert!(out.join(format!("c1-map-{q}.svg")).is_file(), "{q} map");
+    }
+}

@@ -44,11 +44,33 @@ const BINS: usize = 30;
 const LEVEL: f64 = 0.95;
 
 /// Channels an identification records per impact on `set`: three quantities at every named
-/// and candidate sensor, and the held or sprung corners.
+/// and candidate sensor (once where they coincide), and the held or sprung corners.
 pub fn channels_per_impact(scene: &Scene, study: &Study, set: &SupportSet) -> usize {
-    let sensors = scene.signals.sensors.len() + study.candidates_x.len() * study.candidates_z.len();
+    let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0.len();
     let corners = set.supports.corners.iter().filter(|c| !matches!(c, plate_fem::CornerSupport::Free)).count();
     3 * sensors + corners
+}
+
+/// The sensors of an identification run: the named sensors, then the candidate grid's points
+/// that are not at a named sensor; and, for each grid point in [`Study::candidates`] order,
+/// the index of the sensor that records it. A grid point at a named sensor is that sensor (the
+/// same signals), so its channels are recorded, ranked and written once, under the named
+/// sensor. Positions coincide within 1e-9 of the plate's larger side, far below the
+/// millimetre digits a scene gives them in.
+pub fn run_sensors(named: &[(f64, f64)], study: &Study, plate: &analytic::Plate) -> (Vec<(f64, f64)>, Vec<usize>) {
+    let tol = 1e-9 * plate.length().max(plate.width());
+    let mut sensors = named.to_vec();
+    let grid = study
+        .candidates()
+        .into_iter()
+        .map(|(x, z)| {
+            named.iter().position(|&(nx, nz)| (nx - x).abs() <= tol && (nz - z).abs() <= tol).unwrap_or_else(|| {
+                sensors.push((x, z));
+                sensors.len() - 1
+            })
+        })
+        .collect();
+    (sensors, grid)
 }
 
 /// Bytes of features one run holds: 6 features of 8 bytes per impact and channel.
@@ -567,10 +589,10 @@ fn run_set(
     let model = ReducedModel::new(plate, set, settings.reduced())?;
     let setup_seconds = started.elapsed().as_secs_f64();
 
-    // The main run: named sensors, then the candidate grid, every quantity, the corners.
+    // The main run: named sensors, then the candidate grid (less its points at named
+    // sensors), every quantity, the corners.
     let named = settings.sensors.len();
-    let candidates = study.candidates();
-    let sensors: Vec<(f64, f64)> = settings.sensors.iter().copied().chain(candidates.iter().copied()).collect();
+    let (sensors, grid) = run_sensors(&settings.sensors, study, plate);
     let instrument =
         Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
     let infos: Vec<ChannelInfo> =
@@ -645,11 +667,16 @@ fn run_set(
 
     // Placement maps: per quantity, the feature whose best grid value is highest.
     let mut maps_md = String::new();
-    if !candidates.is_empty() {
+    if !grid.is_empty() {
         for q in Quantity::ALL {
-            let chans: Vec<usize> = (0..infos.len())
-                .filter(|&c| infos[c].sensor.is_some_and(|s| s >= named) && infos[c].quantity == quantity_name(q))
-                .collect();
+            // One channel per grid point, in grid order: a point at a named sensor is its channel.
+            let Some(chans) = grid
+                .iter()
+                .map(|&s| infos.iter().position(|i| i.sensor == Some(s) && i.quantity == quantity_name(q)))
+                .collect::<Option<Vec<usize>>>()
+            else {
+                continue;
+            };
             let Some(top) = best(&all, &chans) else { continue };
             let values = map(&all, &chans, top.feature);
             let nz = study.candidates_z.len();
