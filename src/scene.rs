@@ -118,7 +118,15 @@ pub enum SceneError {
     NotAFile { path: String, message: String },
     /// TOML syntax or layout.
     #[error("scene {origin}: {message}")]
-    Syntax { origin: String, message: String },
+    Syntax {
+        origin: String,
+        /// The parser's message with the offending line shown.
+        message: String,
+        /// The same without the line ("unknown field `colour`, expected one of ...").
+        reason: String,
+        /// Byte range of the offending key or value in the text, where the parser knows it.
+        span: Option<std::ops::Range<usize>>,
+    },
     /// A value outside its range.
     #[error("scene {origin}: {source}")]
     OutOfRange { origin: String, source: InvalidParameter },
@@ -167,6 +175,8 @@ impl SceneSource for Scene {
         let raw: RawScene = toml::from_str(text).map_err(|e| SceneError::Syntax {
             origin: origin.to_string(),
             message: e.to_string().trim_end().to_string(),
+            reason: e.message().trim_end().to_string(),
+            span: e.span(),
         })?;
         validate(raw).map_err(|e| match e {
             Invalid::Range(source) => SceneError::OutOfRange { origin: origin.to_string(), source },

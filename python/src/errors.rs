@@ -65,6 +65,25 @@ fn range_details(origin: Option<String>, p: &InvalidParameter) -> Details {
     }
 }
 
+/// A problem of a scene given as a dict, at the field `field` as the user wrote it (which
+/// `message` names): a `SceneError` with `field` and, where known, `allowed` set.
+pub fn field_error(origin: &str, field: &str, message: String, allowed: Option<String>) -> PyErr {
+    raise(
+        format!("scene {origin}: {message}"),
+        Details { origin: Some(origin.to_string()), field: Some(field.to_string()), allowed, ..Details::default() },
+    )
+}
+
+/// A range error of a value too large for a float (a Python int), with `message` naming it
+/// as written and `value` the int itself.
+pub fn overflow_error(message: String, p: &InvalidParameter, origin: &str, value: &Py<PyAny>) -> PyErr {
+    let err = raise(message, range_details(Some(origin.to_string()), p));
+    Python::attach(|py| {
+        let _ = err.value(py).setattr("value", value.clone_ref(py));
+    });
+    err
+}
+
 /// A scene error as a Python `SceneError`, with the command line's message.
 pub fn scene_error(e: &Invalid) -> PyErr {
     let details = match e {

@@ -2,8 +2,8 @@
 //! and read by the same parser and validation as a scene file (`impact::scene`), so every
 //! rule and every error message is the command line's.
 
-use crate::errors::scene_error;
-use impact::scene::{Scene as Validated, SceneSource, DEFAULT_ORIGIN, DEFAULT_SCENE};
+use crate::errors::{field_error, overflow_error, scene_error};
+use impact::scene::{Scene as Validated, SceneError as Invalid, SceneSource, DEFAULT_ORIGIN, DEFAULT_SCENE};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
@@ -35,22 +35,49 @@ impl Scene {
     }
 }
 
+/// Where a scene dict's values came from, to name the field the user wrote in an error.
+#[derive(Default)]
+struct Dict {
+    /// Integers beyond a float's range, written into the TOML as ±inf so that the range check
+    /// of their field names it: (path, the value in short form, the Python object).
+    overflowed: Vec<(String, String, Py<PyAny>)>,
+}
+
+/// A scene dict's problem, naming the field as the user wrote it (`plate.length_mm`,
+/// `bodies[1].radius_mm`).
+fn dict_error(path: &str, message: String, allowed: Option<String>) -> PyErr {
+    field_error("<dict>", path, message, allowed)
+}
+
+/// `n` (a Python int) in short scientific form: "1e400", "-1.2345e400".
+fn short_int(n: &Bound<'_, PyAny>) -> String {
+    let text = n.str().map_or_else(|_| "?".into(), |t| t.to_string());
+    let (sign, digits) = text.strip_prefix('-').map_or(("", text.as_str()), |d| ("-", d));
+    let tail = digits.get(1..6).unwrap_or("").trim_end_matches('0');
+    let dot = if tail.is_empty() { String::new() } else { format!(".{tail}") };
+    format!("{sign}{}{dot}e{}", &digits[..1.min(digits.len())], digits.len().saturating_sub(1))
+}
+
 /// A Python value as TOML; `path` names it in errors.
-fn to_toml(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
+fn to_toml(v: &Bound<'_, PyAny>, path: &str, dict: &mut Dict) -> PyResult<toml::Value> {
     if v.is_none() {
-        return Err(PyValueError::new_err(format!(
-            "scene dict: {path} is None; leave the key out to take its default"
-        )));
+        return Err(dict_error(path, format!("{path} is None; leave the key out to take its default"), None));
     }
     if v.is_instance_of::<PyBool>() {
         return Ok(toml::Value::Boolean(v.extract()?));
     }
     if v.is_instance_of::<PyInt>() {
-        return match v.extract::<i64>() {
-            Ok(i) => Ok(toml::Value::Integer(i)),
-            // Beyond 64 bits: as a float, so that the range check names it.
-            Err(_) => Ok(toml::Value::Float(v.extract()?)),
-        };
+        if let Ok(i) = v.extract::<i64>() {
+            return Ok(toml::Value::Integer(i));
+        }
+        // Beyond 64 bits: as a float, so that the range check names it; beyond a float, as
+        // ±inf, and the value as written goes back into the message.
+        if let Ok(f) = v.extract::<f64>() {
+            return Ok(toml::Value::Float(f));
+        }
+        let negative = v.lt(0).unwrap_or(false);
+        dict.overflowed.push((path.to_string(), short_int(v), v.clone().unbind()));
+        return Ok(toml::Value::Float(if negative { f64::NEG_INFINITY } else { f64::INFINITY }));
     }
     if v.is_instance_of::<PyFloat>() {
         return Ok(toml::Value::Float(v.extract()?));
@@ -62,13 +89,12 @@ fn to_toml(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
         let mut table = toml::Table::new();
         for (k, item) in d.iter() {
             let key: String = k.extract().map_err(|_| {
-                PyTypeError::new_err(format!(
-                    "scene dict: {path} has a key {} that is not a str",
-                    k.repr().map_or_else(|_| "?".into(), |r| r.to_string())
-                ))
+                let shown = k.repr().map_or_else(|_| "?".into(), |r| r.to_string());
+                let at = if path.is_empty() { "the scene" } else { path };
+                dict_error(at, format!("{at} has a key {shown} that is not a str"), Some("str keys".into()))
             })?;
             let child = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
-            table.insert(key, to_toml(&item, &child)?);
+            table.insert(key, to_toml(&item, &child, dict)?);
         }
         return Ok(toml::Value::Table(table));
     }
@@ -77,24 +103,122 @@ fn to_toml(v: &Bound<'_, PyAny>, path: &str) -> PyResult<toml::Value> {
         return items
             .iter()
             .enumerate()
-            .map(|(i, item)| to_toml(item, &format!("{path}[{i}]")))
+            .map(|(i, item)| to_toml(item, &format!("{path}[{i}]"), dict))
             .collect::<PyResult<Vec<_>>>()
             .map(toml::Value::Array);
     }
     // numpy scalars and arrays: their Python equivalents.
     if v.hasattr("tolist")? {
-        return to_toml(&v.call_method0("tolist")?, path);
+        return to_toml(&v.call_method0("tolist")?, path, dict);
     }
     if let Ok(i) = v.call_method0("__index__") {
-        return to_toml(&i, path);
+        return to_toml(&i, path, dict);
     }
     if let Ok(f) = v.call_method0("__float__") {
-        return to_toml(&f, path);
+        return to_toml(&f, path, dict);
     }
-    Err(PyTypeError::new_err(format!(
-        "scene dict: {path} is a {}; a scene holds numbers, strings, booleans, lists and dicts",
-        v.get_type().name().map_or_else(|_| "?".into(), |n| n.to_string())
-    )))
+    let type_name = v.get_type().name().map_or_else(|_| "?".into(), |n| n.to_string());
+    Err(dict_error(
+        path,
+        format!("{path} is of type {type_name}; a scene holds numbers, strings, booleans, lists and dicts"),
+        Some("a number, string, boolean, list or dict".into()),
+    ))
+}
+
+/// TOML text of a scene dict, and where in it each key and value the user wrote lies: one
+/// line per top-level key, tables and arrays inline, so that every key and value has its own
+/// byte range to map a parser error's position back to the dict's path.
+#[derive(Default)]
+struct Emitted {
+    text: String,
+    /// (byte range, path, whether a value rather than a key) of every key and value written.
+    spans: Vec<(std::ops::Range<usize>, String, bool)>,
+}
+
+impl Emitted {
+    fn key(&mut self, key: &str, path: &str) {
+        let bare = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+        let start = self.text.len();
+        if bare {
+            self.text.push_str(key);
+        } else {
+            self.text.push_str(&toml::Value::String(key.to_string()).to_string());
+        }
+        self.spans.push((start..self.text.len(), path.to_string(), false));
+    }
+
+    fn value(&mut self, v: &toml::Value, path: &str) {
+        let start = self.text.len();
+        match v {
+            toml::Value::Table(t) => {
+                self.text.push('{');
+                for (i, (k, item)) in t.iter().enumerate() {
+                    self.text.push_str(if i == 0 { " " } else { ", " });
+                    let child = format!("{path}.{k}");
+                    self.key(k, &child);
+                    self.text.push_str(" = ");
+                    self.value(item, &child);
+                }
+                self.text.push_str(if t.is_empty() { "}" } else { " }" });
+            }
+            toml::Value::Array(a) => {
+                self.text.push('[');
+                for (i, item) in a.iter().enumerate() {
+                    if i > 0 {
+                        self.text.push_str(", ");
+                    }
+                    self.value(item, &format!("{path}[{i}]"));
+                }
+                self.text.push(']');
+            }
+            scalar => self.text.push_str(&scalar.to_string()),
+        }
+        self.spans.push((start..self.text.len(), path.to_string(), true));
+    }
+
+    fn document(table: &toml::Table) -> Self {
+        let mut e = Emitted::default();
+        for (k, v) in table {
+            e.key(k, k);
+            e.text.push_str(" = ");
+            e.value(v, k);
+            e.text.push('\n');
+        }
+        e
+    }
+
+    /// The path of the smallest key or value (only values with `values_only`) holding `span`.
+    fn path_at(&self, span: &std::ops::Range<usize>, values_only: bool) -> Option<&str> {
+        self.spans
+            .iter()
+            .filter(|(r, _, is_value)| {
+                (*is_value || !values_only) && r.start <= span.start && span.end <= r.end.max(r.start + 1)
+            })
+            .min_by_key(|(r, _, _)| r.len())
+            .map(|(_, p, _)| p.as_str())
+    }
+}
+
+/// A parser error on a dict's text as an error naming the dict's field: the key or value the
+/// parser points at, or for a missing key the table that lacks it (a value; the top level,
+/// which is no value, where none holds the position) and the key.
+fn dict_syntax_error(e: &Emitted, reason: &str, span: Option<&std::ops::Range<usize>>) -> PyErr {
+    let quoted = |prefix: &str| reason.strip_prefix(prefix).and_then(|r| r.split('`').next()).map(str::to_string);
+    let missing = quoted("missing field `");
+    let at = span.and_then(|s| e.path_at(s, missing.is_some())).unwrap_or("");
+    let path = match missing {
+        Some(name) if at.is_empty() => name,
+        Some(name) => format!("{at}.{name}"),
+        None if at.is_empty() => "the scene".to_string(),
+        None => at.to_string(),
+    };
+    // serde names the expected Rust type; say it in the user's terms.
+    let allowed = reason.split_once(", expected ").map(|(_, a)| match a {
+        "f64" | "f32" => "a number".to_string(),
+        "u8" | "u16" | "u32" | "u64" | "usize" | "i32" | "i64" => "a whole number".to_string(),
+        other => other.to_string(),
+    });
+    dict_error(&path, format!("{path}: {reason}"), allowed)
 }
 
 #[pymethods]
@@ -120,12 +244,37 @@ impl Scene {
     #[staticmethod]
     #[pyo3(signature = (d, origin = "<dict>".to_string()))]
     fn from_dict(d: &Bound<'_, PyDict>, origin: String) -> PyResult<Self> {
-        let toml::Value::Table(table) = to_toml(d.as_any(), "")? else {
+        let mut dict = Dict::default();
+        let toml::Value::Table(table) = to_toml(d.as_any(), "", &mut dict)? else {
             return Err(PyTypeError::new_err("scene dict: not a dict"));
         };
-        let text = toml::to_string(&table)
-            .map_err(|e| PyValueError::new_err(format!("scene dict: cannot be written as TOML: {e}")))?;
-        Self::parse(text, origin)
+        let emitted = Emitted::document(&table);
+        match Validated::parse(&emitted.text, &origin) {
+            Ok(scene) => match dict.overflowed.first() {
+                // Every float a scene holds is range-checked, so an overflowed integer cannot
+                // pass; should one, it is refused here rather than kept as inf.
+                Some((path, written, _)) => Err(dict_error(
+                    path,
+                    format!("{path} = {written} is beyond the range of a float"),
+                    Some("a finite number".into()),
+                )),
+                None => Ok(Self { scene, text: emitted.text, origin }),
+            },
+            Err(Invalid::Syntax { reason, span, .. }) => Err(dict_syntax_error(&emitted, &reason, span.as_ref())),
+            Err(Invalid::OutOfRange { source, .. })
+                if dict.overflowed.iter().any(|(path, _, _)| *path == source.name) =>
+            {
+                let (path, written, value) =
+                    dict.overflowed.iter().find(|(path, _, _)| *path == source.name).expect("found above");
+                let message = format!(
+                    "scene {origin}: {path} = {written} is outside the allowed range {}{}",
+                    source.allowed,
+                    if source.unit.is_empty() { String::new() } else { format!(" {}", source.unit) }
+                );
+                Err(overflow_error(message, &source, &origin, value))
+            }
+            Err(e) => Err(scene_error(&e)),
+        }
     }
 
     /// The embedded default scene: the paper's Table 1.

@@ -4,6 +4,7 @@ scene; a scene survives pickling (how Dask ships it to a worker)."""
 
 from __future__ import annotations
 
+import copy
 import pickle
 
 import numpy as np
@@ -33,8 +34,9 @@ def test_inconsistent_and_unknown_fields_are_named(paper_dict):
     assert e.value.field == "points.z_mm" and e.value.value is None
     with pytest.raises(impact.SceneError, match="unknown field `lenght_mm`"):
         impact.Scene.from_dict(dict(paper_dict, plate=dict(paper_dict["plate"], lenght_mm=1.0)))
-    with pytest.raises(ValueError, match="plate.density_kg_m3 is None"):
+    with pytest.raises(impact.SceneError, match="plate.density_kg_m3 is None") as e:
         impact.Scene.from_dict(dict(paper_dict, plate=dict(paper_dict["plate"], density_kg_m3=None)))
+    assert e.value.field == "plate.density_kg_m3"
     with pytest.raises(impact.SceneError) as e:
         impact.Scene.from_toml(REPO / "no-such-scene.toml")
     assert "cannot read scene file" in str(e.value)
@@ -85,3 +87,64 @@ def test_columns_follow_the_conventions():
         assert np.isnan(cols[c][na]).all() and np.isfinite(cols[c][~na]).all()
     assert all(s.startswith("the beam") or s for s in cols["reason"][na])
     assert r.summary["not_applicable"] == int(na.sum()) + int((~r.yields["applicable"]).sum())
+
+
+def _set(d, path, value):
+    """d with the key at `path` ("plate.length_mm", "bodies[1].name") set to `value`, or
+    removed when `value` is `_REMOVE`."""
+    keys = path.replace("[", ".").replace("]", "").split(".")
+    parent = d
+    for k in keys[:-1]:
+        parent = parent[int(k)] if k.isdigit() else parent[k]
+    if value is _REMOVE:
+        del parent[keys[-1]]
+    else:
+        parent[keys[-1]] = value
+    return d
+
+
+_REMOVE = object()
+
+
+@pytest.mark.parametrize(
+    "path, value, field, allowed, words",
+    [
+        # Unknown keys, at the top, in a table and in the n-th entry of a list of tables.
+        ("colour", "red", "colour", "one of `name`", "unknown field `colour`"),
+        ("plate.colour", "red", "plate.colour", "one of `length_mm`, `width_mm`", "unknown field `colour`"),
+        ("bodies[1].colour", "red", "bodies[1].colour", "one of `name`, `density_kg_m3`", "unknown field"),
+        # Wrong types.
+        ("plate.length_mm", "long", "plate.length_mm", "a number", 'invalid type: string "long"'),
+        ("bodies[2].radius_mm", [1.0, 2.0], "bodies[2].radius_mm", "a number", "invalid type: sequence"),
+        ("velocities.m_per_s", [0.008, "x"], "velocities.m_per_s[1]", "a number", 'string "x"'),
+        ("plate.thickness_mm", object(), "plate.thickness_mm", "a number, string, boolean, list or dict", "of type object"),
+        # Missing keys, at the top and in a list's entry.
+        ("name", _REMOVE, "name", None, "missing field `name`"),
+        ("bodies[1].name", _REMOVE, "bodies[1].name", None, "missing field `name`"),
+        # None.
+        ("plate.thickness_mm", None, "plate.thickness_mm", None, "is None"),
+    ],
+)
+def test_dict_errors_name_the_field_the_user_wrote(paper_dict, path, value, field, allowed, words):
+    with pytest.raises(impact.SceneError) as e:
+        impact.Scene.from_dict(_set(paper_dict, path, value))
+    err = e.value
+    assert err.field == field, str(err)
+    assert (allowed is None and err.allowed is None) or (allowed is not None and err.allowed.startswith(allowed)), err.allowed
+    msg = str(err)
+    assert msg.startswith(f"scene <dict>: {field}") and words in msg, msg
+    # Not the parser's view of an internal text: no line numbers, no TOML parse error.
+    assert "line" not in msg and "TOML" not in msg, msg
+
+
+def test_an_integer_beyond_a_float_is_a_range_error_naming_its_field(paper_dict):
+    for big, shown in ((10**400, "1e400"), (-(12345 * 10**396), "-1.2345e400")):
+        with pytest.raises(impact.SceneError) as e:
+            impact.Scene.from_dict(_set(copy.deepcopy(paper_dict), "plate.thickness_mm", big))
+        err = e.value
+        assert (err.field, err.allowed, err.unit, err.value) == ("plate.thickness_mm", "[0.001, 10000]", "mm", big)
+        assert str(err) == f"scene <dict>: plate.thickness_mm = {shown} is outside the allowed range [0.001, 10000] mm"
+    # Within a float but beyond 64 bits: the ordinary range error.
+    with pytest.raises(impact.SceneError) as e:
+        impact.Scene.from_dict(_set(paper_dict, "bodies[0].radius_mm", 10**30))
+    assert e.value.field == "bodies[0].radius_mm" and e.value.value == 1e30
