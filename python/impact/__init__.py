@@ -18,7 +18,7 @@ Results are columnar: a dict of numpy arrays, one entry per row, ready for
 - SI units, the unit in the column name (``contact_force_n``, ``x_m``, ``velocity_m_per_s``);
   ratios are over the sphere's kinetic energy E0 = m v^2 / 2.
 - Every row carries its validity: ``valid`` (inside every criterion), ``flags`` (the
-  criteria it is beyond, "; "-separated) and the measured ratios ``elastic_ratio``
+  criteria it is beyond, "; "-separated; empty for a valid row) and the measured ratios ``elastic_ratio``
   (delta_max/delta_my, limit 1), ``quasi_static_ratio`` (t_c/T1, limit 0.2),
   ``thin_plate_ratio`` (h/min(L, B), limit 0.05), ``regime_force_error`` (the closed-form
   regime rule's bound on the quasi-static force error, limit 0.03) and ``contacts``
@@ -29,6 +29,9 @@ Results are columnar: a dict of numpy arrays, one entry per row, ready for
 - NaN only where a quantity does not apply to a row (a not-applicable row, an error
   estimate a model does not give, a spring its support set lacks), never as a computed
   value; a column that applies to no row is left out.
+- Counts (``steps``, ``contacts``, ``elements``, ``solver_iterations``) are int64; in a
+  table that mixes rows where a count does not apply (``model="all"``, a not-applicable
+  row) the column is float64 with NaN there, as pandas does for missing integers.
 
 Every long computation releases the GIL.
 """

@@ -5,6 +5,10 @@
 //! (`contact_force_n`, `x_m`); NaN only where a quantity does not apply to a row (a row the
 //! model does not describe, an error estimate a model does not give, a spring a support set
 //! does not have), never as a computed value; a column that applies to no row is left out.
+//! Counts (`steps`, `contacts`, `elements`, `solver_iterations`) are int64; in a table that
+//! mixes rows where a count does not apply (`model="all"`, a row the model does not describe)
+//! the column is float64 with NaN in those rows, as pandas itself does for an integer column
+//! with missing values.
 
 use coupled::plan::{Evidence, ResponseRow, ResponseValues, Results, RowOutcome, YieldRow};
 use coupled::Validity;
@@ -23,6 +27,8 @@ pub enum Kind {
     Text,
     /// int64 (counts and indices that every row has).
     Int,
+    /// A count that some rows may lack: int64 where every row has it, else float64 with NaN.
+    Count,
 }
 
 enum Data {
@@ -30,6 +36,7 @@ enum Data {
     Flag(Vec<bool>),
     Text(Vec<String>),
     Int(Vec<i64>),
+    Count(Vec<Option<i64>>),
 }
 
 struct Column {
@@ -64,6 +71,7 @@ impl Table {
             Kind::Flag => Data::Flag(vec![false; self.n]),
             Kind::Text => Data::Text(vec![String::new(); self.n]),
             Kind::Int => Data::Int(vec![0; self.n]),
+            Kind::Count => Data::Count(vec![None; self.n]),
         };
         self.columns.push(Column { name: name.to_string(), data, used: false });
         self.columns.len() - 1
@@ -116,6 +124,16 @@ impl Table {
         }
     }
 
+    /// Sets a count.
+    pub fn count(&mut self, name: &str, row: usize, v: u64) {
+        let i = self.declare(name, Kind::Count);
+        let c = &mut self.columns[i];
+        if let Data::Count(d) = &mut c.data {
+            d[row] = Some(i64::try_from(v).unwrap_or(i64::MAX));
+            c.used = true;
+        }
+    }
+
     /// The used columns as a dict of numpy arrays (numbers, flags, integers) and lists
     /// (texts; the Python layer turns them into numpy str arrays).
     pub fn into_py(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
@@ -134,6 +152,13 @@ impl Table {
                 Data::Num(v) => d.set_item(c.name, PyArray1::from_vec(py, v))?,
                 Data::Flag(v) => d.set_item(c.name, PyArray1::from_vec(py, v))?,
                 Data::Int(v) => d.set_item(c.name, PyArray1::from_vec(py, v))?,
+                Data::Count(v) => match v.iter().copied().collect::<Option<Vec<i64>>>() {
+                    Some(all) => d.set_item(c.name, PyArray1::from_vec(py, all))?,
+                    None => d.set_item(
+                        c.name,
+                        PyArray1::from_vec(py, v.iter().map(|x| x.map_or(f64::NAN, |n| n as f64)).collect()),
+                    )?,
+                },
                 Data::Text(v) => d.set_item(c.name, PyList::new(py, v)?)?,
             }
         }
@@ -141,7 +166,7 @@ impl Table {
     }
 }
 
-use Kind::{Flag, Num, Text};
+use Kind::{Count, Flag, Num, Text};
 
 /// The row identity and outcome columns every result table starts with.
 const KEYS: [(&str, Kind); 7] = [
@@ -164,7 +189,7 @@ const VALIDITY: [(&str, Kind); 7] = [
     ("quasi_static_ratio", Num),
     ("thin_plate_ratio", Num),
     ("regime_force_error", Num),
-    ("contacts", Num),
+    ("contacts", Count),
 ];
 
 fn validity(t: &mut Table, row: usize, v: &Validity) {
@@ -174,7 +199,10 @@ fn validity(t: &mut Table, row: usize, v: &Validity) {
     t.opt("quasi_static_ratio", row, v.quasi_static.map(|c| c.value));
     t.num("thin_plate_ratio", row, v.thin_plate.value);
     t.opt("regime_force_error", row, v.regime.map(|c| c.value));
-    t.opt("contacts", row, v.recontact.map(|c| c.value));
+    // The criterion holds the count as its measured value (a whole number).
+    if let Some(c) = v.recontact {
+        t.count("contacts", row, c.value as u64);
+    }
 }
 
 fn keys(t: &mut Table, row: usize, model: &str, body: &str, condition: &str, (x, z): (f64, f64)) {
@@ -206,9 +234,9 @@ const RESPONSES: [(&str, Kind); 39] = [
     ("spring_ratio_error", Num),
     ("sphere_kinetic_ratio", Num),
     ("sphere_kinetic_ratio_error", Num),
-    ("solver_iterations", Num),
+    ("solver_iterations", Count),
     ("solver_residual", Num),
-    ("steps", Num),
+    ("steps", Count),
     ("time_step_s", Num),
     ("peak_force_n", Num),
     ("peak_force_error_n", Num),
@@ -216,7 +244,7 @@ const RESPONSES: [(&str, Kind); 39] = [
     ("contact_time_error_s", Num),
     ("apparent_restitution", Num),
     ("restitution_error", Num),
-    ("elements", Num),
+    ("elements", Count),
     ("steps_per_contact", Num),
     ("relative_error", Num),
     ("tolerance", Num),
@@ -256,7 +284,7 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
     }
     match v.evidence {
         Evidence::Balance { iterations, residual } => {
-            t.num("solver_iterations", row, f64::from(iterations));
+            t.count("solver_iterations", row, u64::from(iterations));
             t.num("solver_residual", row, residual);
         }
         Evidence::Transient {
@@ -280,7 +308,7 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
             final_velocity_error,
             left_for_good,
         } => {
-            t.num("steps", row, steps as f64);
+            t.count("steps", row, steps as u64);
             t.num("time_step_s", row, time_step);
             t.num("peak_force_n", row, peak_force);
             t.opt("peak_force_error_n", row, peak_force_error);
@@ -289,7 +317,7 @@ pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
             t.opt("apparent_restitution", row, apparent_restitution);
             t.opt("restitution_error", row, restitution_error);
             if elements > 0 {
-                t.num("elements", row, elements as f64);
+                t.count("elements", row, elements as u64);
             }
             t.num("steps_per_contact", row, steps_per_contact);
             t.opt("relative_error", row, relative_error);

@@ -176,7 +176,7 @@ fn transient<'py>(
         contacts.num("peak_force_n", i, c.peak_force);
         contacts.num("impulse_n_s", i, c.impulse);
         contacts.num("rebound_velocity_m_per_s", i, c.rebound_velocity);
-        contacts.num("steps", i, c.steps as f64);
+        contacts.count("steps", i, c.steps as u64);
     }
     let d = PyDict::new(py);
     d.set_item("response", row.into_py(py)?)?;

@@ -10,6 +10,7 @@ import json
 import math
 import os
 import subprocess
+import tomllib
 
 import numpy as np
 import pytest
@@ -154,3 +155,25 @@ def test_transient_identical_from_a_dict_scene(tmp_path, paper_dict):
     assert (r.responses["tolerance"] == 0.01).all()
     assert r.status == doc["status"]
     assert compare(doc["results"]["responses"], r.responses) >= 25
+
+
+def test_transient_identical_at_the_default_tolerance(tmp_path):
+    """Neither side is given a tolerance: both must take the default (1e-4) and choose the same
+    mesh and step for it. The README's example case (clamped + props, coal at the centre at
+    0.008 m/s) has an estimate of about 8e-5 on the first level, close to the tolerance, so a
+    drift in either side's default or its choice shows here; it runs in about a second."""
+    with open(REPO / "scenes" / "clamped-edge-props.toml", "rb") as f:
+        d = tomllib.load(f)
+    d["conditions"] = [c for c in d["conditions"] if c["name"] == "clamped + props"]
+    d["points"] = {"pairs_mm": [[229.2, 180.0]]}
+    d["analyses"] = ["responses"]
+    scene = impact.Scene.from_dict(d)
+    path = tmp_path / "scene.toml"
+    path.write_text(scene.to_toml_str())
+    doc = cli(path, "transient")
+    r = impact.solve(scene, model="transient")
+    assert (r.responses["tolerance"] == 1e-4).all()
+    assert r.status == doc["status"]
+    assert compare(doc["results"]["responses"], r.responses) >= 25
+    row = doc["results"]["responses"][0]["outcome"]["evidence"]
+    assert (r.responses["elements"][0], r.responses["steps_per_contact"][0]) == (row["elements"], row["steps_per_contact"])

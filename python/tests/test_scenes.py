@@ -87,6 +87,12 @@ def test_columns_follow_the_conventions():
         assert np.isnan(cols[c][na]).all() and np.isfinite(cols[c][~na]).all()
     assert all(s.startswith("the beam") or s for s in cols["reason"][na])
     assert r.summary["not_applicable"] == int(na.sum()) + int((~r.yields["applicable"]).sum())
+    # A count some rows lack (the not-applicable ones) is float with NaN there; where every
+    # row has it, an integer.
+    it = cols["solver_iterations"]
+    assert it.dtype == np.float64 and np.isnan(it[na]).all() and (it[~na] == np.round(it[~na])).all()
+    plate = impact.solve(REPO / "scenes" / "clamped-edge-props.toml", model="plate").responses
+    assert plate["solver_iterations"].dtype == np.int64 and (plate["solver_iterations"] > 0).all()
 
 
 def _set(d, path, value):

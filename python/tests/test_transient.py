@@ -66,8 +66,12 @@ def test_force_and_contact_time_meet_hertz(run):
     assert abs(r["contact_force_n"][0] / force - 1.0) <= 0.6 * share + 5e-5
     assert abs(r["contact_time_s"][0] / time - 1.0) <= share + 5e-5
     # The validity status: inside every criterion, one contact, left for good.
-    assert bool(r["valid"][0]) and r["flags"][0] == "" and r["contacts"][0] == 1.0
+    assert bool(r["valid"][0]) and r["flags"][0] == "" and r["contacts"][0] == 1
     assert run.left_for_good
+    # Counts are integers: every row of this table has them.
+    for c in ("contacts", "steps"):
+        assert r[c].dtype == np.int64, (c, r[c].dtype)
+    assert run.contacts["steps"].dtype == np.int64 and run.contacts["steps"][0] > 0
 
 
 def test_history_conserves_energy_at_e_equal_1(run):
