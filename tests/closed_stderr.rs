@@ -10,11 +10,14 @@ const BIN: &str = env!("CARGO_BIN_EXE_impact");
 
 /// Runs `impact args` with standard error a pipe whose read end is already closed, so every
 /// write to it fails with EPIPE at once (not by a race with the reader). Returns the exit
-/// code; standard output is discarded.
+/// code; standard output is discarded. The pipe is the standard input of a `true` that has
+/// exited: its read end died with that process, and the parent never holds one.
 fn with_closed_stderr(args: &[&str]) -> Option<i32> {
-    let (reader, writer) = std::io::pipe().expect("a pipe");
-    drop(reader);
-    let status = Command::new(BIN).args(args).stdout(Stdio::null()).stderr(writer).status().expect("impact runs");
+    let mut reader = Command::new("true").stdin(Stdio::piped()).spawn().expect("true runs");
+    let writer = reader.stdin.take().expect("a pipe");
+    assert!(reader.wait().expect("true ends").success());
+    let status =
+        Command::new(BIN).args(args).stdout(Stdio::null()).stderr(Stdio::from(writer)).status().expect("impact runs");
     status.code()
 }
 

@@ -224,7 +224,7 @@ fn deflection_map_agrees_with_the_plate_compliance() {
     let cond = &scene.conditions[0];
     let (x, z) = (scene.plate.length() / 2.0, scene.plate.width() / 2.0);
     let p = 1.5;
-    let f = peak_field(&scene, cond, x, z, p, "test").expect("field");
+    let f = peak_field(&scene, cond, x, z, p, &["test".to_string()]).expect("field");
     render("deflection", &f.deflection_svg);
     render("stress", &f.stress_svg);
     // One path per colour, not one element per cell: the 80-element maps were 360-370 kB.
