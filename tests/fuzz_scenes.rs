@@ -1125,7 +1125,7 @@ fn json_nulls(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
     match v {
         serde_json::Value::Null => {
             let key = path.rsplit('.').next().unwrap_or("");
-            if !["elastic", "quasi_static", "recontact"].contains(&key) {
+            if !["elastic", "quasi_static", "recontact", "regime", "finished", "discretisation"].contains(&key) {
                 out.push(path.to_string());
             }
         }

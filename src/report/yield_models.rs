@@ -36,7 +36,11 @@ pub const PLATE_LEVELS: u32 = 2;
 /// Relative width of the bracket that closes each transient root: hi/lo - 1.
 pub const ROOT_TOLERANCE: f64 = coupled::plan::YIELD_ROOT_TOLERANCE;
 /// The finer transient discretisation that estimates the default one's error.
-pub const FINE: TransientSettings = TransientSettings { elements: 40, steps_per_contact: 400.0, window_contacts: 20.0 };
+pub const FINE: TransientSettings = TransientSettings {
+    elements: 40,
+    steps_per_contact: 400.0,
+    window_contacts: coupled::transient::case::WINDOW_HERTZ_TIMES,
+};
 /// Points of the beam and plate curves (L in 100 parts, as section IV-A).
 const SWEEP: usize = 101;
 /// Points of the transient curves (each a root of ~7 time integrations).
@@ -78,7 +82,9 @@ pub fn transient_yield(
         let mut f = |lv: f64| -> Result<f64, ModelError> {
             runs += 1;
             let s = striker(&scene.plate, body, scene.restitution, lv.exp());
-            Ok((case.run(set, &s, x, z)?.compression_max / d_my).ln())
+            // δ_max is the first contact's: the run need not follow the later ones.
+            let steps = case.settings().steps_per_contact;
+            Ok((case.first_contact(set, &s, x, z, steps)?.compression_max / d_my).ln())
         };
         log_root(&mut f, v_rigid.ln(), ROOT_TOLERANCE)?
     };
