@@ -28,6 +28,8 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 const TEMPLATE: &str = include_str!("templates/regimes.md");
+/// The main report's line on the study.
+const FINDING: &str = include_str!("templates/regimes-finding.md");
 
 /// Plate sizes of the map: L and B times these.
 pub const SCALES: [f64; 3] = [0.5, 1.0, 2.0];
@@ -668,6 +670,12 @@ fn horizontal(name: &str, y: f64, series: &[Series]) -> Series {
 
 /// The regime-maps report.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
+    Ok(study(scene)?.0)
+}
+
+/// [`report`], and its finding for the main report: one Markdown bullet line linking the
+/// study (nested in the folder `regimes`).
+pub fn study(scene: &Scene) -> Result<(Artifacts, String), Failure> {
     let t0 = Instant::now();
     let families = families(scene);
     let mut jobs: Vec<Job> = Vec::new();
@@ -870,5 +878,23 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         ],
     )?;
     a.add("index.md", md);
-    Ok(a)
+    let finding = render(
+        "regimes-finding.md",
+        FINDING,
+        &[
+            ("cases", centre.len().to_string()),
+            ("rule_trusted", rule.trusted.to_string()),
+            ("rule_wrong", rule.trusted_wrong.to_string()),
+            ("rule_worst", format!("{:.1}", 100.0 * rule.worst_trusted)),
+            ("ratio_trusted", ratio.trusted.to_string()),
+            ("ratio_wrong", ratio.trusted_wrong.to_string()),
+            ("ratio_worst", format!("{:.0}", 100.0 * ratio.worst_trusted)),
+            ("points_cases", points_n.to_string()),
+            ("points_trusted", rule_points.trusted.to_string()),
+            ("points_wrong", rule_points.trusted_wrong.to_string()),
+            ("limit", format!("{}", 100.0 * RULE_LIMIT)),
+            ("qs_ratio", QUASI_STATIC_MIN_RATIO.to_string()),
+        ],
+    )?;
+    Ok((a, finding))
 }
