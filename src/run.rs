@@ -14,7 +14,10 @@ use coupled::{BeamModel, PlateModel};
 /// bracketed root in v to 1e-6, usually 5-10 runs; counted at the most). On the 20-element
 /// mesh a run takes 0.05-0.15 s here, so 2000 of them a few minutes; at the default tolerance
 /// some cases run on the 40-element mesh, about four times dearer, so a request at the limit
-/// can take tens of minutes (`--tolerance 1e-3` keeps the paper's cases on the first).
+/// can take tens of minutes (`--tolerance 1e-3` keeps the paper's cases on the first). A run
+/// that the stopping rule does not end early follows the sphere through every contact for up
+/// to 200 Hertz times ([`coupled::transient::case::WINDOW_HERTZ_TIMES`]): a heavy sphere struck
+/// again and again by a thin plate costs up to a few times a single contact's run.
 pub const MAX_TRANSIENT_RUNS: usize = 2000;
 
 /// Memory a result row takes, bytes, through to its JSON: measured 3.7 KB on a 10,000-point
