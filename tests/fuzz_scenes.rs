@@ -1120,12 +1120,15 @@ fn check_rendered(stats: &mut Stats, label: &str, results: &Results) {
     }
 }
 
-/// Paths of nulls in `v`, except the optional validity criteria a model does not use.
+/// Paths of nulls in `v`, except the optional validity criteria and transient error
+/// estimates a model does not use.
 fn json_nulls(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
     match v {
         serde_json::Value::Null => {
             let key = path.rsplit('.').next().unwrap_or("");
-            if !["elastic", "quasi_static", "recontact", "regime", "finished", "discretisation"].contains(&key) {
+            if !["elastic", "quasi_static", "recontact", "regime", "finished", "discretisation", "state_errors"]
+                .contains(&key)
+            {
                 out.push(path.to_string());
             }
         }
