@@ -156,3 +156,130 @@ fn command_line_dynamic_rejects_bad_scene() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("velocities.m_per_s[0]"));
     assert!(!out.exists());
 }
+
+// ---------------------------------------------------------------- what the report says
+
+/// The default scene cut to one body, one support set, one transient point and velocity,
+/// each case on the starting discretisation (20 elements, 200 steps per Hertz time).
+fn one_case(analyses: Vec<impact::scene::Analysis>) -> Scene {
+    let scene = Scene::default_scene();
+    let (l, b) = (scene.plate.length(), scene.plate.width());
+    Scene {
+        bodies: vec![scene.bodies[0].clone()],
+        conditions: vec![scene.conditions[0].clone()],
+        points: impact::scene::Points::Pairs { pairs: vec![(l / 2.0, b / 2.0)] },
+        transient_points: vec![(l / 2.0, b / 2.0)],
+        velocities: vec![0.008],
+        analyses,
+        transient_discretisation: coupled::transient::Discretisation::Fixed {
+            settings: coupled::transient::TransientSettings::default(),
+        },
+        ..scene
+    }
+}
+
+/// The contact-laws study (twelve transient runs with their error estimates) is its own
+/// analysis: `impact dynamic` writes its table and figure only for a scene that names
+/// "contact-laws", and says how to ask for it otherwise. The files written are the check.
+#[test]
+fn contact_laws_run_only_when_asked() {
+    use impact::scene::Analysis;
+    let without = impact::report::transient::report(&one_case(vec![Analysis::Transient])).unwrap();
+    let paths: Vec<String> = without.paths().map(|p| p.display().to_string()).collect();
+    assert!(!paths.iter().any(|p| p.starts_with("contact-laws")), "{paths:?}");
+    let index = String::from_utf8(without.get("index.md").unwrap().to_vec()).unwrap();
+    assert!(index.contains("add \"contact-laws\" to its analyses"), "{index}");
+    // The default scene asks for it, so `impact report` has the section.
+    assert!(Scene::default_scene().wants(Analysis::ContactLaws));
+}
+
+/// The same study when asked: twelve runs, one row each (about 10 s on the starting
+/// discretisation).
+#[test]
+fn contact_laws_run_when_asked() {
+    use impact::scene::Analysis;
+    let with = impact::report::transient::report(&one_case(vec![Analysis::Transient, Analysis::ContactLaws])).unwrap();
+    let csv = String::from_utf8(with.get("contact-laws.csv").expect("asked for").to_vec()).unwrap();
+    assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 1 + 12, "{csv}");
+    assert!(with.get("contact-laws.svg").is_some());
+}
+
+/// The median of the case times: the middle value, or the mean of the two middle ones.
+#[test]
+fn median_of_an_even_count_is_the_mean_of_the_middle_two() {
+    use impact::report::transient::median;
+    assert_eq!(median(&[367.54, 143.0]), Some(255.27));
+    assert_eq!(median(&[3.0, 1.0, 2.0]), Some(2.0));
+    assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), Some(2.5));
+    assert_eq!(median(&[f64::NAN, 5.0]), Some(5.0));
+    assert_eq!(median(&[]), None);
+}
+
+/// A heavy sphere on a thin plate (the paper's plate at 3 mm, a 60 mm gangue sphere of 2.2 kg
+/// against the plate's 3.9 kg, at the middle of the plate, 0.008 m/s) is struck twice, the
+/// second time harder than the first. A window of 5 Hertz times ends in the middle of the
+/// sequence: such a run has no "after the impact", and says so; with the default window the
+/// stopping rule proves the sphere gone, and the peak over every contact is the second
+/// contact's.
+#[test]
+fn a_run_cut_by_its_window_is_not_after_the_impact() {
+    use analytic::{Elastic, Plate, RockStrength, Sphere};
+    use coupled::transient::{case::striker, TransientCase, TransientSettings};
+    use impact::report::transient::{end_state, peak_over_contacts};
+    let p = Plate::new(0.4584, 0.360, 0.003, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap();
+    let big = Sphere::new(
+        "big gangue",
+        2400.0,
+        0.060,
+        Elastic::new(16e9, 0.28).unwrap(),
+        RockStrength::new(37.68e6, 37.0).unwrap(),
+    )
+    .unwrap();
+    let con1 = coupled::SupportSet::new("Con 1", Supports::con1());
+    let s = striker(&p, &big, 0.65, 0.008);
+    let (x, z) = (p.length() / 2.0, p.width() / 2.0);
+    let short = TransientCase::new(&p, TransientSettings { window_contacts: 5.0, ..TransientSettings::default() })
+        .unwrap()
+        .run(&con1, &s, x, z)
+        .unwrap();
+    assert!(short.left_at.is_none());
+    assert!(end_state(&short).starts_with("window ended"), "{}", end_state(&short));
+    let whole = TransientCase::new(&p, TransientSettings::default()).unwrap().run(&con1, &s, x, z).unwrap();
+    assert_eq!(end_state(&whole), "sphere left");
+    assert!(whole.contacts.len() >= 2, "{:?}", whole.contacts);
+    let second = whole.contacts[1].peak_force;
+    assert!(second > 1.05 * whole.force_max_interpolated, "second {second}, first {}", whole.force_max_interpolated);
+    assert_eq!(peak_over_contacts(&whole), whole.contacts.iter().skip(1).map(|c| c.peak_force).fold(0.0, f64::max));
+}
+
+/// The dynamic report's findings name the impacts struck more than once (with the later peak
+/// against the first) and the cases beyond the elastic range under an elastic law, and each
+/// case's validity column says what it is beyond. The heavy sphere of the test above at 0.008
+/// m/s (twice struck, δ_max/δ_my 0.78) and 0.03 m/s (four contacts, beyond δ_my).
+#[test]
+fn findings_name_recontact_and_elastic_laws_beyond_yield() {
+    use analytic::{Elastic, Plate, RockStrength, Sphere};
+    use impact::scene::Analysis;
+    let p = Plate::new(0.4584, 0.360, 0.003, 7850.0, Elastic::new(210e9, 0.3).unwrap()).unwrap();
+    let big = Sphere::new(
+        "big gangue",
+        2400.0,
+        0.060,
+        Elastic::new(16e9, 0.28).unwrap(),
+        RockStrength::new(37.68e6, 37.0).unwrap(),
+    )
+    .unwrap();
+    let scene =
+        Scene { plate: p, bodies: vec![big], velocities: vec![0.008, 0.03], ..one_case(vec![Analysis::Transient]) };
+    let (a, found) = impact::report::transient::study(&scene).unwrap();
+    assert_eq!(found.numbers["struck_more_than_once"], 2, "{}", found.numbers);
+    assert_eq!(found.numbers["beyond_elastic_with_elastic_law"], 1, "{}", found.numbers);
+    assert!(found.contacts.contains("2 of 2 cases are struck more than once"), "{}", found.contacts);
+    assert!(found.elastic.contains("1 of 2 cases compress the rock beyond δ_my"), "{}", found.elastic);
+    let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
+    assert!(index.contains(found.contacts.trim()) && index.contains(found.elastic.trim()));
+    let csv = String::from_utf8(a.get("transient-vs-quasistatic.csv").unwrap().to_vec()).unwrap();
+    assert!(csv.contains("re-contact") && csv.contains("beyond elastic range; re-contact"), "{csv}");
+    let json: serde_json::Value = serde_json::from_slice(a.get("findings.json").unwrap()).unwrap();
+    assert!(json["findings"].as_array().unwrap().iter().any(|f| f.as_str().unwrap().contains("struck more than once")));
+}

@@ -5,7 +5,7 @@
 //! deflection map is also checked against the plate model's compliance (reciprocity).
 
 use impact::present::plot::{
-    common_format, linear_ticks, log_ticks, viridis, Axis, ColourMap, Mark, Matrix, Plot, Scale, Series,
+    common_format, linear_ticks, log_ticks, viridis, Axis, ColourMap, Mark, Matrix, Plot, Scale, Series, Verdict,
 };
 use impact::report::plate_field::peak_field;
 use impact::scene::{Scene, SceneSource};
@@ -249,11 +249,11 @@ fn deflection_map_agrees_with_the_plate_compliance() {
 fn yes_no_matrix_renders() {
     let m = Matrix {
         title: "t".into(),
-        columns: vec!["beam".into(), "plate".into()],
+        columns: vec!["beam".into(), "plate".into(), "transient".into()],
         rows: vec!["a statement long enough to wrap onto a second line of the figure, which it must do".into()],
-        cells: vec![vec![Some(true), Some(false)]],
+        cells: vec![vec![Verdict::Holds, Verdict::Fails, Verdict::NotResolved]],
     };
     let svg = m.svg();
     render("matrix", &svg);
-    assert!(svg.contains(">yes<") && svg.contains(">no<"));
+    assert!(svg.contains(">yes<") && svg.contains(">no<") && svg.contains(">not resolved<"));
 }

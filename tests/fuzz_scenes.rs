@@ -1120,12 +1120,15 @@ fn check_rendered(stats: &mut Stats, label: &str, results: &Results) {
     }
 }
 
-/// Paths of nulls in `v`, except the optional validity criteria a model does not use.
+/// Paths of nulls in `v`, except the optional validity criteria and transient error
+/// estimates a model does not use.
 fn json_nulls(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
     match v {
         serde_json::Value::Null => {
             let key = path.rsplit('.').next().unwrap_or("");
-            if !["elastic", "quasi_static", "recontact"].contains(&key) {
+            if !["elastic", "quasi_static", "recontact", "regime", "finished", "discretisation", "state_errors"]
+                .contains(&key)
+            {
                 out.push(path.to_string());
             }
         }
@@ -1354,7 +1357,7 @@ fn with(from: &str, to: &str) -> String {
 }
 
 /// The analyses and velocities of the default scene.
-const ANALYSES: &str = "analyses = [\n    \"responses\", \"yield-velocity\", \"width-maps\", \"aspect-ratio\", \"error-vs-time\", \"extreme-cases\",\n    \"verification\", \"transient\", \"size-map\", \"regime-maps\", \"paper-studies\",\n]";
+const ANALYSES: &str = "analyses = [\n    \"responses\", \"yield-velocity\", \"width-maps\", \"aspect-ratio\", \"error-vs-time\", \"extreme-cases\",\n    \"verification\", \"transient\", \"contact-laws\", \"size-map\", \"regime-maps\", \"paper-studies\",\n]";
 const VELOCITIES: &str =
     "[velocities]\n# 0.008 m/s: Table 3, Fig. 10; 0.0025 m/s: Tables 6-12, Fig. 17.\nm_per_s = [0.008, 0.0025]";
 /// The points line of the default scene, for replacing the points.

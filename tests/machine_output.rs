@@ -51,7 +51,7 @@ fn small_scene() -> String {
     let end = start + s[start..].find("]\n").unwrap() + 1;
     s.replace_range(
         start..end,
-        r#"analyses = ["responses", "yield-velocity", "width-maps", "aspect-ratio", "error-vs-time", "extreme-cases", "transient"]"#,
+        r#"analyses = ["responses", "yield-velocity", "width-maps", "aspect-ratio", "error-vs-time", "extreme-cases", "transient", "contact-laws"]"#,
     );
     s.push_str("\n[signals]\nwindow_ms = 5.0\nrate_hz = 10000.0\nmodes = 24\nsensors_mm = [[100.0, 100.0]]\n");
     s

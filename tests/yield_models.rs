@@ -142,6 +142,67 @@ fn the_study_renders() {
     let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
     assert!(!index.contains("{{"));
     assert!(!index.contains(" s |"));
+    // The text and the table agree: where the prose finds the supports' effect on the
+    // transient v_y within its resolution, the statement resting on it is "not resolved"
+    // under the transient model, never "no".
+    let statements = String::from_utf8(a.get("statements.csv").unwrap().to_vec()).unwrap();
+    let supports = statements.lines().find(|l| l.starts_with("Elastic supports raise v_y")).expect("the statement");
+    let transient = supports.split(',').nth(3).unwrap();
+    if index.contains("the transient model does not resolve the effect of") {
+        assert_eq!(transient, "not resolved", "{supports}");
+    } else {
+        assert_ne!(transient, "not resolved", "{supports}");
+    }
     println!("{index}");
     println!("{}", String::from_utf8(a.get("timing.md").unwrap().to_vec()).unwrap());
+}
+
+/// A scene of one's own that asks for yield velocities and the transient study (and not for
+/// the paper's studies) gets the three-model yield study on its own plate and cases, and the
+/// comparison's page shows it beside the transient section. The plate here is 12 mm thick, so
+/// the paper's values cannot pass for it: the beam column must be eqs. 51-54 with this
+/// plate's beam compliance (the closed form, evaluated here independently of the study).
+#[test]
+fn a_user_scene_gets_the_yield_study_on_its_own_cases() {
+    use impact::scene::{Analysis, Points, Scene, SceneSource};
+    let base = Scene::default_scene();
+    let plate = Plate::new(0.4584, 0.360, 0.012, 7850.0, base.plate.material()).unwrap();
+    let point = (0.2292, 0.18);
+    let scene = Scene {
+        name: "thick".into(),
+        plate,
+        bodies: vec![base.bodies[0].clone()],
+        conditions: vec![base.conditions[0].clone()],
+        points: Points::Pairs { pairs: vec![point] },
+        transient_points: vec![point],
+        velocities: vec![0.008],
+        analyses: vec![Analysis::Responses, Analysis::YieldVelocity, Analysis::Transient],
+        transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
+        ..base.clone()
+    };
+    let a = impact::report::scene_report(&scene).unwrap();
+    let paths: Vec<String> = a.paths().map(|p| p.display().to_string()).collect();
+    for f in ["yield-three-models/index.md", "yield-three-models/yield-three-models.csv", "dynamic/index.md"] {
+        assert!(paths.iter().any(|p| p == f), "{f}: {paths:?}");
+    }
+    assert!(!paths.iter().any(|p| p.starts_with("paper-studies")), "{paths:?}");
+    let csv = String::from_utf8(a.get("yield-three-models/yield-three-models.csv").unwrap().to_vec()).unwrap();
+    let rows: Vec<&str> = csv.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    let beam_vy: f64 = rows[1].split(',').nth(4).unwrap().parse().unwrap();
+    let body = &scene.bodies[0];
+    let k = contact_stiffness(body, plate.material());
+    let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
+    // Con 1 beam compliance x²y²/(3EIL), I = Bh³/12, and eq. 54 written out.
+    let (l, x) = (plate.length(), point.0);
+    let ei = 210e9 * plate.width() * plate.thickness().powi(3) / 12.0;
+    let c = x * x * (l - x) * (l - x) / (3.0 * ei * l);
+    let by_hand = (2.0 / body.mass()
+        * (2.0 * k / (5.0 * scene.restitution) * d_my.powf(2.5) + 0.5 * c * k * k * d_my.powi(3)))
+    .sqrt();
+    assert!((beam_vy / by_hand - 1.0).abs() < 1e-12, "beam {beam_vy} vs {by_hand}");
+    let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
+    assert!(index.contains("](yield-three-models/index.md)") && index.contains("](dynamic/index.md)"), "{index}");
+    assert!(index.contains("## Transient: contacts, errors and regimes"), "{index}");
+    assert!(index.contains("The yield velocity under three models, coal"), "{index}");
 }

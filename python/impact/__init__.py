@@ -111,7 +111,7 @@ class Results:
             validity criterion; ...").
         summary: counts of rows by validity (computed, valid, beyond_elastic,
             not_quasi_static, beyond_thin_plate, outside_regime_rule, recontact,
-            not_applicable).
+            unfinished, above_tolerance, not_applicable).
     """
 
     scene: str

@@ -181,7 +181,9 @@ const KEYS: [(&str, Kind); 7] = [
 
 /// The validity columns: whether every criterion holds, the failing ones by name, and each
 /// criterion's measured value (its limit: 1, 0.2, 0.05, 3 % for the regime rule's bound on
-/// the quasi-static force error, 1 contact).
+/// the quasi-static force error, 1 contact). The transient criteria "impact finished" and
+/// "discretisation" have their values among the transient columns (`left_for_good`,
+/// `relative_error` against `tolerance`).
 const VALIDITY: [(&str, Kind); 7] = [
     ("valid", Flag),
     ("flags", Text),
@@ -417,6 +419,8 @@ pub fn results<'py>(py: Python<'py>, r: &Results) -> PyResult<Bound<'py, PyDict>
         ("beyond_thin_plate", s.beyond_thin_plate),
         ("outside_regime_rule", s.outside_regime_rule),
         ("recontact", s.recontact),
+        ("unfinished", s.unfinished),
+        ("above_tolerance", s.above_tolerance),
         ("not_applicable", s.not_applicable),
     ] {
         summary.set_item(k, v)?;

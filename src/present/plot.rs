@@ -1021,8 +1021,72 @@ pub struct Matrix {
     pub title: String,
     pub columns: Vec<String>,
     pub rows: Vec<String>,
-    /// cells[row][column]: Some(true) holds, Some(false) fails, None not tested.
-    pub cells: Vec<Vec<Option<bool>>>,
+    /// cells[row][column]: the statement's verdict under the column's model.
+    pub cells: Vec<Vec<Verdict>>,
+}
+
+/// A statement's verdict under one model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verdict {
+    /// The data show it.
+    Holds,
+    /// The data contradict it.
+    Fails,
+    /// A difference it rests on is within the model's resolution (its error estimate), and
+    /// nothing contradicts it: the model cannot tell.
+    NotResolved,
+    /// Not tested under this model.
+    NotTested,
+}
+
+impl Verdict {
+    /// The word tables and figures print.
+    pub fn word(self) -> &'static str {
+        match self {
+            Verdict::Holds => "yes",
+            Verdict::Fails => "no",
+            Verdict::NotResolved => "not resolved",
+            Verdict::NotTested => "–",
+        }
+    }
+
+    /// The verdict on a statement made of parts: it fails if any part fails, holds if every
+    /// part holds, and is not resolved otherwise (an empty statement holds).
+    pub fn all(parts: impl IntoIterator<Item = Verdict>) -> Verdict {
+        let mut out = Verdict::Holds;
+        for v in parts {
+            match v {
+                Verdict::Fails => return Verdict::Fails,
+                Verdict::NotResolved | Verdict::NotTested if out == Verdict::Holds => out = v,
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// Whether `a` exceeds `b` (`strict`) or is at least `b`, each known to within an absolute
+    /// `resolution`: a difference within the resolution is not resolved (a zero resolution,
+    /// an exact model, always decides).
+    pub fn compare(a: f64, b: f64, resolution: f64, strict: bool) -> Verdict {
+        let d = a - b;
+        if resolution > 0.0 && d.abs() <= resolution {
+            Verdict::NotResolved
+        } else if d > 0.0 || (!strict && d == 0.0) {
+            Verdict::Holds
+        } else {
+            Verdict::Fails
+        }
+    }
+}
+
+impl From<bool> for Verdict {
+    fn from(holds: bool) -> Self {
+        if holds {
+            Verdict::Holds
+        } else {
+            Verdict::Fails
+        }
+    }
 }
 
 /// `text` broken at spaces into lines of at most `width` characters.
@@ -1043,8 +1107,8 @@ fn wrap(text: &str, width: usize) -> Vec<String> {
 }
 
 impl Matrix {
-    /// The SVG document: green "yes", orange "no" (a colour-blind-safe pair, and the words
-    /// say it too); long statements wrap.
+    /// The SVG document: green "yes", orange "no", sky blue "not resolved" (colour-blind-safe
+    /// colours, and the words say it too); long statements wrap.
     pub fn svg(&self) -> String {
         const WRAP: usize = 70;
         let rows: Vec<Vec<String>> = self.rows.iter().map(|r| wrap(r, WRAP)).collect();
@@ -1083,10 +1147,12 @@ impl Matrix {
                 );
             }
             for (c, v) in self.cells[r].iter().enumerate() {
-                let (fill, word, ink) = match v {
-                    Some(true) => ("#009E73", "yes", "white"),
-                    Some(false) => ("#E69F00", "no", "black"),
-                    None => ("#eeeeee", "–", "#555555"),
+                let word = v.word();
+                let (fill, ink) = match v {
+                    Verdict::Holds => ("#009E73", "white"),
+                    Verdict::Fails => ("#E69F00", "black"),
+                    Verdict::NotResolved => ("#56B4E9", "black"),
+                    Verdict::NotTested => ("#eeeeee", "#555555"),
                 };
                 let x = row_w + col_w * c as f64;
                 let _ = write!(
@@ -1116,6 +1182,22 @@ mod tests {
         let svg = line_plot("t", "x", "y", &s, Scale::Linear);
         assert!(svg.starts_with("<svg"));
         assert!(svg.contains("Con 2"));
+    }
+
+    #[test]
+    fn verdicts_combine_and_compare_within_resolution() {
+        use Verdict::*;
+        assert_eq!(Verdict::all([Holds, Holds]), Holds);
+        assert_eq!(Verdict::all([Holds, NotResolved, Holds]), NotResolved);
+        assert_eq!(Verdict::all([NotResolved, Fails]), Fails);
+        // A difference smaller than what the model resolves decides nothing.
+        assert_eq!(Verdict::compare(1.0 + 1e-5, 1.0, 3.5e-5, true), NotResolved);
+        assert_eq!(Verdict::compare(1.0 - 1e-5, 1.0, 3.5e-5, true), NotResolved);
+        assert_eq!(Verdict::compare(1.0 + 1e-4, 1.0, 3.5e-5, true), Holds);
+        assert_eq!(Verdict::compare(1.0 - 1e-4, 1.0, 3.5e-5, true), Fails);
+        // An exact model decides every difference, and "at least" admits equality.
+        assert_eq!(Verdict::compare(1.0, 1.0, 0.0, false), Holds);
+        assert_eq!(Verdict::compare(1.0, 1.0, 0.0, true), Fails);
     }
 
     #[test]

@@ -46,8 +46,6 @@ const WIDTH: &str = include_str!("templates/comparison/width.md");
 const EXTREME: &str = include_str!("templates/comparison/extreme.md");
 const ERROR_PAGE: &str = include_str!("templates/comparison/error-vs-time-page.md");
 const ERROR_LINK: &str = include_str!("templates/comparison/error-vs-time.md");
-const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
-const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
 const FIELD: &str = include_str!("templates/comparison/field.md");
 const METHOD_TEXT: &str = include_str!("templates/comparison/method.md");
 const SUMMARY: &str = include_str!("templates/comparison/summary.md");
@@ -397,9 +395,24 @@ pub fn width_table(rows: &[WidthRow]) -> Table {
     t
 }
 
+/// What the studies nested beside the comparison add to its page: lines among its findings
+/// and sections after its figures (links relative to the page).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StudySections {
+    /// Markdown bullet lines, each ending in a newline.
+    pub findings: Vec<String>,
+    /// Markdown sections.
+    pub sections: String,
+}
+
 /// Everything `impact compare` writes for `scene`: the findings first (computed here), the
 /// figures, the detail tables, the studies the scene names, the method last.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
+    report_with(scene, &StudySections::default())
+}
+
+/// [`report`] with the findings and sections of the studies nested beside it.
+pub fn report_with(scene: &Scene, extra: &StudySections) -> Result<Artifacts, Failure> {
     let t0 = Instant::now();
     let pb = progress(5, "plate FE at all points");
     // One plate model (one factorization per mesh) for the scene's points and the map grid.
@@ -645,14 +658,9 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     pb.inc(1);
     pb.finish_and_clear();
 
-    if scene.wants(Analysis::PaperStudies) {
-        studies.push_str(&render("comparison/paper-studies.md", PAPER_STUDIES, &[])?);
-    }
-    if scene.wants(Analysis::Transient) {
-        studies.push_str(&render("comparison/transient.md", TRANSIENT, &[])?);
-    }
+    findings.extend(extra.findings.iter().cloned());
     let summary = render("comparison/summary.md", SUMMARY, &[("findings", findings.join(""))])?;
-    a.add("index.md", [head, summary, figures, tables, studies, method].concat());
+    a.add("index.md", [head, summary, figures, extra.sections.clone(), tables, studies, method].concat());
     a.add(
         "findings.json",
         serde_json::to_string_pretty(&serde_json::json!({

@@ -25,7 +25,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
         title: "Section V's conclusions: do they hold?".into(),
         columns: vec!["beam".into(), "plate FE".into()],
         rows: checks.iter().map(|c| format!("{}: {}", c.item, c.statement)).collect(),
-        cells: checks.iter().map(|c| vec![Some(c.beam_holds), Some(c.plate_holds)]).collect(),
+        cells: checks.iter().map(|c| vec![c.beam_holds.into(), c.plate_holds.into()]).collect(),
     };
     a.add("conclusions.svg", matrix.svg());
     let held = |p: bool| checks.iter().filter(|c| if p { c.plate_holds } else { c.beam_holds }).count();

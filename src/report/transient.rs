@@ -13,7 +13,7 @@ use coupled::transient::{
     TransientSettings, HERTZ_TIME,
 };
 use coupled::PlateModel;
-use coupled::{BeamModel, ComplianceModel};
+use coupled::{BeamModel, ComplianceModel, Validity};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
 use plate_fem::{Mesh, Model, PlateProperties, Supports};
 use std::time::Instant;
@@ -37,6 +37,16 @@ const DISC_FIXED: &str = include_str!("templates/transient/discretisation-fixed.
 const DISC_TOLERANCE: &str = include_str!("templates/transient/discretisation-tolerance.md");
 const REGIMES: &str = include_str!("templates/transient/regimes.md");
 const LAWS: &str = include_str!("templates/transient/laws.md");
+const LAWS_NOT_ASKED: &str = include_str!("templates/transient/laws-not-asked.md");
+const LAWS_END_LEFT: &str = include_str!("templates/transient/laws-end-left.md");
+const LAWS_END_OPEN: &str = include_str!("templates/transient/laws-end-open.md");
+const FINDING_CONTACTS: &str = include_str!("templates/transient/finding-contacts.md");
+const FINDING_SINGLE: &str = include_str!("templates/transient/finding-single.md");
+const FINDING_UNFINISHED: &str = include_str!("templates/transient/finding-unfinished.md");
+const FINDING_ELASTIC: &str = include_str!("templates/transient/finding-elastic.md");
+const FINDING_ERRORS: &str = include_str!("templates/transient/finding-errors.md");
+const FINDING_ERRORS_UNMET: &str = include_str!("templates/transient/finding-errors-unmet.md");
+const FINDING_REGIMES: &str = include_str!("templates/transient/finding-regimes.md");
 
 /// Impact velocity of the verification runs, m/s.
 const VERIFICATION_VELOCITY: f64 = 0.008;
@@ -127,6 +137,9 @@ pub struct TransientCase {
     pub estimate: Estimated,
     /// Wall-clock time of the case (its discretisation's choice and estimate), s.
     pub seconds: f64,
+    /// The case's validity status, as `impact solve --model transient` gives it for the same
+    /// case (elastic range, re-contact, impact finished in its window, discretisation).
+    pub validity: Validity,
 }
 
 impl TransientCase {
@@ -168,12 +181,7 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
     let beam = BeamModel { plate: &scene.plate };
     let mut cases = Vec::new();
     let total = scene.conditions.len() * scene.bodies.len() * scene.velocities.len() * points.len();
-    let pb = indicatif::ProgressBar::new(total as u64);
-    pb.set_style(
-        indicatif::ProgressStyle::with_template("transient runs [{bar:30}] {pos}/{len} {elapsed}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
+    let pb = crate::run::progress_bar(total, "transient cases");
     for cond in &scene.conditions {
         let t1 = ladder.levels(0)?.0.fundamental_period(&cond.supports)?;
         for body in &scene.bodies {
@@ -197,6 +205,10 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
                     };
                     let e0 = 0.5 * s.mass * v * v;
                     let m = e.outcome.at_max_compression_interpolated;
+                    let dt = s.hertz_time() / e.steps_per_contact;
+                    let validity =
+                        coupled::plan::transient_values(scene, cond, body, &e.outcome, &s, dt, (x, z), Some(&e))
+                            .validity;
                     cases.push(TransientCase {
                         condition: cond.name.clone(),
                         body: body.name.clone(),
@@ -219,6 +231,7 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
                         hertz_time: s.hertz_time(),
                         estimate: e,
                         seconds,
+                        validity,
                     });
                     pb.inc(1);
                 }
@@ -227,6 +240,39 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
     }
     pb.finish_and_clear();
     Ok(cases)
+}
+
+/// "valid", or the flags of the criteria a case fails, joined by "; ".
+fn flags(v: &Validity) -> String {
+    let f = v.flags();
+    if f.is_empty() {
+        "valid".into()
+    } else {
+        f.join("; ")
+    }
+}
+
+/// The median of `values` (the mean of the two middle ones for an even count); None for none.
+pub fn median(values: &[f64]) -> Option<f64> {
+    let mut v: Vec<f64> = values.iter().copied().filter(|x| !x.is_nan()).collect();
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(v[n / 2]),
+        _ => Some(0.5 * (v[n / 2 - 1] + v[n / 2])),
+    }
+}
+
+/// The largest force of every contact of a run: the first contact's peak on the interpolant,
+/// the later ones' sampled at the steps.
+pub fn peak_over_contacts(o: &Outcome) -> f64 {
+    o.contacts
+        .iter()
+        .chain(&o.unfinished_contact)
+        .skip(1)
+        .map(|c| c.peak_force)
+        .fold(o.force_max_interpolated, f64::max)
 }
 
 /// A value and its estimated error as two cells (empty where there is none).
@@ -274,6 +320,7 @@ pub fn comparison_table(cases: &[TransientCase]) -> Table {
             "plate energy at δ_max (transient)",
             "plate energy (QS plate)",
             "sphere KE left at δ_max",
+            "validity",
         ],
     );
     for c in cases {
@@ -291,6 +338,7 @@ pub fn comparison_table(cases: &[TransientCase]) -> Table {
         row.push((q.compression / c.quasi_static_plate_compression - 1.0).into());
         row.extend(with_error(q.restitution, err.restitution));
         row.extend([c.plate_energy.into(), c.quasi_static_plate_energy.into(), c.sphere_energy_left.into()]);
+        row.push(flags(&c.validity).into());
         t.push(row);
     }
     t
@@ -419,7 +467,7 @@ pub fn discretisation_table(cases: &[TransientCase]) -> Table {
                 None => "fixed settings".into(),
             }
             .into(),
-            c.seconds.into(),
+            Cell::Sig(c.seconds, 3),
         ]);
     }
     case_columns(t).csv_name("tolerance met", &["tolerance_verdict"])
@@ -523,6 +571,7 @@ pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
     let disc = scene.transient_discretisation;
     let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let mut out = Vec::new();
+    let pb = crate::run::progress_bar(3 * LAW_RATIOS.len(), "contact-law runs");
     for law in [LawKind::Hertz, LawKind::Flores, LawKind::Thornton] {
         for ratio in LAW_RATIOS {
             let v = ratio * v_y;
@@ -539,12 +588,26 @@ pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
                 permanent_set: s.permanent_set(deepest),
                 estimate: e,
             });
+            pb.inc(1);
         }
     }
+    pb.finish_and_clear();
     Ok(out)
 }
 
-/// The laws' forces and energy split.
+/// How a run ended: the sphere provably gone, or the window ended with the sphere still
+/// approaching the plate, in contact, or moving away but within the plate's reach.
+pub fn end_state(o: &Outcome) -> &'static str {
+    match (o.left_at, o.unfinished_contact, o.final_velocity > 0.0) {
+        (Some(_), _, _) => "sphere left",
+        (None, Some(_), _) => "window ended in contact",
+        (None, None, true) => "window ended, sphere still approaching",
+        (None, None, false) => "window ended, sphere within the plate's reach",
+    }
+}
+
+/// The laws' forces and energy split: at maximum compression, and at the end of the run
+/// (after the impact where the sphere has provably left, else at the end of the window).
 pub fn laws_table(cases: &[LawCase]) -> Table {
     let mut t = Table::new(
         "",
@@ -552,8 +615,9 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
             "law",
             "v/v_y",
             "v (m/s)",
-            "peak force (N)",
+            "peak force, first contact (N)",
             "peak force error (N)",
+            "peak force, every contact (N)",
             "P_max at δ_max (N)",
             "P_max error (N)",
             "δ_max/δ_my",
@@ -565,10 +629,11 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
             "at δ_max: plate",
             "at δ_max: springs",
             "at δ_max: sphere KE",
-            "after: rebound KE",
-            "after: dissipated",
-            "after: left in the plate",
+            "at the end: sphere KE",
+            "at the end: dissipated",
+            "at the end: in the plate",
             "contacts",
+            "the end",
         ],
     );
     for c in cases {
@@ -579,6 +644,7 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
         let e0 = c.energy;
         let mut row: Vec<Cell> = vec![c.law.key().into(), c.ratio.into(), c.velocity.into()];
         row.extend(with_error(q.peak_force, err.peak_force));
+        row.push(peak_over_contacts(o).into());
         row.extend(with_error(q.force_at_max_compression, err.force_at_max_compression));
         row.extend([(q.compression / c.yield_compression).into(), (c.permanent_set / q.compression).into()]);
         row.extend(with_error(q.restitution, err.restitution));
@@ -592,6 +658,7 @@ pub fn laws_table(cases: &[LawCase]) -> Table {
             (end.dissipated / e0).into(),
             ((end.plate_kinetic + end.plate_strain + end.springs) / e0).into(),
             Cell::Int((o.contacts.len() + usize::from(o.unfinished_contact.is_some())) as u64),
+            end_state(o).into(),
         ]);
         t.push(row);
     }
@@ -954,8 +1021,191 @@ fn whole_run(o: &Outcome, name: &str, x: impl Fn(f64) -> f64, f: impl Fn(&Sample
     Series::new(name, o.history.iter().chain(&o.later_history).map(|s| (x(s.t), f(s))).collect())
 }
 
-/// Everything `impact dynamic` writes for `scene` at `points`.
+/// What the study found, each finding a Markdown bullet line rendered from the templates: the
+/// study's page opens with them, and the main report's transient section repeats them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TransientSummary {
+    /// Per body: t_c/T₁, the quasi-static error and the plate's share of E₀.
+    pub bodies: String,
+    /// The whole impact: re-contact, and impacts the window cut.
+    pub contacts: String,
+    /// Cases beyond the elastic range under an elastic law (empty where there are none).
+    pub elastic: String,
+    /// The discretisation errors against the tolerance, and the cost of a case.
+    pub errors: String,
+    /// The regime criteria on the scene's cases.
+    pub regimes: String,
+    /// The counts behind the lines, for `findings.json`.
+    pub numbers: serde_json::Value,
+}
+
+impl TransientSummary {
+    /// Every finding, in the order the pages list them.
+    pub fn lines(&self) -> String {
+        [&self.bodies, &self.contacts, &self.elastic, &self.errors, &self.regimes].iter().map(|s| s.as_str()).collect()
+    }
+}
+
+/// The number of contacts of a run, an unfinished one included.
+fn contact_count(o: &Outcome) -> usize {
+    o.contacts.len() + usize::from(o.unfinished_contact.is_some())
+}
+
+/// A case as the findings name it.
+fn case_label(c: &TransientCase) -> String {
+    format!("{}, {} at ({:.1}, {:.1}) mm, {} m/s", c.body, c.condition, c.x * 1e3, c.z * 1e3, sig(c.velocity, 3))
+}
+
+/// The findings on the whole impact, the elastic range, the errors and the regimes of `cases`.
+fn findings(scene: &Scene, cases: &[TransientCase]) -> Result<TransientSummary, Failure> {
+    let n = cases.len().to_string();
+    let repeated: Vec<&TransientCase> = cases.iter().filter(|c| contact_count(c.outcome()) > 1).collect();
+    let unfinished = cases.iter().filter(|c| c.outcome().left_at.is_none()).count();
+    let mut contacts = if let Some(most) = repeated.iter().map(|c| contact_count(c.outcome())).max() {
+        // The later contact that strikes hardest against its own first contact.
+        let later = |c: &TransientCase| {
+            let o = c.outcome();
+            let first = o.force_max_interpolated;
+            let peak = o.contacts.iter().chain(&o.unfinished_contact).skip(1).map(|k| k.peak_force).fold(0.0, f64::max);
+            (peak, first)
+        };
+        let worst = repeated
+            .iter()
+            .copied()
+            .max_by(|a, b| {
+                let (pa, fa) = later(a);
+                let (pb, fb) = later(b);
+                (pa / fa).total_cmp(&(pb / fb))
+            })
+            .ok_or("no repeated case")?;
+        let (peak, first) = later(worst);
+        render(
+            "transient/finding-contacts.md",
+            FINDING_CONTACTS,
+            &[
+                ("repeated", repeated.len().to_string()),
+                ("cases", n.clone()),
+                ("most", most.to_string()),
+                ("later_peak", sig(peak, 3)),
+                ("first_peak", sig(first, 3)),
+                ("later_ratio", sig(peak / first, 3)),
+                ("later_case", case_label(worst)),
+            ],
+        )?
+    } else {
+        render("transient/finding-single.md", FINDING_SINGLE, &[("cases", n.clone())])?
+    };
+    if unfinished > 0 {
+        contacts.push_str(&render(
+            "transient/finding-unfinished.md",
+            FINDING_UNFINISHED,
+            &[
+                ("unfinished", unfinished.to_string()),
+                ("cases", n.clone()),
+                ("window", sig(scene.transient_discretisation.start().window_contacts, 3)),
+            ],
+        )?);
+    }
+    let beyond: Vec<f64> =
+        cases.iter().filter_map(|c| c.validity.elastic.filter(|e| !e.valid).map(|e| e.value)).collect();
+    let elastic = if beyond.is_empty() {
+        String::new()
+    } else {
+        render(
+            "transient/finding-elastic.md",
+            FINDING_ELASTIC,
+            &[
+                ("beyond", beyond.len().to_string()),
+                ("cases", n.clone()),
+                ("worst", sig(beyond.iter().copied().fold(0.0, f64::max), 3)),
+                ("law", scene.contact_law.key().to_string()),
+            ],
+        )?
+    };
+    let worst = cases.iter().map(|c| c.estimate.relative_error()).fold(0.0, f64::max);
+    let secs: Vec<f64> = cases.iter().map(|c| c.seconds).collect();
+    let above = cases.iter().filter(|c| c.validity.discretisation.is_some_and(|d| !d.valid)).count();
+    let median_secs = sig(median(&secs).unwrap_or(0.0), 3);
+    let slowest = sig(secs.iter().copied().fold(0.0, f64::max), 3);
+    let tolerance = match scene.transient_discretisation {
+        Discretisation::Tolerance { tolerance, .. } => Some(tolerance),
+        Discretisation::Fixed { .. } => None,
+    };
+    let errors = if above > 0 {
+        render(
+            "transient/finding-errors-unmet.md",
+            FINDING_ERRORS_UNMET,
+            &[
+                ("above", above.to_string()),
+                ("cases", n.clone()),
+                ("tolerance", sig(tolerance.unwrap_or(f64::NAN), 2)),
+                ("worst", sig(worst, 2)),
+                ("median", median_secs.clone()),
+                ("slowest", slowest.clone()),
+            ],
+        )?
+    } else {
+        render(
+            "transient/finding-errors.md",
+            FINDING_ERRORS,
+            &[
+                (
+                    "within",
+                    tolerance.map_or_else(|| format!("{} (fixed discretisation)", sig(worst, 2)), |t| sig(t, 2)),
+                ),
+                ("worst", sig(worst, 2)),
+                ("median", median_secs.clone()),
+                ("slowest", slowest.clone()),
+            ],
+        )?
+    };
+    let trusted = cases.iter().filter(|c| c.rule.trusts()).count();
+    let wrong =
+        cases.iter().filter(|c| c.rule.trusts() && c.force_error().abs() > coupled::regimes::RULE_LIMIT).count();
+    let conservative =
+        cases.iter().filter(|c| !c.rule.trusts() && c.force_error().abs() <= coupled::regimes::RULE_LIMIT).count();
+    let wave = cases.iter().filter(|c| OlssonRegime::of(c.mass_ratio) == OlssonRegime::WaveControlled).count();
+    let regimes = render(
+        "transient/finding-regimes.md",
+        FINDING_REGIMES,
+        &[
+            ("cases", n.clone()),
+            ("trusted", trusted.to_string()),
+            ("wrong", wrong.to_string()),
+            ("conservative", conservative.to_string()),
+            ("wave", wave.to_string()),
+        ],
+    )?;
+    let force_errors = cases
+        .iter()
+        .map(|c| c.force_error())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| (a.min(e), b.max(e)));
+    let numbers = serde_json::json!({
+        "cases": cases.len(),
+        "quasi_static_force_error": [force_errors.0, force_errors.1],
+        "struck_more_than_once": repeated.len(),
+        "most_contacts": repeated.iter().map(|c| contact_count(c.outcome())).max().unwrap_or(1),
+        "unfinished_in_window": unfinished,
+        "beyond_elastic_with_elastic_law": beyond.len(),
+        "largest_relative_error_estimate": worst,
+        "tolerance": tolerance,
+        "above_tolerance": above,
+        "median_seconds_per_case": median(&secs),
+        "rule_trusts": trusted,
+        "rule_trusts_wrongly": wrong,
+        "rule_flags_needlessly": conservative,
+        "olsson_wave_controlled": wave,
+    });
+    Ok(TransientSummary { bodies: String::new(), contacts, elastic, errors, regimes, numbers })
+}
+
+/// Everything `impact dynamic` writes for `scene` at its transient points.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
+    Ok(study(scene)?.0)
+}
+
+/// [`report`], and its findings for the main report.
+pub fn study(scene: &Scene) -> Result<(Artifacts, TransientSummary), Failure> {
     let points = &scene.transient_points;
     let mut a = Artifacts::new();
     // The page: findings first (computed below), the figures, the tables, the laws, and the
@@ -983,7 +1233,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     // The whole impact.
     let ct = contacts_table(&cases);
     a.add("contacts.csv", contact_rows(&cases).to_csv());
-    let repeated = cases.iter().filter(|c| c.outcome().contacts.len() > 1).count();
+    let repeated = cases.iter().filter(|c| contact_count(c.outcome()) > 1).count();
     let unproven = cases.iter().filter(|c| c.outcome().left_at.is_none()).count();
     md.push_str(&render(
         "transient/contacts.md",
@@ -992,6 +1242,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ("cases", cases.len().to_string()),
             ("repeated", repeated.to_string()),
             ("unproven", unproven.to_string()),
+            ("window", sig(scene.transient_discretisation.start().window_contacts, 3)),
             ("table", ct.to_markdown()),
         ],
     )?);
@@ -999,9 +1250,7 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     // Discretisation, error estimates and cost.
     let dt = discretisation_table(&cases);
     a.add("discretisation.csv", dt.to_csv());
-    let mut secs: Vec<f64> = cases.iter().map(|c| c.seconds).collect();
-    secs.sort_by(f64::total_cmp);
-    let median = secs.get(secs.len() / 2).copied().unwrap_or(0.0);
+    let secs: Vec<f64> = cases.iter().map(|c| c.seconds).collect();
     let worst_estimate = cases.iter().map(|c| c.estimate.relative_error()).fold(0.0, f64::max);
     let unmet = cases.iter().filter(|c| !c.estimate.met_tolerance).count();
     let finest = cases.iter().map(|c| c.estimate.elements).max().unwrap_or(0);
@@ -1010,9 +1259,9 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         DISCRETISATION,
         &[
             ("cases", cases.len().to_string()),
-            ("seconds", format!("{comparison_secs:.0}")),
-            ("median", format!("{median:.2}")),
-            ("slowest", format!("{:.1}", secs.last().copied().unwrap_or(0.0))),
+            ("seconds", sig(comparison_secs, 3)),
+            ("median", sig(median(&secs).unwrap_or(0.0), 3)),
+            ("slowest", sig(secs.iter().copied().fold(0.0, f64::max), 3)),
             ("worst_estimate", sig(worst_estimate, 2)),
             ("unmet", unmet.to_string()),
             ("finest", finest.to_string()),
@@ -1103,68 +1352,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         figures.push_str(&render("transient/history.md", HISTORY, &[])?);
     }
 
-    // The contact laws side by side above the yield velocity.
-    let lc = laws(scene)?;
-    let lt = laws_table(&lc);
-    a.add("contact-laws.csv", lt.to_csv());
-    let top = LAW_RATIOS.iter().copied().fold(0.0, f64::max);
-    let at = |law: LawKind, ratio: f64| lc.iter().find(|c| c.law == law && c.ratio == ratio);
-    let (hertz, flores, thornton) = (
-        at(LawKind::Hertz, top).ok_or("no Hertz run")?,
-        at(LawKind::Flores, top).ok_or("no Flores run")?,
-        at(LawKind::Thornton, top).ok_or("no Thornton run")?,
-    );
-    let t_h = |c: &LawCase| striker(scene, &scene.bodies[0], c.velocity).hertz_time();
-    let law_series: Vec<Series> = [hertz, flores, thornton]
-        .iter()
-        .map(|c| {
-            let th = t_h(c);
-            whole_run(&c.estimate.outcome, c.law.key(), |t| t / th, |s| s.force)
-        })
-        .collect();
-    a.add(
-        "contact-laws.svg",
-        line_plot(
-            &format!("Contact force at {top} x v_y, the three laws"),
-            "t / t_H (Hertz time)",
-            "P (N)",
-            &law_series,
-            Scale::Linear,
-        ),
-    );
-    let end_dissipated = |c: &LawCase| {
-        let o = &c.estimate.outcome;
-        o.later_history.last().or(o.history.last()).map_or(f64::NAN, |s| s.dissipated / c.energy)
+    // The contact laws side by side above the yield velocity, when the scene asks for them.
+    let laws_md = if scene.wants(Analysis::ContactLaws) {
+        laws_section(scene, &mut a)?
+    } else {
+        render("transient/laws-not-asked.md", LAWS_NOT_ASKED, &[])?
     };
-    let below = at(LawKind::Thornton, LAW_RATIOS[0]).ok_or("no run below yield")?;
-    let below_hertz = at(LawKind::Hertz, LAW_RATIOS[0]).ok_or("no run below yield")?;
-    md.push_str(&render(
-        "transient/laws.md",
-        LAWS,
-        &[
-            ("body", scene.bodies[0].name.clone()),
-            ("condition", scene.conditions[0].name.clone()),
-            ("v_y", sig(hertz.velocity / hertz.ratio, 4)),
-            ("ratios", LAW_RATIOS.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", ")),
-            ("top", top.to_string()),
-            ("v_top", sig(hertz.velocity, 3)),
-            (
-                "thornton_hertz",
-                format!("{:.3}", thornton.estimate.values.peak_force / hertz.estimate.values.peak_force),
-            ),
-            ("flores_hertz", format!("{:.3}", flores.estimate.values.peak_force / hertz.estimate.values.peak_force)),
-            ("thornton_e", format!("{:.3}", thornton.estimate.values.restitution)),
-            ("flores_e", format!("{:.3}", flores.estimate.values.restitution)),
-            ("thornton_dissipated", format!("{:.0}", 100.0 * end_dissipated(thornton))),
-            ("flores_dissipated", format!("{:.0}", 100.0 * end_dissipated(flores))),
-            ("below_ratio", LAW_RATIOS[0].to_string()),
-            (
-                "below_same",
-                sig((below.estimate.values.peak_force / below_hertz.estimate.values.peak_force - 1.0).abs(), 2),
-            ),
-            ("table", lt.to_markdown()),
-        ],
-    )?);
+    md.push_str(&laws_md);
 
     // Per body: the range of the quasi-static error and of t_c/T₁ over the cases.
     let mut summary = String::new();
@@ -1198,7 +1392,9 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
             ],
         )?);
     }
-    let mut summary_md = render("transient/summary.md", SUMMARY, &[("bodies", summary)])?;
+    let mut found = findings(scene, &cases)?;
+    found.bodies = summary;
+    let mut summary_md = render("transient/summary.md", SUMMARY, &[("findings", found.lines())])?;
 
     let mut size_md = String::new();
     if scene.wants(Analysis::SizeMap) {
@@ -1211,6 +1407,110 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         summary_md.push_str(&format!("- Over plate size and thickness (Con 1, centre): {said}\n"));
         size_md = render("transient/size-map.md", SIZE_MAP, &[("findings", findings), ("table", st.to_markdown())])?;
     }
+    let all: Vec<String> = summary_md
+        .lines()
+        .filter(|l| l.starts_with("- "))
+        .map(|l| l.trim_start_matches("- ").replace("**", ""))
+        .collect();
+    a.add(
+        "findings.json",
+        serde_json::to_string_pretty(&serde_json::json!({
+            "report": "transient against quasi-static",
+            "findings": all,
+            "numbers": found.numbers,
+        }))?,
+    );
     a.add("index.md", [head, summary_md, figures, size_md, md, verification_md].concat());
-    Ok(a)
+    Ok((a, found))
+}
+
+/// The contact-laws section: Hertz, Flores and Thornton side by side at [`LAW_RATIOS`] times
+/// the yield velocity, its table, figure and CSV added to `a`.
+fn laws_section(scene: &Scene, a: &mut Artifacts) -> Result<String, Failure> {
+    let lc = laws(scene)?;
+    let lt = laws_table(&lc);
+    a.add("contact-laws.csv", lt.clone().csv_name("the end", &["run_end_label"]).to_csv());
+    let top = LAW_RATIOS.iter().copied().fold(0.0, f64::max);
+    let at = |law: LawKind, ratio: f64| lc.iter().find(|c| c.law == law && c.ratio == ratio);
+    let (hertz, flores, thornton) = (
+        at(LawKind::Hertz, top).ok_or("no Hertz run")?,
+        at(LawKind::Flores, top).ok_or("no Flores run")?,
+        at(LawKind::Thornton, top).ok_or("no Thornton run")?,
+    );
+    let t_h = |c: &LawCase| striker(scene, &scene.bodies[0], c.velocity).hertz_time();
+    let law_series: Vec<Series> = [hertz, flores, thornton]
+        .iter()
+        .map(|c| {
+            let th = t_h(c);
+            whole_run(&c.estimate.outcome, c.law.key(), |t| t / th, |s| s.force)
+        })
+        .collect();
+    a.add(
+        "contact-laws.svg",
+        line_plot(
+            &format!("Contact force at {top} x v_y, the three laws"),
+            "t / t_H (Hertz time)",
+            "P (N)",
+            &law_series,
+            Scale::Linear,
+        ),
+    );
+    let end_dissipated = |c: &LawCase| {
+        let o = &c.estimate.outcome;
+        o.later_history.last().or(o.history.last()).map_or(f64::NAN, |s| s.dissipated / c.energy)
+    };
+    let below = at(LawKind::Thornton, LAW_RATIOS[0]).ok_or("no run below yield")?;
+    let below_hertz = at(LawKind::Hertz, LAW_RATIOS[0]).ok_or("no run below yield")?;
+    // "After the impact" only where every run at the top velocity has provably ended.
+    let top_runs = [hertz, flores, thornton];
+    let open: Vec<String> = top_runs
+        .iter()
+        .filter(|c| c.estimate.outcome.left_at.is_none())
+        .map(|c| format!("{}: {}", c.law.key(), end_state(&c.estimate.outcome)))
+        .collect();
+    let end = if open.is_empty() {
+        render("transient/laws-end-left.md", LAWS_END_LEFT, &[])?
+    } else {
+        render(
+            "transient/laws-end-open.md",
+            LAWS_END_OPEN,
+            &[("open", open.len().to_string()), ("states", open.join("; "))],
+        )?
+    };
+    let peaks = |f: &dyn Fn(&LawCase) -> f64| top_runs.iter().map(|c| sig(f(c), 3)).collect::<Vec<_>>().join(" / ");
+    render(
+        "transient/laws.md",
+        LAWS,
+        &[
+            ("end", end.trim().to_string()),
+            ("first_peaks", peaks(&|c| c.estimate.values.peak_force)),
+            ("all_peaks", peaks(&|c| peak_over_contacts(&c.estimate.outcome))),
+            (
+                "contacts",
+                top_runs.iter().map(|c| contact_count(&c.estimate.outcome).to_string()).collect::<Vec<_>>().join(" / "),
+            ),
+            ("body", scene.bodies[0].name.clone()),
+            ("condition", scene.conditions[0].name.clone()),
+            ("v_y", sig(hertz.velocity / hertz.ratio, 4)),
+            ("ratios", LAW_RATIOS.iter().map(|r| r.to_string()).collect::<Vec<_>>().join(", ")),
+            ("top", top.to_string()),
+            ("v_top", sig(hertz.velocity, 3)),
+            (
+                "thornton_hertz",
+                format!("{:.3}", thornton.estimate.values.peak_force / hertz.estimate.values.peak_force),
+            ),
+            ("flores_hertz", format!("{:.3}", flores.estimate.values.peak_force / hertz.estimate.values.peak_force)),
+            ("thornton_e", format!("{:.3}", thornton.estimate.values.restitution)),
+            ("flores_e", format!("{:.3}", flores.estimate.values.restitution)),
+            ("thornton_dissipated", format!("{:.0}", 100.0 * end_dissipated(thornton))),
+            ("flores_dissipated", format!("{:.0}", 100.0 * end_dissipated(flores))),
+            ("below_ratio", LAW_RATIOS[0].to_string()),
+            (
+                "below_same",
+                sig((below.estimate.values.peak_force / below_hertz.estimate.values.peak_force - 1.0).abs(), 2),
+            ),
+            ("table", lt.to_markdown()),
+        ],
+    )
+    .map_err(Into::into)
 }

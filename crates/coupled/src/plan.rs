@@ -290,10 +290,12 @@ impl Results {
                     }
                     for f in v.flags() {
                         match f {
-                            "beyond elastic range" => s.beyond_elastic += 1,
-                            "not quasi-static" => s.not_quasi_static += 1,
-                            "beyond thin-plate range" => s.beyond_thin_plate += 1,
-                            "outside the quasi-static regime rule" => s.outside_regime_rule += 1,
+                            validity::FLAG_ELASTIC => s.beyond_elastic += 1,
+                            validity::FLAG_QUASI_STATIC => s.not_quasi_static += 1,
+                            validity::FLAG_THIN_PLATE => s.beyond_thin_plate += 1,
+                            validity::FLAG_REGIME => s.outside_regime_rule += 1,
+                            validity::FLAG_UNFINISHED => s.unfinished += 1,
+                            validity::FLAG_DISCRETISATION => s.above_tolerance += 1,
                             _ => s.recontact += 1,
                         }
                     }
@@ -321,6 +323,10 @@ pub struct Summary {
     pub recontact: usize,
     /// Quasi-static rows the closed-form regime rule does not trust.
     pub outside_regime_rule: usize,
+    /// Transient rows whose window ended before the sphere had provably left.
+    pub unfinished: usize,
+    /// Transient rows whose error estimate stayed above the tolerance (the budget ran out).
+    pub above_tolerance: usize,
     /// Rows the model does not describe.
     pub not_applicable: usize,
 }
@@ -398,6 +404,8 @@ fn quasi_static_values(
         thin_plate: thin_plate(scene),
         recontact: None,
         regime: Some(regime_rule(scene, set, imp, estimate.compliance.total())),
+        finished: None,
+        discretisation: None,
     };
     let values = ResponseValues {
         compliance: Some(estimate.compliance.total()),
@@ -536,6 +544,8 @@ fn yield_values(
             thin_plate: thin_plate(scene),
             recontact: None,
             regime: Some(regime_rule(scene, set, &at_yield, c)),
+            finished: None,
+            discretisation: None,
         },
     }
 }
@@ -639,6 +649,12 @@ pub fn transient_values(
             thin_plate: thin_plate(scene),
             recontact,
             regime: None,
+            finished: Some(validity::finished(o.left_at.is_some())),
+            // Where the ladder's budget ran out before the estimate met the tolerance, the
+            // numbers are less accurate than asked: the status says so, not only the
+            // discretisation column.
+            discretisation: errors
+                .and_then(|e| e.tolerance.map(|tol| validity::discretisation(e.relative_error(), tol))),
         },
     }
 }
@@ -676,6 +692,21 @@ pub fn transient_response(
 /// for ([`Scene::transient_discretisation`]): fixed settings, or per case the coarsest mesh
 /// and step whose estimate meets a tolerance.
 pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {
+    run_transient_observed(scene, &mut || {})
+}
+
+/// How many cases [`run_transient`] computes for `scene`: one per body, support set, point
+/// and velocity for the responses, and one per body, support set and point for the yield
+/// velocities, as the scene asks.
+pub fn transient_case_count(scene: &Scene) -> usize {
+    let per_point = if scene.wants(Analysis::Responses) { scene.velocities.len() } else { 0 }
+        + usize::from(scene.wants(Analysis::YieldVelocity));
+    scene.bodies.len() * scene.conditions.len() * scene.points.len() * per_point
+}
+
+/// [`run_transient`], calling `done` after each of its [`transient_case_count`] cases (a
+/// caller's progress display).
+pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<Results, ModelError> {
     let disc = scene.transient_discretisation;
     let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let points = scene.point_pairs();
@@ -696,6 +727,7 @@ pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {
                             velocity: v,
                             outcome: RowOutcome::Computed(values),
                         });
+                        done();
                     }
                 }
                 if scene.wants(Analysis::YieldVelocity) {
@@ -725,6 +757,7 @@ pub fn run_transient(scene: &Scene) -> Result<Results, ModelError> {
                         z,
                         outcome: RowOutcome::Computed(y),
                     });
+                    done();
                 }
             }
         }
@@ -826,7 +859,8 @@ pub fn dynamic_yield_with(
     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
     let mut reach = |lv: f64| -> Result<f64, ModelError> {
         let s = scene_striker(scene, body, lv.exp());
-        Ok((case.run_steps(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
+        // δ_max is the first contact's: the run need not follow the later ones.
+        Ok((case.first_contact(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
     };
     // On a rigid target the balance gives the smallest v that reaches δ_my: start there.
     let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
@@ -843,6 +877,8 @@ pub fn dynamic_yield_with(
             thin_plate: thin_plate(scene),
             recontact: None,
             regime: None,
+            finished: None,
+            discretisation: None,
         },
     })
 }

@@ -29,6 +29,10 @@ pub enum Analysis {
     Verification,
     /// Transient against quasi-static at the scene's points.
     Transient,
+    /// The transient study's contact laws side by side (Hertz, Flores, Thornton) at multiples
+    /// of the yield velocity: twelve transient runs with error estimates, written only when
+    /// asked for.
+    ContactLaws,
     /// The quasi-static error of the transient model over plate size and thickness.
     SizeMap,
     /// The regime maps: the quasi-static error over plate size, thickness, sphere mass and
@@ -44,7 +48,7 @@ pub enum Analysis {
 
 impl Analysis {
     /// Every analysis, in the order reports present them.
-    pub const ALL: [Analysis; 12] = [
+    pub const ALL: [Analysis; 13] = [
         Analysis::Responses,
         Analysis::YieldVelocity,
         Analysis::WidthMaps,
@@ -53,6 +57,7 @@ impl Analysis {
         Analysis::ExtremeCases,
         Analysis::Verification,
         Analysis::Transient,
+        Analysis::ContactLaws,
         Analysis::SizeMap,
         Analysis::RegimeMaps,
         Analysis::PaperStudies,
@@ -70,6 +75,7 @@ impl Analysis {
             Analysis::ExtremeCases => "extreme-cases",
             Analysis::Verification => "verification",
             Analysis::Transient => "transient",
+            Analysis::ContactLaws => "contact-laws",
             Analysis::SizeMap => "size-map",
             Analysis::RegimeMaps => "regime-maps",
             Analysis::PaperStudies => "paper-studies",

@@ -22,6 +22,13 @@
 //! - **Re-contact** (transient only): the run follows the impact until the sphere has
 //!   provably left; if it struck more than once, the first contact's numbers (the paper's
 //!   quantities) do not describe the whole impact.
+//! - **Impact finished** (transient only): the run ends when the stopping rule proves that no
+//!   further contact can occur, or at the end of its window. A run whose window ended first
+//!   has not shown the whole impact: a later contact may still follow, so its contact count,
+//!   total impulse and final velocity are those of the window, not of the impact.
+//! - **Discretisation** (transient, per-case tolerance): the error estimate of P_max and the
+//!   contact time is within the tolerance the discretisation was chosen for; where the ladder's
+//!   budget ran out first, the numbers are less accurate than asked.
 //! - **Regime rule** (quasi-static models): the closed-form rule of [`crate::regimes`]
 //!   bounds the balance's force error from t_H, a closed-form T₁ and Christoforou and
 //!   Yigit's λ and ζ; valid where the bound is at most 3 %. On the measured regime map it
@@ -74,6 +81,10 @@ pub struct Validity {
     /// The closed-form regime rule ([`crate::regimes::rule`]) for quasi-static models: its
     /// bound on the balance's force error, valid at most 3 %.
     pub regime: Option<Criterion>,
+    /// Whether the transient run proved the sphere gone before its window ended ([`finished`]).
+    pub finished: Option<Criterion>,
+    /// The transient error estimate against the tolerance it was chosen for ([`discretisation`]).
+    pub discretisation: Option<Criterion>,
 }
 
 impl Validity {
@@ -93,6 +104,12 @@ impl Validity {
         if let Some(c) = self.recontact {
             out.push(("re-contact", c));
         }
+        if let Some(c) = self.finished {
+            out.push(("impact finished", c));
+        }
+        if let Some(c) = self.discretisation {
+            out.push(("discretisation", c));
+        }
         out
     }
 
@@ -103,18 +120,48 @@ impl Validity {
 
     /// The names of the criteria that fail ("beyond elastic range", ...).
     pub fn flags(&self) -> Vec<&'static str> {
-        self.criteria()
-            .into_iter()
-            .filter(|(_, c)| !c.valid)
-            .map(|(name, _)| match name {
-                "elastic" => "beyond elastic range",
-                "quasi-static" => "not quasi-static",
-                "thin plate" => "beyond thin-plate range",
-                "regime rule" => "outside the quasi-static regime rule",
-                _ => "re-contact",
-            })
-            .collect()
+        self.criteria().into_iter().filter(|(_, c)| !c.valid).map(|(name, _)| flag_of(name)).collect()
     }
+}
+
+/// The flag of a failed criterion, by the criterion's short name in [`Validity::criteria`].
+fn flag_of(name: &str) -> &'static str {
+    match name {
+        "elastic" => FLAG_ELASTIC,
+        "quasi-static" => FLAG_QUASI_STATIC,
+        "thin plate" => FLAG_THIN_PLATE,
+        "regime rule" => FLAG_REGIME,
+        "impact finished" => FLAG_UNFINISHED,
+        "discretisation" => FLAG_DISCRETISATION,
+        _ => FLAG_RECONTACT,
+    }
+}
+
+/// The flag of a result beyond the elastic range.
+pub const FLAG_ELASTIC: &str = "beyond elastic range";
+/// The flag of a quasi-static result whose contact is short against T₁.
+pub const FLAG_QUASI_STATIC: &str = "not quasi-static";
+/// The flag of a plate too thick for Kirchhoff theory.
+pub const FLAG_THIN_PLATE: &str = "beyond thin-plate range";
+/// The flag of a quasi-static result the regime rule does not trust.
+pub const FLAG_REGIME: &str = "outside the quasi-static regime rule";
+/// The flag of a transient impact with more than one contact.
+pub const FLAG_RECONTACT: &str = "re-contact";
+/// The flag of a transient run whose window ended before the sphere had provably left.
+pub const FLAG_UNFINISHED: &str = "impact not finished in the window";
+/// The flag of a transient case whose error estimate stayed above its tolerance.
+pub const FLAG_DISCRETISATION: &str = "discretisation error above tolerance";
+
+/// The impact-finished criterion: valid when the stopping rule proved the sphere gone
+/// (`left`), failed when the window ended first (value 1: unfinished).
+pub fn finished(left: bool) -> Criterion {
+    Criterion::at_most("unfinished at the end of the window (1 = yes)", if left { 0.0 } else { 1.0 }, 0.0)
+}
+
+/// The discretisation criterion: the relative error `estimate` of P_max and the contact time
+/// against the `tolerance` the discretisation was chosen for.
+pub fn discretisation(estimate: f64, tolerance: f64) -> Criterion {
+    Criterion::at_most("error estimate on P_max and t_c (relative)", estimate, tolerance)
 }
 
 /// The thin-plate criterion for a plate of thickness `h`, length `l` and width `b`.
@@ -143,5 +190,28 @@ mod tests {
         assert!(quasi_static(0.21, 1.0).valid && !quasi_static(0.19, 1.0).valid);
         assert!(thin_plate(0.008, 0.4584, 0.36).valid);
         assert!(!thin_plate(0.5, 0.4584, 0.36).valid);
+        assert!(finished(true).valid && !finished(false).valid);
+        assert!(discretisation(1e-4, 1e-4).valid && !discretisation(1.1e-4, 1e-4).valid);
+    }
+
+    /// Every failed criterion is named by its own flag, and a run that did not finish or did
+    /// not reach its tolerance is not valid.
+    #[test]
+    fn unfinished_and_inaccurate_runs_are_flagged() {
+        let base = Validity {
+            elastic: None,
+            quasi_static: None,
+            thin_plate: thin_plate(0.008, 0.4584, 0.36),
+            recontact: Some(Criterion::at_most("contacts", 1.0, 1.0)),
+            regime: None,
+            finished: Some(finished(true)),
+            discretisation: Some(discretisation(5e-5, 1e-4)),
+        };
+        assert!(base.all_valid() && base.flags().is_empty());
+        let open = Validity { finished: Some(finished(false)), ..base };
+        assert!(!open.all_valid());
+        assert_eq!(open.flags(), vec![FLAG_UNFINISHED]);
+        let coarse = Validity { discretisation: Some(discretisation(4.5e-4, 1e-4)), ..base };
+        assert_eq!(coarse.flags(), vec![FLAG_DISCRETISATION]);
     }
 }

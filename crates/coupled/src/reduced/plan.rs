@@ -108,6 +108,8 @@ pub fn run(scene: &Scene) -> Result<(Vec<ModelSummary>, Vec<SceneImpact>), Model
                             (o.contacts.len() + usize::from(o.unfinished_contact.is_some())) as f64,
                             1.0,
                         )),
+                        finished: Some(validity::finished(o.left_at.is_some())),
+                        discretisation: None,
                     };
                     impacts.push(SceneImpact {
                         condition: ci,
