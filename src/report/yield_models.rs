@@ -814,6 +814,7 @@ pub fn study(_scene: &Scene) -> Result<(Artifacts, YieldSummary), Failure> {
         "held_beam",
         "held_plate",
         "held_transient",
+        "unresolved_plate",
         "unresolved_transient",
         "statements_count",
     ]);
