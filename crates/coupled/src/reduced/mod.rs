@@ -49,7 +49,7 @@ pub mod plan;
 pub mod signals;
 pub mod target;
 
-pub use signals::{free_map, Channel, ChannelKind, Probes, Quantity, SignalSpec, Signals};
+pub use signals::{free_map, newmark_map, Channel, ChannelKind, Probes, Quantity, SignalSpec, Signals};
 
 pub use target::FreeSteps;
 
@@ -63,7 +63,7 @@ use plate_fem::modes::shape_at;
 use plate_fem::{element, Corner, CornerSupport, Mesh, Model, Modes, ResidualFlexibility};
 use serde::Serialize;
 use signals::{dot, ChannelRows, FreeMaps};
-use target::{CornerPoint, ModalTarget, Recording};
+use target::{ChannelRow, CornerPoint, ModalTarget, Recording};
 
 /// How the truncated modes enter.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
@@ -517,39 +517,27 @@ impl ReducedModel {
         };
         // Channels on the (extended) modes.
         let n_ext = omega.len();
-        let mut rec = Recording { a: Vec::new(), b: Vec::new(), d: Vec::new(), every, samples: probes.spec.samples() };
-        // Free of force, every channel is one row on one state: q (deflections, forces),
-        // q̇ (velocities) or the modal accelerations q̈ = -ω²q - 2ζωq̇ (accelerations).
-        let mut free_rows: Vec<(Vec<f64>, FreeState)> = Vec::with_capacity(probes.rows.len());
+        // Every channel is y = A·q + B·q̇ + D P on the (extended) modes; free of force D P
+        // drops out.
+        let mut rec = Recording { rows: Vec::with_capacity(probes.rows.len()), every, samples: probes.spec.samples() };
         for r in &probes.rows {
             let ell = |k: usize| r.res[k].map_or(0.0, |(f, s)| s * field_at_p[f]);
             let mut a = r.a.clone();
             let mut b = r.b.clone();
             let mut d = r.c.as_ref().map_or(0.0, |c| dot(c, &pt.phi))
                 + r.direct.map_or(0.0, |dof| (0..16).filter(|&k| pt.dofs[k] == dof).map(|k| pt.shape[k]).sum());
-            let mut c = r.c.clone();
             match residual_mode {
                 Some((w, root_m)) => {
                     let (ld, lv, la) = (ell(0) / root_m, ell(1) / root_m, ell(2) / root_m);
                     a.push(ld - w * w * la);
                     b.push(if r.damped_inertia { lv } else { lv - 2.0 * zeta * w * la });
-                    if let Some(c) = c.as_mut() {
-                        c.push(la);
-                    }
                     d += la * phi_p[n_ext - 1];
                 }
                 // The static correction: a displacement, no rate.
                 None => d += if c_res > 0.0 { ell(0) } else { 0.0 },
             }
-            free_rows.push(match (r.kind, c) {
-                (ChannelKind::Velocity { .. }, _) => (b.clone(), FreeState::Rate),
-                (ChannelKind::Acceleration { .. }, Some(c)) => (c, FreeState::Acceleration),
-                _ => (a.clone(), FreeState::Deflection),
-            });
-            let b = (b.iter().any(|&x| x != 0.0)).then_some(b);
-            rec.a.push(a);
-            rec.b.push(b);
-            rec.d.push(d);
+            let nonzero = |x: Vec<f64>| x.iter().any(|&x| x != 0.0).then_some(x);
+            rec.rows.push(ChannelRow { a: nonzero(a), b: nonzero(b), d });
         }
         let mut corner_points: [Option<CornerPoint>; 4] = Default::default();
         for c in &self.corners {
@@ -584,8 +572,6 @@ impl ReducedModel {
         if let Some((w, _)) = residual_mode {
             sample_map.push(w, zeta, probes.spec.interval());
         }
-        let omega2: Vec<f64> = omega.iter().map(|w| w * w).collect();
-        let damping: Vec<f64> = omega.iter().map(|w| 2.0 * zeta * w).collect();
         let mut target = ModalTarget::new(omega, zeta, phi_p, c_res, dt, map, corner_points, Some(rec));
         let window = probes.spec.window;
         let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
@@ -606,8 +592,7 @@ impl ReducedModel {
         let mut out = std::mem::take(&mut target.out);
         if recorded < want && recorded > 0 {
             let (q, v) = target.state();
-            let accel = Acceleration { omega2: &omega2, damping: &damping };
-            free_window(&sample_map, q, v, &accel, &free_rows, &mut out, want - recorded);
+            free_window(&sample_map, q, v, target.rows(), &mut out, want - recorded);
         }
         let channels = probes.rows.iter().zip(out).map(|(r, samples)| Channel { kind: r.kind, samples }).collect();
         Ok(ReducedOutcome {
@@ -626,75 +611,52 @@ impl ReducedModel {
 /// block as the vector dimension (no horizontal sums).
 const BLOCK: usize = 16;
 
-/// Which modal state a channel reads while no force acts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum FreeState {
-    /// qᵢ.
-    Deflection,
-    /// q̇ᵢ.
-    Rate,
-    /// q̈ᵢ = -ωᵢ²qᵢ - 2ζωᵢq̇ᵢ.
-    Acceleration,
-}
-
-/// ωᵢ² and 2ζωᵢ of the (extended) modes.
-struct Acceleration<'a> {
-    omega2: &'a [f64],
-    damping: &'a [f64],
-}
+/// One mode's states over a block of samples, aligned so that a vector load of any two of
+/// them needs no extra instruction.
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(64))]
+struct Block([f64; BLOCK]);
 
 /// Appends `count` samples to every channel of `out`, the modes propagated exactly by
 /// `map` from the state (`q`, `v`) one sample interval per sample; channel c reads
-/// rows[c].0 · (its state).
-fn free_window(
-    map: &FreeMaps,
-    q: &[f64],
-    v: &[f64],
-    accel: &Acceleration<'_>,
-    rows: &[(Vec<f64>, FreeState)],
-    out: &mut [Vec<f64>],
-    count: usize,
-) {
+/// A·q + B·q̇ with the rows of `rows[c]`.
+fn free_window(map: &FreeMaps, q: &[f64], v: &[f64], rows: &[ChannelRow], out: &mut [Vec<f64>], count: usize) {
     let n = q.len();
     let (mut qk, mut vk) = (q.to_vec(), v.to_vec());
-    let (mut qp, mut vp) = (vec![0.0; n], vec![0.0; n]);
-    let needs_acc = rows.iter().any(|r| r.1 == FreeState::Acceleration);
-    // Mode-major blocks of states: qs[i * BLOCK + j] is mode i at the block's sample j.
-    let (mut qs, mut vs, mut acc) = (vec![0.0; n * BLOCK], vec![0.0; n * BLOCK], vec![0.0; n * BLOCK]);
-    let (om2, damp) = (&accel.omega2[..n], &accel.damping[..n]);
+    // Mode-major blocks of states: qs[i].0[j] is mode i at the block's sample j.
+    let (mut qs, mut vs) = (vec![Block([0.0; BLOCK]); n], vec![Block([0.0; BLOCK]); n]);
     let mut done = 0;
     while done < count {
         let m = BLOCK.min(count - done);
         for j in 0..m {
-            std::mem::swap(&mut qk, &mut qp);
-            std::mem::swap(&mut vk, &mut vp);
-            map.apply(&qp, &vp, &mut qk, &mut vk);
-            for i in 0..n {
-                qs[i * BLOCK + j] = qk[i];
-                vs[i * BLOCK + j] = vk[i];
+            map.advance(&mut qk, &mut vk);
+            for (s, &x) in qs.iter_mut().zip(&qk) {
+                s.0[j] = x;
             }
-            if needs_acc {
-                for i in 0..n {
-                    acc[i * BLOCK + j] = -om2[i] * qk[i] - damp[i] * vk[i];
-                }
+            for (s, &x) in vs.iter_mut().zip(&vk) {
+                s.0[j] = x;
             }
         }
-        for ((row, state), o) in rows.iter().zip(out.iter_mut()) {
-            let states = match state {
-                FreeState::Deflection => &qs,
-                FreeState::Rate => &vs,
-                FreeState::Acceleration => &acc,
-            };
+        for (row, o) in rows.iter().zip(out.iter_mut()) {
             let mut y = [0.0f64; BLOCK];
-            for (i, &coef) in row.iter().enumerate().take(n) {
-                let s = &states[i * BLOCK..(i + 1) * BLOCK];
-                for j in 0..BLOCK {
-                    y[j] += coef * s[j];
-                }
+            if let Some(a) = &row.a {
+                accumulate(&mut y, a, &qs);
+            }
+            if let Some(b) = &row.b {
+                accumulate(&mut y, b, &vs);
             }
             o.extend_from_slice(&y[..m]);
         }
         done += m;
+    }
+}
+
+/// y[j] += Σᵢ rowᵢ states[i][j], the sum over i in order for every j.
+fn accumulate(y: &mut [f64; BLOCK], row: &[f64], states: &[Block]) {
+    for (&c, s) in row.iter().zip(states) {
+        for j in 0..BLOCK {
+            y[j] += c * s.0[j];
+        }
     }
 }
 
