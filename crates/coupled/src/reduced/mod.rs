@@ -48,6 +48,7 @@
 pub mod plan;
 pub mod signals;
 pub mod target;
+pub mod window;
 
 pub use signals::{free_map, newmark_map, Channel, ChannelKind, Probes, Quantity, SignalSpec, Signals};
 
@@ -64,6 +65,7 @@ use plate_fem::{element, Corner, CornerSupport, Mesh, Model, Modes, ResidualFlex
 use serde::Serialize;
 use signals::{dot, ChannelRows, FreeMaps};
 use target::{ChannelRow, CornerPoint, ModalTarget, Recording};
+use window::{free_window, BlockMaps};
 
 /// How the truncated modes enter.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
@@ -568,10 +570,7 @@ impl ReducedModel {
             })),
             follow_unbounded: true,
         };
-        let mut sample_map = probes.sample_map.clone();
-        if let Some((w, _)) = residual_mode {
-            sample_map.push(w, zeta, probes.spec.interval());
-        }
+        let extra_maps = residual_mode.map(|(w, _)| BlockMaps::new(&[w], zeta, probes.spec.interval()));
         let mut target = ModalTarget::new(omega, zeta, phi_p, c_res, dt, map, corner_points, Some(rec));
         let window = probes.spec.window;
         let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
@@ -592,7 +591,8 @@ impl ReducedModel {
         let mut out = std::mem::take(&mut target.out);
         if recorded < want && recorded > 0 {
             let (q, v) = target.state();
-            free_window(&sample_map, q, v, target.rows(), &mut out, want - recorded);
+            let maps = [probes.block_maps.modes(), extra_maps.as_ref().map_or(&[], |m| m.modes())];
+            free_window(&maps, q, v, target.rows(), &mut out, want - recorded);
         }
         let channels = probes.rows.iter().zip(out).map(|(r, samples)| Channel { kind: r.kind, samples }).collect();
         Ok(ReducedOutcome {
@@ -603,60 +603,6 @@ impl ReducedModel {
             residual_compliance: pt.c_res,
             residual_mode_hz: residual_mode.map(|(w, _)| w / (2.0 * std::f64::consts::PI)),
         })
-    }
-}
-
-/// Samples to come in blocks of this many: the modal states of a block are computed first,
-/// then every channel's samples as y[c][k] = Σᵢ A[c][i] q[i][k] + B[c][i] q̇[i][k], with the
-/// block as the vector dimension (no horizontal sums).
-const BLOCK: usize = 16;
-
-/// One mode's states over a block of samples, aligned so that a vector load of any two of
-/// them needs no extra instruction.
-#[derive(Debug, Clone, Copy)]
-#[repr(C, align(64))]
-struct Block([f64; BLOCK]);
-
-/// Appends `count` samples to every channel of `out`, the modes propagated exactly by
-/// `map` from the state (`q`, `v`) one sample interval per sample; channel c reads
-/// A·q + B·q̇ with the rows of `rows[c]`.
-fn free_window(map: &FreeMaps, q: &[f64], v: &[f64], rows: &[ChannelRow], out: &mut [Vec<f64>], count: usize) {
-    let n = q.len();
-    let (mut qk, mut vk) = (q.to_vec(), v.to_vec());
-    // Mode-major blocks of states: qs[i].0[j] is mode i at the block's sample j.
-    let (mut qs, mut vs) = (vec![Block([0.0; BLOCK]); n], vec![Block([0.0; BLOCK]); n]);
-    let mut done = 0;
-    while done < count {
-        let m = BLOCK.min(count - done);
-        for j in 0..m {
-            map.advance(&mut qk, &mut vk);
-            for (s, &x) in qs.iter_mut().zip(&qk) {
-                s.0[j] = x;
-            }
-            for (s, &x) in vs.iter_mut().zip(&vk) {
-                s.0[j] = x;
-            }
-        }
-        for (row, o) in rows.iter().zip(out.iter_mut()) {
-            let mut y = [0.0f64; BLOCK];
-            if let Some(a) = &row.a {
-                accumulate(&mut y, a, &qs);
-            }
-            if let Some(b) = &row.b {
-                accumulate(&mut y, b, &vs);
-            }
-            o.extend_from_slice(&y[..m]);
-        }
-        done += m;
-    }
-}
-
-/// y[j] += Σᵢ rowᵢ states[i][j], the sum over i in order for every j.
-fn accumulate(y: &mut [f64; BLOCK], row: &[f64], states: &[Block]) {
-    for (&c, s) in row.iter().zip(states) {
-        for j in 0..BLOCK {
-            y[j] += c * s.0[j];
-        }
     }
 }
 

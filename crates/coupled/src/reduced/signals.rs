@@ -194,8 +194,8 @@ pub struct Probes {
     pub(crate) rows: Vec<ChannelRows>,
     /// Residual fields Rℓ of the channels' functionals (DOFs).
     pub(crate) fields: Vec<Vec<f64>>,
-    /// The exact map of (q, q̇) over one sample interval, by mode ([`FreeMaps`]).
-    pub(crate) sample_map: FreeMaps,
+    /// The exact maps of (q, q̇) over 1 to [`super::window::BLOCK`] sample intervals.
+    pub(crate) block_maps: super::window::BlockMaps,
     /// The maps over T_s/m for m = 1, 2, ..., built when first needed (the step of every
     /// impact whose contact needs m steps per sample).
     pub(crate) step_maps: Vec<std::sync::OnceLock<FreeMaps>>,
@@ -218,7 +218,7 @@ impl Probes {
             spec: spec.clone(),
             rows,
             fields,
-            sample_map: FreeMaps::new(omega, zeta, spec.interval()),
+            block_maps: super::window::BlockMaps::new(omega, zeta, spec.interval()),
             step_maps: (0..Self::CACHED).map(|_| std::sync::OnceLock::new()).collect(),
             omega: omega.to_vec(),
             zeta,
@@ -287,18 +287,6 @@ impl FreeMaps {
         let m = free_map(omega, zeta, tau);
         for (v, x) in self.m.iter_mut().zip(m) {
             v.push(x);
-        }
-    }
-
-    /// (q, q̇) ← map (q, q̇) in place.
-    pub(crate) fn advance(&self, q: &mut [f64], v: &mut [f64]) {
-        let [m0, m1, m2, m3] = &self.m;
-        let n = q.len();
-        let (m0, m1, m2, m3, v) = (&m0[..n], &m1[..n], &m2[..n], &m3[..n], &mut v[..n]);
-        for i in 0..n {
-            let (qi, vi) = (q[i], v[i]);
-            q[i] = m0[i] * qi + m1[i] * vi;
-            v[i] = m2[i] * qi + m3[i] * vi;
         }
     }
 }

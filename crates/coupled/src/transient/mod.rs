@@ -413,7 +413,14 @@ pub fn simulate_with<T: Target + ?Sized>(
         if first_done && current.is_none() {
             // The energy bound, or the target's own bound on its free motion if tighter.
             let energy = facts.static_compliance.map(|c| (2.0 * end.plate_energy().max(0.0) * c).sqrt());
-            let reach = match plate.as_ref().map(|p| p.free_reach()) {
+            // The target's own bound may cost it a pass over its state, so with the energy
+            // bound at hand it is asked only when it could decide: the sphere moves away, is
+            // not already beyond the energy bound, and is beyond the point's present
+            // deflection (which any bound on the later motion exceeds, so short of it the
+            // own bound cannot stop the run either).
+            let undecided = |w: f64| v > 0.0 || u >= -wp_now.abs() || u < -w;
+            let own = plate.as_ref().map(|p| if energy.is_some_and(undecided) { None } else { p.free_reach() });
+            let reach = match own {
                 None => Some(0.0),
                 Some(own) => match (own, energy) {
                     (Some(a), Some(b)) => Some(a.min(b)),
