@@ -282,6 +282,18 @@ impl FreeMaps {
         [&self.m[0], &self.m[1], &self.m[2], &self.m[3]]
     }
 
+    /// (q, q̇) ← map (q, q̇), written to (`q_out`, `v_out`).
+    pub(crate) fn apply(&self, q: &[f64], v: &[f64], q_out: &mut [f64], v_out: &mut [f64]) {
+        let [m0, m1, m2, m3] = &self.m;
+        let n = q.len();
+        let (m0, m1, m2, m3, v) = (&m0[..n], &m1[..n], &m2[..n], &m3[..n], &v[..n]);
+        let (q_out, v_out) = (&mut q_out[..n], &mut v_out[..n]);
+        for i in 0..n {
+            q_out[i] = m0[i] * q[i] + m1[i] * v[i];
+            v_out[i] = m2[i] * q[i] + m3[i] * v[i];
+        }
+    }
+
     /// Appends the map of one more mode.
     pub(crate) fn push(&mut self, omega: f64, zeta: f64, tau: f64) {
         let m = free_map(omega, zeta, tau);

@@ -247,8 +247,15 @@ impl ModalTarget {
         };
         // The residual's trapezoidal velocity: v₊ = (2/Δt)C_res(P₊ - P) - v.
         self.res_vh = if f == 0.0 { 0.0 } else { -c1 * self.c_res * f - self.res_v };
-        let pass = Pass { gamma: &self.gamma, gamma_rate: &self.gamma_rate, map: map.entries(), f, start_force };
-        pass.run(&mut self.q, &mut self.v, &mut self.qh, &mut self.vh);
+        if f == 0.0 {
+            // A step without force ends where it was predicted, and the next starts free.
+            std::mem::swap(&mut self.q, &mut self.qh);
+            std::mem::swap(&mut self.v, &mut self.vh);
+            map.apply(&self.q, &self.v, &mut self.qh, &mut self.vh);
+        } else {
+            let pass = Pass { gamma: &self.gamma, gamma_rate: &self.gamma_rate, map: map.entries(), f, start_force };
+            pass.run(&mut self.q, &mut self.v, &mut self.qh, &mut self.vh);
+        }
         self.sums[2] = dot(&self.v, &self.v);
         self.sums[3] = weighted_squares(&self.omega2, &self.q);
         self.predicted = (dot(&self.phi, &self.qh), dot(&self.phi, &self.vh));
