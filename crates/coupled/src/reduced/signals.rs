@@ -283,6 +283,7 @@ impl FreeMaps {
     }
 
     /// (q, q̇) ← map (q, q̇), written to (`q_out`, `v_out`).
+    #[inline(always)]
     pub(crate) fn apply(&self, q: &[f64], v: &[f64], q_out: &mut [f64], v_out: &mut [f64]) {
         let [m0, m1, m2, m3] = &self.m;
         let n = q.len();
@@ -305,7 +306,7 @@ impl FreeMaps {
 
 /// Σ aᵢbᵢ with eight independent partial sums, so that the compiler can vectorize it (a
 /// plain sum fixes the order of the additions and cannot be).
-#[inline]
+#[inline(always)]
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);

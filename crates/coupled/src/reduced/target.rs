@@ -69,6 +69,8 @@ const LANES: usize = 4;
 
 /// The modal plate struck at one point.
 pub(crate) struct ModalTarget {
+    /// The instruction set the passes over the modes run on.
+    simd: pulp::Arch,
     /// The modes (the arrays below are padded to whole lanes).
     modes: usize,
     /// φᵢ(p).
@@ -125,6 +127,7 @@ impl ModalTarget {
         step_map: Option<FreeMaps>,
         corners: [Option<CornerPoint>; 4],
         recording: Option<Recording>,
+        simd: pulp::Arch,
     ) -> Self {
         let modes = omega.len();
         // Every per-mode array is padded to whole lanes with zero modes (no coupling, no
@@ -152,6 +155,7 @@ impl ModalTarget {
             }
         }
         let mut t = Self {
+            simd,
             newmark: FreeMaps::newmark(&omega, zeta, dt).padded(n),
             modes,
             phi: pad(phi_p),
@@ -214,6 +218,7 @@ impl ModalTarget {
     }
 
     /// Appends one sample of every channel: y = A·q + B·q̇ + D P.
+    #[inline(always)]
     fn record(&mut self) {
         let Some(r) = self.recording.as_ref() else { return };
         if self.out.first().is_some_and(|o| o.len() >= r.samples) {
@@ -231,9 +236,10 @@ impl ModalTarget {
         self.recording.as_ref().map_or(&[], |r| &r.rows)
     }
 
-    /// Ends the step with force `f` and predicts the next one (see the module), without
-    /// recording.
-    fn commit_state(&mut self, f: f64) {
+    /// Ends the step with force `f` and predicts the next one (see the module), recording
+    /// at sample steps.
+    #[inline(always)]
+    fn end_step(&mut self, f: f64) {
         let c1 = self.c1;
         self.sums[0] = self.predicted.0 + f * self.g_modes;
         self.sums[1] = self.predicted.1 + c1 * f * self.g_modes;
@@ -264,6 +270,52 @@ impl ModalTarget {
             self.corner_w[corner] = dot(&self.corner_rows[k * n..(k + 1) * n], &self.q) + d * f;
         }
         self.step += 1;
+        if self.recording.as_ref().is_some_and(|r| self.step % r.every == 0) {
+            self.record();
+        }
+    }
+
+    /// Σᵢ|φᵢ(p)|Aᵢ (see [`Target::free_reach`]).
+    #[inline(always)]
+    fn reach(&self) -> f64 {
+        let n = self.q.len();
+        let (q, v, phi, inv) = (&self.q[..n], &self.v[..n], &self.phi[..n], &self.inv_omega2[..n]);
+        let mut acc = [0.0; LANES];
+        for base in (0..n).step_by(LANES) {
+            for (l, a) in acc.iter_mut().enumerate() {
+                let i = base + l;
+                *a += phi[i].abs() * (q[i] * q[i] + v[i] * v[i] * inv[i]).sqrt();
+            }
+        }
+        lane_sum(acc)
+    }
+}
+
+/// A step's end on the instruction set detected at run time (the same operations in the
+/// same order on every one, so the same results).
+struct EndStep<'a> {
+    target: &'a mut ModalTarget,
+    f: f64,
+}
+
+impl pulp::WithSimd for EndStep<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        self.target.end_step(self.f)
+    }
+}
+
+/// [`ModalTarget::reach`] on the instruction set detected at run time.
+struct Reach<'a>(&'a ModalTarget);
+
+impl pulp::WithSimd for Reach<'_> {
+    type Output = f64;
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> f64 {
+        self.0.reach()
     }
 }
 
@@ -282,6 +334,7 @@ impl Pass<'_> {
     /// Per mode i: qᵢ = q̂ᵢ + γᵢP, q̇ᵢ = v̂ᵢ + (2/Δt)γᵢP (the step end), then
     /// (q̂ᵢ, v̂ᵢ) = M(qᵢ, q̇ᵢ) + (γᵢ, (2/Δt)γᵢ)P_start (the next step's prediction). No sums
     /// here: an element-wise loop vectorizes as it stands.
+    #[inline(always)]
     fn run(&self, q: &mut [f64], v: &mut [f64], qh: &mut [f64], vh: &mut [f64]) {
         let n = q.len();
         let (gamma, gamma_rate) = (&self.gamma[..n], &self.gamma_rate[..n]);
@@ -300,6 +353,7 @@ impl Pass<'_> {
 }
 
 /// Σ wᵢxᵢ² in [`LANES`] partial sums.
+#[inline(always)]
 fn weighted_squares(w: &[f64], x: &[f64]) -> f64 {
     let mut acc = [0.0; LANES];
     for (w, x) in w.chunks_exact(LANES).zip(x.chunks_exact(LANES)) {
@@ -327,10 +381,8 @@ impl Target for ModalTarget {
     }
 
     fn commit(&mut self, f: f64) {
-        self.commit_state(f);
-        if self.recording.as_ref().is_some_and(|r| self.step % r.every == 0) {
-            self.record();
-        }
+        let simd = self.simd;
+        simd.dispatch(EndStep { target: self, f });
     }
 
     fn point_state(&self) -> (f64, f64) {
@@ -352,16 +404,7 @@ impl Target for ModalTarget {
     /// (no static part without a force) below the sum. By Cauchy-Schwarz this never exceeds
     /// the energy bound √(2E C_modal).
     fn free_reach(&self) -> Option<f64> {
-        let n = self.q.len();
-        let (q, v, phi, inv) = (&self.q[..n], &self.v[..n], &self.phi[..n], &self.inv_omega2[..n]);
-        let mut acc = [0.0; LANES];
-        for base in (0..n).step_by(LANES) {
-            for (l, a) in acc.iter_mut().enumerate() {
-                let i = base + l;
-                *a += phi[i].abs() * (q[i] * q[i] + v[i] * v[i] * inv[i]).sqrt();
-            }
-        }
-        Some(lane_sum(acc))
+        Some(self.simd.dispatch(Reach(self)))
     }
 
     fn corner_displacements(&self) -> [f64; 4] {

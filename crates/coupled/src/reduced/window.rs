@@ -55,8 +55,10 @@ impl BlockMaps {
 
 /// Appends `count` samples to every channel of `out`, the modes propagated exactly from the
 /// state (`q`, `v`) at the sample before the first: mode i's maps are the i-th of the
-/// concatenated `maps`; channel c reads A·q + B·q̇ with the rows of `rows[c]`.
+/// concatenated `maps`; channel c reads A·q + B·q̇ with the rows of `rows[c]`. Runs on the
+/// instruction set `simd` (the same operations in the same order on every one).
 pub(crate) fn free_window(
+    simd: pulp::Arch,
     maps: &[&[[Block; 4]]],
     q: &[f64],
     v: &[f64],
@@ -64,34 +66,54 @@ pub(crate) fn free_window(
     out: &mut [Vec<f64>],
     count: usize,
 ) {
-    let n = q.len();
-    let (mut q0, mut v0) = (q.to_vec(), v.to_vec());
-    // Mode-major blocks of states: qs[i].0[j] is mode i at the block's sample j.
-    let (mut qs, mut vs) = (vec![Block([0.0; BLOCK]); n], vec![Block([0.0; BLOCK]); n]);
-    let mut done = 0;
-    while done < count {
-        let m = BLOCK.min(count - done);
-        let modes = maps.iter().flat_map(|m| m.iter());
-        for (((p, (qb, vb)), q0), v0) in modes.zip(qs.iter_mut().zip(vs.iter_mut())).zip(&mut q0).zip(&mut v0) {
-            propagate(p, (*q0, *v0), qb, vb);
-            (*q0, *v0) = (qb.0[BLOCK - 1], vb.0[BLOCK - 1]);
-        }
-        for (row, o) in rows.iter().zip(out.iter_mut()) {
-            let mut y = [0.0f64; BLOCK];
-            if let Some(a) = &row.a {
-                accumulate(&mut y, a, &qs);
+    simd.dispatch(Window { maps, q, v, rows, out, count })
+}
+
+/// [`free_window`]'s arguments.
+struct Window<'a, 'b> {
+    maps: &'a [&'a [[Block; 4]]],
+    q: &'a [f64],
+    v: &'a [f64],
+    rows: &'a [ChannelRow],
+    out: &'b mut [Vec<f64>],
+    count: usize,
+}
+
+impl pulp::WithSimd for Window<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Window { maps, q, v, rows, out, count } = self;
+        let n = q.len();
+        let (mut q0, mut v0) = (q.to_vec(), v.to_vec());
+        // Mode-major blocks of states: qs[i].0[j] is mode i at the block's sample j.
+        let (mut qs, mut vs) = (vec![Block([0.0; BLOCK]); n], vec![Block([0.0; BLOCK]); n]);
+        let mut done = 0;
+        while done < count {
+            let m = BLOCK.min(count - done);
+            let modes = maps.iter().flat_map(|m| m.iter());
+            for (((p, (qb, vb)), q0), v0) in modes.zip(qs.iter_mut().zip(vs.iter_mut())).zip(&mut q0).zip(&mut v0) {
+                propagate(p, (*q0, *v0), qb, vb);
+                (*q0, *v0) = (qb.0[BLOCK - 1], vb.0[BLOCK - 1]);
             }
-            if let Some(b) = &row.b {
-                accumulate(&mut y, b, &vs);
+            for (row, o) in rows.iter().zip(out.iter_mut()) {
+                let mut y = [0.0f64; BLOCK];
+                if let Some(a) = &row.a {
+                    accumulate(&mut y, a, &qs);
+                }
+                if let Some(b) = &row.b {
+                    accumulate(&mut y, b, &vs);
+                }
+                o.extend_from_slice(&y[..m]);
             }
-            o.extend_from_slice(&y[..m]);
+            done += m;
         }
-        done += m;
     }
 }
 
 /// One mode's block: (q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀) for every j of the block.
-#[inline]
+#[inline(always)]
 fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block, v: &mut Block) {
     let [p0, p1, p2, p3] = maps;
     for j in 0..BLOCK {
@@ -101,6 +123,7 @@ fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block, v: &mut Blo
 }
 
 /// y[j] += Σᵢ rowᵢ states[i][j], the sum over i in order for every j.
+#[inline(always)]
 fn accumulate(y: &mut [f64; BLOCK], row: &[f64], states: &[Block]) {
     for (&c, s) in row.iter().zip(states) {
         for j in 0..BLOCK {
@@ -130,7 +153,7 @@ mod tests {
         let count = 2 * BLOCK + BLOCK / 2;
         let maps = BlockMaps::new(&omega, zeta, ts);
         let mut out = vec![Vec::new(), Vec::new()];
-        free_window(&[maps.modes()], &q, &v, &rows, &mut out, count);
+        free_window(pulp::Arch::new(), &[maps.modes()], &q, &v, &rows, &mut out, count);
         let exact = |k: usize| -> (f64, f64) {
             (0..3).fold((0.0, 0.0), |(d, r), i| {
                 let m = free_map(omega[i], zeta, k as f64 * ts);
