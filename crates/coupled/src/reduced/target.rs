@@ -144,7 +144,9 @@ impl ModalTarget {
         let gamma_rate = gamma.iter().map(|c| c1 * c).collect();
         let omega2: Vec<f64> = pad(omega.iter().map(|w| w * w).collect());
         let inv_omega2 = pad(omega.iter().map(|w| 1.0 / (w * w)).collect());
-        let out = recording.as_ref().map_or(Vec::new(), |r| vec![Vec::with_capacity(r.samples); r.rows.len()]);
+        let out = recording
+            .as_ref()
+            .map_or(Vec::new(), |r| (0..r.rows.len()).map(|_| Vec::with_capacity(r.samples)).collect());
         let mut corner_terms = Vec::new();
         let mut corner_rows = Vec::new();
         for (k, c) in corners.iter().enumerate() {

@@ -105,7 +105,12 @@ impl pulp::WithSimd for Window<'_, '_> {
                 if let Some(b) = &row.b {
                     accumulate(&mut y, b, &vs);
                 }
-                o.extend_from_slice(&y[..m]);
+                // A whole block as a whole array: a copy of known length, inlined.
+                if m == BLOCK {
+                    o.extend_from_slice(&y);
+                } else {
+                    o.extend_from_slice(&y[..m]);
+                }
             }
             done += m;
         }
