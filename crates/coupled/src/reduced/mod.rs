@@ -18,7 +18,12 @@
 //! Δt = T_s/m, the largest divisor of the sample interval T_s = 1/rate not above
 //! t_c/`steps_per_contact` (t_c the rigid-target Hertz time), so samples fall on step ends.
 //! Once the sphere has provably left, the rest of the window is exact free vibration at the
-//! sample times ([`signals::free_map`]): nothing is time-stepped there.
+//! sample times ([`window`]): nothing is time-stepped there.
+//!
+//! **Speed.** Every pass over the modes (a step's end and prediction, the stopping rule's
+//! bound, the window's states and channels) runs on the widest vector instructions the
+//! processor has, chosen at run time; the operations and their order are those of plain
+//! x86-64 code, so the results are the same bits on any processor.
 //!
 //! **Damping.** The full model is undamped; the default modal damping ratio is
 //! [`ReducedSettings::DEFAULT_DAMPING_RATIO`] = 0.5 %, the structural damping of a bolted
@@ -362,7 +367,8 @@ impl ReducedModel {
     }
 
     /// Prepares `spec` on this model: every channel's coefficient rows (one solve per
-    /// sensor, for its residual field) and the exact map over one sample interval.
+    /// sensor, for its residual field) and the exact maps over 1 to
+    /// [`window::BLOCK`] sample intervals.
     pub fn probes(&self, spec: &SignalSpec) -> Result<Probes, ModelError> {
         check("signals.window", spec.window, Range::open_closed(0.0, 10.0), "s")?;
         check("signals.rate_hz", spec.rate_hz, Range::closed(10.0, 1e7), "Hz")?;
@@ -579,7 +585,7 @@ impl ReducedModel {
         let window = probes.spec.window;
         let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
         // The rest of the window: on to the next sample step (or, time-stepped, to the end),
-        // then exact free vibration from sample to sample.
+        // then exact free vibration at the sample times.
         let want = probes.spec.samples();
         if !probes.rows.is_empty() && target.recorded() < want {
             if target.exact() {

@@ -7,8 +7,8 @@
 //! [`SignalSpec`] on one [`super::ReducedModel`], so an impact only evaluates D(p).
 //!
 //! Between samples, after the contacts, every mode is propagated exactly: the damped free
-//! vibration over one sample interval T_s is a fixed 2 x 2 map of (qᵢ, q̇ᵢ) per mode
-//! ([`free_map`]), computed once per `Probes`.
+//! vibration over a time τ is a 2 x 2 map of (qᵢ, q̇ᵢ) per mode ([`free_map`]); the maps over
+//! 1 to [`super::window::BLOCK`] sample intervals are computed once per `Probes`.
 
 use plate_fem::Corner;
 use serde::Serialize;
@@ -187,7 +187,7 @@ pub(crate) struct ChannelRows {
 }
 
 /// A [`SignalSpec`] prepared on one reduced model: every channel's rows and the exact
-/// free-vibration map over one sample interval.
+/// free-vibration maps over 1 to [`super::window::BLOCK`] sample intervals.
 #[derive(Debug, Clone)]
 pub struct Probes {
     pub(crate) spec: SignalSpec,

@@ -3,10 +3,10 @@
 //! Free of force, mode i's state sₖ = (qᵢ, q̇ᵢ) at sample k is Φᵢ(kT_s) s₀ ([`free_map`]).
 //! The samples come in blocks of [`BLOCK`]: from the state at the sample before a block,
 //! its j-th sample is Φᵢ(jT_s) times that state, j = 1..[`BLOCK`], with the maps Φᵢ(jT_s)
-//! computed once per signal spec ([`BlockMaps`]). Within a block no sample waits for the one
+//! computed once per signal spec (`BlockMaps`). Within a block no sample waits for the one
 //! before it, and the last sample starts the next block, so the window's [`BLOCK`]-fold
 //! fewer map products also round less than a step-by-step recurrence. Every channel is then
-//! y[j] = Σᵢ Aᵢqᵢ[j] + Bᵢq̇ᵢ[j] over the block's samples, with the block as the vector
+//! `y[j] = Σᵢ Aᵢqᵢ[j] + Bᵢq̇ᵢ[j]` over the block's samples, with the block as the vector
 //! dimension (no horizontal sums).
 
 use super::signals::free_map;
@@ -117,7 +117,7 @@ impl pulp::WithSimd for Window<'_, '_> {
     }
 }
 
-/// One mode's block: (q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀) for every j of the block.
+/// One mode's block: `(q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀)` for every j of the block.
 #[inline(always)]
 fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block, v: &mut Block) {
     let [p0, p1, p2, p3] = maps;
@@ -127,10 +127,12 @@ fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block, v: &mut Blo
     }
 }
 
-/// y[j] += Σᵢ rowᵢ states[i][j], the sum over i in order for every j.
+/// `y[j] += Σᵢ rowᵢ states[i][j]`, the sum over i in order for every j.
 #[inline(always)]
 fn accumulate(y: &mut [f64; BLOCK], row: &[f64], states: &[Block]) {
     for (&c, s) in row.iter().zip(states) {
+        // Indexed, not zipped: the fixed trip count keeps the block in registers.
+        #[allow(clippy::needless_range_loop)]
         for j in 0..BLOCK {
             y[j] += c * s.0[j];
         }
