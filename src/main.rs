@@ -578,8 +578,9 @@ fn execute(command: Command) -> Result<(), Failure> {
                         let what = format!("{} at {v} m/s on {} at ({x_mm}, {z_mm}) mm", sphere.name, cond.name);
                         let text = impact::report::field::p_max_text(&case, &what)?;
                         meta.lines.push(text.clone());
-                        meta.numbers.extend(case_numbers(&case, v));
-                        said = Some(text);
+                        let numbers = case_numbers(&case, v);
+                        meta.numbers.extend(numbers.iter().cloned());
+                        said = Some((text, numbers));
                         case.contact_force
                     } else {
                         meta.lines.push(format!("scaled by the load given, {} N", force_n.unwrap_or(1.0)));
@@ -593,18 +594,25 @@ fn execute(command: Command) -> Result<(), Failure> {
             } else if let Some(p) = target.commit(&bytes)? {
                 note(&format!("wrote {}", p.display()));
                 if json {
-                    let doc = serde_json::json!({
-                        "provenance": Provenance::of(&scene),
+                    let mut doc = serde_json::json!({
                         "files": [{
                             "path": p.to_string_lossy(),
                             "bytes": bytes.len(),
                             "sha256": impact::output::sha256_hex(&bytes),
                         }],
                     });
-                    out(&format!("{}\n", serde_json::to_string_pretty(&doc)?))?;
+                    // With --force-of-impact: what the load is, as the file's field data says.
+                    if let Some((text, numbers)) = &said {
+                        let map: serde_json::Map<String, serde_json::Value> =
+                            numbers.iter().map(|(k, v)| (k.clone(), serde_json::json!(v))).collect();
+                        doc["quasi_static_p_max"] = serde_json::json!({ "text": text, "numbers": map });
+                    }
+                    // The provenance as the first key, as in every JSON document of ours.
+                    let doc = Provenance::of(&scene).stamp_json(serde_json::to_string_pretty(&doc)?.as_bytes());
+                    out(&format!("{}\n", String::from_utf8(doc)?))?;
                 }
             }
-            if let Some(text) = said {
+            if let Some((text, _)) = said {
                 note(&text);
             }
             Ok(())

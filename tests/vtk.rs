@@ -255,7 +255,7 @@ fn scaled_to_the_impacts_quasi_static_p_max() {
     let out = dir.path().join("p.vtu");
     let o = Command::new(BIN)
         .args(["field", "--format", "vtu", "--x-mm", "229.2", "--z-mm", "180", "--elements", "20", "--force-of-impact"])
-        .args(["--body", "gangue 1", "--velocity-m-per-s", "0.008", "--out"])
+        .args(["--body", "gangue 1", "--velocity-m-per-s", "0.008", "--json", "--out"])
         .arg(&out)
         .output()
         .unwrap();
@@ -263,6 +263,18 @@ fn scaled_to_the_impacts_quasi_static_p_max() {
     assert!(o.status.success(), "{err}");
     let bytes = std::fs::read(&out).unwrap();
     let fd = field_data(&bytes);
+    // --json: the provenance first, the file, and the load's numbers as in the field data.
+    let printed = String::from_utf8(o.stdout.clone()).unwrap();
+    assert!(printed.trim_start().trim_start_matches('{').trim_start().starts_with("\"provenance\""), "{printed}");
+    let doc: serde_json::Value = serde_json::from_str(&printed).unwrap();
+    assert_eq!(doc["files"][0]["bytes"], bytes.len());
+    // Within one unit in the last place: serde_json's default float parser (no
+    // float_roundtrip feature) may round the last digit differently from Rust's own.
+    for (k, v) in doc["quasi_static_p_max"]["numbers"].as_object().unwrap() {
+        let (a, b) = (v.as_f64().unwrap(), fd[k]);
+        assert!((a - b).abs() <= 2.0 * f64::EPSILON * b.abs(), "{k}: {a} vs {b}");
+    }
+    assert!(doc["quasi_static_p_max"]["text"].as_str().unwrap().contains("quasi-static plate model"));
 
     // The same case through `impact solve --model plate`: its P_max and error, bit for bit.
     let solved = run(&["solve", "--model", "plate", "--json"]);
