@@ -434,7 +434,6 @@ fn the_scene_hash_follows_the_content() {
 /// directory's files carry the provenance of the scene its report ran, so only the form of
 /// the hash is checked here.
 #[test]
-#[ignore = "the committed reports/ predate the convention's last changes until `impact report` regenerates them; then run with --ignored (and drop this attribute)"]
 fn committed_reports_follow_the_convention() {
     let reports = Path::new(env!("CARGO_MANIFEST_DIR")).join("reports");
     let (problems, n) = check_dir(&reports, &|_| None);
