@@ -87,6 +87,44 @@ fn cpu_report(what: &str, model: &ReducedModel, probes: &coupled::reduced::Probe
     println!("cpu time: {what}: {:.0} µs per impact ({:.0} impacts per CPU-second)", best * 1e6, 1.0 / best);
 }
 
+/// CPU time of this process (all threads), s (Linux: utime + stime of /proc/self/stat, in
+/// clock ticks of 10 ms); None elsewhere.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let fields: Vec<&str> = stat.rsplit(')').next()?.split_whitespace().collect();
+    let ticks = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// Prints the CPU time per impact of all threads of `pool` over whole rounds of `list` lasting
+/// at least 2 s of CPU time (1 % of it in 10 ms ticks). Equal to the one-thread figure, it
+/// says that running impacts side by side costs none of them anything, so the rate grows
+/// with the free cores even where the machine has none free to show it.
+fn parallel_cpu_report(
+    pool: &rayon::ThreadPool,
+    model: &ReducedModel,
+    probes: &coupled::reduced::Probes,
+    list: &[(Striker, f64, f64)],
+) {
+    let Some(t0) = process_cpu_seconds() else { return };
+    let mut count = 0;
+    loop {
+        pool.install(|| {
+            list.par_iter().for_each(|(s, x, z)| {
+                black_box(model.impact(s, *x, *z, probes).unwrap());
+            })
+        });
+        count += list.len();
+        let Some(t1) = process_cpu_seconds() else { return };
+        if t1 - t0 >= 2.0 {
+            let per = (t1 - t0) / count as f64;
+            let threads = pool.current_num_threads();
+            println!("cpu time: {threads} threads together: {:.0} µs per impact", per * 1e6);
+            return;
+        }
+    }
+}
+
 fn throughput(c: &mut Criterion) {
     let scene = Scene::default_scene();
     let set = con3(&scene);
@@ -105,6 +143,7 @@ fn throughput(c: &mut Criterion) {
         })
     });
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    parallel_cpu_report(&pool, &model, &probes, &list);
     g.bench_function("reduced, 2 threads", |b| {
         b.iter(|| {
             pool.install(|| {
