@@ -97,7 +97,7 @@ fn tick_labels_share_one_format() {
     let decimals = |s: &str| s.split('.').nth(1).map_or(0, str::len);
     let d0 = decimals(&t.major[0].1);
     assert!(t.major.iter().all(|(_, l)| decimals(l) == d0), "{t:?}");
-    // The mix, 0.00200 beside 8.00e-4, cannot happen: one factor, one decimal count.
+    // A mixed axis, 0.00200 beside 8.00e-4, cannot happen: one factor, one decimal count.
     let (labels, factor) = common_format(&[0.002, 0.0008]);
     assert_eq!((labels, factor.as_deref()), (vec!["2.0".to_string(), "0.8".to_string()], Some("×10⁻³")));
     // Log axes: decades as powers of ten; inside a decade, 1-2-5 values in one format.
