@@ -62,16 +62,6 @@ impl Quantities {
         }
     }
 
-    fn zip<T: Copy>(self, o: Self, f: impl Fn(f64, f64) -> T) -> Pair<T> {
-        Pair([
-            f(self.peak_force, o.peak_force),
-            f(self.force_at_max_compression, o.force_at_max_compression),
-            f(self.compression, o.compression),
-            f(self.contact_time, o.contact_time),
-            f(self.restitution, o.restitution),
-        ])
-    }
-
     /// The largest relative error of P_max (the force at maximum compression, the paper's)
     /// and the first contact time, `self` the errors of `values`: the measure a tolerance
     /// holds ([`choose`]). The peak force, which carries the Flores damping and the plate's
@@ -126,10 +116,35 @@ impl State {
             sphere_kinetic: m.sphere_kinetic,
         }
     }
+}
 
-    fn to_array(self) -> [f64; 10] {
+/// A set of numbers an estimate covers, as a list in a fixed order, so that one Richardson
+/// estimate ([`richardson`]) serves [`Quantities`] and [`State`] alike.
+trait Components: Copy {
+    fn to_list(self) -> Vec<f64>;
+    fn from_list(list: &[f64]) -> Self;
+}
+
+impl Components for Quantities {
+    fn to_list(self) -> Vec<f64> {
+        vec![self.peak_force, self.force_at_max_compression, self.compression, self.contact_time, self.restitution]
+    }
+
+    fn from_list(l: &[f64]) -> Self {
+        Self {
+            peak_force: l[0],
+            force_at_max_compression: l[1],
+            compression: l[2],
+            contact_time: l[3],
+            restitution: l[4],
+        }
+    }
+}
+
+impl Components for State {
+    fn to_list(self) -> Vec<f64> {
         let [c0, c1, c2, c3] = self.corners;
-        [
+        vec![
             self.plate_displacement,
             c0,
             c1,
@@ -143,57 +158,35 @@ impl State {
         ]
     }
 
-    fn from_array(a: [f64; 10]) -> Self {
-        let [plate_displacement, c0, c1, c2, c3, rock_total, rock_stored, plate, springs, sphere_kinetic] = a;
-        Self { plate_displacement, corners: [c0, c1, c2, c3], rock_total, rock_stored, plate, springs, sphere_kinetic }
-    }
-
-    /// Richardson's estimate of each component's absolute error, as [`combine`] gives that of
-    /// [`Quantities`]: F|Q(n, N) - Q(n, 2N)|/(1 - 2^{-p_t}) + F|Q(n, N) - Q(2n, N)|/(1 - 2^{-p_h}),
-    /// the orders observed from the third levels and clamped to [1, 2] (2 for the mesh without
-    /// a coarser level). Components that vanish on every level (a held corner, no springs)
-    /// have no error.
-    fn error(self, (q_2dt, q_dt): (State, State), (q_2h, q_h): (Option<State>, State)) -> State {
-        let (q, q_2dt, q_dt, q_h) = (self.to_array(), q_2dt.to_array(), q_dt.to_array(), q_h.to_array());
-        let q_2h = q_2h.map(State::to_array);
-        State::from_array(std::array::from_fn(|i| {
-            let p_t = observed_order(q_2dt[i], q[i], q_dt[i]);
-            let p_h = q_2h.map_or(2.0, |c| observed_order(c[i], q[i], q_h[i]));
-            let part = |fine: f64, p: f64| SAFETY * (q[i] - fine).abs() / (1.0 - 0.5f64.powf(p));
-            part(q_dt[i], p_t) + part(q_h[i], p_h)
-        }))
+    fn from_list(l: &[f64]) -> Self {
+        Self {
+            plate_displacement: l[0],
+            corners: [l[1], l[2], l[3], l[4]],
+            rock_total: l[5],
+            rock_stored: l[6],
+            plate: l[7],
+            springs: l[8],
+            sphere_kinetic: l[9],
+        }
     }
 }
 
-/// The five quantities as a tuple of anything, in [`Quantities`]' field order.
-#[derive(Debug, Clone, Copy)]
-struct Pair<T>([T; 5]);
-
-impl Pair<f64> {
-    fn zip(self, o: Quantities, f: impl Fn(f64, f64) -> f64) -> Quantities {
-        let q = Pair::from(o).0;
-        Quantities::from(Pair(std::array::from_fn(|i| f(self.0[i], q[i]))))
-    }
+/// Richardson's estimate in one direction (Δt or h), component by component: the order p
+/// observed from the `coarse`, value and `fine` levels ([`observed_order`]; 2 without a
+/// coarse level) and the absolute error F|Q - Q_fine|/(1 - 2^{-p}). Returns (orders, errors).
+fn richardson<Q: Components>(q: Q, fine: Q, coarse: Option<Q>) -> (Q, Q) {
+    let (q, fine, coarse) = (q.to_list(), fine.to_list(), coarse.map(Q::to_list));
+    let order: Vec<f64> =
+        (0..q.len()).map(|i| coarse.as_ref().map_or(2.0, |c| observed_order(c[i], q[i], fine[i]))).collect();
+    let error: Vec<f64> =
+        (0..q.len()).map(|i| SAFETY * (q[i] - fine[i]).abs() / (1.0 - 0.5f64.powf(order[i]))).collect();
+    (Q::from_list(&order), Q::from_list(&error))
 }
 
-impl<T: Copy> Pair<T> {
-    fn zip3(self, o: Quantities, f: impl Fn(T, f64) -> f64) -> Quantities {
-        let q = Pair::from(o).0;
-        Quantities::from(Pair(std::array::from_fn(|i| f(self.0[i], q[i]))))
-    }
-}
-
-impl From<Quantities> for Pair<f64> {
-    fn from(q: Quantities) -> Self {
-        Pair([q.peak_force, q.force_at_max_compression, q.compression, q.contact_time, q.restitution])
-    }
-}
-
-impl From<Pair<f64>> for Quantities {
-    fn from(p: Pair<f64>) -> Self {
-        let [peak_force, force_at_max_compression, compression, contact_time, restitution] = p.0;
-        Self { peak_force, force_at_max_compression, compression, contact_time, restitution }
-    }
+/// The component-wise sum of two error estimates.
+fn sum<Q: Components>(a: Q, b: Q) -> Q {
+    let (a, b) = (a.to_list(), b.to_list());
+    Q::from_list(&a.iter().zip(&b).map(|(x, y)| x + y).collect::<Vec<_>>())
 }
 
 /// A case's numbers with their error estimates.
@@ -262,18 +255,9 @@ fn combine(
     (elements, steps_per_contact): (usize, f64),
     outcome: Outcome,
 ) -> Estimated {
-    let state_error = state.error((s_2dt, s_dt), (r_2h.map(|r| r.1), s_h));
-    let q_2h = r_2h.map(|r| r.0);
-    let time_order = q_2dt.zip(q, |a, b| (a, b)).zip3(q_dt, |(a, b), c| observed_order(a, b, c));
-    let mesh_order = match q_2h {
-        Some(c) => c.zip(q, |a, b| (a, b)).zip3(q_h, |(a, b), c| observed_order(a, b, c)),
-        None => Quantities::from(q.zip(q, |_, _| 2.0)),
-    };
-    let part = |fine: Quantities, p: Quantities| {
-        q.zip(fine, |a, b| (a - b).abs()).zip(p, |d, p| SAFETY * d / (1.0 - 0.5f64.powf(p)))
-    };
-    let time_error = part(q_dt, time_order);
-    let mesh_error = part(q_h, mesh_order);
+    let (time_order, time_error) = richardson(q, q_dt, Some(q_2dt));
+    let (mesh_order, mesh_error) = richardson(q, q_h, r_2h.map(|r| r.0));
+    let state_error = sum(richardson(state, s_dt, Some(s_2dt)).1, richardson(state, s_h, r_2h.map(|r| r.1)).1);
     Estimated {
         elements,
         steps_per_contact,
@@ -282,7 +266,7 @@ fn combine(
         mesh_order,
         time_error,
         mesh_error,
-        error: Quantities::from(time_error.zip(mesh_error, |a, b| a + b)),
+        error: sum(time_error, mesh_error),
         state_error,
         tolerance: None,
         met_tolerance: true,
