@@ -9,9 +9,12 @@ use impact::provenance::Provenance;
 use impact::report::identify::RowFiles;
 use impact::report::Failure;
 use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
+use progress::Terminal;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+
+mod progress;
 
 #[derive(Parser)]
 #[command(
@@ -381,7 +384,7 @@ fn out(text: &str) -> Result<(), Failure> {
 
 /// The scene's rows by each requested model (the library's [`impact::run::results`]).
 fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
-    impact::run::results(scene, models)
+    impact::run::results(scene, models, &Terminal::new())
 }
 
 fn execute(command: Command) -> Result<(), Failure> {
@@ -416,7 +419,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             let scene = transient.apply(load_bodies(&scene, "dynamic")?)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            let mut a = impact::report::transient::report(&scene)?;
+            let mut a = impact::report::transient::report(&scene, &Terminal::new())?;
             Provenance::of(&scene).stamp(&mut a);
             commit_reporting(target, &a, &scene, json)
         }
@@ -438,7 +441,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             let scene = transient.apply(load_bodies(&scene, "compare")?)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
             let target = OutputDir::prepare(&dir)?;
-            commit_reporting(target, &impact::report::scene_report(&scene)?, &scene, json)
+            commit_reporting(target, &impact::report::scene_report(&scene, &Terminal::new())?, &scene, json)
         }
         Command::Identify { scene, out: dir, json, no_features_csv } => {
             let scene = Scene::load(&scene)?;
@@ -461,7 +464,7 @@ fn execute(command: Command) -> Result<(), Failure> {
         Command::Report { out, json } => {
             let mut target = OutputDir::prepare(&out)?;
             let scene = Scene::default_scene();
-            let artifacts = impact::report::full_report(&scene, &mut target)?;
+            let artifacts = impact::report::full_report(&scene, &mut target, &Terminal::new())?;
             // The provenance printed is that of the scene the report ran, as in its files.
             commit_reporting(target, &artifacts, &impact::report::main_scene(&scene), json)
         }

@@ -408,7 +408,7 @@ pub fn results<'py>(py: Python<'py>, r: &Results) -> PyResult<Bound<'py, PyDict>
     d.set_item("scene", &r.scene)?;
     d.set_item("responses", responses(&r.responses).into_py(py)?)?;
     d.set_item("yields", yields(&r.yields).into_py(py)?)?;
-    d.set_item("status", impact::run::status_line(r))?;
+    d.set_item("status", studies::run::status_line(r))?;
     let s = r.summary();
     let summary = PyDict::new(py);
     for (k, v) in [

@@ -3,8 +3,8 @@
 //! the allowed range and its unit. `ModelError` (a `RuntimeError`) is a model that could not
 //! answer (a solver that did not converge, a request beyond the budgets).
 
+use ::scene::SceneError as Invalid;
 use analytic::params::InvalidParameter;
-use impact::scene::SceneError as Invalid;
 use pyo3::prelude::*;
 
 pyo3::create_exception!(

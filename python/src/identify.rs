@@ -16,10 +16,10 @@ use analytic::params::{check, Range};
 use coupled::identification::{ImpactRecord, Instrument};
 use coupled::reduced::{Quantity, ReducedModel, SignalSpec};
 use coupled::validity::QUASI_STATIC_MIN_RATIO;
-use impact::report::identify::ChannelInfo;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::{Arc, Mutex};
+use studies::channel::ChannelInfo;
 
 /// Reduced models built in this process, most recent last, by (scene text, support set): a
 /// Dask worker runs many shards of one scene and support set, and their model (the plate's

@@ -1,6 +1,6 @@
 //! `impact._impact`: the Python extension module of `impact`, built by maturin from the same
-//! library crates as the command line. Scenes are read and validated by `impact::scene`,
-//! scenes are run by `impact::run` (the command line's own entry point), transient cases by
+//! library crates as the command line. Scenes are read and validated by the `scene` crate,
+//! scenes are run by `studies::run` (the command line's own entry point), transient cases by
 //! `coupled::plan`; this crate only converts: Python values in, columns of numpy arrays out.
 //! Every long computation runs with the Python interpreter released (`Python::detach`), so
 //! other Python threads (a Dask worker's heartbeat, a GUI) go on meanwhile.
@@ -15,19 +15,19 @@ mod errors;
 mod identify;
 mod scene;
 
+use ::scene::{limits, Analysis, MAX_POINTS};
 use analytic::params::{check, Range};
 use columns::Table;
 use coupled::plan::{scene_striker, transient_response, transient_values, ModelKind};
 use coupled::transient::{Discretisation, Ladder, Sample, TransientCase};
 use errors::{argument_error, argument_message, model_error};
-use impact::scene::{limits, Analysis, MAX_POINTS};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use scene::Scene;
 
 /// Runs `scene` with the models named by `model` ("beam", "plate", "transient" or "all"),
-/// exactly as `impact solve` does (`impact::run::results`): on the scene's points, or on
+/// exactly as `impact solve` does (`studies::run::results`): on the scene's points, or on
 /// `sweep` evenly spaced centreline points (`impact sweep --count`), and only the yield
 /// velocities when `yield_only` (`impact yield`); the transient model chooses each case's mesh
 /// and step for the relative `tolerance` (`--tolerance`, default 1e-4). Returns the columns of
@@ -42,7 +42,7 @@ fn run<'py>(
     yield_only: bool,
     tolerance: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let models = impact::run::model_kinds(model).ok_or_else(|| {
+    let models = studies::run::model_kinds(model).ok_or_else(|| {
         argument_message(
             "model",
             format!("'{model}' is not a model; allowed: \"beam\", \"plate\", \"transient\", \"all\""),
@@ -67,7 +67,9 @@ fn run<'py>(
     if let Some(t) = tolerance {
         s.transient_discretisation = Discretisation::tolerance(transient_tolerance(t)?);
     }
-    let results = py.detach(|| impact::run::results(&s, &models).map_err(|e| e.to_string())).map_err(model_error)?;
+    let results = py
+        .detach(|| studies::run::results(&s, &models, &studies::progress::Silent).map_err(|e| e.to_string()))
+        .map_err(model_error)?;
     columns::results(py, &results)
 }
 

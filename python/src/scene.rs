@@ -1,9 +1,9 @@
 //! Scenes from Python: a TOML file, TOML text or a dict. A dict is written out as TOML text
-//! and read by the same parser and validation as a scene file (`impact::scene`), so every
+//! and read by the same parser and validation as a scene file (the `scene` crate), so every
 //! rule and every error message is the command line's.
 
 use crate::errors::{field_error, overflow_error, scene_error};
-use impact::scene::{Scene as Validated, SceneError as Invalid, SceneSource, DEFAULT_ORIGIN, DEFAULT_SCENE};
+use ::scene::{Scene as Validated, SceneError as Invalid, SceneSource, DEFAULT_ORIGIN, DEFAULT_SCENE};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};

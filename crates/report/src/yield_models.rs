@@ -10,21 +10,22 @@
 //! and closed by Illinois false position to the same relative width (about 6-8 runs). The
 //! report checks one point against `dynamic_yield`.
 
-use crate::output::Artifacts;
+use crate::paper::{Paper, PrintedTables};
 use crate::present::plot::{line_plot, series_csv, Scale, Series, Verdict};
 use crate::present::table::{sig, Cell, Table};
-use crate::report::paper::{Paper, PrintedTables};
-use crate::report::template::render;
-use crate::report::Failure;
-use crate::scene::Scene;
+use crate::template::render;
+use crate::Failure;
 use analytic::{contact_stiffness, yield_velocity, DruckerPrager, Sphere};
 pub use coupled::plan::log_root;
 use coupled::plan::{self, impact_of, ModelKind, YieldRow, YieldValues};
 use coupled::scene::even_points;
 use coupled::transient::{case::striker, TransientCase, TransientSettings};
 use coupled::{Analysis, BeamModel, ModelError, PlateModel, Points, SupportSet};
+use output::Artifacts;
+use scene::Scene;
 use std::collections::HashMap;
 use std::time::Instant;
+use studies::progress::Progress;
 
 /// The report's prose: every number in it is a placeholder filled from the run.
 const TEMPLATE: &str = include_str!("templates/yield_models.md");
@@ -877,19 +878,19 @@ pub fn study(_scene: &Scene) -> Result<(Artifacts, YieldSummary), Failure> {
 /// under every support set at the scene's transient points, by the beam (Con 1-3 only), the
 /// quasi-static plate and the transient plate, each with its error estimate, and whether the
 /// transient v_y lies below the quasi-static plate's by more than both errors.
-pub fn scene_study(scene: &Scene) -> Result<(Artifacts, YieldSummary), Failure> {
+pub fn scene_study(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, YieldSummary), Failure> {
     let mut sc = scene.clone();
     sc.points = Points::Pairs { pairs: scene.transient_points.clone() };
     sc.analyses = vec![Analysis::YieldVelocity];
-    crate::run::check_budget(&sc, &[ModelKind::Transient])?;
+    studies::run::check_budget(&sc, &[ModelKind::Transient])?;
     let points = sc.point_pairs();
     let periods = plan::fundamental_periods(&sc)?;
     let beam = plan::run(&sc, &BeamModel { plate: &sc.plate }, ModelKind::Beam, &periods)?.yields;
     let plate_model = PlateModel::compute(&sc.plate, &sc.conditions, &points, PLATE_BASE_MESH, PLATE_LEVELS)?;
     let plate = plan::run(&sc, &plate_model, ModelKind::Plate, &periods)?.yields;
-    let pb = crate::run::progress_bar(plan::transient_case_count(&sc), "transient yield velocities");
-    let transient = plan::run_transient_observed(&sc, &mut || pb.inc(1))?.yields;
-    pb.finish_and_clear();
+    progress.start(plan::transient_case_count(&sc), "transient yield velocities");
+    let transient = plan::run_transient_observed(&sc, &mut || progress.advance(1))?.yields;
+    progress.finish();
     let same = |rows: &[YieldRow], r: &YieldRow| -> Option<YieldValues> {
         rows.iter()
             .find(|o| o.body == r.body && o.condition == r.condition && o.x == r.x && o.z == r.z)

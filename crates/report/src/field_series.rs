@@ -9,16 +9,16 @@
 //! deflection): the frame at time t is the step of the same t, so the two can be checked
 //! against each other.
 
-use crate::output::Artifacts;
 use crate::present::table::Table;
-use crate::report::transient::{striker, STEPS_PER_CONTACT};
-use crate::report::Failure;
-use crate::scene::{Scene, SupportSet};
+use crate::transient::{striker, STEPS_PER_CONTACT};
+use crate::Failure;
 use analytic::Sphere;
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::transient::{simulate_with, PlateFacts, Target};
+use output::Artifacts;
 use plate_fem::dynamics::{Newmark, PlateEnergy};
 use plate_fem::Model;
+use scene::{Scene, SupportSet};
 
 /// Every `FRAME_EVERY`-th step is a frame: 200 steps per contact time give about 40 frames
 /// over the contact, smooth enough to play and small enough to open at once.

@@ -6,12 +6,11 @@
 //! this module streams the feature rows to the output directory, draws the maps and
 //! histograms, and fills the templates.
 
-use crate::output::{Artifacts, OutputDir, StreamedFile};
 use crate::present::plot::{line_plot, Axis, ColourMap, Scale, Series};
 use crate::present::table::{sig, unit_key, Cell, Table};
 use crate::provenance::Provenance;
-use crate::report::template::render;
-use crate::report::Failure;
+use crate::template::render;
+use crate::Failure;
 use coupled::identification::{
     run_condition, ConditionRun, EnsembleValidity, ImpactRecord, Instrument, RunError, CHUNK,
 };
@@ -23,9 +22,11 @@ use identify::features::FEATURES;
 use identify::placement::{best, classifier, map, separabilities, Separability};
 use identify::roc::{auc_with_error, bootstrap_interval, Auc, BOOTSTRAP_RESAMPLES};
 use identify::{Class, Feature, Held, Speed, Study};
+use output::{Artifacts, OutputDir, StreamedFile};
 use serde::Serialize;
 use std::io::Write as _;
 use std::time::Instant;
+pub use studies::channel::ChannelInfo;
 
 const HEAD: &str = include_str!("templates/identify/head.md");
 const FINDING: &str = include_str!("templates/identify/finding.md");
@@ -216,55 +217,13 @@ pub struct Summary {
 
 // ---------------------------------------------------------------- labels
 
-/// A position in m as mm to 0.1 mm, without trailing zeros ("229.2", "0", "90").
-fn mm(v: f64) -> String {
-    let t = format!("{:.1}", v * 1e3);
-    t.strip_suffix(".0").map_or(t.clone(), str::to_string)
-}
+use studies::channel::mm;
 
 fn quantity_name(q: Quantity) -> &'static str {
     match q {
         Quantity::Displacement => "displacement",
         Quantity::Velocity => "velocity",
         Quantity::Acceleration => "acceleration",
-    }
-}
-
-/// What a channel is and where, in words and as CSV fields (also the Python package's column
-/// names, so that its features and this report's rankings name a channel alike).
-#[derive(Debug, Clone)]
-pub struct ChannelInfo {
-    kind: ChannelKind,
-    quantity: &'static str,
-    /// (x, z) of the sensor or corner, m.
-    at: (f64, f64),
-    /// The sensor's index among the run's sensors (None for corners).
-    sensor: Option<usize>,
-    unit: &'static str,
-}
-
-impl ChannelInfo {
-    /// The channel `kind` of a run with `sensors` on `plate`.
-    pub fn new(kind: ChannelKind, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Self {
-        let (quantity, sensor) = match kind {
-            ChannelKind::Displacement { sensor } => ("displacement", Some(sensor)),
-            ChannelKind::Velocity { sensor } => ("velocity", Some(sensor)),
-            ChannelKind::Acceleration { sensor } => ("acceleration", Some(sensor)),
-            ChannelKind::SpringForce { .. } => ("spring force", None),
-            ChannelKind::Reaction { .. } => ("reaction", None),
-        };
-        let at = match kind {
-            ChannelKind::SpringForce { corner } | ChannelKind::Reaction { corner } => {
-                corner.position(plate.length(), plate.width())
-            }
-            _ => sensors[sensor.unwrap_or(0)],
-        };
-        Self { kind, quantity, at, sensor, unit: kind.unit() }
-    }
-
-    /// "acceleration at (229.2, 180) mm", "spring force at (458.4, 0) mm".
-    pub fn label(&self) -> String {
-        format!("{} at ({}, {}) mm", self.quantity, mm(self.at.0), mm(self.at.1))
     }
 }
 
@@ -893,14 +852,8 @@ fn full_model_check(
     let t = Instant::now();
     let props = coupled::discretisation::plate_properties(&scene.plate);
     let fe = plate_fem::Model::new(props, coupled::discretisation::mesh_for(&props, settings.reduced().elements)?)?;
-    let full = crate::report::transient::transient(
-        &fe,
-        set.supports,
-        &striker,
-        draw.x,
-        draw.z,
-        settings.reduced().steps_per_contact,
-    )?;
+    let full =
+        crate::transient::transient(&fe, set.supports, &striker, draw.x, draw.z, settings.reduced().steps_per_contact)?;
     let seconds = t.elapsed().as_secs_f64();
     let full_force = full.force_max_interpolated.max(full.force_max);
     let contact_time_difference = match (reduced.contact_time, full.contact_time) {
@@ -1112,13 +1065,13 @@ pub fn checked_study(scene: &Scene) -> Result<&Study, Failure> {
             return Err(no_channels(&set.name));
         }
         let bytes = feature_bytes(study.ensemble.len(), channels);
-        if bytes as f64 > crate::run::MEMORY_BUDGET_BYTES {
+        if bytes as f64 > studies::run::MEMORY_BUDGET_BYTES {
             return Err(format!(
                 "the ensemble's features are {} impacts x {channels} channels x 6 features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
                 study.ensemble.len(),
                 bytes as f64 / 1e9,
                 set.name,
-                crate::run::MEMORY_BUDGET_BYTES / 1e9
+                studies::run::MEMORY_BUDGET_BYTES / 1e9
             )
             .into());
         }

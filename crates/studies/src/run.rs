@@ -2,11 +2,12 @@
 //! the Python package share, so that both give the same numbers for the same scene. It
 //! refuses requests beyond the memory and transient-run budgets before computing anything.
 
-use crate::report::studies::{BASE_MESH, LEVELS};
-use crate::report::Failure;
-use crate::scene::{Analysis, Scene};
+use crate::progress::Progress;
+use crate::settings::{BASE_MESH, LEVELS};
+use crate::Failure;
 use coupled::plan::{fundamental_periods, run, run_transient_observed, transient_case_count, ModelKind, Results};
 use coupled::{BeamModel, PlateModel};
+use scene::{Analysis, Scene};
 
 /// Most transient runs one request may ask for: a response costs about 10 (its error
 /// estimate runs the case at half and double the step and the mesh, and a finer level where
@@ -25,19 +26,6 @@ pub const MAX_TRANSIENT_RUNS: usize = 2000;
 pub const BYTES_PER_ROW: f64 = 4096.0;
 /// What one request may hold in memory: a sixth of this machine's 24 GiB.
 pub const MEMORY_BUDGET_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
-
-/// A progress bar on standard error for `len` steps of `what` (cases, runs); indicatif hides
-/// it when standard error is not a terminal, so logs and pipes get nothing.
-pub fn progress_bar(len: usize, what: &str) -> indicatif::ProgressBar {
-    let pb = indicatif::ProgressBar::new(len as u64);
-    pb.set_style(
-        indicatif::ProgressStyle::with_template("{msg:24} [{bar:30}] {pos}/{len} {elapsed}, eta {eta}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    pb.set_message(what.to_string());
-    pb
-}
 
 /// The model named `key` ("beam", "plate", "transient"), or every model for "all".
 pub fn model_kinds(key: &str) -> Option<Vec<ModelKind>> {
@@ -83,7 +71,7 @@ pub fn check_budget(scene: &Scene, models: &[ModelKind]) -> Result<(), Failure> 
 
 /// The scene's rows by each requested model, in the order given: the responses and yield
 /// velocities the scene's analyses ask for, each row with its error estimate and validity.
-pub fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
+pub fn results(scene: &Scene, models: &[ModelKind], progress: &dyn Progress) -> Result<Results, Failure> {
     check_budget(scene, models)?;
     let mut all = Results { scene: scene.name.clone(), responses: vec![], yields: vec![] };
     let quasi_static = models.iter().any(|m| *m != ModelKind::Transient);
@@ -97,9 +85,9 @@ pub fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> 
                 run(scene, &model, kind, &periods)?
             }
             ModelKind::Transient => {
-                let pb = progress_bar(transient_case_count(scene), "transient cases");
-                let r = run_transient_observed(scene, &mut || pb.inc(1))?;
-                pb.finish_and_clear();
+                progress.start(transient_case_count(scene), "transient cases");
+                let r = run_transient_observed(scene, &mut || progress.advance(1))?;
+                progress.finish();
                 r
             }
         };

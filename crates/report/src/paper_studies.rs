@@ -1,13 +1,13 @@
 //! The paper's own studies redone with both models: its conclusions (section V) item by item,
 //! Tables 6-8 and 11 at the midpoint, and its figures along the centreline.
 
-use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Matrix, Scale};
 use crate::present::table::Table;
-use crate::report::studies::{BASE_MESH, LEVELS};
-use crate::report::Failure;
-use crate::scene::Scene;
+use crate::Failure;
 use coupled::{BeamModel, ComplianceModel, PlateModel};
+use output::Artifacts;
+use scene::Scene;
+use studies::settings::{BASE_MESH, LEVELS};
 
 /// The report's prose, every number in it a placeholder.
 const TEMPLATE: &str = include_str!("templates/paper_studies.md");
@@ -18,8 +18,8 @@ const TABLES_VELOCITY: f64 = 0.0025;
 /// under both models (the paper's own scene, whatever `scene` is).
 pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let mut a = Artifacts::new();
-    let checks = crate::report::conclusions::checks()?;
-    let t = crate::report::conclusions::table(&checks);
+    let checks = crate::conclusions::checks()?;
+    let t = crate::conclusions::table(&checks);
     a.add("conclusions.csv", t.to_csv());
     let matrix = Matrix {
         title: "Section V's conclusions: do they hold?".into(),
@@ -31,7 +31,7 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     let held = |p: bool| checks.iter().filter(|c| if p { c.plate_holds } else { c.beam_holds }).count();
     let items = checks.iter().filter_map(|c| c.item.parse::<u32>().ok()).max().ok_or("no numbered item")?;
     // Tables 6-8 and 11 of the paper (midpoint, 0.0025 m/s, three spheres) under both models.
-    let paper = crate::report::paper::Paper::new();
+    let paper = crate::paper::Paper::new();
     let sc = &paper.scene;
     let mid = (sc.plate.length() / 2.0, sc.plate.width() / 2.0);
     let model = PlateModel::compute(&sc.plate, &sc.conditions, &[mid], BASE_MESH, LEVELS)?;
@@ -81,16 +81,14 @@ pub fn report(_scene: &Scene) -> Result<Artifacts, Failure> {
     }
     a.add("tables-6-8-11-both-models.csv", t68.to_csv());
     let mut figures = String::new();
-    for crate::report::conclusions::Figure { stem, title, y_label: ylabel, series } in
-        crate::report::conclusions::study_figures()?
-    {
+    for crate::conclusions::Figure { stem, title, y_label: ylabel, series } in crate::conclusions::study_figures()? {
         a.add(format!("{stem}.svg"), line_plot(&title, "x (mm)", &ylabel, &series, Scale::Linear));
         a.add(format!("{stem}.csv"), crate::present::plot::series_csv(&series, "x (mm)", &ylabel));
         figures.push_str(&format!("![{title}]({stem}.svg)\n\n"));
     }
     // The template ends the last figure's line itself.
     figures.pop();
-    let md = crate::report::template::render(
+    let md = crate::template::render(
         "paper_studies.md",
         TEMPLATE,
         &[

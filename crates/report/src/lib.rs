@@ -4,6 +4,9 @@
 //! writes only its own files; a report that includes another nests the other's files
 //! under a subdirectory.
 
+pub mod present;
+pub mod provenance;
+
 pub mod comparison;
 pub mod conclusions;
 pub mod fem_bench;
@@ -17,22 +20,21 @@ pub mod plate_field;
 pub mod regimes;
 pub mod signals;
 pub mod skfem;
-pub mod studies;
 pub mod template;
 pub mod transient;
 pub mod yield_models;
 
-use crate::output::{Artifacts, OutputDir};
+use crate::identify::RowFiles;
 use crate::present::rows::slug;
 use crate::present::table::percent;
 use crate::provenance::Provenance;
-use crate::report::identify::RowFiles;
-use crate::report::template::render;
-use crate::scene::SceneSource;
+use crate::template::render;
 use coupled::{Analysis, Scene};
+use output::{Artifacts, OutputDir};
+use scene::SceneSource;
 
-/// Any failure of a study, with its source.
-pub type Failure = Box<dyn std::error::Error>;
+pub use studies::progress::Progress;
+pub use studies::Failure;
 
 /// The signature every report has.
 pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
@@ -46,7 +48,7 @@ pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 /// The paper's studies run on the paper's own scene, whatever `scene` is (their files carry
 /// that scene's provenance). A scene that asks for yield velocities and the transient study
 /// but not for the paper's studies gets the three-model yield study on its own cases.
-pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
+pub fn scene_report(scene: &Scene, progress: &dyn Progress) -> Result<Artifacts, Failure> {
     let paper_scene = paper::Paper::new().scene;
     let mut nested: Vec<(&str, Artifacts, &Scene)> = Vec::new();
     let mut extra = comparison::StudySections::default();
@@ -57,7 +59,7 @@ pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
     let yields = if scene.wants(Analysis::PaperStudies) {
         Some((yield_models::study(&paper_scene)?, &paper_scene))
     } else if scene.wants(Analysis::YieldVelocity) && scene.wants(Analysis::Transient) {
-        Some((yield_models::scene_study(scene)?, scene))
+        Some((yield_models::scene_study(scene, progress)?, scene))
     } else {
         None
     };
@@ -67,7 +69,7 @@ pub fn scene_report(scene: &Scene) -> Result<Artifacts, Failure> {
         extra.sections.push_str(&summary.section);
     }
     let dynamic = if scene.wants(Analysis::Transient) {
-        let (part, summary) = transient::study(scene)?;
+        let (part, summary) = transient::study(scene, progress)?;
         nested.push(("dynamic", part, scene));
         Some(summary)
     } else {
@@ -123,17 +125,17 @@ const REGIMES: &str = include_str!("templates/comparison/regimes.md");
 const FINDING_TRANSIENT: &str = include_str!("templates/comparison/finding-transient.md");
 
 /// The scene the main report runs: `scene` with its transient cases to
-/// [`studies::REPORT_TOLERANCE`] (its files carry this scene's provenance).
+/// [`studies::settings::REPORT_TOLERANCE`] (its files carry this scene's provenance).
 pub fn main_scene(scene: &Scene) -> Scene {
     Scene {
-        transient_discretisation: coupled::transient::Discretisation::tolerance(studies::REPORT_TOLERANCE),
+        transient_discretisation: coupled::transient::Discretisation::tolerance(studies::settings::REPORT_TOLERANCE),
         ..scene.clone()
     }
 }
 
 /// The main job: the paper's reproduction, the plate FE verification, and the scene report
-/// of the default scene, its transient cases to [`studies::REPORT_TOLERANCE`].
-pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
+/// of the default scene, its transient cases to [`studies::settings::REPORT_TOLERANCE`].
+pub fn main_report(scene: &Scene, progress: &dyn Progress) -> Result<Artifacts, Failure> {
     let scene = &main_scene(scene);
     let paper_scene = paper::Paper::new().scene;
     let reports: [(&str, Report, &Scene); 2] =
@@ -144,15 +146,15 @@ pub fn main_report(scene: &Scene) -> Result<Artifacts, Failure> {
         Provenance::of(of).stamp(&mut part);
         all.nest(dir, part);
     }
-    all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene)?);
+    all.nest(&crate::present::rows::slug(&scene.name), scene_report(scene, progress)?);
     Ok(all)
 }
 
 /// The identification scenes `impact report` runs beside the default scene's reports (shipped
 /// in `scenes/`, embedded like the default scene): file name and text.
 pub const IDENTIFY_SCENES: [(&str, &str); 2] = [
-    ("caving-stream.toml", include_str!("../../scenes/caving-stream.toml")),
-    ("paper-velocities-ensemble.toml", include_str!("../../scenes/paper-velocities-ensemble.toml")),
+    ("caving-stream.toml", include_str!("../../../scenes/caving-stream.toml")),
+    ("paper-velocities-ensemble.toml", include_str!("../../../scenes/paper-velocities-ensemble.toml")),
 ];
 
 const INDEX: &str = include_str!("templates/index/index.md");
@@ -163,8 +165,8 @@ const INDEX_IDENTIFY_ROW: &str = include_str!("templates/index/identify-row.md")
 /// `identify/<scene name>/` by `impact identify`'s own code path ([`identify::write`]; its
 /// rows streamed into `out`, `features.csv` left out: one row per impact and channel, 112 MB
 /// for the caving stream), and the index page that opens with the identification's answer.
-pub fn full_report(scene: &Scene, out: &mut OutputDir) -> Result<Artifacts, Failure> {
-    let mut all = main_report(scene)?;
+pub fn full_report(scene: &Scene, out: &mut OutputDir, progress: &dyn Progress) -> Result<Artifacts, Failure> {
+    let mut all = main_report(scene, progress)?;
     let mut identified = Vec::new();
     for (file, text) in IDENTIFY_SCENES {
         let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;

@@ -1,23 +1,23 @@
 //! `impact compare`: the paper's beam model and the plate FE model through the same energy
 //! balance and yield model, and where and by how much they differ.
 
-use crate::output::Artifacts;
+use crate::paper::Paper;
 use crate::present::plot::{line_plot, Axis, ColourMap, Plot, Scale, Series};
 use crate::present::rows::slug;
 use crate::present::table::{percent, sig, Cell, Table};
-use crate::report::paper::Paper;
-use crate::scene::{even_points, Analysis, Scene, SupportSet};
 use analytic::Condition;
 use coupled::plan::ResponseValues;
 use coupled::plan::{fundamental_periods, run, ModelKind, Results};
 use coupled::PlateModel;
 use coupled::{BeamModel, ComplianceModel};
 use indicatif::{ProgressBar, ProgressStyle};
+use output::Artifacts;
+use scene::{even_points, Analysis, Scene, SupportSet};
 use std::fmt::Write as _;
 use std::time::Instant;
 
-use crate::report::template::render;
-use crate::report::Failure;
+use crate::template::render;
+use crate::Failure;
 
 /// Mesh ladder of the comparison: 20 x 16 and 40 x 32 elements for the paper's plate
 /// (Richardson from the two; reports/fem shows the estimate is conservative there).
@@ -814,9 +814,8 @@ fn peak_field_section(scene: &Scene, pr: &Pair) -> Result<Option<(String, String
     let p_max = values.contact_force;
     let what = format!("{} at {} m/s on {} at ({:.1}, {:.1}) mm", body.name, v, cond.name, row.x * 1e3, row.z * 1e3);
     let validity = crate::present::rows::validity_text(&values.validity);
-    let caveat = crate::report::field::quasi_static_caveat(&values.validity)?;
-    let f =
-        crate::report::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &[what.clone(), validity.clone()])?;
+    let caveat = crate::field::quasi_static_caveat(&values.validity)?;
+    let f = crate::plate_field::peak_field(scene, cond, row.x, row.z, p_max, &[what.clone(), validity.clone()])?;
     let finding = render(
         "comparison/finding-field.md",
         FINDING_FIELD,
@@ -836,7 +835,7 @@ fn peak_field_section(scene: &Scene, pr: &Pair) -> Result<Option<(String, String
             ("validity", validity),
             ("caveat", caveat),
             ("p_max", sig(p_max, 3)),
-            ("mesh", crate::report::plate_field::FIELD_ELEMENTS.to_string()),
+            ("mesh", crate::plate_field::FIELD_ELEMENTS.to_string()),
             ("w_max", sig(f.w_max * 1e6, 3)),
             ("w_x", format!("{:.1}", f.w_max_at.0 * 1e3)),
             ("w_z", format!("{:.1}", f.w_max_at.1 * 1e3)),

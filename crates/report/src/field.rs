@@ -8,14 +8,14 @@
 //! touching the load point grow without bound as the mesh is refined. `near_load` marks those
 //! elements; deflections and the moments away from the load converge.
 
-use crate::report::template::render;
-use crate::report::Failure;
-use crate::scene::{Analysis, Points, Scene, SupportSet};
+use crate::template::render;
+use crate::Failure;
 use analytic::Sphere;
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::{ModelKind, ResponseValues};
 use coupled::Validity;
 use plate_fem::{FemError, Model};
+use scene::{Analysis, Points, Scene, SupportSet};
 use serde::Serialize;
 
 const P_MAX: &str = include_str!("templates/field/p-max.md");
@@ -150,7 +150,7 @@ pub fn quasi_static_impact(
     one.velocities = vec![v];
     one.points = Points::Pairs { pairs: vec![(x, z)] };
     one.analyses = vec![Analysis::Responses];
-    let rows = crate::run::results(&one, &[ModelKind::Plate])?;
+    let rows = studies::run::results(&one, &[ModelKind::Plate], &studies::progress::Silent)?;
     let row = rows.responses.first().and_then(|r| r.values()).ok_or("the plate model gave no response row")?;
     Ok(row.clone())
 }

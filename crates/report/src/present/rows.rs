@@ -235,16 +235,4 @@ pub fn yield_tables(results: &Results) -> Vec<Table> {
         .collect()
 }
 
-/// A file-name-safe form of a name ("Con 2" -> "con-2"). Not unique: file names that
-/// must not collide use an index beside it.
-pub fn slug(name: &str) -> String {
-    let mut s = String::new();
-    for c in name.chars() {
-        if c.is_ascii_alphanumeric() {
-            s.push(c.to_ascii_lowercase());
-        } else if !s.ends_with('-') {
-            s.push('-');
-        }
-    }
-    s.trim_matches('-').to_string()
-}
+pub use scene::slug;

@@ -2,12 +2,12 @@
 //! (coupled::reduced), their first-contact numbers with the truncation error and validity,
 //! and the sensor and corner time series as CSV files with units in the headers.
 
-use crate::output::Artifacts;
 use crate::present::rows::{slug, validity_text};
 use crate::present::table::{Cell, Table};
-use crate::report::Failure;
-use crate::scene::Scene;
+use crate::Failure;
 use coupled::reduced::plan::{run, ModelSummary, SceneImpact};
+use output::Artifacts;
+use scene::Scene;
 use serde::Serialize;
 
 /// What `impact signals` computed.

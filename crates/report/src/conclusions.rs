@@ -1,15 +1,15 @@
 //! The paper's conclusions (section V, items 1-5) tested under the beam and the plate FE
 //! model, with the numbers behind each verdict.
 
+use crate::paper::Paper;
 use crate::present::table::{sig, Cell, Table};
-use crate::report::paper::Paper;
-use crate::scene::{even_points, Scene, SupportSet};
 use analytic::{respond, yield_velocity, Condition, DruckerPrager, Method, Response, Sphere};
 use coupled::plan::impact_of;
 use coupled::PlateModel;
 use coupled::{BeamModel, ComplianceModel};
+use scene::{even_points, Scene, SupportSet};
 
-use crate::report::Failure;
+use crate::Failure;
 
 const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
 
@@ -38,13 +38,8 @@ impl<'a> Line<'a> {
     fn new(scene: &'a Scene, conds: &[SupportSet], z: f64) -> Result<Self, Failure> {
         let xs = even_points(scene.plate.length(), 101);
         let pts: Vec<(f64, f64)> = xs.iter().map(|&x| (x, z)).collect();
-        let model = PlateModel::compute(
-            &scene.plate,
-            conds,
-            &pts,
-            crate::report::studies::BASE_MESH,
-            crate::report::studies::LEVELS,
-        )?;
+        let model =
+            PlateModel::compute(&scene.plate, conds, &pts, studies::settings::BASE_MESH, studies::settings::LEVELS)?;
         Ok(Self { scene, model, xs, z })
     }
     fn compliance(&self, plate: bool, c: &SupportSet, x: f64) -> Result<analytic::PointCompliance, Failure> {
@@ -142,7 +137,7 @@ pub fn checks() -> Result<Vec<Check>, Failure> {
         });
 
         // Item 2: elastic supports raise v_y and lower P_max; Con 2 springs take more energy.
-        let areas: Vec<f64> = crate::report::studies::AREAS.iter().map(|f| f * l).collect();
+        let areas: Vec<f64> = studies::settings::AREAS.iter().map(|f| f * l).collect();
         let order = |p: bool| -> Result<(usize, String), Failure> {
             let mut n = 0;
             let mut worst = f64::INFINITY;
@@ -272,8 +267,8 @@ pub fn checks() -> Result<Vec<Check>, Failure> {
             &s.plate,
             std::slice::from_ref(&c),
             &pts,
-            crate::report::studies::BASE_MESH,
-            crate::report::studies::LEVELS,
+            studies::settings::BASE_MESH,
+            studies::settings::LEVELS,
         )?;
         let imp = impact_of(&s, &paper.coal, 0.008);
         let rb = respond(&imp, &BeamModel { plate: &s.plate }.compliance(&c, x, 0.0)?.compliance, METHOD)?;

@@ -18,7 +18,7 @@ mod ensemble;
 pub use ensemble::{FALL_HEIGHT_M, MAX_CANDIDATES_PER_SIDE, MAX_IMPACTS};
 
 /// The embedded default scene: the paper's Table 1.
-pub const DEFAULT_SCENE: &str = include_str!("../scenes/paper-table-1.toml");
+pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/paper-table-1.toml");
 /// How the default scene is named in messages.
 pub const DEFAULT_ORIGIN: &str = "<default scene: paper Table 1>";
 /// Largest scene file read, bytes: a scene is a few kilobytes; anything near this is not one.
@@ -42,11 +42,11 @@ fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<(), Invalid
     if n > MAX_NAME_CHARS {
         return Err(other(field, format!("is {n} characters long; the allowed range is [1, {MAX_NAME_CHARS}]")));
     }
-    let stem = crate::present::rows::slug(name);
+    let stem = slug(name);
     if stem.is_empty() {
         return Err(other(field, format!("'{name}' has no letter or digit; file names are made from it")));
     }
-    if let Some(e) = earlier.iter().find(|e| crate::present::rows::slug(e) == stem) {
+    if let Some(e) = earlier.iter().find(|e| slug(e) == stem) {
         return Err(other(
             field,
             format!(
@@ -806,4 +806,18 @@ fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -> Result<Si
         }
     };
     Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, modes, sensors })
+}
+
+/// The file-name stem of a display name: lower-case ASCII letters and digits, every other run
+/// of characters one `-`, no `-` at either end. Two names are distinct only if their stems are.
+pub fn slug(name: &str) -> String {
+    let mut s = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            s.push(c.to_ascii_lowercase());
+        } else if !s.ends_with('-') {
+            s.push('-');
+        }
+    }
+    s.trim_matches('-').to_string()
 }

@@ -2,7 +2,7 @@
 //! bending stress, as colour maps.
 //!
 //! The plate model is linear, so the field under the quasi-static maximum force P_max is the
-//! unit-load field ([`crate::report::field`]) times P_max. It is the quasi-static field: where
+//! unit-load field ([`crate::field`]) times P_max. It is the quasi-static field: where
 //! the case is not quasi-static the transient deflection differs, and the captions carry the
 //! case's validity to say so. The stress is the von Mises stress
 //! of the surface bending stresses σ = 6M/h² (M_x, M_z, M_xz at the element centres),
@@ -11,10 +11,10 @@
 //! logarithmically singular, so on the elements touching the load point it grows without
 //! bound as the mesh is refined (in reality the contact patch, of radius a = √(Rδ), bounds it).
 
+use crate::field::{field, FieldFile};
 use crate::present::plot::{Axis, ColourMap, Mark};
-use crate::report::field::{field, FieldFile};
-use crate::report::Failure;
-use crate::scene::{Scene, SupportSet};
+use crate::Failure;
+use scene::{Scene, SupportSet};
 
 /// Elements along the longer side of the field's mesh: fine enough that the colour map is
 /// smooth at figure size (81 x 64 nodes on the paper's plate), a fraction of a second.

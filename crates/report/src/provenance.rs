@@ -2,7 +2,7 @@
 //! scene's canonical content, carried by every JSON and CSV the program writes.
 //!
 //! **Canonical content.** The scene as the program uses it: parsed, validated and converted
-//! to SI ([`crate::scene::Scene`]), serialised as compact JSON with serde's field order
+//! to SI ([`scene::Scene`]), serialised as compact JSON with serde's field order
 //! (the struct's declaration order) and serde_json's shortest round-trip numbers. Two scene
 //! files that differ only in comments, key order, whitespace or units (`length_mm = 458.4`
 //! against the same length written another way that converts to the same SI value) hash the
@@ -15,10 +15,10 @@
 //! skipped by the usual readers when told (pandas `comment="#"`, numpy `loadtxt`, R
 //! `comment.char`, the Rust csv crate's `comment(Some(b'#'))`).
 
-use crate::output::{sha256_hex, Artifacts};
-use crate::scene::Scene;
+use output::{sha256_hex, Artifacts};
+use scene::Scene;
 #[cfg(test)]
-use crate::scene::SceneSource;
+use scene::SceneSource;
 use serde::Serialize;
 
 /// The provenance of one run on one scene.
@@ -110,17 +110,22 @@ impl Provenance {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_file_mark_is_the_provenance_opening() {
+        let p = super::Provenance::of(&scene::Scene::default_scene());
+        assert!(serde_json::to_string(&p).unwrap().starts_with(output::FILE_MARK));
+    }
+
     use super::*;
 
     #[test]
     fn the_hash_follows_content_not_spelling() {
         let a = Scene::default_scene();
-        let mut text = crate::scene::DEFAULT_SCENE.replace("length_mm = 458.4", "length_mm = 458.40  # same length");
+        let mut text = scene::DEFAULT_SCENE.replace("length_mm = 458.4", "length_mm = 458.40  # same length");
         text.insert_str(0, "# a comment\n");
         let b = Scene::parse(&text, "same").unwrap();
         assert_eq!(Provenance::of(&a).scene_sha256, Provenance::of(&b).scene_sha256);
-        let c =
-            Scene::parse(&crate::scene::DEFAULT_SCENE.replace("length_mm = 458.4", "length_mm = 458.5"), "x").unwrap();
+        let c = Scene::parse(&scene::DEFAULT_SCENE.replace("length_mm = 458.4", "length_mm = 458.5"), "x").unwrap();
         assert_ne!(Provenance::of(&a).scene_sha256, Provenance::of(&c).scene_sha256);
         assert_eq!(Provenance::of(&a).scene_sha256.len(), 64);
     }

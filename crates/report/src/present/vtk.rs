@@ -14,15 +14,15 @@
 //! `force_n` (N): linear elasticity, so the unit-load field times the force.
 //!
 //! What the file is: an XML comment before the root element carries the provenance (whose
-//! opening is [`crate::output::FILE_MARK`], so a later `--out` of the same name knows the file
+//! opening is [`output::FILE_MARK`], so a later `--out` of the same name knows the file
 //! as ours) and lines saying what the values are; the dataset's `FieldData` carries the load
 //! and, where the load is an impact's P_max, the case's numbers and validity (ParaView shows
 //! them in its Information panel, meshio reads them as `field_data`). No value that is not
 //! finite is written: such a field is an error.
 
+use crate::field::FieldFile;
 use crate::provenance::Provenance;
-use crate::report::field::FieldFile;
-use crate::report::Failure;
+use crate::Failure;
 use vtkio::model::{
     Attribute, Attributes, ByteOrder, CellType, Cells, DataSet, IOBuffer, UnstructuredGridPiece, Version,
     VertexNumbers, Vtk,

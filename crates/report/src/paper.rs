@@ -7,18 +7,18 @@
 //! identifies it (see [`PAPER_RECURSION_TOLERANCE`]). The yield velocities of Table 2 do
 //! not involve the recursion; they deviate through δ_my, which [`yield_inversion`] isolates.
 
-use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Scale, Series};
 use crate::present::table::{sig, Cell, Table};
-use crate::scene::{even_points, Scene, SceneSource};
 use analytic::{
     beam_compliance, contact_stiffness, evaluate, yield_velocity, Condition, DruckerPrager, Impact, Method, Plate,
     Response, Sphere,
 };
 use coupled::plan::{both_solvers, impact_of};
+use output::Artifacts;
+use scene::{even_points, Scene, SceneSource};
 use std::fmt::Write as _;
 
-use crate::report::Failure;
+use crate::Failure;
 
 // The renderer lives beside the reports that use it; it is declared here because this is
 // its only user so far.
@@ -1408,7 +1408,7 @@ pub fn reproduce() -> Result<Artifacts, Failure> {
         ("c_paper", format!("{c_paper:e}")),
         ("solvers", solvers.to_markdown()),
     ];
-    a.add("index.md", crate::report::template::render("paper.md", PAPER_TEMPLATE, &values)?);
+    a.add("index.md", crate::template::render("paper.md", PAPER_TEMPLATE, &values)?);
     // The findings the page opens with, as numbers.
     a.add(
         "findings.json",

@@ -3,12 +3,12 @@
 //! factorizations.
 
 use crate::present::table::{Cell, Table};
-use crate::scene::Scene;
 use analytic::Condition;
 use coupled::discretisation::{ladder_meshes, plate_properties};
 use coupled::supports::corner_supports;
 use plate_fem::convergence::richardson;
 use plate_fem::{CornerFamily, EdgeSupport, FemError, Mesh, Model, PlateProperties, Supports};
+use scene::Scene;
 use serde::Serialize;
 use std::time::Instant;
 

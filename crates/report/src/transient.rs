@@ -1,9 +1,7 @@
 //! `impact dynamic` and the transient section of the main report.
 
-use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Axis, Plot, Scale, Series};
 use crate::present::table::{sig, Cell, Table};
-use crate::scene::{Analysis, Scene, SceneSource, SupportSet};
 use analytic::{respond, Condition, DruckerPrager, Method, Sphere};
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
@@ -14,12 +12,15 @@ use coupled::transient::{
 };
 use coupled::PlateModel;
 use coupled::{BeamModel, ComplianceModel, Validity};
+use output::Artifacts;
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
 use plate_fem::{Mesh, Model, PlateProperties, Supports};
+use scene::{Analysis, Scene, SceneSource, SupportSet};
 use std::time::Instant;
 
-use crate::report::template::render;
-use crate::report::Failure;
+use crate::template::render;
+use crate::Failure;
+use studies::progress::Progress;
 
 // The report's prose, one template per section (verification and the size map are written
 // only when the scene asks for them; the summary repeats a line per body).
@@ -168,20 +169,24 @@ impl TransientCase {
 /// Transient against quasi-static at the given points, for every condition, body and
 /// velocity of the scene, each case on the discretisation the scene asks for
 /// ([`Scene::transient_discretisation`]) with its error estimate.
-pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientCase>, Failure> {
+pub fn comparison(
+    scene: &Scene,
+    points: &[(f64, f64)],
+    progress: &dyn Progress,
+) -> Result<Vec<TransientCase>, Failure> {
     let disc = scene.transient_discretisation;
     let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let qs = PlateModel::compute(
         &scene.plate,
         &scene.conditions,
         points,
-        crate::report::studies::BASE_MESH,
-        crate::report::studies::LEVELS,
+        studies::settings::BASE_MESH,
+        studies::settings::LEVELS,
     )?;
     let beam = BeamModel { plate: &scene.plate };
     let mut cases = Vec::new();
     let total = scene.conditions.len() * scene.bodies.len() * scene.velocities.len() * points.len();
-    let pb = crate::run::progress_bar(total, "transient cases");
+    progress.start(total, "transient cases");
     for cond in &scene.conditions {
         let t1 = ladder.levels(0)?.0.fundamental_period(&cond.supports)?;
         for body in &scene.bodies {
@@ -233,12 +238,12 @@ pub fn comparison(scene: &Scene, points: &[(f64, f64)]) -> Result<Vec<TransientC
                         seconds,
                         validity,
                     });
-                    pb.inc(1);
+                    progress.advance(1);
                 }
             }
         }
     }
-    pb.finish_and_clear();
+    progress.finish();
     Ok(cases)
 }
 
@@ -561,7 +566,7 @@ pub struct LawCase {
 
 /// Hertz, Flores and Thornton side by side on the scene's plate: the first body at the
 /// centre under the first condition, at [`LAW_RATIOS`] times its rigid-target yield velocity.
-pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
+pub fn laws(scene: &Scene, progress: &dyn Progress) -> Result<Vec<LawCase>, Failure> {
     let body = scene.bodies.first().ok_or("no body")?;
     let cond = scene.conditions.first().ok_or("no condition")?;
     let (x, z) = (scene.plate.length() / 2.0, scene.plate.width() / 2.0);
@@ -571,7 +576,7 @@ pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
     let disc = scene.transient_discretisation;
     let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let mut out = Vec::new();
-    let pb = crate::run::progress_bar(3 * LAW_RATIOS.len(), "contact-law runs");
+    progress.start(3 * LAW_RATIOS.len(), "contact-law runs");
     for law in [LawKind::Hertz, LawKind::Flores, LawKind::Thornton] {
         for ratio in LAW_RATIOS {
             let v = ratio * v_y;
@@ -588,10 +593,10 @@ pub fn laws(scene: &Scene) -> Result<Vec<LawCase>, Failure> {
                 permanent_set: s.permanent_set(deepest),
                 estimate: e,
             });
-            pb.inc(1);
+            progress.advance(1);
         }
     }
-    pb.finish_and_clear();
+    progress.finish();
     Ok(out)
 }
 
@@ -704,8 +709,8 @@ pub fn size_map(scene: &Scene) -> Result<(Table, Vec<Series>), Failure> {
                 &sc.plate,
                 std::slice::from_ref(&cond),
                 &[(x, z)],
-                crate::report::studies::BASE_MESH,
-                crate::report::studies::LEVELS,
+                studies::settings::BASE_MESH,
+                studies::settings::LEVELS,
             )?;
             let rp = respond(&imp, &qs.compliance(&cond, x, z)?.compliance, METHOD)?;
             let p_at_max = s.force_at_max_compression(o.compression_max_interpolated);
@@ -1200,12 +1205,12 @@ fn findings(scene: &Scene, cases: &[TransientCase]) -> Result<TransientSummary, 
 }
 
 /// Everything `impact dynamic` writes for `scene` at its transient points.
-pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
-    Ok(study(scene)?.0)
+pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<Artifacts, Failure> {
+    Ok(study(scene, progress)?.0)
 }
 
 /// [`report`], and its findings for the main report.
-pub fn study(scene: &Scene) -> Result<(Artifacts, TransientSummary), Failure> {
+pub fn study(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, TransientSummary), Failure> {
     let points = &scene.transient_points;
     let mut a = Artifacts::new();
     // The page: findings first (computed below), the figures, the tables, the laws, and the
@@ -1224,7 +1229,7 @@ pub fn study(scene: &Scene) -> Result<(Artifacts, TransientSummary), Failure> {
     let mut figures = String::new();
 
     let t0 = Instant::now();
-    let cases = comparison(scene, points)?;
+    let cases = comparison(scene, points, progress)?;
     let comparison_secs = t0.elapsed().as_secs_f64();
     let t = comparison_table(&cases);
     a.add("transient-vs-quasistatic.csv", t.to_csv());
@@ -1354,7 +1359,7 @@ pub fn study(scene: &Scene) -> Result<(Artifacts, TransientSummary), Failure> {
 
     // The contact laws side by side above the yield velocity, when the scene asks for them.
     let laws_md = if scene.wants(Analysis::ContactLaws) {
-        laws_section(scene, &mut a)?
+        laws_section(scene, &mut a, progress)?
     } else {
         render("transient/laws-not-asked.md", LAWS_NOT_ASKED, &[])?
     };
@@ -1426,8 +1431,8 @@ pub fn study(scene: &Scene) -> Result<(Artifacts, TransientSummary), Failure> {
 
 /// The contact-laws section: Hertz, Flores and Thornton side by side at [`LAW_RATIOS`] times
 /// the yield velocity, its table, figure and CSV added to `a`.
-fn laws_section(scene: &Scene, a: &mut Artifacts) -> Result<String, Failure> {
-    let lc = laws(scene)?;
+fn laws_section(scene: &Scene, a: &mut Artifacts, progress: &dyn Progress) -> Result<String, Failure> {
+    let lc = laws(scene, progress)?;
     let lt = laws_table(&lc);
     a.add("contact-laws.csv", lt.clone().csv_name("the end", &["run_end_label"]).to_csv());
     let top = LAW_RATIOS.iter().copied().fold(0.0, f64::max);

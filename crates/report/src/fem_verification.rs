@@ -1,19 +1,19 @@
 //! The plate FE verification report (`reports/fem/index.md`): every check of the plate elements
 //! with its reference, measured convergence rates and the extreme cases.
 
-use crate::output::Artifacts;
 use crate::present::plot::{series_csv, Axis, Plot, Series};
 use crate::present::table::{Cell, Table};
-use crate::scene::Scene;
 use analytic::Condition;
 use coupled::discretisation::{ladder_meshes, mesh_for, plate_properties};
 use coupled::supports::corner_supports;
+use output::Artifacts;
 use plate_fem::classical::{LevyPlate, YEdge};
 use plate_fem::convergence::{observed_rate, richardson};
 use plate_fem::{CornerFamily, EdgeSupport, FemError, Mesh, Model, PlateProperties, Supports};
+use scene::Scene;
 
-use crate::report::template::render;
-use crate::report::Failure;
+use crate::template::render;
+use crate::Failure;
 
 /// The report's prose: every section runs every time, so one template holds them all.
 const TEMPLATE: &str = include_str!("templates/fem_verification.md");
@@ -452,13 +452,13 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
     );
     let (mut bfs_finest, mut argyris_finest) = (String::new(), String::new());
     let mut skfem_worst = 0.0f64;
-    for name in crate::report::skfem::CASES {
-        let case = crate::report::skfem::load(name)?;
-        let bfs = crate::report::skfem::rust_runs(&case, 4)?;
-        let (ours, arg) = (crate::report::skfem::extrapolate(&bfs), crate::report::skfem::extrapolate(&case.argyris));
+    for name in crate::skfem::CASES {
+        let case = crate::skfem::load(name)?;
+        let bfs = crate::skfem::rust_runs(&case, 4)?;
+        let (ours, arg) = (crate::skfem::extrapolate(&bfs), crate::skfem::extrapolate(&case.argyris));
         let morley = &case.morley.last().ok_or("no Morley runs")?.compliance;
         let finest = &bfs.last().ok_or("no BFS runs")?.compliance;
-        let mesh = |r: Option<&crate::report::skfem::Run>| r.map_or(String::new(), |r| format!("{} x {}", r.nx, r.nz));
+        let mesh = |r: Option<&crate::skfem::Run>| r.map_or(String::new(), |r| format!("{} x {}", r.nx, r.nz));
         bfs_finest = mesh(bfs.last());
         argyris_finest = mesh(case.argyris.last());
         for (i, (r, g)) in ours.iter().zip(&arg).enumerate() {
@@ -487,8 +487,8 @@ pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
         }
     }
     a.add("skfem-comparison.csv", st.to_csv());
-    let versions = crate::report::skfem::load(crate::report::skfem::CASES[0])?.versions;
-    let timing = std::fs::read_to_string(crate::report::skfem::data_dir().join("timing.csv")).unwrap_or_default();
+    let versions = crate::skfem::load(crate::skfem::CASES[0])?.versions;
+    let timing = std::fs::read_to_string(crate::skfem::data_dir().join("timing.csv")).unwrap_or_default();
     let mut tt = Table::new("", &["code", "element", "mesh", "DOFs", "time (s)", "rel. error"]);
     for line in timing.lines().skip(1) {
         let c: Vec<&str> = line.split(',').collect();

@@ -8,12 +8,10 @@
 //! cases is rerun with h and Δt halved, and the largest change of the measured error is the
 //! map's own error estimate.
 
-use crate::output::Artifacts;
 use crate::present::plot::{line_plot, Scale, Series};
 use crate::present::table::{sig, Cell, Table};
-use crate::report::template::render;
-use crate::report::Failure;
-use crate::scene::{Scene, SupportSet};
+use crate::template::render;
+use crate::Failure;
 use analytic::{respond, Condition, Plate, Sphere};
 use coupled::plan::impact_of;
 use coupled::regimes::{
@@ -23,6 +21,8 @@ use coupled::regimes::{
 use coupled::transient::{case::striker, Striker, TransientCase, TransientSettings};
 use coupled::validity::QUASI_STATIC_MIN_RATIO;
 use coupled::{ComplianceModel, PlateModel};
+use output::Artifacts;
+use scene::{Scene, SupportSet};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -200,13 +200,7 @@ fn run_job(scene: &Scene, job: &Job, families: &[Family]) -> Result<Vec<MapRow>,
     };
     let set_list: Vec<SupportSet> = sets.iter().map(|s| s.1.clone()).collect();
     let case = TransientCase::new(&plate, TransientSettings { elements: MAP_MESH, ..Default::default() })?;
-    let qs = PlateModel::compute(
-        &plate,
-        &set_list,
-        &points,
-        crate::report::studies::BASE_MESH,
-        crate::report::studies::LEVELS,
-    )?;
+    let qs = PlateModel::compute(&plate, &set_list, &points, studies::settings::BASE_MESH, studies::settings::LEVELS)?;
     let body = scene.bodies.first().ok_or("the scene has no body")?;
     let v = scene.velocities.first().copied().ok_or("the scene has no velocity")?;
     let on_plate = Scene { plate, ..scene.clone() };
@@ -220,7 +214,7 @@ fn run_job(scene: &Scene, job: &Job, families: &[Family]) -> Result<Vec<MapRow>,
                 let sphere = scaled_body(body, factor)?;
                 let s: Striker = striker(&plate, &sphere, scene.restitution, v);
                 let imp = impact_of(&on_plate, &sphere, v);
-                let qs_force = respond(&imp, &c.compliance, crate::report::studies::METHOD)?.contact_force;
+                let qs_force = respond(&imp, &c.compliance, studies::settings::METHOD)?.contact_force;
                 let total = c.compliance.total();
                 let measured = measure(&case, set, facts, &s, (x, z), total, qs_force, MAP_STEPS)?;
                 rows.push(MapRow {

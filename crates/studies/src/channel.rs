@@ -1,0 +1,48 @@
+//! The channels of an identification run named alike everywhere: the report's rankings, the
+//! CSV fields and the Python package's column names.
+
+use coupled::reduced::ChannelKind;
+
+/// A length in metres as millimetres with one decimal, the trailing ".0" dropped.
+pub fn mm(v: f64) -> String {
+    let t = format!("{:.1}", v * 1e3);
+    t.strip_suffix(".0").map_or(t.clone(), str::to_string)
+}
+
+/// What a channel is and where, in words and as CSV fields (also the Python package's column
+/// names, so that its features and this report's rankings name a channel alike).
+#[derive(Debug, Clone)]
+pub struct ChannelInfo {
+    pub kind: ChannelKind,
+    pub quantity: &'static str,
+    /// (x, z) of the sensor or corner, m.
+    pub at: (f64, f64),
+    /// The sensor's index among the run's sensors (None for corners).
+    pub sensor: Option<usize>,
+    pub unit: &'static str,
+}
+
+impl ChannelInfo {
+    /// The channel `kind` of a run with `sensors` on `plate`.
+    pub fn new(kind: ChannelKind, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Self {
+        let (quantity, sensor) = match kind {
+            ChannelKind::Displacement { sensor } => ("displacement", Some(sensor)),
+            ChannelKind::Velocity { sensor } => ("velocity", Some(sensor)),
+            ChannelKind::Acceleration { sensor } => ("acceleration", Some(sensor)),
+            ChannelKind::SpringForce { .. } => ("spring force", None),
+            ChannelKind::Reaction { .. } => ("reaction", None),
+        };
+        let at = match kind {
+            ChannelKind::SpringForce { corner } | ChannelKind::Reaction { corner } => {
+                corner.position(plate.length(), plate.width())
+            }
+            _ => sensors[sensor.unwrap_or(0)],
+        };
+        Self { kind, quantity, at, sensor, unit: kind.unit() }
+    }
+
+    /// "acceleration at (229.2, 180) mm", "spring force at (458.4, 0) mm".
+    pub fn label(&self) -> String {
+        format!("{} at ({}, {}) mm", self.quantity, mm(self.at.0), mm(self.at.1))
+    }
+}

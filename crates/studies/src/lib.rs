@@ -1,0 +1,25 @@
+//! The studies of `impact` as computations: a scene in, data out. Nothing here writes a file
+//! or draws on a terminal; rendering (the `report` crate) and the command line build on it,
+//! and the Python package calls it directly.
+//!
+//! * [`run`]: a scene by the models a caller picks (beam, plate FE, transient), within the
+//!   memory and run budgets, the one entry point the command line and Python share;
+//! * [`settings`]: the studies' shared settings, one place for each;
+//! * [`channel`]: the names of an identification's channels;
+//! * [`progress`]: how a long study reports how far it is.
+//!
+//! ```
+//! use scene::SceneSource;
+//! let scene = scene::Scene::default_scene();
+//! let models = studies::run::model_kinds("beam").unwrap();
+//! let rows = studies::run::results(&scene, &models, &studies::progress::Silent).unwrap();
+//! assert!(!rows.responses.is_empty());
+//! ```
+
+pub mod channel;
+pub mod progress;
+pub mod run;
+pub mod settings;
+
+/// Any failure of a study, with its source.
+pub type Failure = Box<dyn std::error::Error>;
