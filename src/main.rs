@@ -4,7 +4,8 @@ use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use coupled::plan::{ModelKind, Results};
 use coupled::transient::{Discretisation, DEFAULT_TOLERANCE};
 use impact::output::{Artifacts, OutputDir, OutputFile};
-use impact::present::rows::{response_tables, slug, yield_tables};
+use impact::present::rows::{narrow, response_tables, slug, yield_tables, NARROW};
+use impact::present::table::{csv_key, Table};
 use impact::provenance::Provenance;
 use impact::report::identify::RowFiles;
 use impact::report::Failure;
@@ -44,6 +45,55 @@ struct Common {
     model: ModelChoice,
     #[command(flatten)]
     transient: TransientArgs,
+    /// Show every column on the terminal (the compliance and its error, δ_max, deflection,
+    /// spring forces, energy shares, solver evidence, each validity criterion with its value
+    /// and limit); the default shows the case, P_max or v_y with its error and one validity
+    /// word. Files (--out, --json) always hold every column.
+    #[arg(long, conflicts_with = "columns")]
+    wide: bool,
+    /// Show these columns on the terminal, comma-separated, by header or CSV key (e.g.
+    /// `body,v_m_per_s,P_max_N,deflection_m,validity`); `--wide` lists them all.
+    #[arg(long, value_name = "LIST", value_delimiter = ',')]
+    columns: Vec<String>,
+}
+
+impl Common {
+    /// The terminal's view of `tables`: every column (`--wide`), the chosen ones (`--columns`,
+    /// each in the tables that have it; one that no table has is an error), or the narrow
+    /// default ([`NARROW`]).
+    fn view(&self, tables: &[Table]) -> Result<Vec<Table>, Failure> {
+        if self.wide {
+            return Ok(tables.to_vec());
+        }
+        if self.columns.is_empty() {
+            return Ok(tables.iter().map(|t| narrow(t, &NARROW, true)).collect());
+        }
+        let key = |h: &str| csv_key(h).0.to_lowercase();
+        let named = |h: &str, c: &str| h == c || key(h) == c.to_lowercase();
+        let mut known: Vec<String> = Vec::new();
+        for h in tables.iter().flat_map(|t| &t.headers) {
+            if !known.contains(&key(h)) {
+                known.push(key(h));
+            }
+        }
+        if let Some(c) =
+            self.columns.iter().find(|c| !tables.iter().flat_map(|t| &t.headers).any(|h| named(h, c.trim())))
+        {
+            return Err(format!("--columns {c}: no such column; the columns are {}", known.join(", ")).into());
+        }
+        Ok(tables
+            .iter()
+            .map(|t| {
+                let keep: Vec<&str> = t
+                    .headers
+                    .iter()
+                    .filter(|h| self.columns.iter().any(|c| named(h, c.trim())))
+                    .map(String::as_str)
+                    .collect();
+                narrow(t, &keep, false)
+            })
+            .collect())
+    }
 }
 
 /// How the transient model is discretised.
@@ -114,7 +164,7 @@ enum Command {
     /// Yield velocities at the scene's points (eqs. 51-54).
     Yield(Common),
     /// Beam against plate FE for a scene: the studies the scene names, into DIR (default
-    /// impact-out/<scene name>/compare).
+    /// impact-out/<scene name>-compare).
     Compare {
         /// Scene file; default: the paper's Table 1.
         #[arg(long, value_name = "FILE")]
@@ -128,7 +178,7 @@ enum Command {
         json: bool,
     },
     /// Transient impact against the quasi-static models for a scene (default out:
-    /// impact-out/<scene name>/dynamic).
+    /// impact-out/<scene name>-dynamic).
     Dynamic {
         /// Scene file; default: the paper's Table 1.
         #[arg(long, value_name = "FILE")]
@@ -374,6 +424,28 @@ fn note(text: &str) {
     let _ = writeln!(std::io::stderr().lock(), "{text}");
 }
 
+/// `text` broken at spaces into lines of at most `width` characters (a longer word stays whole).
+fn wrap(text: &str, width: usize) -> String {
+    let mut lines: Vec<String> = vec![String::new()];
+    for word in text.split_whitespace() {
+        let last = lines.last_mut().expect("one line at least");
+        if !last.is_empty() && last.chars().count() + 1 + word.chars().count() > width {
+            lines.push(word.to_string());
+        } else {
+            if !last.is_empty() {
+                last.push(' ');
+            }
+            last.push_str(word);
+        }
+    }
+    lines.join("\n")
+}
+
+/// The one rule for default output folders: `impact-out/<scene name as a file name>-<command>`.
+fn default_out(scene: &Scene, command: &str) -> PathBuf {
+    PathBuf::from("impact-out").join(format!("{}-{command}", slug(&scene.name)))
+}
+
 /// Writes to standard output; a closed pipe ends the program quietly (see `main`).
 fn out(text: &str) -> Result<(), Failure> {
     let mut o = std::io::stdout().lock();
@@ -417,7 +489,7 @@ fn execute(command: Command) -> Result<(), Failure> {
         }
         Command::Dynamic { scene, out, transient, json } => {
             let scene = transient.apply(load_bodies(&scene, "dynamic")?)?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-dynamic", slug(&scene.name))));
+            let dir = out.unwrap_or_else(|| default_out(&scene, "dynamic"));
             let target = OutputDir::prepare(&dir)?;
             let mut a = impact::report::transient::report(&scene, &Terminal::new())?;
             Provenance::of(&scene).stamp(&mut a);
@@ -425,7 +497,7 @@ fn execute(command: Command) -> Result<(), Failure> {
         }
         Command::Signals { scene, out: dir, json } => {
             let scene = load(&scene)?;
-            let dir = dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-signals", slug(&scene.name))));
+            let dir = dir.unwrap_or_else(|| default_out(&scene, "signals"));
             let target = OutputDir::prepare(&dir)?;
             let (run, tables, mut artifacts) = impact::report::signals::signals(&scene)?;
             Provenance::of(&scene).stamp(&mut artifacts);
@@ -439,15 +511,14 @@ fn execute(command: Command) -> Result<(), Failure> {
         }
         Command::Compare { scene, out, transient, json } => {
             let scene = transient.apply(load_bodies(&scene, "compare")?)?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-compare", slug(&scene.name))));
+            let dir = out.unwrap_or_else(|| default_out(&scene, "compare"));
             let target = OutputDir::prepare(&dir)?;
             commit_reporting(target, &impact::report::scene_report(&scene, &Terminal::new())?, &scene, json)
         }
         Command::Identify { scene, out: dir, json, no_features_csv } => {
             let scene = Scene::load(&scene)?;
             impact::report::identify::checked_study(&scene)?;
-            let dir =
-                dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-identify", slug(&scene.name))));
+            let dir = dir.unwrap_or_else(|| default_out(&scene, "identify"));
             let mut target = OutputDir::prepare(&dir)?;
             let files = if no_features_csv { RowFiles::Impacts } else { RowFiles::All };
             let (artifacts, summary) = impact::report::identify::write(&scene, &mut target, "", files)?;
@@ -725,12 +796,13 @@ fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) 
         // The JSON carries the status too; the terminal gets it on standard error.
         note(&status);
     } else {
-        let mut text = format!("scene: {} ({})\n", scene.name, scene.description);
-        for t in response_tables(&results).iter().chain(&yield_tables(&results)) {
+        let mut text = format!("scene: {}\n{}\n", scene.name, wrap(&scene.description, 100));
+        let tables: Vec<Table> = response_tables(&results).into_iter().chain(yield_tables(&results)).collect();
+        for t in c.view(&tables)? {
             text.push('\n');
             text.push_str(&t.to_text());
         }
-        text.push_str(&format!("\n{status}\n"));
+        text.push_str(&format!("\n{}\n", if c.wide { status.clone() } else { wrap(&status, 118) }));
         out(&text)?;
     }
     Ok(())

@@ -3,6 +3,7 @@
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
 use coupled::transient::{simulate, zener, ContactLaw, Striker};
+use impact::report::Silent;
 use impact::scene::{Scene, SceneSource};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
 use plate_fem::{Mesh, Model, PlateProperties, Supports};
@@ -125,7 +126,7 @@ fn transient_force_lies_between_quasistatic_plate_and_rigid() {
         transient_discretisation: coupled::transient::Discretisation::tolerance(1e-2),
         ..scene.clone()
     };
-    let cases = impact::report::transient::comparison(&one, &[(l / 2.0, b / 2.0)]).unwrap();
+    let cases = impact::report::transient::comparison(&one, &[(l / 2.0, b / 2.0)], &Silent).unwrap();
     assert_eq!(cases.len(), 1);
     let case = &cases[0];
     let s = coal(0.008, scene.restitution);
@@ -184,7 +185,7 @@ fn one_case(analyses: Vec<impact::scene::Analysis>) -> Scene {
 #[test]
 fn contact_laws_run_only_when_asked() {
     use impact::scene::Analysis;
-    let without = impact::report::transient::report(&one_case(vec![Analysis::Transient])).unwrap();
+    let without = impact::report::transient::report(&one_case(vec![Analysis::Transient]), &Silent).unwrap();
     let paths: Vec<String> = without.paths().map(|p| p.display().to_string()).collect();
     assert!(!paths.iter().any(|p| p.starts_with("contact-laws")), "{paths:?}");
     let index = String::from_utf8(without.get("index.md").unwrap().to_vec()).unwrap();
@@ -198,7 +199,8 @@ fn contact_laws_run_only_when_asked() {
 #[test]
 fn contact_laws_run_when_asked() {
     use impact::scene::Analysis;
-    let with = impact::report::transient::report(&one_case(vec![Analysis::Transient, Analysis::ContactLaws])).unwrap();
+    let with = impact::report::transient::report(&one_case(vec![Analysis::Transient, Analysis::ContactLaws]), &Silent)
+        .unwrap();
     let csv = String::from_utf8(with.get("contact-laws.csv").expect("asked for").to_vec()).unwrap();
     assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 1 + 12, "{csv}");
     assert!(with.get("contact-laws.svg").is_some());
@@ -271,7 +273,7 @@ fn findings_name_recontact_and_elastic_laws_beyond_yield() {
     .unwrap();
     let scene =
         Scene { plate: p, bodies: vec![big], velocities: vec![0.008, 0.03], ..one_case(vec![Analysis::Transient]) };
-    let (a, found) = impact::report::transient::study(&scene).unwrap();
+    let (a, found) = impact::report::transient::study(&scene, &Silent).unwrap();
     assert_eq!(found.numbers["struck_more_than_once"], 2, "{}", found.numbers);
     assert_eq!(found.numbers["beyond_elastic_with_elastic_law"], 1, "{}", found.numbers);
     assert!(found.contacts.contains("2 of 2 cases are struck more than once"), "{}", found.contacts);

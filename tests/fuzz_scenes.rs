@@ -1598,7 +1598,7 @@ fn tolerance_at_its_lower_end_converges() {
 
 /// Found by the fuzzing and now refused when the scene is read (the test checks both sides
 /// of the new limit). It was: `restitution = 1e-300` (or 5e-324) is accepted, as `RESTITUTION` = (0, 1] has no
-/// floor (src/scene.rs checks it against analytic::params::RESTITUTION), but a = 2K/(5e) in
+/// floor (the scene crate checks it against analytic::params::RESTITUTION), but a = 2K/(5e) in
 /// `EnergyBalance::new` (crates/analytic/src/balance.rs) overflows: "coal on Con 1 at
 /// (x, z) = (0, 0.18) m, v = 0.008 m/s: energy balance did not converge: residual NaN after
 /// 0 iterations" (NaN in a message whose input had none). 1e-290 still computes.

@@ -180,7 +180,7 @@ fn a_user_scene_gets_the_yield_study_on_its_own_cases() {
         transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
         ..base.clone()
     };
-    let a = impact::report::scene_report(&scene).unwrap();
+    let a = impact::report::scene_report(&scene, &impact::report::Silent).unwrap();
     let paths: Vec<String> = a.paths().map(|p| p.display().to_string()).collect();
     for f in ["yield-three-models/index.md", "yield-three-models/yield-three-models.csv", "dynamic/index.md"] {
         assert!(paths.iter().any(|p| p == f), "{f}: {paths:?}");

@@ -33,7 +33,7 @@ use coupled::{Analysis, Scene};
 use output::{Artifacts, OutputDir};
 use scene::SceneSource;
 
-pub use studies::progress::Progress;
+pub use studies::progress::{Progress, Silent};
 pub use studies::Failure;
 
 /// The signature every report has.

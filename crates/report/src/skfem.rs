@@ -34,7 +34,7 @@ pub struct Case {
 
 /// reference/data in the source tree.
 pub fn data_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("reference").join("data")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../reference/data")
 }
 
 fn bad(what: &str) -> String {

@@ -2,7 +2,7 @@
 
 use crate::present::plot::{line_plot, Axis, Plot, Scale, Series};
 use crate::present::table::{sig, Cell, Table};
-use analytic::{respond, Condition, DruckerPrager, Method, Sphere};
+use analytic::{respond, Condition, DruckerPrager, Method};
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
 use coupled::regimes::{mass_ratio, OlssonRegime, RuleInputs};
@@ -63,17 +63,7 @@ pub const STEPS_PER_CONTACT: f64 = 200.0;
 pub const DYNAMIC_MESH: usize = 20;
 const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
 
-/// The scene's sphere `body` at `v` with the scene's contact law.
-pub fn striker(scene: &Scene, body: &Sphere, v: f64) -> Striker {
-    let imp = impact_of(scene, body, v);
-    Striker {
-        k: imp.contact_stiffness,
-        restitution: scene.restitution,
-        mass: imp.mass,
-        velocity: v,
-        law: scene.contact_law.law_for(body),
-    }
-}
+pub use coupled::plan::scene_striker as striker;
 
 /// An optional number as a cell: empty where there is none (no separation in the window).
 fn opt(v: Option<f64>) -> Cell {

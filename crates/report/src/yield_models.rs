@@ -19,7 +19,7 @@ use analytic::{contact_stiffness, yield_velocity, DruckerPrager, Sphere};
 pub use coupled::plan::log_root;
 use coupled::plan::{self, impact_of, ModelKind, YieldRow, YieldValues};
 use coupled::scene::even_points;
-use coupled::transient::{case::striker, TransientCase, TransientSettings};
+use coupled::transient::{TransientCase, TransientSettings};
 use coupled::{Analysis, BeamModel, ModelError, PlateModel, Points, SupportSet};
 use output::Artifacts;
 use scene::Scene;
@@ -72,8 +72,8 @@ pub struct TransientYield {
     pub yield_compression: f64,
 }
 
-/// The transient yield velocity of `body` at (x, z) on the plate held by `set`: the v at
-/// which the transient δ_max reaches δ_my of eq. 51, to a relative width [`ROOT_TOLERANCE`].
+/// The transient yield velocity of `body` at (x, z) on the plate held by `set`, with the
+/// scene's contact law: the v at which the transient δ_max reaches δ_my of eq. 51, to a relative width [`ROOT_TOLERANCE`].
 pub fn transient_yield(
     scene: &Scene,
     case: &TransientCase,
@@ -89,7 +89,7 @@ pub fn transient_yield(
     let (lo, hi) = {
         let mut f = |lv: f64| -> Result<f64, ModelError> {
             runs += 1;
-            let s = striker(&scene.plate, body, scene.restitution, lv.exp());
+            let s = coupled::plan::scene_striker(scene, body, lv.exp());
             // δ_max is the first contact's: the run need not follow the later ones.
             let steps = case.settings().steps_per_contact;
             Ok((case.first_contact(set, &s, x, z, steps)?.compression_max / d_my).ln())

@@ -39,6 +39,65 @@ pub fn validity_text(v: &Validity) -> String {
     }
 }
 
+/// One word for a row's validity, for a narrow terminal: `valid`, or the first criterion it
+/// is beyond with the count of further ones (`elastic+2`); [`validity_text`] has the values.
+pub fn validity_word(text: &str) -> String {
+    if text == "valid" {
+        return text.into();
+    }
+    if text.starts_with("not applicable") {
+        return "n/a".into();
+    }
+    let beyond: Vec<&str> = text.trim_start_matches("beyond ").split("; ").collect();
+    let first = beyond[0].split(':').next().unwrap_or("flagged").replace(' ', "-");
+    match beyond.len() {
+        1 => first,
+        n => format!("{first}+{}", n - 1),
+    }
+}
+
+/// The columns a narrow terminal shows by default: the case, P_max or v_y with its error, and
+/// one validity word. Where every row is of one model the model column is left out.
+pub const NARROW: [&str; 11] = [
+    "model",
+    "body",
+    "x (mm)",
+    "z (mm)",
+    "v (m/s)",
+    "P_max (N)",
+    "P_max error (N)",
+    "v_y (m/s)",
+    "v_y error (m/s)",
+    "validity",
+    "validity at v_y",
+];
+
+/// `t` with only the columns named in `keep` (display headers, in the table's order); the
+/// validity columns become one word each unless `keep` names the validity in full. A header
+/// in `keep` that the table lacks is skipped (tables differ in their columns).
+pub fn narrow(t: &Table, keep: &[&str], validity_words: bool) -> Table {
+    let one_model = t.rows.iter().all(|r| r.first() == t.rows[0].first());
+    let cols: Vec<usize> = (0..t.headers.len())
+        .filter(|&i| keep.contains(&t.headers[i].as_str()))
+        .filter(|&i| !(i == 0 && t.headers[0] == "model" && one_model && keep == NARROW))
+        .collect();
+    let words = |i: usize| validity_words && t.headers[i].starts_with("validity");
+    Table {
+        title: t.title.clone(),
+        headers: cols.iter().map(|&i| t.headers[i].clone()).collect(),
+        rows: t
+            .rows
+            .iter()
+            .map(|r| {
+                cols.iter()
+                    .map(|&i| if words(i) { Cell::Text(validity_word(&r[i].show())) } else { r[i].clone() })
+                    .collect()
+            })
+            .collect(),
+        csv_names: vec![],
+    }
+}
+
 /// The transient discretisation of a row: elements, steps per Hertz time, the largest
 /// relative error estimate and the tolerance it was chosen for (empty for other models).
 pub fn discretisation_text(e: &Evidence) -> String {

@@ -237,7 +237,7 @@ pub fn measured(value: f64, error: f64) -> String {
 }
 
 impl Cell {
-    fn show(&self) -> String {
+    pub fn show(&self) -> String {
         match self {
             // A note without its number (there is none) stands alone.
             Cell::Noted { value, note, .. } if !value.is_finite() => note.clone(),
