@@ -1,74 +1,24 @@
-//! `impact signals`: the scene's impacts through the reduced-order model
-//! (coupled::reduced), their first-contact numbers with the truncation error and validity,
-//! and the sensor and corner time series as CSV files with units in the headers.
+//! `impact signals` rendered: the models, the impacts' first-contact numbers and the sensors as
+//! tables, and each impact's time series as a CSV file with units in the headers.
 
-use crate::present::rows::{slug, validity_text};
+use crate::present::rows::validity_text;
 use crate::present::table::{Cell, Table};
 use crate::Failure;
-use coupled::reduced::plan::{run, ModelSummary, SceneImpact};
+use coupled::reduced::plan::SceneImpact;
 use output::Artifacts;
 use scene::Scene;
-use serde::Serialize;
+pub use studies::signals::{compute, ImpactRow, SignalRun, SignalsData};
+use studies::{progress::Silent, settings::Settings};
 
-/// What `impact signals` computed.
-#[derive(Debug, Serialize)]
-pub struct SignalRun {
-    /// The reduced model of each support set.
-    pub models: Vec<ModelSummary>,
-    /// Every impact, its time series left out (they are in the CSV files).
-    pub impacts: Vec<ImpactRow>,
-}
-
-/// One impact's numbers (SI).
-#[derive(Debug, Serialize)]
-pub struct ImpactRow {
-    /// Support set name.
-    pub condition: String,
-    /// Body name.
-    pub body: String,
-    /// Impact point (x, z), m.
-    pub point: (f64, f64),
-    /// Velocity, m/s.
-    pub velocity: f64,
-    /// First-contact quantities and their truncation errors.
-    pub quantities: coupled::transient::Quantities,
-    /// The errors.
-    pub errors: coupled::transient::Quantities,
-    /// Contacts in the window.
-    pub contacts: usize,
-    /// Validity criteria.
-    pub validity: coupled::Validity,
-    /// The CSV file of its time series, relative to the output directory.
-    pub file: String,
-}
-
-/// Runs the scene and returns the summary, the terminal tables and the files.
+/// Runs the scene ([`studies::signals::compute`]) and returns the summary, the terminal
+/// tables and the files.
 pub fn signals(scene: &Scene) -> Result<(SignalRun, Vec<Table>, Artifacts), Failure> {
-    let (models, impacts) = run(scene)?;
+    let data = compute(scene, &Settings::default(), &Silent)?;
     let mut a = Artifacts::new();
-    let mut rows = Vec::with_capacity(impacts.len());
-    for (k, imp) in impacts.iter().enumerate() {
-        let file = format!(
-            "signals/{}/{}-{:04}.csv",
-            slug(&scene.conditions[imp.condition].name),
-            slug(&scene.bodies[imp.body].name),
-            k + 1
-        );
-        a.try_add(file.clone(), series(imp).to_csv())?;
-        let o = &imp.result.outcome;
-        rows.push(ImpactRow {
-            condition: scene.conditions[imp.condition].name.clone(),
-            body: scene.bodies[imp.body].name.clone(),
-            point: imp.point,
-            velocity: imp.velocity,
-            quantities: imp.quantities,
-            errors: imp.errors,
-            contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
-            validity: imp.validity,
-            file,
-        });
+    for (imp, row) in data.impacts.iter().zip(&data.run.impacts) {
+        a.try_add(row.file.clone(), series(imp).to_csv())?;
     }
-    let run = SignalRun { models, impacts: rows };
+    let run = data.run;
     let tables = vec![model_table(scene, &run), impact_table(&run), sensor_table(scene)];
     for (name, t) in ["models.csv", "impacts.csv", "sensors.csv"].into_iter().zip(&tables) {
         a.add(name, t.to_csv());

@@ -4,6 +4,8 @@
 //!
 //! * [`run`]: a scene by the models a caller picks (beam, plate FE, transient), within the
 //!   memory and run budgets, the one entry point the command line and Python share;
+//! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
+//!   &Settings, &dyn Progress) -> Data`), so far by [`signals`] and [`fem_bench`];
 //! * [`settings`]: the studies' shared settings, one place for each;
 //! * [`channel`]: the names of an identification's channels;
 //! * [`progress`]: how a long study reports how far it is.
@@ -17,9 +19,12 @@
 //! ```
 
 pub mod channel;
+pub mod fem_bench;
 pub mod progress;
 pub mod run;
 pub mod settings;
+pub mod signals;
+pub mod study;
 
 /// Any failure of a study, with its source.
 pub type Failure = Box<dyn std::error::Error>;

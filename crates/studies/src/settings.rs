@@ -27,3 +27,34 @@ pub const DYNAMIC_MESH: usize = 20;
 pub const REPORT_TOLERANCE: f64 = 1e-3;
 /// The balance solver of the studies: bracketed Newton to 1e-13.
 pub const METHOD: Method = Method::Bracketed { tolerance: 1e-13, max_iterations: 200 };
+
+/// The settings a study runs with, as one value: the defaults are the constants above, and a
+/// caller (the command line's flags, a Python keyword) changes a field, never a constant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    /// Elements along the longer side of the coarser plate mesh ([`BASE_MESH`]).
+    pub base_mesh: usize,
+    /// Meshes in the plate model's ladder ([`LEVELS`]).
+    pub levels: u32,
+    /// The balance solver ([`METHOD`]).
+    pub method: Method,
+    /// Relative tolerance of the transient cases of a report ([`REPORT_TOLERANCE`]).
+    pub transient_tolerance: f64,
+    /// The FE bench: the relative error the chosen mesh reaches at the centre.
+    pub bench_tolerance: f64,
+    /// The FE bench: impact points along the length and across the width of the map.
+    pub bench_points: (usize, usize),
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            base_mesh: BASE_MESH,
+            levels: LEVELS,
+            method: METHOD,
+            transient_tolerance: REPORT_TOLERANCE,
+            bench_tolerance: 1e-4,
+            bench_points: (101, 21),
+        }
+    }
+}

@@ -1,0 +1,57 @@
+//! A study: a scene and settings in, serde data out. Rendering (the `report` crate) turns the
+//! data into files; the command line and Python call [`Study::compute`] alike.
+
+use crate::progress::Progress;
+use crate::settings::Settings;
+use crate::Failure;
+use scene::Scene;
+
+/// One study of a scene.
+///
+/// ```
+/// use studies::{progress::{Progress, Silent}, settings::Settings, study::Study, Failure};
+/// use scene::{Scene, SceneSource};
+///
+/// /// The number of impact points a scene names.
+/// struct PointCount;
+/// impl Study for PointCount {
+///     const KEY: &'static str = "point-count";
+///     type Data = usize;
+///     fn compute(scene: &Scene, _: &Settings, _: &dyn Progress) -> Result<usize, Failure> {
+///         Ok(scene.point_pairs().len())
+///     }
+/// }
+/// let n = PointCount::compute(&Scene::default_scene(), &Settings::default(), &Silent).unwrap();
+/// assert!(n > 0);
+/// ```
+pub trait Study {
+    /// The study's name in folders and messages.
+    const KEY: &'static str;
+    /// What it computes: plain data, serializable, with no file or terminal in it.
+    type Data: serde::Serialize;
+    /// Runs the study on `scene`.
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure>;
+}
+
+/// The signals study ([`crate::signals`]).
+pub struct Signals;
+
+impl Study for Signals {
+    const KEY: &'static str = "signals";
+    type Data = crate::signals::SignalsData;
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::signals::compute(scene, settings, progress)
+    }
+}
+
+/// The plate FE bench ([`crate::fem_bench`]).
+pub struct FemBench;
+
+impl Study for FemBench {
+    const KEY: &'static str = "fem-bench";
+    type Data = crate::fem_bench::BenchReport;
+    fn compute(scene: &Scene, settings: &Settings, _progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        let (nx, nz) = settings.bench_points;
+        Ok(crate::fem_bench::bench(scene, settings.bench_tolerance, nx, nz)?)
+    }
+}
