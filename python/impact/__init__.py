@@ -17,7 +17,7 @@ Results are columnar: a dict of numpy arrays, one entry per row, ready for
 
 - SI units, the unit in the column name (``contact_force_n``, ``x_m``, ``velocity_m_per_s``);
   ratios are over the sphere's kinetic energy E0 = m v^2 / 2.
-- Every row carries its validity: ``valid`` (inside every criterion), ``flags`` (the
+- Every row carries its validity: ``valid`` (inside every criterion), ``validity_flags`` (the
   criteria it is beyond, "; "-separated; empty for a valid row) and the measured ratios ``elastic_ratio``
   (delta_max/delta_my, limit 1), ``quasi_static_ratio`` (t_c/T1, limit 0.2),
   ``thin_plate_ratio`` (h/min(L, B), limit 0.05), ``regime_force_error`` (the closed-form
@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any, Mapping, Sequence, Union
+from typing import Any, Literal, Mapping, Sequence, Union
 
 import numpy as np
 
@@ -76,6 +76,8 @@ Columns = dict[str, np.ndarray]
 #: What the functions accept as a scene: a Scene, a path to a scene file, or a dict with the
 #: layout of a scene file.
 SceneLike = Union[Scene, str, "os.PathLike[str]", Mapping[str, Any]]
+#: The models that answer: the paper's beam, the plate FE (quasi-static), the transient plate, or all.
+Model = Literal["beam", "plate", "transient", "all"]
 
 
 def load_scene(scene: SceneLike) -> Scene:
@@ -131,7 +133,7 @@ def _results(raw: Mapping[str, Any]) -> Results:
     )
 
 
-def solve(scene: SceneLike, model: str = "beam", *, tolerance: float | None = None) -> Results:
+def solve(scene: SceneLike, model: Model = "beam", *, tolerance: float | None = None) -> Results:
     """Responses and yield velocities at the scene's points (``impact solve``).
 
     Args:
@@ -149,13 +151,13 @@ def solve(scene: SceneLike, model: str = "beam", *, tolerance: float | None = No
     return _results(_impact.run(load_scene(scene), model, tolerance=tolerance))
 
 
-def sweep(scene: SceneLike, count: int = 101, model: str = "beam", *, tolerance: float | None = None) -> Results:
+def sweep(scene: SceneLike, count: int = 101, model: Model = "beam", *, tolerance: float | None = None) -> Results:
     """:func:`solve` on ``count`` evenly spaced points of the centreline z = B/2, from x = 0
     to L (``impact sweep --count``; the paper uses 101)."""
     return _results(_impact.run(load_scene(scene), model, sweep=float(count), tolerance=tolerance))
 
 
-def yield_velocity(scene: SceneLike, model: str = "beam", *, tolerance: float | None = None) -> Results:
+def yield_velocity(scene: SceneLike, model: Model = "beam", *, tolerance: float | None = None) -> Results:
     """Yield velocities only (eqs. 51-54; ``impact yield``); for the transient model, the
     velocity at which the transient delta_max reaches the paper's delta_my."""
     return _results(_impact.run(load_scene(scene), model, yield_only=True, tolerance=tolerance))
@@ -252,7 +254,7 @@ def identify(
     ``z_m``, ``velocity_m_per_s``, ``radius_m``, ``density_kg_m3``, ``youngs_modulus_pa``,
     ``poisson_ratio``, ``cohesion_pa``, ``friction_angle_deg``), the contact
     (``force_max_n``, ``contact_time_s``, ``contacts``, ``unfinished``), the validity
-    (``valid``, ``flags``, ``elastic_ratio`` = delta_max/delta_my, ``quasi_static_ratio`` =
+    (``valid``, ``validity_flags``, ``elastic_ratio`` = delta_max/delta_my, ``quasi_static_ratio`` =
     t_c/T1, a regime label here), and one column per channel and feature, named
     "<channel>: <feature> (<unit>)" with the channel as the identify report names it, e.g.
     "acceleration at (229.2, 180) mm: peak (m/s^2)". An empty range has no feature columns.

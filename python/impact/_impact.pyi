@@ -2,12 +2,15 @@
 :mod:`impact`; they wrap these and document the columns."""
 
 from os import PathLike
-from typing import Any
+from typing import Any, Literal
+
+Model = Literal["beam", "plate", "transient", "all"]
 
 __version__: str
 
 class SceneError(ValueError):
-    """An invalid scene or argument, with the command line's message."""
+    """An invalid scene, with the command line's message (a bad argument is a plain
+    ``ValueError`` with the same attributes)."""
 
     origin: str | None
     field: str | None
@@ -54,7 +57,7 @@ class Scene:
 
 def run(
     scene: Scene,
-    model: str = "beam",
+    model: Model = "beam",
     sweep: float | None = None,
     yield_only: bool = False,
     tolerance: float | None = None,

@@ -186,7 +186,7 @@ const KEYS: [(&str, Kind); 7] = [
 /// `relative_error` against `tolerance`).
 const VALIDITY: [(&str, Kind); 7] = [
     ("valid", Flag),
-    ("flags", Text),
+    ("validity_flags", Text),
     ("elastic_ratio", Num),
     ("quasi_static_ratio", Num),
     ("thin_plate_ratio", Num),
@@ -196,7 +196,7 @@ const VALIDITY: [(&str, Kind); 7] = [
 
 fn validity(t: &mut Table, row: usize, v: &Validity) {
     t.flag("valid", row, v.all_valid());
-    t.text("flags", row, &v.flags().join("; "));
+    t.text("validity_flags", row, &v.flags().join("; "));
     t.opt("elastic_ratio", row, v.elastic.map(|c| c.value));
     t.opt("quasi_static_ratio", row, v.quasi_static.map(|c| c.value));
     t.num("thin_plate_ratio", row, v.thin_plate.value);

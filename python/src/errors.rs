@@ -1,6 +1,8 @@
 //! The package's exceptions. `SceneError` (a `ValueError`) carries what the command line's
 //! message says, as attributes a program can read: the scene field, the value as written,
-//! the allowed range and its unit. `ModelError` (a `RuntimeError`) is a model that could not
+//! the allowed range and its unit. A bad argument of a function (not of the scene) is a plain
+//! `ValueError` with the same attributes; a scene file that does not exist a
+//! `FileNotFoundError`. `ModelError` (a `RuntimeError`) is a model that could not
 //! answer (a solver that did not converge, a request beyond the budgets).
 
 use ::scene::SceneError as Invalid;
@@ -38,8 +40,12 @@ struct Details {
 }
 
 fn raise(message: String, d: Details) -> PyErr {
+    with_details(SceneError::new_err(message), d)
+}
+
+/// `err` with the attributes of `d` set on its instance.
+fn with_details(err: PyErr, d: Details) -> PyErr {
     Python::attach(|py| {
-        let err = SceneError::new_err(message);
         let v = err.value(py);
         // Attributes of a fresh exception instance: setting them cannot fail.
         let _ = v.setattr("origin", d.origin);
@@ -84,8 +90,18 @@ pub fn overflow_error(message: String, p: &InvalidParameter, origin: &str, value
     err
 }
 
-/// A scene error as a Python `SceneError`, with the command line's message.
+/// A scene error as a Python `SceneError`, with the command line's message; a scene file
+/// that does not exist is a `FileNotFoundError` (errno, message, file name), as `open` raises.
 pub fn scene_error(e: &Invalid) -> PyErr {
+    if let Invalid::Read { path, source } = e {
+        if source.kind() == std::io::ErrorKind::NotFound {
+            return pyo3::exceptions::PyFileNotFoundError::new_err((
+                source.raw_os_error().unwrap_or(2),
+                e.to_string(),
+                path.clone(),
+            ));
+        }
+    }
     let details = match e {
         Invalid::Read { path, .. } | Invalid::NotAFile { path, .. } => {
             Details { origin: Some(path.clone()), ..Details::default() }
@@ -99,14 +115,18 @@ pub fn scene_error(e: &Invalid) -> PyErr {
     raise(e.to_string(), details)
 }
 
-/// An argument outside its range, as a `SceneError` naming the argument.
+/// An argument outside its range, as a `ValueError` naming the argument (the scene is not
+/// at fault, so not a `SceneError`), with the same attributes.
 pub fn argument_error(p: &InvalidParameter) -> PyErr {
-    raise(p.to_string(), range_details(None, p))
+    with_details(pyo3::exceptions::PyValueError::new_err(p.to_string()), range_details(None, p))
 }
 
-/// Any other refusal of an argument (an unknown name), as a `SceneError` naming it.
+/// Any other refusal of an argument (an unknown name), as a `ValueError` naming it.
 pub fn argument_message(field: &str, message: String) -> PyErr {
-    raise(format!("{field}: {message}"), Details { field: Some(field.to_string()), ..Details::default() })
+    with_details(
+        pyo3::exceptions::PyValueError::new_err(format!("{field}: {message}")),
+        Details { field: Some(field.to_string()), ..Details::default() },
+    )
 }
 
 /// A model error as a Python `ModelError`.

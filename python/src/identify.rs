@@ -69,7 +69,7 @@ const SCHEMA: [(&str, Kind); 20] = [
     ("contact_time_s", Kind::Num),
     ("contacts", Kind::Int),
     ("valid", Kind::Flag),
-    ("flags", Kind::Text),
+    ("validity_flags", Kind::Text),
     ("elastic_ratio", Kind::Num),
     ("quasi_static_ratio", Kind::Num),
     ("unfinished", Kind::Flag),
@@ -203,7 +203,7 @@ pub fn identify<'py>(
         // The quasi-static criterion is a regime label here (the reduced model is
         // transient), so it does not make an impact invalid.
         t.flag("valid", row, f.iter().all(|x| *x == "not quasi-static"));
-        t.text("flags", row, &f.join("; "));
+        t.text("validity_flags", row, &f.join("; "));
         for ((c, label), features) in channels.iter().zip(&labels).zip(&r.features) {
             for feature in FEATURES {
                 let name = format!("{label}: {} ({})", feature.key(), feature.unit(c.unit()));

@@ -66,7 +66,7 @@ def test_force_and_contact_time_meet_hertz(run):
     assert abs(r["contact_force_n"][0] / force - 1.0) <= 0.6 * share + 5e-5
     assert abs(r["contact_time_s"][0] / time - 1.0) <= share + 5e-5
     # The validity status: inside every criterion, one contact, left for good.
-    assert bool(r["valid"][0]) and r["flags"][0] == "" and r["contacts"][0] == 1
+    assert bool(r["valid"][0]) and r["validity_flags"][0] == "" and r["contacts"][0] == 1
     assert run.left_for_good
     # Counts are integers: every row of this table has them.
     for c in ("contacts", "steps"):
