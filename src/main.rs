@@ -5,7 +5,7 @@ use coupled::plan::{ModelKind, Results};
 use coupled::transient::{Discretisation, DEFAULT_TOLERANCE};
 use impact::output::{Artifacts, OutputDir, OutputFile};
 use impact::present::rows::{narrow, response_tables, slug, yield_tables, NARROW};
-use impact::present::table::{csv_key, Table};
+use impact::present::table::Table;
 use impact::provenance::Provenance;
 use impact::report::identify::RowFiles;
 use impact::report::Failure;
@@ -52,7 +52,7 @@ struct Common {
     #[arg(long, conflicts_with = "columns")]
     wide: bool,
     /// Show these columns on the terminal, comma-separated, by header or CSV key (e.g.
-    /// `body,v_m_per_s,P_max_N,deflection_m,validity`); `--wide` lists them all.
+    /// `body,velocity_m_per_s,contact_force_N,deflection_m,validity`); `--wide` lists them all.
     #[arg(long, value_name = "LIST", value_delimiter = ',')]
     columns: Vec<String>,
 }
@@ -68,28 +68,29 @@ impl Common {
         if self.columns.is_empty() {
             return Ok(tables.iter().map(|t| narrow(t, &NARROW, true)).collect());
         }
-        let key = |h: &str| csv_key(h).0.to_lowercase();
-        let named = |h: &str, c: &str| h == c || key(h) == c.to_lowercase();
+        // Each column by its header or its key (the CSV name), the key case-insensitive.
+        let named = |t: &Table, c: &str| -> Vec<usize> {
+            let keys = t.csv_headers();
+            (0..t.headers.len())
+                .filter(|&i| t.headers[i] == c || keys.get(i).is_some_and(|k| k.eq_ignore_ascii_case(c)))
+                .collect()
+        };
         let mut known: Vec<String> = Vec::new();
-        for h in tables.iter().flat_map(|t| &t.headers) {
-            if !known.contains(&key(h)) {
-                known.push(key(h));
+        for k in tables.iter().flat_map(|t| t.csv_headers()) {
+            if !known.contains(&k) {
+                known.push(k);
             }
         }
-        if let Some(c) =
-            self.columns.iter().find(|c| !tables.iter().flat_map(|t| &t.headers).any(|h| named(h, c.trim())))
-        {
+        if let Some(c) = self.columns.iter().find(|c| tables.iter().all(|t| named(t, c.trim()).is_empty())) {
             return Err(format!("--columns {c}: no such column; the columns are {}", known.join(", ")).into());
         }
         Ok(tables
             .iter()
             .map(|t| {
-                let keep: Vec<&str> = t
-                    .headers
-                    .iter()
-                    .filter(|h| self.columns.iter().any(|c| named(h, c.trim())))
-                    .map(String::as_str)
-                    .collect();
+                let mut cols: Vec<usize> = self.columns.iter().flat_map(|c| named(t, c.trim())).collect();
+                cols.sort_unstable();
+                cols.dedup();
+                let keep: Vec<&str> = cols.iter().map(|&i| t.headers[i].as_str()).collect();
                 narrow(t, &keep, false)
             })
             .collect())
@@ -383,9 +384,9 @@ fn impact_of<'a>(
 /// The field data of a .vtu scaled to a case's quasi-static P_max: the force's error, the
 /// velocity, and every validity criterion's value and limit with `valid` (1 or 0).
 fn case_numbers(case: &coupled::plan::ResponseValues, v: f64) -> Vec<(String, f64)> {
-    let mut n = vec![("P_max_N".to_string(), case.contact_force), ("velocity_m_per_s".into(), v)];
+    let mut n = vec![("contact_force_N".to_string(), case.contact_force), ("velocity_m_per_s".into(), v)];
     if let Some(e) = case.contact_force_error {
-        n.push(("P_max_error_N".into(), e));
+        n.push(("contact_force_error_N".into(), e));
     }
     for (name, c) in case.validity.criteria() {
         let key = name.replace([' ', '-'], "_");
@@ -761,7 +762,9 @@ struct Document<'a> {
     units: &'static str,
     status: &'a str,
     summary: coupled::plan::Summary,
-    results: &'a Results,
+    /// The rows in the one column schema's keys (`contact_force_N`, ...), as in the CSV
+    /// files and the Python columns.
+    results: studies::columns::Rows<'a>,
 }
 
 fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) -> Result<(), Failure> {
@@ -776,7 +779,7 @@ fn emit(c: &Common, target: Option<OutputDir>, scene: &Scene, results: Results) 
             units: "SI (m, m/s, N, m/N, J ratios)",
             status: &status,
             summary: results.summary(),
-            results: &results,
+            results: studies::columns::Rows(&results),
         })?)
     };
     if let Some(target) = target {

@@ -216,7 +216,10 @@ fn command_line_writes_csv_and_json() {
         .unwrap()
         .starts_with(&format!("# impact {}; scene paper-table-1; scene_sha256 ", env!("CARGO_PKG_VERSION"))));
     let header = lines.next().unwrap();
-    assert!(header.starts_with("model,body,x_m,z_m,v_m_per_s,") && !header.contains("spring"), "{header}");
+    assert!(
+        header.starts_with("model,body,condition,x_m,z_m,velocity_m_per_s,") && !header.contains("spring"),
+        "{header}"
+    );
     assert_eq!(v["provenance"]["scene"], "paper-table-1");
 }
 

@@ -98,7 +98,7 @@ def main() -> None:
         ours = roc_auc_score(y, cols[col]) if col else float("nan")
         lo, hi = rk["interval"]
         print(f"  {rk['channel']}: {rk['feature']:<20} {rk['auc']['auc']:.4f} [{lo:.3f}, {hi:.3f}] | {ours:.4f}")
-    for name, col in (("force_max", "force_max_n"), ("contact_time", "contact_time_s")):
+    for name, col in (("force_max", "force_max_N"), ("contact_time", "contact_time_s")):
         rk = rust[name]
         print(f"  {name:<50} {rk['auc']['auc']:.4f} [{rk['interval'][0]:.3f}, {rk['interval'][1]:.3f}] | "
               f"{roc_auc_score(y, np.nan_to_num(cols[col], nan=0.0)):.4f}")

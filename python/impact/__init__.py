@@ -15,7 +15,7 @@ layout as a dict, read by the same parser and validation::
 Results are columnar: a dict of numpy arrays, one entry per row, ready for
 ``pandas.DataFrame``. Conventions:
 
-- SI units, the unit in the column name (``contact_force_n``, ``x_m``, ``velocity_m_per_s``);
+- SI units, the unit in the column name (``contact_force_N``, ``x_m``, ``velocity_m_per_s``);
   ratios are over the sphere's kinetic energy E0 = m v^2 / 2.
 - Every row carries its validity: ``valid`` (inside every criterion), ``validity_flags`` (the
   criteria it is beyond, "; "-separated; empty for a valid row) and the measured ratios ``elastic_ratio``
@@ -170,13 +170,13 @@ class Transient:
     Attributes:
         response: the responses at maximum compression, one row with the columns of
             :attr:`Results.responses` (errors when run with ``error_estimate``).
-        history: time series, one entry per time step: ``t_s``, ``force_n``,
+        history: time series, one entry per time step: ``t_s``, ``force_N``,
             ``compression_m``, ``sphere_velocity_m_per_s``, ``plate_displacement_m`` (at the
-            impact point), the energies ``sphere_kinetic_j``, ``contact_j``,
-            ``plate_kinetic_j``, ``plate_strain_j``, ``springs_j``, ``dissipated_j``, and
+            impact point), the energies ``sphere_kinetic_J``, ``contact_J``,
+            ``plate_kinetic_J``, ``plate_strain_J``, ``springs_J``, ``dissipated_J``, and
             ``first_contact`` (True up to the first separation).
         contacts: one row per completed contact: ``start_s``, ``duration_s``,
-            ``peak_force_n``, ``impulse_n_s``, ``rebound_velocity_m_per_s``, ``steps``.
+            ``peak_force_N``, ``impulse_N_s``, ``rebound_velocity_m_per_s``, ``steps``.
         left_for_good: whether the run proved that the sphere cannot strike again (else the
             window ended first).
     """
@@ -253,7 +253,7 @@ def identify(
     Columns: ``index``, ``family``, ``class`` ("coal" | "gangue"), the draw (``x_m``,
     ``z_m``, ``velocity_m_per_s``, ``radius_m``, ``density_kg_m3``, ``youngs_modulus_pa``,
     ``poisson_ratio``, ``cohesion_pa``, ``friction_angle_deg``), the contact
-    (``force_max_n``, ``contact_time_s``, ``contacts``, ``unfinished``), the validity
+    (``force_max_N``, ``contact_time_s``, ``contacts``, ``unfinished``), the validity
     (``valid``, ``validity_flags``, ``elastic_ratio`` = delta_max/delta_my, ``quasi_static_ratio`` =
     t_c/T1, a regime label here), and one column per channel and feature, named
     "<channel>: <feature> (<unit>)" with the channel as the identify report names it, e.g.

@@ -1,8 +1,9 @@
 //! Result rows as columns: one numpy array per quantity, every array one entry per row, so
 //! a dict of them goes straight into `pandas.DataFrame`.
 //!
-//! Conventions (the Python docstrings repeat them): SI units, the unit in the column name
-//! (`contact_force_n`, `x_m`); NaN only where a quantity does not apply to a row (a row the
+//! Conventions (the Python docstrings repeat them): the columns and their names are the result
+//! rows' one schema (`studies::columns`), shared with the command line's tables, CSV and JSON:
+//! SI units, the unit in the column name (`contact_force_N`, `x_m`); NaN only where a quantity does not apply to a row (a row the
 //! model does not describe, an error estimate a model does not give, a spring a support set
 //! does not have), never as a computed value; a column that applies to no row is left out.
 //! Counts (`steps`, `contacts`, `elements`, `solver_iterations`) are int64; in a table that
@@ -10,11 +11,13 @@
 //! the column is float64 with NaN in those rows, as pandas itself does for an integer column
 //! with missing values.
 
-use coupled::plan::{Evidence, ResponseRow, ResponseValues, Results, RowOutcome, YieldRow};
-use coupled::Validity;
+use coupled::plan::{ResponseRow, Results, YieldRow};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use studies::columns::{
+    response_columns, spring_columns, yield_columns, Column as SchemaColumn, Kind as SchemaKind, Value,
+};
 
 /// The kind of one column.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -84,13 +87,6 @@ impl Table {
         if let Data::Num(d) = &mut c.data {
             d[row] = v;
             c.used = true;
-        }
-    }
-
-    /// Sets a number if there is one.
-    pub fn opt(&mut self, name: &str, row: usize, v: Option<f64>) {
-        if let Some(v) = v {
-            self.num(name, row, v);
         }
     }
 
@@ -166,240 +162,60 @@ impl Table {
     }
 }
 
-use Kind::{Count, Flag, Num, Text};
-
-/// The row identity and outcome columns every result table starts with.
-const KEYS: [(&str, Kind); 7] = [
-    ("model", Text),
-    ("body", Text),
-    ("condition", Text),
-    ("x_m", Num),
-    ("z_m", Num),
-    ("applicable", Flag),
-    ("reason", Text),
-];
-
-/// The validity columns: whether every criterion holds, the failing ones by name, and each
-/// criterion's measured value (its limit: 1, 0.2, 0.05, 3 % for the regime rule's bound on
-/// the quasi-static force error, 1 contact). The transient criteria "impact finished" and
-/// "discretisation" have their values among the transient columns (`left_for_good`,
-/// `relative_error` against `tolerance`).
-const VALIDITY: [(&str, Kind); 7] = [
-    ("valid", Flag),
-    ("validity_flags", Text),
-    ("elastic_ratio", Num),
-    ("quasi_static_ratio", Num),
-    ("thin_plate_ratio", Num),
-    ("regime_force_error", Num),
-    ("contacts", Count),
-];
-
-fn validity(t: &mut Table, row: usize, v: &Validity) {
-    t.flag("valid", row, v.all_valid());
-    t.text("validity_flags", row, &v.flags().join("; "));
-    t.opt("elastic_ratio", row, v.elastic.map(|c| c.value));
-    t.opt("quasi_static_ratio", row, v.quasi_static.map(|c| c.value));
-    t.num("thin_plate_ratio", row, v.thin_plate.value);
-    t.opt("regime_force_error", row, v.regime.map(|c| c.value));
-    // The criterion holds the count as its measured value (a whole number).
-    if let Some(c) = v.recontact {
-        t.count("contacts", row, c.value as u64);
+/// The Python kind of a schema column.
+fn kind_of(k: SchemaKind) -> Kind {
+    match k {
+        SchemaKind::Text => Kind::Text,
+        SchemaKind::Num => Kind::Num,
+        SchemaKind::Flag => Kind::Flag,
+        SchemaKind::Count => Kind::Count,
     }
 }
 
-fn keys(t: &mut Table, row: usize, model: &str, body: &str, condition: &str, (x, z): (f64, f64)) {
-    t.text("model", row, model);
-    t.text("body", row, body);
-    t.text("condition", row, condition);
-    t.num("x_m", row, x);
-    t.num("z_m", row, z);
+/// Sets cell (`key`, `row`) of `t` to `v`.
+fn put(t: &mut Table, key: &str, row: usize, v: Value) {
+    match v {
+        Value::Text(s) => t.text(key, row, &s),
+        Value::Num(x) => t.num(key, row, x),
+        Value::Flag(b) => t.flag(key, row, b),
+        Value::Count(n) => t.count(key, row, n),
+    }
 }
 
-/// Columns of the responses at maximum compression.
-const RESPONSES: [(&str, Kind); 39] = [
-    ("velocity_m_per_s", Num),
-    ("compliance_m_per_n", Num),
-    ("compliance_error_m_per_n", Num),
-    ("contact_force_n", Num),
-    ("contact_force_error_n", Num),
-    ("compression_m", Num),
-    ("compression_error_m", Num),
-    ("deflection_m", Num),
-    ("deflection_error_m", Num),
-    ("rock_total_ratio", Num),
-    ("rock_total_ratio_error", Num),
-    ("rock_stored_ratio", Num),
-    ("rock_stored_ratio_error", Num),
-    ("plate_ratio", Num),
-    ("plate_ratio_error", Num),
-    ("spring_ratio", Num),
-    ("spring_ratio_error", Num),
-    ("sphere_kinetic_ratio", Num),
-    ("sphere_kinetic_ratio_error", Num),
-    ("solver_iterations", Count),
-    ("solver_residual", Num),
-    ("steps", Count),
-    ("time_step_s", Num),
-    ("peak_force_n", Num),
-    ("peak_force_error_n", Num),
-    ("contact_time_s", Num),
-    ("contact_time_error_s", Num),
-    ("apparent_restitution", Num),
-    ("restitution_error", Num),
-    ("elements", Count),
-    ("steps_per_contact", Num),
-    ("relative_error", Num),
-    ("tolerance", Num),
-    ("met_tolerance", Flag),
-    ("total_impulse_n_s", Num),
-    ("total_impulse_error_n_s", Num),
-    ("final_velocity_m_per_s", Num),
-    ("final_velocity_error_m_per_s", Num),
-    ("left_for_good", Flag),
-];
-
-/// One response row's values into row `row` of `t`.
-pub fn response_values(t: &mut Table, row: usize, v: &ResponseValues) {
-    t.opt("compliance_m_per_n", row, v.compliance);
-    t.opt("compliance_error_m_per_n", row, v.compliance_error);
-    t.num("contact_force_n", row, v.contact_force);
-    t.opt("contact_force_error_n", row, v.contact_force_error);
-    t.num("compression_m", row, v.compression);
-    t.opt("compression_error_m", row, v.compression_error);
-    t.num("deflection_m", row, v.deflection);
-    t.num("rock_total_ratio", row, v.rock_total_ratio);
-    t.num("rock_stored_ratio", row, v.rock_stored_ratio);
-    t.num("plate_ratio", row, v.plate_ratio);
-    t.num("sphere_kinetic_ratio", row, v.sphere_kinetic_ratio);
-    if !v.spring_forces.is_empty() {
-        t.num("spring_ratio", row, v.spring_ratio);
-    }
-    if let Some(e) = &v.state_errors {
-        t.num("deflection_error_m", row, e.deflection);
-        t.num("rock_total_ratio_error", row, e.rock_total_ratio);
-        t.num("rock_stored_ratio_error", row, e.rock_stored_ratio);
-        t.num("plate_ratio_error", row, e.plate_ratio);
-        t.num("sphere_kinetic_ratio_error", row, e.sphere_kinetic_ratio);
-        if !v.spring_forces.is_empty() {
-            t.num("spring_ratio_error", row, e.spring_ratio);
-        }
-    }
-    match v.evidence {
-        Evidence::Balance { iterations, residual } => {
-            t.count("solver_iterations", row, u64::from(iterations));
-            t.num("solver_residual", row, residual);
-        }
-        Evidence::Transient {
-            steps,
-            time_step,
-            peak_force,
-            peak_force_error,
-            contact_time,
-            contact_time_error,
-            apparent_restitution,
-            restitution_error,
-            elements,
-            steps_per_contact,
-            relative_error,
-            tolerance,
-            met_tolerance,
-            contacts: _,
-            total_impulse,
-            total_impulse_error,
-            final_velocity,
-            final_velocity_error,
-            left_for_good,
-        } => {
-            t.count("steps", row, steps as u64);
-            t.num("time_step_s", row, time_step);
-            t.num("peak_force_n", row, peak_force);
-            t.opt("peak_force_error_n", row, peak_force_error);
-            t.opt("contact_time_s", row, contact_time);
-            t.opt("contact_time_error_s", row, contact_time_error);
-            t.opt("apparent_restitution", row, apparent_restitution);
-            t.opt("restitution_error", row, restitution_error);
-            if elements > 0 {
-                t.count("elements", row, elements as u64);
+/// Rows as columns by the schema: every schema column declared (in the schema's order), each
+/// cell set where the quantity applies.
+fn by_schema<R>(rows: &[R], schema: &[SchemaColumn<R>]) -> Table {
+    let declared: Vec<(&str, Kind)> = schema.iter().map(|c| (c.key, kind_of(c.kind))).collect();
+    let mut t = Table::new(rows.len(), &declared);
+    for (i, r) in rows.iter().enumerate() {
+        for c in schema {
+            if let Some(v) = (c.get)(r) {
+                put(&mut t, c.key, i, v);
             }
-            t.num("steps_per_contact", row, steps_per_contact);
-            t.opt("relative_error", row, relative_error);
-            t.opt("tolerance", row, tolerance);
-            if tolerance.is_some() {
-                t.flag("met_tolerance", row, met_tolerance);
-            }
-            t.num("total_impulse_n_s", row, total_impulse);
-            t.opt("total_impulse_error_n_s", row, total_impulse_error);
-            t.num("final_velocity_m_per_s", row, final_velocity);
-            t.opt("final_velocity_error_m_per_s", row, final_velocity_error);
-            t.flag("left_for_good", row, left_for_good);
         }
     }
-    // One column per spring, named as the model names it ("right spring", "spring at
-    // corner (L, 0)"); NaN in rows whose support set lacks that spring.
-    for s in &v.spring_forces {
-        t.num(&format!("spring_force_n: {}", s.name), row, s.force);
-    }
-    if let Some(e) = &v.state_errors {
-        for (s, err) in v.spring_forces.iter().zip(&e.spring_forces) {
-            t.num(&format!("spring_force_error_n: {}", s.name), row, *err);
-        }
-    }
-    validity(t, row, &v.validity);
+    t
 }
 
-/// The responses as columns.
+/// The responses as columns ([`studies::columns::response_columns`]), then one column per
+/// spring (`<spring>_force_N`, and `<spring>_force_error_N` where estimated), NaN in rows
+/// whose support set lacks that spring.
 pub fn responses(rows: &[ResponseRow]) -> Table {
-    let declared: Vec<(&str, Kind)> = KEYS.iter().chain(&RESPONSES).chain(&VALIDITY).copied().collect();
-    let mut t = Table::new(rows.len(), &declared);
-    for (i, r) in rows.iter().enumerate() {
-        keys(&mut t, i, r.model.key(), &r.body, &r.condition, (r.x, r.z));
-        t.num("velocity_m_per_s", i, r.velocity);
-        match &r.outcome {
-            RowOutcome::NotApplicable { reason } => {
-                t.flag("applicable", i, false);
-                t.text("reason", i, reason);
-            }
-            RowOutcome::Computed(v) => {
-                t.flag("applicable", i, true);
-                response_values(&mut t, i, v);
+    let mut t = by_schema(rows, &response_columns());
+    let refs: Vec<&ResponseRow> = rows.iter().collect();
+    for s in spring_columns(&refs) {
+        for (i, r) in rows.iter().enumerate() {
+            if let Some(v) = s.get(r) {
+                put(&mut t, &s.key, i, v);
             }
         }
     }
     t
 }
 
-/// Columns of the yield velocities.
-const YIELDS: [(&str, Kind); 5] = [
-    ("compliance_m_per_n", Num),
-    ("compliance_error_m_per_n", Num),
-    ("yield_compression_m", Num),
-    ("yield_velocity_m_per_s", Num),
-    ("yield_velocity_error_m_per_s", Num),
-];
-
-/// The yield velocities as columns.
+/// The yield velocities as columns ([`studies::columns::yield_columns`]).
 pub fn yields(rows: &[YieldRow]) -> Table {
-    let declared: Vec<(&str, Kind)> = KEYS.iter().chain(&YIELDS).chain(&VALIDITY).copied().collect();
-    let mut t = Table::new(rows.len(), &declared);
-    for (i, r) in rows.iter().enumerate() {
-        keys(&mut t, i, r.model.key(), &r.body, &r.condition, (r.x, r.z));
-        match &r.outcome {
-            RowOutcome::NotApplicable { reason } => {
-                t.flag("applicable", i, false);
-                t.text("reason", i, reason);
-            }
-            RowOutcome::Computed(v) => {
-                t.flag("applicable", i, true);
-                t.opt("compliance_m_per_n", i, v.compliance);
-                t.opt("compliance_error_m_per_n", i, v.compliance_error);
-                t.num("yield_compression_m", i, v.yield_compression);
-                t.num("yield_velocity_m_per_s", i, v.yield_velocity);
-                t.opt("yield_velocity_error_m_per_s", i, v.yield_velocity_error);
-                validity(&mut t, i, &v.validity);
-            }
-        }
-    }
-    t
+    by_schema(rows, &yield_columns())
 }
 
 /// A run's results: `{"responses": {...}, "yields": {...}, "status": str, "summary": {...}}`.

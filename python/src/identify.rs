@@ -65,7 +65,7 @@ const SCHEMA: [(&str, Kind); 20] = [
     ("poisson_ratio", Kind::Num),
     ("cohesion_pa", Kind::Num),
     ("friction_angle_deg", Kind::Num),
-    ("force_max_n", Kind::Num),
+    ("force_max_N", Kind::Num),
     ("contact_time_s", Kind::Num),
     ("contacts", Kind::Int),
     ("valid", Kind::Flag),
@@ -189,7 +189,7 @@ pub fn identify<'py>(
             ("poisson_ratio", d.poisson_ratio),
             ("cohesion_pa", d.cohesion),
             ("friction_angle_deg", d.friction_angle_deg),
-            ("force_max_n", r.force_max),
+            ("force_max_N", r.force_max),
             ("elastic_ratio", r.compression_ratio),
             ("quasi_static_ratio", r.hertz_time_ratio),
         ] {

@@ -18,7 +18,7 @@ mod scene;
 use ::scene::{limits, Analysis, MAX_POINTS};
 use analytic::params::{check, Range};
 use columns::Table;
-use coupled::plan::{scene_striker, transient_response, transient_values, ModelKind};
+use coupled::plan::{scene_striker, transient_response, transient_values, ModelKind, ResponseRow, RowOutcome};
 use coupled::transient::{Discretisation, Ladder, Sample, TransientCase};
 use errors::{argument_error, argument_message, model_error};
 use numpy::PyArray1;
@@ -80,16 +80,16 @@ fn history<'py>(py: Python<'py>, first: &[Sample], later: &[Sample]) -> PyResult
     let d = PyDict::new(py);
     let col = |f: fn(&Sample) -> f64| PyArray1::from_vec(py, all.iter().map(|s| f(s)).collect());
     d.set_item("t_s", col(|s| s.t))?;
-    d.set_item("force_n", col(|s| s.force))?;
+    d.set_item("force_N", col(|s| s.force))?;
     d.set_item("compression_m", col(|s| s.compression))?;
     d.set_item("sphere_velocity_m_per_s", col(|s| s.sphere_velocity))?;
     d.set_item("plate_displacement_m", col(|s| s.plate_displacement))?;
-    d.set_item("sphere_kinetic_j", col(|s| s.sphere_kinetic))?;
-    d.set_item("contact_j", col(|s| s.contact))?;
-    d.set_item("plate_kinetic_j", col(|s| s.plate_kinetic))?;
-    d.set_item("plate_strain_j", col(|s| s.plate_strain))?;
-    d.set_item("springs_j", col(|s| s.springs))?;
-    d.set_item("dissipated_j", col(|s| s.dissipated))?;
+    d.set_item("sphere_kinetic_J", col(|s| s.sphere_kinetic))?;
+    d.set_item("contact_J", col(|s| s.contact))?;
+    d.set_item("plate_kinetic_J", col(|s| s.plate_kinetic))?;
+    d.set_item("plate_strain_J", col(|s| s.plate_strain))?;
+    d.set_item("springs_J", col(|s| s.springs))?;
+    d.set_item("dissipated_J", col(|s| s.dissipated))?;
     let first_flags: Vec<bool> = (0..all.len()).map(|i| i < first.len()).collect();
     d.set_item("first_contact", PyArray1::from_vec(py, first_flags))?;
     Ok(d)
@@ -162,21 +162,21 @@ fn transient<'py>(
         })
         .map_err(model_error)?;
     let (values, outcome) = computed;
-    let mut row = Table::new(1, &[]);
-    row.text("model", 0, ModelKind::Transient.key());
-    row.text("body", 0, &b.name);
-    row.text("condition", 0, &set.name);
-    row.num("x_m", 0, x);
-    row.num("z_m", 0, z);
-    row.num("velocity_m_per_s", 0, v);
-    row.flag("applicable", 0, true);
-    columns::response_values(&mut row, 0, &values);
+    let row = columns::responses(&[ResponseRow {
+        model: ModelKind::Transient,
+        body: b.name.clone(),
+        condition: set.name.clone(),
+        x,
+        z,
+        velocity: v,
+        outcome: RowOutcome::Computed(values),
+    }]);
     let mut contacts = Table::new(outcome.contacts.len(), &[]);
     for (i, c) in outcome.contacts.iter().enumerate() {
         contacts.num("start_s", i, c.start);
         contacts.num("duration_s", i, c.duration);
-        contacts.num("peak_force_n", i, c.peak_force);
-        contacts.num("impulse_n_s", i, c.impulse);
+        contacts.num("peak_force_N", i, c.peak_force);
+        contacts.num("impulse_N_s", i, c.impulse);
         contacts.num("rebound_velocity_m_per_s", i, c.rebound_velocity);
         contacts.count("steps", i, c.steps as u64);
     }

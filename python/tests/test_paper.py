@@ -22,7 +22,7 @@ from conftest import REPO
 RECURSION_TOLERANCE = 1e-6
 TRUNCATION = 3.0 * RECURSION_TOLERANCE
 COLUMN = {
-    "contact_force": "contact_force_n",
+    "contact_force": "contact_force_N",
     "compression": "compression_m",
     "deflection": "deflection_m",
     "rock_total": "rock_total_ratio",

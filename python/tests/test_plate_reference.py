@@ -4,7 +4,7 @@ reference/python/plate_reference.py), as tests/reference_skfem.rs does in Rust.
 
 Tolerance (that of tests/reference_skfem.rs). Each value is a Richardson extrapolation of two
 meshes with an error estimate: the plate model's from 20 x 16 and 40 x 32 (its column
-`compliance_error_m_per_n`), Argyris's from its two finest meshes (computed here from the data,
+`compliance_error_m_per_N`), Argyris's from its two finest meshes (computed here from the data,
 |finest - extrapolated| in the asymptotic range, else |finest - previous|). Two estimates of
 the same exact value differ by no more than the sum of their error estimates; we allow twice
 that sum, plus 1e-9 relative for the round-off of the solves."""
@@ -57,10 +57,10 @@ def test_plate_compliance_meets_argyris(name, paper_dict):
     case = json.loads((REPO / "reference" / "data" / f"{name}.json").read_text())
     r = impact.solve(scene_for(case, paper_dict), model="plate").responses
     runs = case["results"]["argyris"]
-    assert len(r["compliance_m_per_n"]) == len(case["points"])
+    assert len(r["compliance_m_per_N"]) == len(case["points"])
     for i, (x, z) in enumerate(case["points"]):
         reference, reference_error = richardson([run["compliance"][i] for run in runs])
-        c, c_error = r["compliance_m_per_n"][i], r["compliance_error_m_per_n"][i]
+        c, c_error = r["compliance_m_per_N"][i], r["compliance_error_m_per_N"][i]
         assert (r["x_m"][i], r["z_m"][i]) == pytest.approx((x, z), abs=1e-12)
         tolerance = 2.0 * (reference_error + c_error) + 1e-9 * abs(reference)
         assert abs(c - reference) <= tolerance, f"{name} ({x}, {z}): {c:e} vs Argyris {reference:e}"

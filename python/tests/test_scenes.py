@@ -84,7 +84,7 @@ def test_columns_follow_the_conventions():
     # every applicable row has all of the beam's.
     na = ~cols["applicable"]
     assert na.any() and (~na).any()
-    for c in ["contact_force_n", "compression_m", "deflection_m", "plate_ratio", "thin_plate_ratio"]:
+    for c in ["contact_force_N", "compression_m", "deflection_m", "plate_ratio", "thin_plate_ratio"]:
         assert np.isnan(cols[c][na]).all() and np.isfinite(cols[c][~na]).all()
     assert all(s.startswith("the beam") or s for s in cols["reason"][na])
     assert r.summary["not_applicable"] == int(na.sum()) + int((~r.yields["applicable"]).sum())

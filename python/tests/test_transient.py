@@ -63,7 +63,7 @@ def test_force_and_contact_time_meet_hertz(run):
     r = run.response
     share = float(r["plate_ratio"][0])
     assert 0.0 < share < 1e-4, "the plate must be nearly rigid for this sphere"
-    assert abs(r["contact_force_n"][0] / force - 1.0) <= 0.6 * share + 5e-5
+    assert abs(r["contact_force_N"][0] / force - 1.0) <= 0.6 * share + 5e-5
     assert abs(r["contact_time_s"][0] / time - 1.0) <= share + 5e-5
     # The validity status: inside every criterion, one contact, left for good.
     assert bool(r["valid"][0]) and r["validity_flags"][0] == "" and r["contacts"][0] == 1
@@ -78,10 +78,10 @@ def test_history_conserves_energy_at_e_equal_1(run):
     m, force, _ = hertz()
     h = run.history
     e0 = 0.5 * m * V**2
-    stores = h["sphere_kinetic_j"] + h["contact_j"] + h["plate_kinetic_j"] + h["plate_strain_j"] + h["springs_j"]
+    stores = h["sphere_kinetic_J"] + h["contact_J"] + h["plate_kinetic_J"] + h["plate_strain_J"] + h["springs_J"]
     assert np.max(np.abs(stores - e0)) / e0 <= 1e-4
     # The history's largest force is the sampled peak, below the interpolated one by at
     # most the integrator's error, and the contacts table has the one contact.
-    assert h["force_n"].max() == pytest.approx(force, rel=1e-4)
+    assert h["force_N"].max() == pytest.approx(force, rel=1e-4)
     assert np.all(np.diff(h["t_s"]) > 0)
     assert len(run.contacts["duration_s"]) == 1

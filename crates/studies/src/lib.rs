@@ -6,6 +6,7 @@
 //!   memory and run budgets, the one entry point the command line and Python share;
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
 //!   &Settings, &dyn Progress) -> Data`), so far by [`signals`] and [`fem_bench`];
+//! * [`columns`]: one schema for the result rows (key with unit, header, kind, getter);
 //! * [`settings`]: the studies' shared settings, one place for each;
 //! * [`channel`]: the names of an identification's channels;
 //! * [`progress`]: how a long study reports how far it is.
@@ -19,6 +20,7 @@
 //! ```
 
 pub mod channel;
+pub mod columns;
 pub mod fem_bench;
 pub mod progress;
 pub mod run;

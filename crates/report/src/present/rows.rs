@@ -3,9 +3,9 @@
 //! no sphere kinetic energy where no row is transient), and a `validity` column that names
 //! every criterion a row is beyond.
 
-use crate::present::table::{Cell, Table};
-use coupled::plan::{Evidence, ResponseRow, Results, RowOutcome, YieldRow};
-use coupled::Validity;
+use crate::present::table::{csv_key, Cell, Table};
+use coupled::plan::{Evidence, ResponseRow, Results, YieldRow};
+use studies::columns::{response_columns, spring_columns, yield_columns, Value};
 
 fn in_order<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
     let mut out: Vec<&str> = Vec::new();
@@ -17,27 +17,7 @@ fn in_order<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
     out
 }
 
-/// "valid", or the criteria a result is beyond, with their values.
-pub fn validity_text(v: &Validity) -> String {
-    let beyond: Vec<String> = v
-        .criteria()
-        .into_iter()
-        .filter(|(_, c)| !c.valid)
-        .map(|(name, c)| {
-            format!(
-                "{name}: {} = {} (limit {})",
-                c.measure,
-                crate::present::table::sig(c.value, 3),
-                crate::present::table::sig(c.limit, 3)
-            )
-        })
-        .collect();
-    if beyond.is_empty() {
-        "valid".into()
-    } else {
-        format!("beyond {}", beyond.join("; "))
-    }
-}
+pub use studies::columns::validity_text;
 
 /// One word for a row's validity, for a narrow terminal: `valid`, or the first criterion it
 /// is beyond with the count of further ones (`elastic+2`); [`validity_text`] has the values.
@@ -116,180 +96,73 @@ pub fn discretisation_text(e: &Evidence) -> String {
     }
 }
 
-fn opt(v: Option<f64>) -> Cell {
-    v.map_or(Cell::Empty, Cell::Num)
+/// A schema value as a table cell, a number in the unit of `header` (SI over the header's
+/// factor: metres shown in mm under "x (mm)"); yes/no as 1/0.
+fn cell(v: Option<Value>, header: &str) -> Cell {
+    let to_display = csv_key(header).1;
+    match v {
+        None => Cell::Empty,
+        Some(Value::Num(x)) => Cell::Num(x / to_display),
+        Some(Value::Count(n)) => Cell::Int(n),
+        Some(Value::Flag(b)) => Cell::Int(u64::from(b)),
+        Some(Value::Text(t)) => Cell::Text(t),
+    }
 }
 
-/// Response tables, one per support set.
+/// A column as the table builder takes it: key, header, getter.
+type Getter<'a, R> = (String, String, Box<dyn Fn(&R) -> Option<Value> + 'a>);
+
+/// A table of `rows` by the schema's `columns` (and any further ones), each column that
+/// applies to at least one row, under its header, its CSV name the schema's key.
+fn schema_table<R>(title: String, rows: &[&R], columns: &[Getter<'_, R>]) -> Table {
+    let used: Vec<&Getter<'_, R>> =
+        columns.iter().filter(|(_, _, get)| rows.iter().any(|r| get(r).is_some())).collect();
+    let headers: Vec<&str> = used.iter().map(|(_, h, _)| h.as_str()).collect();
+    let mut t = Table::new(title, &headers);
+    t.csv_names = used.iter().enumerate().map(|(i, (k, _, _))| (i, vec![k.clone()])).collect();
+    for r in rows {
+        t.push(used.iter().map(|(_, h, get)| cell(get(r), h)).collect());
+    }
+    t
+}
+
+/// Response tables, one per support set, every column of the schema
+/// ([`studies::columns::response_columns`]) that applies to one of its rows, the spring forces
+/// after the deflection.
 pub fn response_tables(results: &Results) -> Vec<Table> {
+    let schema = response_columns();
     in_order(results.responses.iter().map(|r| r.condition.as_str()))
         .into_iter()
         .map(|cond| {
             let rows: Vec<&ResponseRow> = results.responses.iter().filter(|r| r.condition == cond).collect();
-            let springs: Vec<String> = rows
-                .iter()
-                .find_map(|r| r.values().filter(|v| !v.spring_forces.is_empty()))
-                .map(|v| v.spring_forces.iter().map(|s| s.name.clone()).collect())
-                .unwrap_or_default();
-            let transient =
-                rows.iter().any(|r| matches!(r.values().map(|v| v.evidence), Some(Evidence::Transient { .. })));
-            let mut headers: Vec<String> = [
-                "model",
-                "body",
-                "x (mm)",
-                "z (mm)",
-                "v (m/s)",
-                "C (m/N)",
-                "C error (m/N)",
-                "P_max (N)",
-                "P_max error (N)",
-                "delta_max (m)",
-                "deflection (m)",
-            ]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-            headers.extend(springs.iter().map(|s| format!("{s} force (N)")));
-            headers.extend(["rock total", "rock stored", "plate"].iter().map(|s| s.to_string()));
-            if !springs.is_empty() {
-                headers.push("springs".into());
-            }
-            if transient {
-                headers.push("sphere kinetic".into());
-                headers.push("deflection error (m)".into());
-                headers.push("largest energy-share error".into());
-                headers.push("discretisation".into());
-            }
-            headers.extend(
-                ["iterations or steps", "residual or peak force (N)", "validity"].iter().map(|s| s.to_string()),
-            );
-            let headers_len = headers.len();
-            let mut t = Table {
-                title: format!("{cond}: responses at maximum compression"),
-                headers,
-                rows: vec![],
-                csv_names: vec![],
-            };
-            if transient {
-                t = t.csv_name("discretisation", &["discretisation_note"]);
-            }
-            for r in rows {
-                let mut row: Vec<Cell> = vec![
-                    r.model.key().into(),
-                    r.body.clone().into(),
-                    (r.x * 1e3).into(),
-                    (r.z * 1e3).into(),
-                    r.velocity.into(),
-                ];
-                match &r.outcome {
-                    RowOutcome::NotApplicable { reason } => {
-                        // Every value column empty, the reason where the validity goes.
-                        let values = headers_len - row.len() - 1;
-                        row.extend(std::iter::repeat_n(Cell::Empty, values));
-                        row.push(Cell::Text(format!("not applicable: {reason}")));
-                    }
-                    RowOutcome::Computed(v) => {
-                        row.extend([
-                            opt(v.compliance),
-                            opt(v.compliance_error),
-                            Cell::Num(v.contact_force),
-                            opt(v.contact_force_error),
-                            Cell::Num(v.compression),
-                            Cell::Num(v.deflection),
-                        ]);
-                        for name in &springs {
-                            row.push(
-                                v.spring_forces
-                                    .iter()
-                                    .find(|s| &s.name == name)
-                                    .map_or(Cell::Empty, |s| Cell::Num(s.force)),
-                            );
-                        }
-                        row.extend([v.rock_total_ratio, v.rock_stored_ratio, v.plate_ratio].map(Cell::Num));
-                        if !springs.is_empty() {
-                            row.push(v.spring_ratio.into());
-                        }
-                        if transient {
-                            row.push(v.sphere_kinetic_ratio.into());
-                            let e = v.state_errors.as_ref();
-                            row.push(opt(e.map(|e| e.deflection)));
-                            row.push(opt(e.map(|e| {
-                                [
-                                    e.rock_total_ratio,
-                                    e.rock_stored_ratio,
-                                    e.plate_ratio,
-                                    e.spring_ratio,
-                                    e.sphere_kinetic_ratio,
-                                ]
-                                .into_iter()
-                                .fold(0.0, f64::max)
-                            })));
-                            row.push(discretisation_text(&v.evidence).into());
-                        }
-                        match v.evidence {
-                            Evidence::Balance { iterations, residual } => {
-                                row.push(iterations.into());
-                                row.push(residual.into());
-                            }
-                            Evidence::Transient { steps, peak_force, .. } => {
-                                row.push(steps.into());
-                                row.push(peak_force.into());
-                            }
-                        }
-                        row.push(validity_text(&v.validity).into());
+            let springs = spring_columns(&rows);
+            let mut columns: Vec<Getter<'_, ResponseRow>> = Vec::new();
+            for c in &schema {
+                columns.push((c.key.to_string(), c.header.to_string(), Box::new(c.get)));
+                if c.key == "deflection_error_m" {
+                    for s in &springs {
+                        columns.push((s.key.clone(), s.header.clone(), Box::new(move |r: &ResponseRow| s.get(r))));
                     }
                 }
-                t.push(row);
             }
-            t
+            schema_table(format!("{cond}: responses at maximum compression"), &rows, &columns)
         })
         .collect()
 }
 
-/// Yield-velocity tables, one per support set.
+/// Yield-velocity tables, one per support set, by the schema
+/// ([`studies::columns::yield_columns`]).
 pub fn yield_tables(results: &Results) -> Vec<Table> {
+    let schema = yield_columns();
     in_order(results.yields.iter().map(|r| r.condition.as_str()))
         .into_iter()
         .map(|cond| {
             let rows: Vec<&YieldRow> = results.yields.iter().filter(|r| r.condition == cond).collect();
-            let mut t = Table::new(
-                format!("{cond}: yield velocities (eqs. 51-54)"),
-                &[
-                    "model",
-                    "body",
-                    "x (mm)",
-                    "z (mm)",
-                    "C (m/N)",
-                    "C error (m/N)",
-                    "delta_my (m)",
-                    "v_y (m/s)",
-                    "v_y error (m/s)",
-                    "validity at v_y",
-                ],
-            )
-            .csv_name("validity at v_y", &["v_y_validity"]);
-            for r in rows {
-                let mut row: Vec<Cell> =
-                    vec![r.model.key().into(), r.body.clone().into(), (r.x * 1e3).into(), (r.z * 1e3).into()];
-                match &r.outcome {
-                    RowOutcome::NotApplicable { reason } => {
-                        row.extend(std::iter::repeat_n(Cell::Empty, 5));
-                        row.push(Cell::Text(format!("not applicable: {reason}")));
-                    }
-                    RowOutcome::Computed(v) => {
-                        row.extend([
-                            opt(v.compliance),
-                            opt(v.compliance_error),
-                            Cell::Num(v.yield_compression),
-                            Cell::Num(v.yield_velocity),
-                            opt(v.yield_velocity_error),
-                        ]);
-                        row.push(validity_text(&v.validity).into());
-                    }
-                }
-                t.push(row);
-            }
-            t
+            let columns: Vec<Getter<'_, YieldRow>> = schema
+                .iter()
+                .map(|c| (c.key.to_string(), c.header.to_string(), Box::new(c.get) as Box<dyn Fn(&YieldRow) -> _>))
+                .collect();
+            schema_table(format!("{cond}: yield velocities (eqs. 51-54)"), &rows, &columns)
         })
         .collect()
 }

@@ -82,22 +82,7 @@ impl From<usize> for Cell {
     }
 }
 
-/// `v` with `sig` significant digits: plain for moderate magnitudes, else scientific.
-pub fn sig(v: f64, sig: usize) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    if !v.is_finite() {
-        return format!("{v}");
-    }
-    let mag = v.abs().log10().floor() as i32;
-    if (-3..6).contains(&mag) {
-        let decimals = (sig as i32 - 1 - mag).max(0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{:.*e}", sig - 1, v)
-    }
-}
+pub use studies::columns::sig;
 
 /// The SI unit key and the factor to SI of a display unit ("mm" -> ("m", 1e-3)); a leading
 /// scale ("1e-7 m") multiplies in. Units this table does not know are kept as written, in key
