@@ -1,4 +1,4 @@
-//! The paper's printed tables (crates/report/src/data/paper_printed.toml) against the equations.
+//! The paper's printed tables (crates/studies/src/paper/data/paper_printed.toml) against the equations.
 //!
 //! Tolerances. The paper's values are its recursion stopped at a relative energy residual
 //! ğ (eq. 18). With f(δ) = aδ^{5/2} + bδ³ one has δf'/f ∈ [5/2, 3], so a residual ğ moves δ

@@ -1,6 +1,6 @@
 """The paper's Table 3 (coal at 0.008 m/s at x = 0, L/2, L under Con 1-3) through the Python
 package, at the paper's own recursion (eqs. 15-19 stopped at the relative residual 1e-6),
-against the printed values in crates/report/src/data/paper_printed.toml: the same reference and
+against the printed values in crates/studies/src/paper/data/paper_printed.toml: the same reference and
 tolerances as tests/paper_tables.rs.
 
 Tolerance. The recursion stops at a residual g <= 1e-6. With f(d) = a d^{5/2} + b d^3,
@@ -39,7 +39,7 @@ def half_unit(text: str) -> float:
 
 @pytest.fixture(scope="module")
 def table3():
-    with open(REPO / "crates" / "report" / "src" / "data" / "paper_printed.toml", "rb") as f:
+    with open(REPO / "crates" / "studies" / "src" / "paper" / "data" / "paper_printed.toml", "rb") as f:
         return tomllib.load(f)["table3"]
 
 

@@ -22,6 +22,7 @@
 pub mod channel;
 pub mod columns;
 pub mod fem_bench;
+pub mod paper;
 pub mod progress;
 pub mod run;
 pub mod settings;
