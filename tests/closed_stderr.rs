@@ -4,9 +4,10 @@
 //! the progress bars, ignores its own write errors, and draws nothing where standard error is
 //! not a terminal.)
 
-use std::process::{Command, Stdio};
+mod common;
 
-const BIN: &str = env!("CARGO_BIN_EXE_impact");
+use common::{impact, tmp, BIN};
+use std::process::{Command, Stdio};
 
 /// Runs `impact args` with standard error a pipe whose read end is already closed, so every
 /// write to it fails with EPIPE at once (not by a race with the reader). Returns the exit
@@ -23,13 +24,11 @@ fn with_closed_stderr(args: &[&str]) -> Option<i32> {
 
 #[test]
 fn an_error_with_stderr_closed_exits_1_not_101() {
-    let dir = tempfile::tempdir().unwrap();
-    let bad = dir.path().join("bad.toml");
-    std::fs::write(&bad, impact::scene::DEFAULT_SCENE.replace("thickness_mm = 8.0", "thickness_mm = -8.0")).unwrap();
+    let dir = tmp();
+    let bad = dir.write("bad.toml", impact::scene::DEFAULT_SCENE.replace("thickness_mm = 8.0", "thickness_mm = -8.0"));
     // Control: with standard error open the same run reports the error and exits 1.
-    let o = Command::new(BIN).args(["solve", "--scene"]).arg(&bad).output().unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("thickness_mm = -8"));
+    let o = impact(["solve", "--scene"]).arg(&bad).fails_with(1);
+    assert!(o.stderr.contains("thickness_mm = -8"));
     for _ in 0..5 {
         assert_eq!(with_closed_stderr(&["solve", "--scene", bad.to_str().unwrap()]), Some(1));
     }
@@ -37,14 +36,14 @@ fn an_error_with_stderr_closed_exits_1_not_101() {
 
 #[test]
 fn messages_after_success_with_stderr_closed_exit_0() {
-    let dir = tempfile::tempdir().unwrap();
-    let f = dir.path().join("f.json");
+    let dir = tmp();
+    let f = dir.join("f.json");
     // "wrote FILE" goes to standard error.
     let args = ["field", "--x-mm", "100", "--z-mm", "100", "--elements", "2", "--out", f.to_str().unwrap()];
     assert_eq!(with_closed_stderr(&args), Some(0));
     assert!(f.exists());
     // The status line of --json goes to standard error; "wrote N files" too.
-    let out = dir.path().join("out");
+    let out = dir.join("out");
     assert_eq!(with_closed_stderr(&["solve", "--json", "--out", out.to_str().unwrap()]), Some(0));
     assert!(out.join("results.json").exists());
 }

@@ -1,19 +1,16 @@
 //! The beam/plate comparison: only what a scene asks for is computed and written,
 //! output is deterministic, and the plate side meets its references through the pipeline.
 
+mod common;
+
+use common::scenes::coal_con1;
+use common::{impact, tmp};
 use impact::report::comparison::{pair, report};
-use impact::scene::{Analysis, Points, Scene, SceneSource, DEFAULT_SCENE};
-use std::process::Command;
+use impact::scene::{Analysis, Points, Scene, DEFAULT_SCENE};
 
 /// The default scene cut down: one body, only Con 1, one point, responses only.
 fn small_scene() -> Scene {
-    let mut s = Scene::default_scene();
-    s.bodies.truncate(1);
-    s.conditions.truncate(1);
-    s.points = Points::Pairs { pairs: vec![(0.2292, 0.18)] };
-    s.velocities = vec![0.008];
-    s.analyses = vec![Analysis::Responses];
-    s
+    Scene { points: Points::Pairs { pairs: vec![(0.2292, 0.18)] }, analyses: vec![Analysis::Responses], ..coal_con1() }
 }
 
 #[test]
@@ -106,10 +103,9 @@ fn with_analyses(text: &str, analyses: &str) -> String {
 /// The command writes the report and refuses a bad scene without writing.
 #[test]
 fn command_line_compare() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("s.toml");
-    std::fs::write(
-        &scene,
+    let dir = tmp();
+    let scene = dir.write(
+        "s.toml",
         with_analyses(
             &DEFAULT_SCENE.replace(
                 "x_mm = [0.0, 13.752, 114.6, 210.864, 229.2, 247.536, 343.8, 449.232, 458.4]",
@@ -117,28 +113,13 @@ fn command_line_compare() {
             ),
             "analyses = [\"responses\", \"width-maps\"]",
         ),
-    )
-    .unwrap();
-    let out = dir.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["compare", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    );
+    let out = dir.join("out");
+    impact(["compare", "--scene"]).arg(&scene).arg("--out").arg(&out).success();
     assert!(out.join("index.md").exists() && out.join("results.json").exists() && out.join("map-con-2.svg").exists());
     std::fs::write(&scene, DEFAULT_SCENE.replace("x_mm = [0.0,", "x_mm = [-5.0,")).unwrap();
-    let out2 = dir.path().join("out2");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["compare", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out2)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(1));
+    let out2 = dir.join("out2");
+    impact(["compare", "--scene"]).arg(&scene).arg("--out").arg(&out2).fails_with(1);
     assert!(!out2.exists());
 }
 

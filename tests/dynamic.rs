@@ -1,5 +1,9 @@
 //! Transient impact against its references.
 
+mod common;
+
+use common::scenes::{coal_con1, coal_con1_centre};
+use common::{impact, tmp};
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
 use coupled::transient::{simulate, zener, ContactLaw, Striker};
@@ -118,13 +122,10 @@ fn transient_force_lies_between_quasistatic_plate_and_rigid() {
     let scene = Scene::default_scene();
     let (l, b) = (scene.plate.length(), scene.plate.width());
     let one = Scene {
-        bodies: vec![scene.bodies[0].clone()],
-        conditions: vec![scene.conditions[0].clone()],
-        velocities: vec![0.008],
         // The bracket below is percent-level; a loose tolerance keeps the case on the
         // starting discretisation.
         transient_discretisation: coupled::transient::Discretisation::tolerance(1e-2),
-        ..scene.clone()
+        ..coal_con1()
     };
     let cases = impact::report::transient::comparison(&one, &[(l / 2.0, b / 2.0)], &Silent).unwrap();
     assert_eq!(cases.len(), 1);
@@ -142,42 +143,15 @@ fn transient_force_lies_between_quasistatic_plate_and_rigid() {
 
 #[test]
 fn command_line_dynamic_rejects_bad_scene() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("bad.toml");
-    std::fs::write(&scene, impact::scene::DEFAULT_SCENE.replace("m_per_s = [0.008,", "m_per_s = [nan,")).unwrap();
-    let out = dir.path().join("out");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["dynamic", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("velocities.m_per_s[0]"));
+    let dir = tmp();
+    let scene = dir.write("bad.toml", impact::scene::DEFAULT_SCENE.replace("m_per_s = [0.008,", "m_per_s = [nan,"));
+    let out = dir.join("out");
+    let o = impact(["dynamic", "--scene"]).arg(&scene).arg("--out").arg(&out).fails_with(1);
+    assert!(o.stderr.contains("velocities.m_per_s[0]"));
     assert!(!out.exists());
 }
 
 // ---------------------------------------------------------------- what the report says
-
-/// The default scene cut to one body, one support set, one transient point and velocity,
-/// each case on the starting discretisation (20 elements, 200 steps per Hertz time).
-fn one_case(analyses: Vec<impact::scene::Analysis>) -> Scene {
-    let scene = Scene::default_scene();
-    let (l, b) = (scene.plate.length(), scene.plate.width());
-    Scene {
-        bodies: vec![scene.bodies[0].clone()],
-        conditions: vec![scene.conditions[0].clone()],
-        points: impact::scene::Points::Pairs { pairs: vec![(l / 2.0, b / 2.0)] },
-        transient_points: vec![(l / 2.0, b / 2.0)],
-        velocities: vec![0.008],
-        analyses,
-        transient_discretisation: coupled::transient::Discretisation::Fixed {
-            settings: coupled::transient::TransientSettings::default(),
-        },
-        ..scene
-    }
-}
 
 /// The contact-laws study (twelve transient runs with their error estimates) is its own
 /// analysis: `impact dynamic` writes its table and figure only for a scene that names
@@ -185,7 +159,7 @@ fn one_case(analyses: Vec<impact::scene::Analysis>) -> Scene {
 #[test]
 fn contact_laws_run_only_when_asked() {
     use impact::scene::Analysis;
-    let without = impact::report::transient::report(&one_case(vec![Analysis::Transient]), &Silent).unwrap();
+    let without = impact::report::transient::report(&coal_con1_centre(vec![Analysis::Transient]), &Silent).unwrap();
     let paths: Vec<String> = without.paths().map(|p| p.display().to_string()).collect();
     assert!(!paths.iter().any(|p| p.starts_with("contact-laws")), "{paths:?}");
     let index = String::from_utf8(without.get("index.md").unwrap().to_vec()).unwrap();
@@ -199,8 +173,9 @@ fn contact_laws_run_only_when_asked() {
 #[test]
 fn contact_laws_run_when_asked() {
     use impact::scene::Analysis;
-    let with = impact::report::transient::report(&one_case(vec![Analysis::Transient, Analysis::ContactLaws]), &Silent)
-        .unwrap();
+    let with =
+        impact::report::transient::report(&coal_con1_centre(vec![Analysis::Transient, Analysis::ContactLaws]), &Silent)
+            .unwrap();
     let csv = String::from_utf8(with.get("contact-laws.csv").expect("asked for").to_vec()).unwrap();
     assert_eq!(csv.lines().filter(|l| !l.starts_with('#')).count(), 1 + 12, "{csv}");
     assert!(with.get("contact-laws.svg").is_some());
@@ -271,8 +246,12 @@ fn findings_name_recontact_and_elastic_laws_beyond_yield() {
         RockStrength::new(37.68e6, 37.0).unwrap(),
     )
     .unwrap();
-    let scene =
-        Scene { plate: p, bodies: vec![big], velocities: vec![0.008, 0.03], ..one_case(vec![Analysis::Transient]) };
+    let scene = Scene {
+        plate: p,
+        bodies: vec![big],
+        velocities: vec![0.008, 0.03],
+        ..coal_con1_centre(vec![Analysis::Transient])
+    };
     let (a, found) = impact::report::transient::study(&scene, &Silent).unwrap();
     assert_eq!(found.numbers["struck_more_than_once"], 2, "{}", found.numbers);
     assert_eq!(found.numbers["beyond_elastic_with_elastic_law"], 1, "{}", found.numbers);

@@ -19,8 +19,11 @@
 // `!(x > 0.0)` and the like are meant: NaN must fail every check.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod common;
+
 use analytic::params::{Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
 use analytic::Method;
+use common::scenes::edit;
 use coupled::plan::{fundamental_periods, run, Evidence, ModelKind, Results};
 use coupled::{BeamModel, PlateModel};
 use impact::present::rows::slug;
@@ -1345,12 +1348,6 @@ fn mutated_default_scenes_are_refused_clearly_or_computed_cleanly() {
 // ---------------------------------------------------------------- the seed corpus
 
 const PROPS_SCENE: &str = include_str!("../scenes/clamped-edge-props.toml");
-
-/// `base` with the first `from` replaced by `to`.
-fn edit(base: &str, from: &str, to: &str) -> String {
-    assert!(base.contains(from), "corpus setup: '{from}' is in the scene");
-    base.replacen(from, to, 1)
-}
 
 fn with(from: &str, to: &str) -> String {
     edit(&base(), from, to)

@@ -3,84 +3,20 @@
 //! rows and report as one output set, gives the same rows on one and two threads, and
 //! separates coal from gangue perfectly once everything but the material is held.
 
+mod common;
+
+use common::scenes::{edit, expect_refused as expect, CON_2, ENSEMBLE};
+use common::{impact, tmp, Impact};
 use impact::scene::{Scene, SceneSource};
 use std::path::Path;
-use std::process::Command;
-
-/// A small identification scene: Table 1's coal and gangue (fixed materials, the paper's
-/// radius with a spread), two support sets, a 3 x 2 candidate grid.
-const SMALL: &str = r#"
-name = "small-identify"
-restitution = 0.65
-analyses = ["identify"]
-
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-
-[[conditions]]
-name = "Con 1"
-supports = "both-fixed"
-
-[[conditions]]
-name = "Con 2"
-supports = "both-springs"
-spring_stiffness_n_per_m = 5.11545e8
-
-[signals]
-# Fewer modes than the default keep the test fast; the statistics do not need them.
-modes = 24
-
-[ensemble]
-seed = 11
-placement = { x_count = 3, z_count = 2 }
-velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
-
-[[ensemble.families]]
-name = "coal"
-class = "coal"
-count = 20
-density_kg_m3 = 1380.0
-youngs_modulus_gpa = 2.26
-poisson_ratio = 0.28
-cohesion_mpa = 8.39
-friction_angle_deg = 25.0
-radius_mm = { distribution = "lognormal", median = 25.0, sigma_log = 0.2, min = 15.0, max = 40.0 }
-
-[[ensemble.families]]
-name = "gangue"
-class = "gangue"
-count = 20
-density_kg_m3 = 2400.0
-youngs_modulus_gpa = 16.0
-poisson_ratio = 0.28
-cohesion_mpa = 37.68
-friction_angle_deg = 37.0
-radius_mm = { distribution = "lognormal", median = 25.0, sigma_log = 0.2, min = 15.0, max = 40.0 }
-"#;
 
 fn with(from: &str, to: &str) -> String {
-    assert!(SMALL.contains(from), "test setup: '{from}' is in the scene");
-    SMALL.replacen(from, to, 1)
-}
-
-fn expect(text: &str, needles: &[&str]) {
-    let e = match Scene::parse(text, "test.toml") {
-        Ok(_) => panic!("scene was accepted"),
-        Err(e) => e.to_string(),
-    };
-    for n in needles {
-        assert!(e.contains(n), "error '{e}' does not mention '{n}'");
-    }
+    edit(ENSEMBLE, from, to)
 }
 
 #[test]
 fn small_scene_is_valid_and_in_si() {
-    let s = Scene::parse(SMALL, "small").unwrap();
+    let s = Scene::parse(ENSEMBLE, "small").unwrap();
     let study = s.ensemble.unwrap();
     assert_eq!(study.ensemble.len(), 40);
     assert_eq!(study.ensemble.class_counts(), (20, 20));
@@ -96,10 +32,10 @@ fn small_scene_is_valid_and_in_si() {
 
 #[test]
 fn ensemble_and_identify_come_together() {
-    let start = SMALL.find("[ensemble]").unwrap();
-    expect(&SMALL[..start], &["ensemble", "identify"]);
+    let start = ENSEMBLE.find("[ensemble]").unwrap();
+    expect(&ENSEMBLE[..start], &["ensemble", "identify"]);
     // An [ensemble] beside analyses that do not read it.
-    let text = format!("{}\n{}", impact::scene::DEFAULT_SCENE, &SMALL[start..]);
+    let text = format!("{}\n{}", impact::scene::DEFAULT_SCENE, &ENSEMBLE[start..]);
     expect(&text, &["ensemble", "is read only by the \"identify\" analysis"]);
 }
 
@@ -166,28 +102,17 @@ fn counts_classes_regions_and_grids_are_checked() {
     expect(&with("seed = 11", "seed = -1"), &["seed"]);
 }
 
-fn run(dir: &Path, scene: &Path, threads: &str) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["identify", "--scene"])
-        .arg(scene)
-        .arg("--out")
-        .arg(dir)
-        .arg("--json")
-        .env("RAYON_NUM_THREADS", threads)
-        .output()
-        .unwrap()
+fn run(dir: &Path, scene: &Path, threads: &str) -> Impact {
+    impact(["identify", "--scene"]).arg(scene).arg("--out").arg(dir).arg("--json").env("RAYON_NUM_THREADS", threads)
 }
 
 #[test]
 fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
-    let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("small.toml");
-    std::fs::write(&scene, SMALL).unwrap();
-    let (one, two) = (tmp.path().join("one"), tmp.path().join("two"));
-    let a = run(&one, &scene, "1");
-    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
-    let b = run(&two, &scene, "2");
-    assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
+    let dir = tmp();
+    let scene = dir.write("small.toml", ENSEMBLE);
+    let (one, two) = (dir.join("one"), dir.join("two"));
+    let a = run(&one, &scene, "1").success();
+    run(&two, &scene, "2").success();
     // One output set, the streamed files listed in its manifest with their hashes.
     impact::output::verify_set(&one).unwrap();
     for f in ["index.md", "summary.json", "impacts.csv", "features.csv", "c1-map-acceleration.svg", "c2-hist-best.svg"]
@@ -236,55 +161,31 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
 #[test]
 fn a_support_set_without_channels_is_refused_before_running() {
     // A cantilever plate (left edge clamped, corners free), no sensors, no grid: nothing to record.
-    let text = SMALL
-        .replacen("placement = { x_count = 3, z_count = 2 }\n", "", 1)
-        .replacen(
-            "[[conditions]]\nname = \"Con 2\"\nsupports = \"both-springs\"\nspring_stiffness_n_per_m = 5.11545e8\n",
-            "",
-            1,
-        )
-        .replacen(
-            "name = \"Con 1\"\nsupports = \"both-fixed\"",
-            "name = \"cantilever\"\n[conditions.edges]\nleft = \"clamped\"",
-            1,
-        );
-    assert!(text.contains("cantilever") && !text.contains("Con 2") && !text.contains("placement"));
-    let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("cantilever.toml");
-    std::fs::write(&scene, text).unwrap();
-    let out = tmp.path().join("out");
-    let o = run(&out, &scene, "1");
-    assert!(!o.status.success());
-    assert!(
-        String::from_utf8_lossy(&o.stderr).contains("records no channel"),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+    let text = ENSEMBLE.replacen("placement = { x_count = 3, z_count = 2 }\n", "", 1).replacen(CON_2, "", 1).replacen(
+        "name = \"Con 1\"\nsupports = \"both-fixed\"",
+        "name = \"cantilever\"\n[conditions.edges]\nleft = \"clamped\"",
+        1,
     );
+    assert!(text.contains("cantilever") && !text.contains("Con 2") && !text.contains("placement"));
+    let dir = tmp();
+    let scene = dir.write("cantilever.toml", text);
+    let out = dir.join("out");
+    let o = run(&out, &scene, "1").fails();
+    assert!(o.stderr.contains("records no channel"), "{}", o.stderr);
     assert!(!out.exists());
 }
 
 #[test]
 fn identify_needs_an_ensemble_and_writes_nothing_without_one() {
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["identify", "--scene"])
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-table-1.toml"))
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("[ensemble]"));
+    let dir = tmp();
+    let out = dir.join("out");
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let o = impact(["identify", "--scene"]).arg(scenes.join("paper-table-1.toml")).arg("--out").arg(&out).fails();
+    assert!(o.stderr.contains("[ensemble]"));
     assert!(!out.exists());
     // And the other way round: a scene written only for identify has no bodies to solve.
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["solve", "--scene"])
-        .arg(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/caving-stream.toml"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("[[bodies]]"), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = impact(["solve", "--scene"]).arg(scenes.join("caving-stream.toml")).fails();
+    assert!(o.stderr.contains("[[bodies]]"), "{}", o.stderr);
 }
 
 /// `impact report` writes the identification of its scenes through `impact identify`'s own
@@ -292,22 +193,14 @@ fn identify_needs_an_ensemble_and_writes_nothing_without_one() {
 /// and figures byte for byte (the pages and the summary differ only in the timings).
 #[test]
 fn the_report_writes_what_identify_writes() {
-    let tmp = tempfile::tempdir().unwrap();
-    let scene_path = tmp.path().join("small.toml");
-    std::fs::write(&scene_path, SMALL).unwrap();
-    let command = tmp.path().join("command");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["identify", "--no-features-csv", "--scene"])
-        .arg(&scene_path)
-        .arg("--out")
-        .arg(&command)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = tmp();
+    let scene_path = dir.write("small.toml", ENSEMBLE);
+    let command = dir.join("command");
+    impact(["identify", "--no-features-csv", "--scene"]).arg(&scene_path).arg("--out").arg(&command).success();
     assert!(!command.join("features.csv").exists());
 
-    let scene = Scene::parse(SMALL, "small").unwrap();
-    let nested = tmp.path().join("report");
+    let scene = Scene::parse(ENSEMBLE, "small").unwrap();
+    let nested = dir.join("report");
     let mut out = impact::output::OutputDir::prepare(&nested).unwrap();
     let (files, summary) = impact::report::identify::write(
         &scene,
@@ -365,18 +258,12 @@ fn the_reports_identification_scenes_are_valid() {
 #[test]
 fn a_named_sensor_on_the_grid_is_ranked_once() {
     // The 3 x 2 grid has (229.2, 360) mm, the middle of the far free edge; Con 1 only.
-    let text = with("modes = 24", "modes = 24\nsensors_mm = [[229.2, 360.0], [100.0, 100.0]]").replacen(
-        "[[conditions]]\nname = \"Con 2\"\nsupports = \"both-springs\"\nspring_stiffness_n_per_m = 5.11545e8\n",
-        "",
-        1,
-    );
+    let text = with("modes = 24", "modes = 24\nsensors_mm = [[229.2, 360.0], [100.0, 100.0]]").replacen(CON_2, "", 1);
     assert!(!text.contains("Con 2"));
-    let tmp = tempfile::tempdir().unwrap();
-    let scene = tmp.path().join("on-grid.toml");
-    std::fs::write(&scene, &text).unwrap();
-    let out = tmp.path().join("out");
-    let o = run(&out, &scene, "2");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let dir = tmp();
+    let scene = dir.write("on-grid.toml", &text);
+    let out = dir.join("out");
+    let o = run(&out, &scene, "2").success();
 
     // 2 named sensors and the 5 grid points not at one: 7 sensors x 3 quantities, 4 corners.
     let features = std::fs::read_to_string(out.join("features.csv")).unwrap();

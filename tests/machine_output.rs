@@ -10,34 +10,32 @@
 //! system has it) from the canonical content, and checked to follow the content: the same for
 //! a scene that differs only in comments and number spelling, different for a changed value.
 
+mod common;
+
+use common::scenes::{edit, small_ensemble};
+use common::{impact, tmp, Run, Tmp};
 use impact::present::columns::{is_text_column, key_problem};
 use impact::scene::{Scene, SceneSource};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_impact");
 const VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// The default scene cut to one body, two support sets (one with springs, for the spring
 /// columns), two points, one velocity and one transient point.
 fn small_scene() -> String {
-    let s = impact::scene::DEFAULT_SCENE;
-    let cut = |s: String, from: &str, to: &str| {
-        assert!(s.contains(from), "test set-up: the default scene has '{from}'");
-        s.replacen(from, to, 1)
-    };
-    let mut s = cut(
-        s.to_string(),
+    let mut s = edit(
+        impact::scene::DEFAULT_SCENE,
         "x_mm = [0.0, 13.752, 114.6, 210.864, 229.2, 247.536, 343.8, 449.232, 458.4]",
         "x_mm = [0.0, 229.2]",
     );
-    s = cut(
-        s,
+    s = edit(
+        &s,
         "pairs_mm = [[114.6, 180.0], [229.2, 180.0], [229.2, 0.0], [0.0, 180.0]]",
         "pairs_mm = [[229.2, 180.0]]",
     );
-    s = cut(s, "m_per_s = [0.008, 0.0025]", "m_per_s = [0.008]");
+    s = edit(&s, "m_per_s = [0.008, 0.0025]", "m_per_s = [0.008]");
     // Only coal, and Con 1 and Con 2.
     let gangue = s.find("[[bodies]]\nname = \"gangue 1\"").expect("gangue 1");
     let conditions = s.find("[[conditions]]").expect("conditions");
@@ -57,72 +55,16 @@ fn small_scene() -> String {
     s
 }
 
-/// A small coal-gangue ensemble on one support set.
-const ENSEMBLE: &str = r#"
-name = "small-ensemble"
-restitution = 0.65
-analyses = ["identify"]
-
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-
-[[conditions]]
-name = "Con 2"
-supports = "both-springs"
-spring_stiffness_n_per_m = 5.11545e8
-
-[signals]
-modes = 16
-window_ms = 5.0
-sensors_mm = [[229.2, 180.0]]
-
-[ensemble]
-seed = 3
-placement = { x_count = 2, z_count = 2 }
-hold = ["size"]
-velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
-
-[[ensemble.families]]
-name = "coal"
-class = "coal"
-count = 8
-density_kg_m3 = 1380.0
-youngs_modulus_gpa = 2.26
-poisson_ratio = 0.28
-cohesion_mpa = 8.39
-friction_angle_deg = 25.0
-radius_mm = { distribution = "uniform", min = 20.0, max = 30.0 }
-
-[[ensemble.families]]
-name = "gangue"
-class = "gangue"
-count = 8
-density_kg_m3 = 2400.0
-youngs_modulus_gpa = 16.0
-poisson_ratio = 0.28
-cohesion_mpa = 37.68
-friction_angle_deg = 37.0
-radius_mm = { distribution = "uniform", min = 20.0, max = 30.0 }
-"#;
-
-fn run(args: &[&str], scene: Option<&Path>) -> std::process::Output {
-    let mut c = Command::new(BIN);
-    c.args(args);
+fn run(args: &[&str], scene: Option<&Path>) -> Run {
+    let mut c = impact(args);
     if let Some(s) = scene {
-        c.arg("--scene").arg(s);
+        c = c.arg("--scene").arg(s);
     }
-    let o = c.output().unwrap();
-    assert!(o.status.success(), "impact {args:?}: {}", String::from_utf8_lossy(&o.stderr));
-    o
+    c.success()
 }
 
 /// The JSON a command printed; its provenance's scene hash.
-fn printed(o: &std::process::Output) -> (serde_json::Value, String) {
+fn printed(o: &Run) -> (serde_json::Value, String) {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout)
         .unwrap_or_else(|e| panic!("--json printed no JSON ({e}): {}", String::from_utf8_lossy(&o.stdout)));
     let p = &v["provenance"];
@@ -286,23 +228,21 @@ fn check_dir(dir: &Path, hash_of: &dyn Fn(&str) -> Option<String>) -> (Vec<Strin
 
 /// The small scenes written into a temporary directory.
 struct Scenes {
-    tmp: tempfile::TempDir,
+    dir: Tmp,
     small: PathBuf,
     ensemble: PathBuf,
 }
 
 fn scenes() -> Scenes {
-    let tmp = tempfile::tempdir().unwrap();
-    let small = tmp.path().join("small.toml");
-    std::fs::write(&small, small_scene()).unwrap();
-    let ensemble = tmp.path().join("ensemble.toml");
-    std::fs::write(&ensemble, ENSEMBLE).unwrap();
-    Scenes { tmp, small, ensemble }
+    let dir = tmp();
+    let small = dir.write("small.toml", small_scene());
+    let ensemble = dir.write("ensemble.toml", small_ensemble());
+    Scenes { dir, small, ensemble }
 }
 
 impl Scenes {
     fn out(&self, name: &str) -> String {
-        self.tmp.path().join(name).to_string_lossy().into_owned()
+        self.dir.join(name).to_string_lossy().into_owned()
     }
 
     /// Runs `impact <args> --json --out DIR` on `scene` and checks every CSV and JSON file in
@@ -372,8 +312,8 @@ fn signals_identify_and_field_files_follow_the_convention() {
     let p = json_problems("field.json", std::str::from_utf8(&bytes).unwrap(), Some(&small));
     assert!(p.is_empty(), "{p:?}");
     // --json describes files; with --out - the field itself is the output.
-    let o = Command::new(BIN).args(field).args(["--json", "--out", "-"]).output().unwrap();
-    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("--json"));
+    let o = impact(field).args(["--json", "--out", "-"]).run();
+    assert!(!o.status.success() && o.stderr.contains("--json"));
 }
 
 /// The paper's reproduction runs the paper's own scene (the embedded default), whatever the
@@ -408,17 +348,16 @@ fn paper_and_fem_verification_files_follow_the_convention() {
 /// written leave it, a changed value changes it; and the files carry the new one.
 #[test]
 fn the_scene_hash_follows_the_content() {
-    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let text = small_scene();
     let hash_of = |name: &str, text: &str| {
-        let path = tmp.path().join(name);
-        std::fs::write(&path, text).unwrap();
+        let path = dir.write(name, text);
         let o = run(
-            &["solve", "--model", "beam", "--json", "--out", &tmp.path().join(format!("{name}.d")).to_string_lossy()],
+            &["solve", "--model", "beam", "--json", "--out", &dir.join(format!("{name}.d")).to_string_lossy()],
             Some(&path),
         );
         let (_, h) = printed(&o);
-        let (p, _) = check_dir(&tmp.path().join(format!("{name}.d")), &|_| Some(h.clone()));
+        let (p, _) = check_dir(&dir.join(format!("{name}.d")), &|_| Some(h.clone()));
         assert!(p.is_empty(), "{p:?}");
         assert_eq!(h, expected_hash(&path));
         h
@@ -468,9 +407,8 @@ fn json_on_every_command_and_completions() {
         assert!(script.contains("json"), "{shell} completion lacks --json");
     }
     // The bash script is valid bash.
-    let tmp = tempfile::tempdir().unwrap();
-    let path = tmp.path().join("impact.bash");
-    std::fs::write(&path, run(&["completions", "bash"], None).stdout).unwrap();
+    let dir = tmp();
+    let path = dir.write("impact.bash", run(&["completions", "bash"], None).stdout);
     if let Ok(o) = Command::new("bash").arg("-n").arg(&path).output() {
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }

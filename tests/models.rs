@@ -1,70 +1,35 @@
 //! Every model behind every command, one row schema, "not applicable" rows, and validity
 //! flags on both sides of each threshold, through the command line and the library.
 
+mod common;
+
+use common::scenes::{edit, two_sets, CLAMPED_PROPS, CON_1};
+use common::{impact, tmp, BIN};
 use coupled::plan::{fundamental_periods, run, run_transient, ModelKind, RowOutcome};
 use coupled::transient::{Discretisation, TransientSettings};
 use coupled::{BeamModel, PlateModel};
 use impact::scene::{Scene, SceneSource};
 use std::process::Command;
 
-/// One body, the paper's Con 1 and a general set (left edge clamped, right corners on
-/// springs), one point, one velocity: small enough for the transient yield search.
-const SMALL: &str = r#"
-name = "small"
-restitution = 0.65
-analyses = ["responses", "yield-velocity"]
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-[[bodies]]
-name = "coal"
-density_kg_m3 = 1380.0
-youngs_modulus_gpa = 2.26
-poisson_ratio = 0.28
-cohesion_mpa = 8.39
-friction_angle_deg = 25.0
-radius_mm = 25.0
-[[conditions]]
-name = "Con 1"
-supports = "both-fixed"
-[[conditions]]
-name = "clamped + props"
-[conditions.edges]
-left = "clamped"
-[conditions.corners]
-right_near = { spring_n_per_m = 1e6 }
-right_far = { spring_n_per_m = 1e6 }
-[points]
-pairs_mm = [[229.2, 120.0]]
-[velocities]
-m_per_s = [0.008]
-"#;
-
 fn small() -> Scene {
-    Scene::parse(SMALL, "small").unwrap()
+    Scene::parse(&two_sets(), "small").unwrap()
 }
 
-fn impact(args: &[&str], scene: &str) -> serde_json::Value {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("s.toml");
-    std::fs::write(&path, scene).unwrap();
-    let o =
-        Command::new(env!("CARGO_BIN_EXE_impact")).args(args).arg("--scene").arg(&path).arg("--json").output().unwrap();
-    assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
-    serde_json::from_slice(&o.stdout).unwrap()
+/// What `impact ARGS --scene SCENE --json` printed.
+fn json_of(args: &[&str], scene: &str) -> serde_json::Value {
+    let dir = tmp();
+    let path = dir.write("s.toml", scene);
+    impact(args).arg("--scene").arg(&path).arg("--json").success().json()
 }
 
 /// solve, sweep and yield with each model: rows carry the model, z is the scene's z, and
 /// the beam answers "not applicable" for the general set and numbers for Con 1.
 #[test]
 fn each_model_behind_each_command() {
+    let small = two_sets();
     for model in ["beam", "plate", "transient"] {
         // A loose tolerance keeps each transient case on the starting discretisation.
-        let v = impact(&["solve", "--model", model, "--tolerance", "1e-2"], SMALL);
+        let v = json_of(&["solve", "--model", model, "--tolerance", "1e-2"], &small);
         let rows = v["results"]["responses"].as_array().unwrap();
         assert_eq!(rows.len(), 2, "{model}: one row per support set");
         for r in rows {
@@ -76,15 +41,12 @@ fn each_model_behind_each_command() {
         assert!(v["status"].as_str().unwrap().starts_with("status: "));
     }
     // The sweep honours --count and keeps the model column.
-    let v = impact(&["sweep", "--count", "3", "--model", "plate"], SMALL);
+    let v = json_of(&["sweep", "--count", "3", "--model", "plate"], &small);
     let rows = v["results"]["responses"].as_array().unwrap();
     assert_eq!(rows.len(), 3 * 2);
     assert!(rows.iter().all(|r| r["model"] == "plate"));
     // yield: beam and plate agree in kind, the beam not applicable to the general set.
-    let v = impact(
-        &["yield", "--model", "all", "--tolerance", "1e-2"],
-        &SMALL.replace("[[conditions]]\nname = \"Con 1\"\nsupports = \"both-fixed\"\n", ""),
-    );
+    let v = json_of(&["yield", "--model", "all", "--tolerance", "1e-2"], &edit(&small, CON_1, ""));
     let rows = v["results"]["yields"].as_array().unwrap();
     assert_eq!(rows.len(), 3);
     for r in rows {
@@ -133,22 +95,27 @@ fn validity_flags_on_both_sides() {
         let r = run(&s, &BeamModel { plate: &s.plate }, ModelKind::Beam, &periods).unwrap();
         r.responses[0].values().unwrap().validity
     };
+    let small = two_sets();
     // Elastic: coal's v_y at this point is 0.0104 m/s (reports); 0.008 is inside, 0.02 beyond.
-    assert!(flags(SMALL).elastic.unwrap().valid);
-    assert!(!flags(&SMALL.replace("m_per_s = [0.008]", "m_per_s = [0.02]")).elastic.unwrap().valid);
+    assert!(flags(&small).elastic.unwrap().valid);
+    assert!(!flags(&edit(&small, "m_per_s = [0.008]", "m_per_s = [0.02]")).elastic.unwrap().valid);
     // Thin plate: 8 mm on 360 mm is 0.022; 20 mm is 0.056.
-    assert!(flags(SMALL).thin_plate.valid);
-    assert!(!flags(&SMALL.replace("thickness_mm = 8.0", "thickness_mm = 20.0")).thin_plate.valid);
+    assert!(flags(&small).thin_plate.valid);
+    assert!(!flags(&edit(&small, "thickness_mm = 8.0", "thickness_mm = 20.0")).thin_plate.valid);
     // Quasi-static: the paper's plate and coal give t_c/T₁ ≈ 0.08; a small thick plate
     // (T₁ ~ 0.1 ms) under a soft, heavy sphere (t_c ~ ms) is far above 0.2.
-    assert!(!flags(SMALL).quasi_static.unwrap().valid);
-    let slow = SMALL
-        .replace("length_mm = 458.4", "length_mm = 100.0")
-        .replace("width_mm = 360.0", "width_mm = 100.0")
-        .replace("thickness_mm = 8.0", "thickness_mm = 5.0")
-        .replace("youngs_modulus_gpa = 2.26", "youngs_modulus_gpa = 0.01")
-        .replace("pairs_mm = [[229.2, 120.0]]", "pairs_mm = [[50.0, 50.0]]")
-        .replace("name = \"clamped + props\"\n[conditions.edges]\nleft = \"clamped\"\n[conditions.corners]\nright_near = { spring_n_per_m = 1e6 }\nright_far = { spring_n_per_m = 1e6 }\n", "name = \"Con 1b\"\nsupports = \"both-fixed\"\n");
+    assert!(!flags(&small).quasi_static.unwrap().valid);
+    let slow = common::scenes::edits(
+        &small,
+        &[
+            ("length_mm = 458.4", "length_mm = 100.0"),
+            ("width_mm = 360.0", "width_mm = 100.0"),
+            ("thickness_mm = 8.0", "thickness_mm = 5.0"),
+            ("youngs_modulus_gpa = 2.26", "youngs_modulus_gpa = 0.01"),
+            ("pairs_mm = [[229.2, 120.0]]", "pairs_mm = [[50.0, 50.0]]"),
+            (CLAMPED_PROPS, "[[conditions]]\nname = \"Con 1b\"\nsupports = \"both-fixed\"\n"),
+        ],
+    );
     let q = flags(&slow).quasi_static.unwrap();
     assert!(q.valid, "t_c/T₁ = {}", q.value);
 }
@@ -157,25 +124,17 @@ fn validity_flags_on_both_sides() {
 /// never into reports/.
 #[test]
 fn scene_reports_do_not_land_in_committed_reports() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::create_dir(dir.path().join("reports")).unwrap();
-    let scene = dir.path().join("s.toml");
-    std::fs::write(
-        &scene,
-        SMALL.replace("analyses = [\"responses\", \"yield-velocity\"]", "analyses = [\"responses\"]"),
-    )
-    .unwrap();
+    let dir = tmp();
+    std::fs::create_dir(dir.join("reports")).unwrap();
+    let scene = dir.write(
+        "s.toml",
+        edit(&two_sets(), "analyses = [\"responses\", \"yield-velocity\"]", "analyses = [\"responses\"]"),
+    );
     for cmd in ["compare", "dynamic"] {
-        let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-            .current_dir(dir.path())
-            .args([cmd, "--tolerance", "1e-2", "--scene"])
-            .arg(&scene)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{cmd}: {}", String::from_utf8_lossy(&o.stderr));
-        assert!(dir.path().join("impact-out").join(format!("small-{cmd}")).join("index.md").exists(), "{cmd}");
+        impact([cmd, "--tolerance", "1e-2", "--scene"]).arg(&scene).current_dir(dir.path()).success();
+        assert!(dir.join("impact-out").join(format!("small-{cmd}")).join("index.md").exists(), "{cmd}");
     }
-    assert_eq!(std::fs::read_dir(dir.path().join("reports")).unwrap().count(), 0);
+    assert_eq!(std::fs::read_dir(dir.join("reports")).unwrap().count(), 0);
 }
 
 /// A reader that stops early (`impact solve | head -1`) ends the program quietly: exit 0,
@@ -183,7 +142,7 @@ fn scene_reports_do_not_land_in_committed_reports() {
 #[test]
 fn closed_stdout_is_a_normal_end() {
     use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_impact"))
+    let mut child = Command::new(BIN)
         .args(["sweep", "--count", "2000"])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -198,9 +157,8 @@ fn closed_stdout_is_a_normal_end() {
 /// A request beyond the memory budget is refused before any work, saying how big it is.
 #[test]
 fn oversized_requests_are_refused_with_their_size() {
-    let o = Command::new(env!("CARGO_BIN_EXE_impact")).args(["sweep", "--count", "100000"]).output().unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let o = impact(["sweep", "--count", "100000"]).fails_with(1);
+    let err = o.stderr;
     assert!(err.contains("100000 points") && err.contains("GB") && err.contains("at most"), "{err}");
 }
 
@@ -210,21 +168,12 @@ fn oversized_requests_are_refused_with_their_size() {
 /// wrote. The scene's hash does not change with how the file is written (comments, spacing).
 #[test]
 fn report_commands_print_json_with_provenance() {
-    let dir = tempfile::tempdir().unwrap();
-    let small = SMALL.replace("analyses = [\"responses\", \"yield-velocity\"]", "analyses = [\"responses\"]");
+    let dir = tmp();
+    let small = edit(&two_sets(), "analyses = [\"responses\", \"yield-velocity\"]", "analyses = [\"responses\"]");
     let hash_of = |text: &str, name: &str| -> String {
-        let scene = dir.path().join(name);
-        std::fs::write(&scene, text).unwrap();
-        let out = dir.path().join(format!("{name}-out"));
-        let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-            .args(["compare", "--json", "--scene"])
-            .arg(&scene)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("stdout is JSON");
+        let scene = dir.write(name, text);
+        let out = dir.join(format!("{name}-out"));
+        let v = impact(["compare", "--json", "--scene"]).arg(&scene).arg("--out").arg(&out).success().json();
         let hash = v["provenance"]["scene_sha256"].as_str().unwrap().to_string();
         assert_eq!(hash.len(), 64);
         assert_eq!(v["provenance"]["version"], env!("CARGO_PKG_VERSION"));
@@ -251,6 +200,6 @@ fn report_commands_print_json_with_provenance() {
     let a = hash_of(&small, "a.toml");
     let b = hash_of(&format!("# the same scene\n{}", small.replace(" = ", "  =  ")), "b.toml");
     assert_eq!(a, b, "comments and spacing do not change the scene's hash");
-    let c = hash_of(&small.replace("restitution = 0.65", "restitution = 0.66"), "c.toml");
+    let c = hash_of(&edit(&small, "restitution = 0.65", "restitution = 0.66"), "c.toml");
     assert_ne!(a, c, "a different scene has a different hash");
 }

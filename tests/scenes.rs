@@ -1,27 +1,15 @@
 //! Scene validation: every bad input is a clear error naming the field and its allowed
 //! range, never a panic; and the command line writes nothing when the scene is bad.
 
+mod common;
+
+use common::scenes::{edit, expect_refused as expect};
+use common::{impact, tmp};
 use impact::scene::{Points, Scene, SceneSource, DEFAULT_SCENE};
 use plate_fem::{CornerSupport, EdgeSupport};
-use std::process::Command;
 
 fn with(from: &str, to: &str) -> String {
-    assert!(DEFAULT_SCENE.contains(from), "test setup: '{from}' is in the default scene");
-    DEFAULT_SCENE.replacen(from, to, 1)
-}
-
-fn error(text: &str) -> String {
-    match Scene::parse(text, "test.toml") {
-        Ok(_) => panic!("scene was accepted"),
-        Err(e) => e.to_string(),
-    }
-}
-
-fn expect(text: &str, needles: &[&str]) {
-    let e = error(text);
-    for n in needles {
-        assert!(e.contains(n), "error '{e}' does not mention '{n}'");
-    }
+    edit(DEFAULT_SCENE, from, to)
 }
 
 #[test]
@@ -168,19 +156,11 @@ fn not_toml_at_all() {
 /// nothing into --out.
 #[test]
 fn command_line_rejects_bad_scene_without_writing() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("bad.toml");
-    std::fs::write(&scene, with("restitution = 0.65", "restitution = 7.0")).unwrap();
-    let out = dir.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["solve", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&o.stderr);
+    let dir = tmp();
+    let scene = dir.write("bad.toml", with("restitution = 0.65", "restitution = 7.0"));
+    let out = dir.join("out");
+    let o = impact(["solve", "--scene"]).arg(&scene).arg("--out").arg(&out).fails_with(1);
+    let err = o.stderr;
     assert!(err.contains("restitution = 7") && err.contains("(0.01, 1]"), "{err}");
     assert!(!err.contains("panicked"));
     assert!(!out.exists());
@@ -188,27 +168,24 @@ fn command_line_rejects_bad_scene_without_writing() {
 
 #[test]
 fn command_line_missing_file() {
-    let o =
-        Command::new(env!("CARGO_BIN_EXE_impact")).args(["yield", "--scene", "/nonexistent/x.toml"]).output().unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/x.toml"));
+    let o = impact(["yield", "--scene", "/nonexistent/x.toml"]).fails_with(1);
+    assert!(o.stderr.contains("/nonexistent/x.toml"));
 }
 
 /// A good run writes CSV and JSON, and the JSON parses.
 #[test]
 fn command_line_writes_csv_and_json() {
-    let dir = tempfile::tempdir().unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_impact")).args(["solve", "--out"]).arg(dir.path()).output().unwrap();
-    assert!(o.status.success());
-    let json = std::fs::read_to_string(dir.path().join("results.json")).unwrap();
+    let dir = tmp();
+    impact(["solve", "--out"]).arg(dir.path()).success();
+    let json = std::fs::read_to_string(dir.join("results.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["results"]["responses"].as_array().unwrap().len(), 9 * 3 * 3 * 2);
     assert_eq!(v["version"], env!("CARGO_PKG_VERSION"));
     // One CSV per support set, named by its position in the scene (names need not be
     // file-name safe or unique after slugging).
-    assert!(dir.path().join("responses-2.csv").exists());
+    assert!(dir.join("responses-2.csv").exists());
     // Con 1 has no springs: its table has no spring column.
-    let con1 = std::fs::read_to_string(dir.path().join("responses-1.csv")).unwrap();
+    let con1 = std::fs::read_to_string(dir.join("responses-1.csv")).unwrap();
     // The first line is the provenance comment, the second the header.
     let mut lines = con1.lines();
     assert!(lines

@@ -1,63 +1,17 @@
 //! `impact signals`: the reduced model's time series written as CSV with units in the
 //! headers, the summary as JSON, nothing written for a bad scene.
 
-use std::process::Command;
+mod common;
 
-const SCENE: &str = r#"
-name = "one impact"
-restitution = 0.65
-analyses = ["responses"]
-
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-
-[[bodies]]
-name = "coal"
-density_kg_m3 = 1380.0
-youngs_modulus_gpa = 2.26
-poisson_ratio = 0.28
-cohesion_mpa = 8.39
-friction_angle_deg = 25.0
-radius_mm = 25.0
-
-[[conditions]]
-name = "Con 3"
-supports = "fixed-and-springs"
-spring_stiffness_n_per_m = 5.11545e8
-
-[points]
-pairs_mm = [[229.2, 180.0]]
-
-[velocities]
-m_per_s = [0.008]
-
-[signals]
-window_ms = 5.0
-rate_hz = 10000.0
-modes = 40
-sensors_mm = [[100.0, 100.0]]
-"#;
+use common::scenes::{edit, signals};
+use common::{impact, tmp};
 
 #[test]
 fn writes_time_series_with_units_and_a_json_summary() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("s.toml");
-    std::fs::write(&scene, SCENE).unwrap();
-    let out = dir.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["signals", "--json", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let dir = tmp();
+    let scene = dir.write("s.toml", signals());
+    let out = dir.join("out");
+    let v = impact(["signals", "--json", "--scene"]).arg(&scene).arg("--out").arg(&out).success().json();
     let impacts = v["impacts"].as_array().unwrap();
     assert_eq!(impacts.len(), 1);
     let file = impacts[0]["file"].as_str().unwrap();
@@ -91,18 +45,10 @@ fn writes_time_series_with_units_and_a_json_summary() {
 
 #[test]
 fn a_bad_signals_table_writes_nothing() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("s.toml");
-    std::fs::write(&scene, SCENE.replace("modes = 40", "modes = 0")).unwrap();
-    let out = dir.path().join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
-        .args(["signals", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("signals.modes = 0"));
+    let dir = tmp();
+    let scene = dir.write("s.toml", edit(&signals(), "modes = 40", "modes = 0"));
+    let out = dir.join("out");
+    let o = impact(["signals", "--scene"]).arg(&scene).arg("--out").arg(&out).fails();
+    assert!(o.stderr.contains("signals.modes = 0"));
     assert!(!out.exists());
 }

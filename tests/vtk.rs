@@ -3,15 +3,15 @@
 //! stresses 6M/h², the near-load flag, its field data; the load's range and the scaling to
 //! an impact's P_max; `--out` refusing a file that is not ours; and the shell completions.
 
+mod common;
+
+use common::{impact, tmp};
 use impact::present::vtk::{to_vtu, Metadata, MOMENTS, POINT_SCALARS, STRESSES};
 use impact::provenance::Provenance;
 use impact::report::field::{field, FieldFile};
 use impact::scene::{Scene, SceneSource};
 use std::collections::HashMap;
-use std::process::Command;
 use vtkio::model::{Attribute, CellType, DataSet, IOBuffer, UnstructuredGridPiece, Vtk};
-
-const BIN: &str = env!("CARGO_BIN_EXE_impact");
 
 /// The default scene's Con 1 field on a coarse mesh (the check is of the data path).
 fn field_at(x_mm: f64, z_mm: f64, n: usize) -> FieldFile {
@@ -142,15 +142,12 @@ fn load_inside_one_element_flags_one() {
 
 #[test]
 fn cli_writes_a_scaled_vtu() {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("f.vtu");
-    let s = Command::new(BIN)
-        .args(["field", "--format", "vtu", "--x-mm", "229.2", "--z-mm", "180", "--elements", "20", "--force-n", "2.5"])
+    let dir = tmp();
+    let path = dir.join("f.vtu");
+    impact(["field", "--format", "vtu", "--x-mm", "229.2", "--z-mm", "180", "--elements", "20", "--force-n", "2.5"])
         .arg("--out")
         .arg(&path)
-        .status()
-        .unwrap();
-    assert!(s.success());
+        .success();
     let f = field_at(229.2, 180.0, 20);
     let bytes = std::fs::read(&path).unwrap();
     check(&f, &read(&bytes), 2.5);
@@ -158,38 +155,29 @@ fn cli_writes_a_scaled_vtu() {
     assert_eq!((fd["force_N"], fd["load_x_m"], fd["load_z_m"]), (2.5, 0.2292, 0.18));
 
     // The JSON stays per unit load: a force with it is refused, not silently ignored.
-    let o = Command::new(BIN)
-        .args(["field", "--x-mm", "229.2", "--z-mm", "180", "--force-n", "2", "--out", "-"])
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--format vtu"));
+    let o = impact(["field", "--x-mm", "229.2", "--z-mm", "180", "--force-n", "2", "--out", "-"]).fails();
+    assert!(o.stderr.contains("--format vtu"));
 }
 
 #[test]
 fn completions_for_every_shell() {
-    let o = Command::new(BIN).args(["completions", "bash"]).output().unwrap();
-    assert!(o.status.success());
+    let o = impact(["completions", "bash"]).success();
     assert!(String::from_utf8(o.stdout).unwrap().contains("solve"));
     for shell in ["zsh", "fish", "powershell", "elvish"] {
-        let o = Command::new(BIN).args(["completions", shell]).output().unwrap();
+        let o = impact(["completions", shell]).run();
         assert!(o.status.success() && !o.stdout.is_empty(), "{shell}");
     }
 }
 
-fn run(args: &[&str]) -> std::process::Output {
-    Command::new(BIN).args(args).output().unwrap()
-}
-
 #[test]
 fn force_outside_its_range_is_refused_naming_flag_value_and_range() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("f.vtu");
+    let dir = tmp();
+    let out = dir.join("f.vtu");
     let out = out.to_str().unwrap();
     for bad in ["1e308", "1.5e12", "0", "-5", "NaN", "inf", "1e-10"] {
-        let o = run(&["field", "--format", "vtu", "--x-mm", "100", "--z-mm", "200", "--force-n", bad, "--out", out]);
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(1), "{bad}: {err}");
+        let o = impact(["field", "--format", "vtu", "--x-mm", "100", "--z-mm", "200", "--force-n", bad, "--out", out])
+            .fails_with(1);
+        let err = o.stderr;
         assert!(err.contains(&format!("--force-n {bad} is outside the allowed range [1e-9, 1e12] N")), "{bad}: {err}");
         assert!(!std::path::Path::new(out).exists());
     }
@@ -201,36 +189,20 @@ fn force_outside_its_range_is_refused_naming_flag_value_and_range() {
 /// written must still be finite.
 #[test]
 fn the_largest_load_on_the_weakest_plate_stays_finite() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = tmp();
     let text = impact::scene::DEFAULT_SCENE
         .replace("length_mm = 458.4", "length_mm = 100000.0")
         .replace("width_mm = 360.0", "width_mm = 100000.0")
         .replace("thickness_mm = 8.0", "thickness_mm = 0.001")
         .replace("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = 1e-6");
-    let scene = dir.path().join("weak.toml");
-    std::fs::write(&scene, &text).unwrap();
-    let out = dir.path().join("weak.vtu");
-    let o = Command::new(BIN)
-        .args([
-            "field",
-            "--format",
-            "vtu",
-            "--x-mm",
-            "30000",
-            "--z-mm",
-            "40000",
-            "--elements",
-            "8",
-            "--force-n",
-            "1e12",
-        ])
+    let scene = dir.write("weak.toml", &text);
+    let out = dir.join("weak.vtu");
+    impact(["field", "--format", "vtu", "--x-mm", "30000", "--z-mm", "40000", "--elements", "8", "--force-n", "1e12"])
         .arg("--scene")
         .arg(&scene)
         .arg("--out")
         .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        .success();
     let bytes = std::fs::read(&out).unwrap();
     let r = read(&bytes);
     let mut largest = 0.0f64;
@@ -251,16 +223,24 @@ fn the_largest_load_on_the_weakest_plate_stays_finite() {
 /// `impact solve --model plate` gives for it, and says so with the case's validity.
 #[test]
 fn scaled_to_the_impacts_quasi_static_p_max() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("p.vtu");
-    let o = Command::new(BIN)
-        .args(["field", "--format", "vtu", "--x-mm", "229.2", "--z-mm", "180", "--elements", "20", "--force-of-impact"])
-        .args(["--body", "gangue 1", "--velocity-m-per-s", "0.008", "--json", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr).to_string();
-    assert!(o.status.success(), "{err}");
+    let dir = tmp();
+    let out = dir.join("p.vtu");
+    let o = impact([
+        "field",
+        "--format",
+        "vtu",
+        "--x-mm",
+        "229.2",
+        "--z-mm",
+        "180",
+        "--elements",
+        "20",
+        "--force-of-impact",
+    ])
+    .args(["--body", "gangue 1", "--velocity-m-per-s", "0.008", "--json", "--out"])
+    .arg(&out)
+    .success();
+    let err = o.stderr.clone();
     let bytes = std::fs::read(&out).unwrap();
     let fd = field_data(&bytes);
     // --json: the provenance first, the file, and the load's numbers as in the field data.
@@ -277,7 +257,7 @@ fn scaled_to_the_impacts_quasi_static_p_max() {
     assert!(doc["quasi_static_p_max"]["text"].as_str().unwrap().contains("quasi-static plate model"));
 
     // The same case through `impact solve --model plate`: its P_max and error, bit for bit.
-    let solved = run(&["solve", "--model", "plate", "--json"]);
+    let solved = impact(["solve", "--model", "plate", "--json"]).run();
     let doc: serde_json::Value = serde_json::from_slice(&solved.stdout).unwrap();
     let row = doc["results"]["responses"]
         .as_array()
@@ -323,30 +303,23 @@ fn scaled_to_the_impacts_quasi_static_p_max() {
 /// the reason and left byte for byte; our own earlier .vtu and .json are replaced.
 #[test]
 fn out_refuses_a_file_that_is_not_ours() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("mine.toml");
-    std::fs::write(&scene, impact::scene::DEFAULT_SCENE).unwrap();
+    let dir = tmp();
+    let scene = dir.write("mine.toml", impact::scene::DEFAULT_SCENE);
     for format in ["vtu", "json"] {
-        let o = Command::new(BIN)
-            .args(["field", "--format", format, "--x-mm", "100", "--z-mm", "200", "--elements", "4", "--scene"])
+        let o = impact(["field", "--format", format, "--x-mm", "100", "--z-mm", "200", "--elements", "4", "--scene"])
             .arg(&scene)
             .arg("--out")
             .arg(&scene)
-            .output()
-            .unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(1), "{err}");
+            .fails_with(1);
+        let err = o.stderr;
         assert!(err.contains("mine.toml") && err.contains("not written by impact"), "{err}");
         assert_eq!(std::fs::read_to_string(&scene).unwrap(), impact::scene::DEFAULT_SCENE);
 
-        let ours = dir.path().join(format!("field.{format}"));
+        let ours = dir.join(format!("field.{format}"));
         for _ in 0..2 {
-            let o = Command::new(BIN)
-                .args(["field", "--format", format, "--x-mm", "100", "--z-mm", "200", "--elements", "4", "--out"])
+            impact(["field", "--format", format, "--x-mm", "100", "--z-mm", "200", "--elements", "4", "--out"])
                 .arg(&ours)
-                .output()
-                .unwrap();
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+                .success();
         }
     }
 }

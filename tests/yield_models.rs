@@ -2,6 +2,8 @@
 //! point, the root's own definition, the beam in the narrow-plate limit, and the report as a
 //! whole (it renders, and its deterministic pages do not carry the timing).
 
+mod common;
+
 use analytic::{contact_stiffness, yield_velocity, Condition, DruckerPrager, Plate};
 use coupled::plan::impact_of;
 use coupled::transient::{case::striker, simulate, TransientCase, TransientSettings};
@@ -164,22 +166,15 @@ fn the_study_renders() {
 /// plate's beam compliance (the closed form, evaluated here independently of the study).
 #[test]
 fn a_user_scene_gets_the_yield_study_on_its_own_cases() {
-    use impact::scene::{Analysis, Points, Scene, SceneSource};
-    let base = Scene::default_scene();
+    use impact::scene::{Analysis, Scene};
+    let base =
+        common::scenes::coal_con1_centre(vec![Analysis::Responses, Analysis::YieldVelocity, Analysis::Transient]);
     let plate = Plate::new(0.4584, 0.360, 0.012, 7850.0, base.plate.material()).unwrap();
+    // The paper's centre, this plate's too (the two differ only in thickness): the closed
+    // form below is evaluated there.
     let point = (0.2292, 0.18);
-    let scene = Scene {
-        name: "thick".into(),
-        plate,
-        bodies: vec![base.bodies[0].clone()],
-        conditions: vec![base.conditions[0].clone()],
-        points: Points::Pairs { pairs: vec![point] },
-        transient_points: vec![point],
-        velocities: vec![0.008],
-        analyses: vec![Analysis::Responses, Analysis::YieldVelocity, Analysis::Transient],
-        transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
-        ..base.clone()
-    };
+    assert_eq!(base.point_pairs(), vec![point]);
+    let scene = Scene { name: "thick".into(), plate, ..base };
     let a = impact::report::scene_report(&scene, &impact::report::Silent).unwrap();
     let paths: Vec<String> = a.paths().map(|p| p.display().to_string()).collect();
     for f in ["yield-three-models/index.md", "yield-three-models/yield-three-models.csv", "dynamic/index.md"] {
