@@ -140,11 +140,9 @@ pub fn sig(v: f64, sig: usize) -> String {
 macro_rules! validity_columns {
     ($row:ty, $values:ident, $text_header:expr) => {
         [
-            Column::<$row>::new("validity", $text_header, Kind::Text, |r| match &r.outcome {
-                RowOutcome::NotApplicable { reason } => Some(Value::Text(format!("not applicable: {reason}"))),
-                RowOutcome::Computed(v) => Some(Value::Text(validity_text(&v.validity))),
+            Column::<$row>::new("valid", "valid", Kind::Flag, |r| {
+                $values(r).map(|v| Value::Flag(v.validity.all_valid()))
             }),
-            Column::new("valid", "valid", Kind::Flag, |r| $values(r).map(|v| Value::Flag(v.validity.all_valid()))),
             Column::new("validity_flags", "validity flags", Kind::Text, |r| {
                 $values(r).map(|v| Value::Text(v.validity.flags().join("; ")))
             }),
@@ -159,6 +157,10 @@ macro_rules! validity_columns {
             }),
             Column::new("regime_force_error", "regime rule force error bound", Kind::Num, |r| {
                 opt($values(r).and_then(|v| v.validity.regime.map(|c| c.value)))
+            }),
+            Column::new("validity", $text_header, Kind::Text, |r| match &r.outcome {
+                RowOutcome::NotApplicable { reason } => Some(Value::Text(format!("not applicable: {reason}"))),
+                RowOutcome::Computed(v) => Some(Value::Text(validity_text(&v.validity))),
             }),
         ]
     };
