@@ -204,10 +204,10 @@ pub fn identify<'py>(
         // transient), so it does not make an impact invalid.
         t.flag("valid", row, f.iter().all(|x| *x == "not quasi-static"));
         t.text("validity_flags", row, &f.join("; "));
-        for ((c, label), features) in channels.iter().zip(&labels).zip(&r.features) {
-            for feature in FEATURES {
+        for ((c, label), features) in channels.iter().zip(&labels).zip(r.channel_features()) {
+            for (feature, value) in FEATURES.iter().zip(features) {
                 let name = format!("{label}: {} ({})", feature.key(), feature.unit(c.unit()));
-                t.num(&name, row, features.get(feature));
+                t.num(&name, row, *value);
             }
         }
     }

@@ -21,7 +21,7 @@ use crate::transient::{LawKind, Striker};
 use analytic::{contact_stiffness, DruckerPrager, Plate};
 use identify::ensemble::for_each_ordered;
 use identify::placement::FeatureTable;
-use identify::{Draw, Extractor, Features, Held, Study};
+use identify::{Draw, Extractor, Held, Study, FEATURES};
 use serde::Serialize;
 
 /// Impacts handed to the sink at a time: large enough to keep both cores busy between
@@ -44,8 +44,16 @@ pub struct ImpactRecord {
     pub compression_ratio: f64,
     /// The rigid-target Hertz time over T₁.
     pub hertz_time_ratio: f64,
-    /// One per channel of the run, in the order of [`ConditionRun::channels`].
-    pub features: Vec<Features>,
+    /// The [`FEATURES`] of each channel of the run, channel after channel in the order of
+    /// [`ConditionRun::channels`] ([`ImpactRecord::channel_features`] splits them).
+    pub features: Vec<f64>,
+}
+
+impl ImpactRecord {
+    /// The [`FEATURES`] of each channel, one slice per channel.
+    pub fn channel_features(&self) -> std::slice::ChunksExact<'_, f64> {
+        self.features.chunks_exact(FEATURES.len())
+    }
 }
 
 /// Counts of an ensemble's impacts beyond each validity criterion.
@@ -141,7 +149,10 @@ impl<'a> Instrument<'a> {
         let hit = self.model.impact(&striker, draw.x, draw.z, &self.probes)?;
         let o = &hit.outcome;
         let delta_my = DruckerPrager::of(&sphere).yield_compression(sphere.radius(), k);
-        let features = hit.signals.channels.iter().map(|c| self.extractor.features(&c.samples)).collect();
+        let mut features = Vec::with_capacity(hit.signals.channels.len() * FEATURES.len());
+        for c in &hit.signals.channels {
+            self.extractor.push_features(FEATURES, &c.samples, &mut features);
+        }
         Ok(ImpactRecord {
             force_max: o.force_max_interpolated.max(o.force_max),
             contact_time: o.contact_time,

@@ -10,7 +10,7 @@
 //! **Fit.** Maximum penalised likelihood: minimise
 //! -Σ [y ln p + (1 - y) ln(1 - p)] + (λ/2)‖w‖² (the intercept b is not penalised) by Newton's
 //! method, i.e. iteratively reweighted least squares: gradient Zᵀ(p - y) + λw, Hessian
-//! ZᵀWZ + λI with W = diag(p(1 - p)), the step solved by Cholesky, halved while it does not
+//! ZᵀWZ + λI with W = diag(p(1 - p)), the step solved by Cholesky (faer), halved while it does not
 //! lower the objective. The objective is strictly convex for λ > 0, so this converges
 //! from zero to the unique minimum; with the ridge the weights stay finite even on separable
 //! data, where the plain likelihood has no maximum. λ = [`RIDGE`] is small against the
@@ -26,6 +26,9 @@
 //! without the exact Hessian) for what is here a hundred lines with the equations in view.
 
 use crate::ensemble::{impact_stream, open_uniform};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt;
+use faer::{Mat, Par};
 use serde::Serialize;
 
 /// The ridge λ on the standardised weights.
@@ -104,32 +107,20 @@ fn softplus(t: f64) -> f64 {
     }
 }
 
-/// Solves A x = b for symmetric positive definite A (row-major, n × n) by Cholesky.
-fn cholesky_solve(a: &[f64], b: &[f64], n: usize) -> Option<Vec<f64>> {
-    let mut l = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..=i {
-            let s: f64 = (0..j).map(|k| l[i * n + k] * l[j * n + k]).sum();
-            if i == j {
-                let d = a[i * n + i] - s;
-                if d.is_nan() || d <= 0.0 {
-                    return None;
-                }
-                l[i * n + i] = d.sqrt();
-            } else {
-                l[i * n + j] = (a[i * n + j] - s) / l[j * n + j];
-            }
-        }
-    }
-    let mut y = vec![0.0; n];
-    for i in 0..n {
-        y[i] = (b[i] - (0..i).map(|k| l[i * n + k] * y[k]).sum::<f64>()) / l[i * n + i];
-    }
-    let mut x = vec![0.0; n];
-    for i in (0..n).rev() {
-        x[i] = (y[i] - (i + 1..n).map(|k| l[k * n + i] * x[k]).sum::<f64>()) / l[i * n + i];
-    }
-    Some(x)
+/// Solves H x = g for the symmetric positive definite H (row-major, n × n; its lower
+/// triangle is read) by faer's Cholesky factorisation H = LLᵀ; None where H is not
+/// numerically positive definite. Sequential: the systems are small (one row per parameter),
+/// and a result that does not depend on the number of threads is worth more here than speed.
+fn cholesky_solve(h: &[f64], g: &[f64], n: usize) -> Option<Vec<f64>> {
+    let par = Par::Seq;
+    let mut l = Mat::from_fn(n, n, |i, j| if j <= i { h[i * n + j] } else { 0.0 });
+    let mut mem = MemBuffer::new(llt::factor::cholesky_in_place_scratch::<f64>(n, par, Default::default()));
+    llt::factor::cholesky_in_place(l.as_mut(), Default::default(), par, MemStack::new(&mut mem), Default::default())
+        .ok()?;
+    let mut x = Mat::from_fn(n, 1, |i, _| g[i]);
+    let mut mem = MemBuffer::new(llt::solve::solve_in_place_scratch::<f64>(n, 1, par));
+    llt::solve::solve_in_place(l.as_ref(), x.as_mut(), par, MemStack::new(&mut mem));
+    Some(x.col(0).iter().copied().collect())
 }
 
 fn check_shape(rows: &[Vec<f64>], labels: &[bool]) -> Result<usize, FitError> {
@@ -186,6 +177,7 @@ impl Logistic {
         for it in 0..MAX_ITERATIONS {
             iterations = it + 1;
             let mut g = vec![0.0; d];
+            // H is symmetric: its lower triangle is all the solve reads.
             let mut h = vec![0.0; d * d];
             for (zi, yi) in z.iter().zip(&y) {
                 let t = theta[0] + zi.iter().zip(&theta[1..]).map(|(a, b)| a * b).sum::<f64>();
@@ -206,11 +198,6 @@ impl Logistic {
             // A column left out has z = 0: its weight is pinned by the ridge alone; keep H
             // definite for the intercept too.
             h[0] += 1e-12 * n;
-            for a in 0..d {
-                for b in 0..a {
-                    h[b * d + a] = h[a * d + b];
-                }
-            }
             let Some(step) = cholesky_solve(&h, &g, d) else { break };
             let mut scale_step = 1.0;
             let mut accepted = false;

@@ -13,8 +13,9 @@
 //!   choice), truncated and sampled by inverse transform;
 //! - [`ensemble`]: the random-impact description, each impact drawn from its own seeded
 //!   stream (bit-identical on any number of threads), and an ordered parallel runner;
-//! - [`features`]: peak, RMS, energy, duration, dominant frequency and spectral centroid
-//!   of a sampled signal;
+//! - [`features`]: the features of a sampled signal, one implementation each of a small
+//!   trait and one registry (peak, RMS, energy, duration, dominant frequency, spectral
+//!   centroid);
 //! - [`roc`]: the AUC (Mann-Whitney), DeLong's standard error and a bootstrap interval;
 //! - [`classify`]: a ridge logistic regression fitted by Newton/IRLS and its stratified
 //!   cross-validated accuracy;
@@ -24,7 +25,7 @@
 //! ```
 //! use identify::distribution::Distribution;
 //! use identify::ensemble::{Class, Ensemble, Family, Held, Region, Speed};
-//! use identify::features::{Extractor, Feature};
+//! use identify::features::Extractor;
 //! use identify::placement::{best, separabilities, FeatureTable};
 //!
 //! let family = |name: &str, class, density: f64| Family {
@@ -53,14 +54,14 @@
 //!     let mass = d.density * 4.0 / 3.0 * std::f64::consts::PI * d.radius.powi(3);
 //!     let signal: Vec<f64> =
 //!         (0..400).map(|k| mass * d.velocity * (2.0 * std::f64::consts::PI * 500.0 * k as f64 / rate).sin()).collect();
-//!     table.push(d.class, &[extractor.features(&signal)]);
+//!     table.push(d.class, &extractor.features(&signal));
 //! }
 //! let s = best(&separabilities(&table), &[]).unwrap();
 //! // Gangue is 1.74 times denser, so its momentum reads higher, but sizes and speeds
 //! // overlap: ln(momentum) differs by ln 1.74 = 0.55 between the classes and spreads by
 //! // about 0.36 within each (3 × 0.1 from ln R, 0.2 from ln v), so the AUC of two normals,
 //! // Φ(0.55/(0.36√2)) = 0.86, with a standard error of about 0.04 at 50 + 50 impacts.
-//! assert_eq!(s.feature, Feature::Peak);
+//! assert_eq!(s.feature.key(), "peak");
 //! assert!((s.auc.auc - 0.86).abs() < 0.1, "{}", s.auc.auc);
 //! ```
 
@@ -75,5 +76,5 @@ pub mod roc;
 
 pub use distribution::Distribution;
 pub use ensemble::{Class, Draw, Ensemble, Family, Held, Region, Speed, Study, Variable};
-pub use features::{Extractor, Feature, Features};
+pub use features::{Extractor, Feature, FEATURES};
 pub use roc::Auc;

@@ -9,7 +9,7 @@
 
 use crate::classify::{cross_validate, CrossValidated, FitError, FOLDS, RIDGE};
 use crate::ensemble::Class;
-use crate::features::{Feature, Features, FEATURES};
+use crate::features::{Feature, FEATURES};
 use crate::roc::{auc_with_error, Auc};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -19,7 +19,7 @@ use serde::Serialize;
 pub struct FeatureTable {
     channels: usize,
     classes: Vec<Class>,
-    /// Column channel·6 + feature, one value per impact.
+    /// Column channel·[`FEATURES`].len() + feature, one value per impact.
     values: Vec<Vec<f64>>,
 }
 
@@ -29,14 +29,13 @@ impl FeatureTable {
         Self { channels, classes: Vec::new(), values: vec![Vec::new(); channels * FEATURES.len()] }
     }
 
-    /// Appends one impact: its class and the features of each channel (exactly `channels`).
-    pub fn push(&mut self, class: Class, features: &[Features]) {
-        assert_eq!(features.len(), self.channels, "one Features per channel");
+    /// Appends one impact: its class and the [`FEATURES`] of each channel, channel after
+    /// channel (exactly `channels` × [`FEATURES`].len() values).
+    pub fn push(&mut self, class: Class, features: &[f64]) {
+        assert_eq!(features.len(), self.values.len(), "the registry's features of every channel");
         self.classes.push(class);
-        for (c, f) in features.iter().enumerate() {
-            for (k, v) in f.values().into_iter().enumerate() {
-                self.values[c * FEATURES.len() + k].push(v);
-            }
+        for (column, &v) in self.values.iter_mut().zip(features) {
+            column.push(v);
         }
     }
 
@@ -60,13 +59,13 @@ impl FeatureTable {
         &self.classes
     }
 
-    /// The values of one feature of one channel, one per impact.
-    pub fn column(&self, channel: usize, feature: Feature) -> &[f64] {
+    /// The values of one feature (of [`FEATURES`]) of one channel, one per impact.
+    pub fn column(&self, channel: usize, feature: &dyn Feature) -> &[f64] {
         &self.values[channel * FEATURES.len() + feature.index()]
     }
 
     /// The column split by class: (coal, gangue).
-    pub fn split(&self, channel: usize, feature: Feature) -> (Vec<f64>, Vec<f64>) {
+    pub fn split(&self, channel: usize, feature: &dyn Feature) -> (Vec<f64>, Vec<f64>) {
         let col = self.column(channel, feature);
         let mut coal = Vec::new();
         let mut gangue = Vec::new();
@@ -91,7 +90,7 @@ pub struct Separability {
     /// The channel.
     pub channel: usize,
     /// The feature.
-    pub feature: Feature,
+    pub feature: &'static dyn Feature,
     /// Its AUC with DeLong's standard error.
     pub auc: Auc,
 }
@@ -122,12 +121,12 @@ pub fn best(all: &[Separability], channels: &[usize]) -> Option<Separability> {
 }
 
 /// The AUC of `feature` at each of `channels` (one per grid point): a placement map.
-pub fn map(all: &[Separability], channels: &[usize], feature: Feature) -> Vec<Auc> {
+pub fn map(all: &[Separability], channels: &[usize], feature: &dyn Feature) -> Vec<Auc> {
     channels
         .iter()
         .map(|&c| {
             all.iter()
-                .find(|s| s.channel == c && s.feature == feature)
+                .find(|s| s.channel == c && *s.feature == *feature)
                 .map_or(Auc { auc: 0.5, standard_error: 0.0 }, |s| s.auc)
         })
         .collect()
@@ -148,8 +147,11 @@ pub fn classifier(table: &FeatureTable, channels: &[usize], seed: u64) -> Result
 mod tests {
     use super::*;
 
-    fn f(peak: f64) -> Features {
-        Features { peak, rms: 1.0, energy: 1.0, duration: 1.0, dominant_frequency: 1.0, spectral_centroid: 1.0 }
+    use crate::features::Peak;
+
+    /// One channel's features: `peak`, every other 1.
+    fn f(peak: f64) -> Vec<f64> {
+        FEATURES.iter().map(|f| if f.key() == "peak" { peak } else { 1.0 }).collect()
     }
 
     #[test]
@@ -157,16 +159,16 @@ mod tests {
         // Channel 0 separates perfectly on its peak (gangue higher), channel 1 not at all.
         let mut t = FeatureTable::new(2);
         for i in 0..10 {
-            t.push(Class::Coal, &[f(i as f64), f(1.0)]);
-            t.push(Class::Gangue, &[f(100.0 + i as f64), f(1.0)]);
+            t.push(Class::Coal, &[f(i as f64), f(1.0)].concat());
+            t.push(Class::Gangue, &[f(100.0 + i as f64), f(1.0)].concat());
         }
         assert_eq!(t.len(), 20);
-        assert_eq!(t.column(0, Feature::Peak)[1], 100.0);
+        assert_eq!(t.column(0, &Peak)[1], 100.0);
         let s = separabilities(&t);
-        assert_eq!(s.len(), 12);
+        assert_eq!(s.len(), 2 * FEATURES.len());
         let b = best(&s, &[]).unwrap();
-        assert_eq!((b.channel, b.feature, b.auc.auc), (0, Feature::Peak, 1.0));
-        let m = map(&s, &[0, 1], Feature::Peak);
+        assert_eq!((b.channel, b.feature.key(), b.auc.auc), (0, "peak", 1.0));
+        let m = map(&s, &[0, 1], &Peak);
         assert_eq!((m[0].auc, m[1].auc), (1.0, 0.5));
         assert_eq!(best(&s, &[1]).unwrap().auc.auc, 0.5);
     }

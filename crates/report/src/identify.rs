@@ -74,9 +74,9 @@ pub fn run_sensors(named: &[(f64, f64)], study: &Study, plate: &analytic::Plate)
     (sensors, grid)
 }
 
-/// Bytes of features one run holds: 6 features of 8 bytes per impact and channel.
+/// Bytes of features one run holds: [`FEATURES`] of 8 bytes each per impact and channel.
 pub fn feature_bytes(impacts: usize, channels: usize) -> usize {
-    impacts.saturating_mul(channels).saturating_mul(6 * 8)
+    impacts.saturating_mul(channels).saturating_mul(FEATURES.len() * 8)
 }
 
 // ---------------------------------------------------------------- results
@@ -87,7 +87,7 @@ pub struct Ranked {
     /// The channel, e.g. "acceleration at (229.2, 180) mm".
     pub channel: String,
     /// The feature.
-    pub feature: Feature,
+    pub feature: &'static dyn Feature,
     /// AUC (P(gangue > coal)) with DeLong's standard error.
     pub auc: Auc,
     /// The 95 % percentile bootstrap interval.
@@ -227,17 +227,6 @@ fn quantity_name(q: Quantity) -> &'static str {
     }
 }
 
-fn feature_label(f: Feature) -> &'static str {
-    match f {
-        Feature::Peak => "peak",
-        Feature::Rms => "RMS",
-        Feature::Energy => "energy",
-        Feature::Duration => "duration",
-        Feature::DominantFrequency => "dominant frequency",
-        Feature::SpectralCentroid => "spectral centroid",
-    }
-}
-
 fn describe(d: &Distribution, unit: &str, scale: f64) -> String {
     // Values as the scene wrote them (to rounding of the unit conversion).
     let v = |x: f64| analytic::params::compact(format!("{:.6e}", x * scale).parse::<f64>().unwrap_or(x * scale));
@@ -319,23 +308,21 @@ const IMPACT_HEADERS: [&str; 19] = [
     "mass_kg",
 ];
 
-/// The columns of `features.csv`: a channel's features are in its own SI unit, named in the
-/// row's `unit` column (`m`, `m_per_s`, `m_per_s2`, `N`); `_unit` in a column name stands for it.
-const FEATURE_HEADERS: [&str; 13] = [
-    "condition",
-    "impact",
-    "class",
-    "quantity",
-    "x_m",
-    "z_m",
-    "unit",
-    "peak_unit",
-    "rms_unit",
-    "energy_unit2_s",
-    "duration_s",
-    "dominant_frequency_Hz",
-    "spectral_centroid_Hz",
-];
+/// The columns of `features.csv` before the features.
+const FEATURE_ROW_HEADERS: [&str; 7] = ["condition", "impact", "class", "quantity", "x_m", "z_m", "unit"];
+
+/// The columns of `features.csv`: [`FEATURE_ROW_HEADERS`], then one per feature of
+/// [`FEATURES`], its key and its unit. A channel's features are in its own SI unit, named
+/// in the row's `unit` column (`m`, `m_per_s`, `m_per_s2`, `N`); `_unit` in a column name
+/// stands for it: "peak_unit", "energy_unit2_s", "duration_s", "dominant_frequency_Hz".
+fn feature_headers() -> Vec<String> {
+    let unit_key = |u: String| u.replace(['(', ')', '^'], "").replace('*', "_").replace('/', "_per_");
+    FEATURE_ROW_HEADERS
+        .iter()
+        .map(|h| h.to_string())
+        .chain(FEATURES.iter().map(|f| format!("{}_{}", f.key(), unit_key(f.unit("unit")))))
+        .collect()
+}
 
 fn num(v: f64) -> String {
     if v.is_finite() {
@@ -351,7 +338,7 @@ fn open_stream(
     dir: &str,
     name: &str,
     provenance: &Provenance,
-    headers: &[&str],
+    headers: &[impl AsRef<[u8]>],
 ) -> Result<csv::Writer<StreamedFile>, Failure> {
     let path = if dir.is_empty() { name.to_string() } else { format!("{dir}/{name}") };
     let mut file = out.stream(&path)?;
@@ -365,7 +352,7 @@ impl Rows {
     fn open(out: &mut OutputDir, dir: &str, provenance: &Provenance, files: RowFiles) -> Result<Self, Failure> {
         let impacts = open_stream(out, dir, "impacts.csv", provenance, &IMPACT_HEADERS)?;
         let features = match files {
-            RowFiles::All => Some(open_stream(out, dir, "features.csv", provenance, &FEATURE_HEADERS)?),
+            RowFiles::All => Some(open_stream(out, dir, "features.csv", provenance, &feature_headers())?),
             RowFiles::Impacts => None,
         };
         Ok(Self { impacts, features })
@@ -402,8 +389,8 @@ impl Rows {
             num(mass),
         ])?;
         let Some(features) = self.features.as_mut() else { return Ok(()) };
-        for (c, f) in channels.iter().zip(&r.features) {
-            features.write_record([
+        for (c, f) in channels.iter().zip(r.channel_features()) {
+            let row = [
                 condition.to_string(),
                 d.index.to_string(),
                 d.class.key().to_string(),
@@ -411,13 +398,8 @@ impl Rows {
                 num(c.at.0),
                 num(c.at.1),
                 unit_key(c.unit),
-                num(f.peak),
-                num(f.rms),
-                num(f.energy),
-                num(f.duration),
-                num(f.dominant_frequency),
-                num(f.spectral_centroid),
-            ])?;
+            ];
+            features.write_record(row.into_iter().chain(f.iter().map(|v| num(*v))))?;
         }
         Ok(())
     }
@@ -456,7 +438,7 @@ fn spec(settings: &SignalSettings, sensors: Vec<(f64, f64)>) -> SignalSpec {
 
 fn ranked(
     channel: String,
-    feature: Feature,
+    feature: &'static dyn Feature,
     (coal, gangue): (&[f64], &[f64]),
     half_auc: Option<f64>,
     seed: u64,
@@ -570,7 +552,7 @@ fn run_set(
     let run_seconds = t0.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let full_model = full_model_check(scene, study, settings, set, &instrument)?;
-    let held_bytes = 2 * run.table.bytes() + CHUNK * infos.len() * 6 * 8;
+    let held_bytes = 2 * run.table.bytes() + CHUNK * infos.len() * FEATURES.len() * 8;
 
     // The same impacts on the model with half the modes: what each AUC owes to the modal
     // truncation (the difference overstates the error at N if the AUC converges in N).
@@ -610,11 +592,21 @@ fn run_set(
         })
         .map(|s| rank_of(s, TOP + 2));
     let (fc, fg) = split(&run.force_max, &classes);
-    let force_max =
-        ranked("contact force P_max".into(), Feature::Peak, (&fc, &fg), Some(half_of(&half.force_max)), seed ^ 1);
+    let force_max = ranked(
+        "contact force P_max".into(),
+        &identify::features::Peak,
+        (&fc, &fg),
+        Some(half_of(&half.force_max)),
+        seed ^ 1,
+    );
     let (tc, tg) = split(&run.contact_time, &classes);
-    let contact_time =
-        ranked("contact time t_c".into(), Feature::Duration, (&tc, &tg), Some(half_of(&half.contact_time)), seed ^ 2);
+    let contact_time = ranked(
+        "contact time t_c".into(),
+        &identify::features::Duration,
+        (&tc, &tg),
+        Some(half_of(&half.contact_time)),
+        seed ^ 2,
+    );
 
     // The best sensor: the sensor channel with the most separating feature.
     let sensor_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_some()).collect();
@@ -640,7 +632,7 @@ fn run_set(
             let values = map(&all, &chans, top.feature);
             let nz = study.candidates_z.len();
             let svg = ColourMap {
-                title: format!("{}: separability of {} {}", set.name, quantity_name(q), feature_label(top.feature)),
+                title: format!("{}: separability of {} {}", set.name, quantity_name(q), top.feature.name()),
                 x: Axis::linear("x (mm)"),
                 y: Axis::linear("z (mm)"),
                 xs: study.candidates_x.iter().map(|x| x * 1e3).collect(),
@@ -668,7 +660,7 @@ fn run_set(
         let label = format!(
             "{} {} ({})",
             infos[top.channel].label(),
-            feature_label(top.feature),
+            top.feature.name(),
             top.feature.unit(infos[top.channel].unit)
         );
         let file = format!("{stem}-hist-best.svg");
@@ -695,7 +687,8 @@ fn run_set(
         let chans = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
         (
             format!(
-                "{what} 3 quantities × 6 features, at ({}, {}) mm",
+                "{what} 3 quantities × {} features, at ({}, {}) mm",
+                FEATURES.len(),
                 mm(infos[s.channel].at.0),
                 mm(infos[s.channel].at.1)
             ),
@@ -714,15 +707,20 @@ fn run_set(
     let corner_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_none()).collect();
     if !corner_channels.is_empty() {
         groups.push((
-            format!("the {} corner channels (spring forces, reactions) × 6 features", corner_channels.len()),
+            format!(
+                "the {} corner channels (spring forces, reactions) × {} features",
+                corner_channels.len(),
+                FEATURES.len()
+            ),
             corner_channels.clone(),
         ));
     }
     if named > 0 {
         groups.push((
             format!(
-                "every named sensor and corner channel ({} channels) × 6 features",
-                named * 3 + corner_channels.len()
+                "every named sensor and corner channel ({} channels) × {} features",
+                named * 3 + corner_channels.len(),
+                FEATURES.len()
             ),
             (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect(),
         ));
@@ -822,7 +820,7 @@ fn run_set(
         &hist_md,
         reference.map(|(k, f)| {
             let i = ref_infos.iter().find(|i| i.kind == k).map_or_else(|| "-".to_string(), |i| i.label());
-            format!("{i}, {}", feature_label(f))
+            format!("{i}, {}", f.name())
         }),
     )?;
     Ok(ConditionOutput { result, markdown })
@@ -911,7 +909,7 @@ fn condition_markdown(
     for x in std::iter::once(&r.force_max).chain([&r.contact_time]).chain(&r.ranking).chain(extra) {
         ranking.push(vec![
             x.channel.clone().into(),
-            feature_label(x.feature).into(),
+            x.feature.name().into(),
             Cell::Text(sig(x.auc.auc, 3)),
             Cell::Text(sig(x.auc.standard_error, 2)),
             ci(x).into(),
@@ -944,7 +942,7 @@ fn condition_markdown(
         held.push(vec![
             h.held.clone().into(),
             Cell::Text(format!("{} ± {}", sig(h.reference.auc, 3), sig(h.reference.standard_error, 2))),
-            format!("{} {}", h.best.channel, feature_label(h.best.feature)).into(),
+            format!("{} {}", h.best.channel, h.best.feature.name()).into(),
             Cell::Text(format!("{} ({})", sig(h.best.auc.auc, 3), ci(&h.best))),
             Cell::Text(sig(h.force_max.auc, 3)),
             Cell::Text(format!("{} ± {}", sig(h.accuracy.accuracy, 3), sig(h.accuracy.standard_error, 2))),
@@ -1006,7 +1004,7 @@ fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
             "identify/finding-held.md",
             FINDING_HELD,
             &[
-                ("reference", format!("the {} of the {}", feature_label(reference.feature), reference.channel)),
+                ("reference", format!("the {} of the {}", reference.feature.name(), reference.channel)),
                 ("variable", m.held.clone()),
                 ("free", sig(reference.auc.auc, 3)),
                 ("auc", sig(m.reference.auc, 3)),
@@ -1025,7 +1023,7 @@ fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
                 ("delta", t.resolution.map_or_else(dash, |d| sig(d, 2))),
                 ("half_modes", (modes / 2).max(1).to_string()),
                 ("modes", modes.to_string()),
-                ("feature", feature_label(b.feature).to_string()),
+                ("feature", b.feature.name().to_string()),
                 ("channel", b.channel.clone()),
                 ("auc", sig(b.auc.auc, 3)),
                 ("ci", ci(b)),
@@ -1038,7 +1036,7 @@ fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
         FINDING,
         &[
             ("condition", r.condition.clone()),
-            ("feature", top.map_or_else(dash, |t| feature_label(t.feature).to_string())),
+            ("feature", top.map_or_else(dash, |t| t.feature.name().to_string())),
             ("channel", top.map_or_else(dash, |t| t.channel.clone())),
             ("best_auc", top.map_or_else(dash, |t| sig(t.auc.auc, 3))),
             ("best_ci", top.map_or_else(dash, ci)),
@@ -1067,8 +1065,9 @@ pub fn checked_study(scene: &Scene) -> Result<&Study, Failure> {
         let bytes = feature_bytes(study.ensemble.len(), channels);
         if bytes as f64 > studies::run::MEMORY_BUDGET_BYTES {
             return Err(format!(
-                "the ensemble's features are {} impacts x {channels} channels x 6 features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
+                "the ensemble's features are {} impacts x {channels} channels x {} features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
                 study.ensemble.len(),
+                FEATURES.len(),
                 bytes as f64 / 1e9,
                 set.name,
                 studies::run::MEMORY_BUDGET_BYTES / 1e9
@@ -1281,7 +1280,7 @@ pub fn summary_tables(s: &Summary) -> Vec<Table> {
         ],
     );
     let auc = |r: &Ranked| Cell::Text(format!("{} ({})", sig(r.auc.auc, 3), ci(r)));
-    let name = |r: &Ranked| Cell::Text(format!("{} {}", feature_label(r.feature), r.channel));
+    let name = |r: &Ranked| Cell::Text(format!("{} {}", r.feature.name(), r.channel));
     for c in &s.conditions {
         let top = c.ranking.first();
         let acc = c.classifiers.iter().map(|a| a.result.accuracy).fold(f64::NAN, f64::max);
