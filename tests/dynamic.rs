@@ -2,7 +2,7 @@
 
 use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
-use coupled::transient::{simulate, zener, ContactLaw, Striker};
+use coupled::transient::{law::Flores, simulate, zener, ContactLaw, Striker};
 use impact::report::Silent;
 use impact::scene::{Scene, SceneSource};
 use plate_fem::dynamics::{fundamental_frequency, Newmark};
@@ -11,7 +11,7 @@ use plate_fem::{Mesh, Model, PlateProperties, Supports};
 fn coal(v: f64, e: f64) -> Striker {
     let scene = Scene::default_scene();
     let imp = impact_of(&scene, &scene.bodies[0], v);
-    Striker { k: imp.contact_stiffness, restitution: e, mass: imp.mass, velocity: v, law: ContactLaw::Flores }
+    Striker { k: imp.contact_stiffness, restitution: e, mass: imp.mass, velocity: v, law: ContactLaw::Flores(Flores) }
 }
 
 /// Rigid target, e = 1: Hertz. Newmark's rule is second order, so the force error falls 4x

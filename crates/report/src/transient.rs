@@ -7,7 +7,7 @@ use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
 use coupled::regimes::{mass_ratio, OlssonRegime, RuleInputs};
 use coupled::transient::{
-    simulate, zener, ContactLaw, Discretisation, Estimated, Ladder, LawKind, Outcome, Sample, Striker,
+    law::Flores, simulate, zener, ContactLaw, Discretisation, Estimated, Ladder, LawKind, Outcome, Sample, Striker,
     TransientSettings, HERTZ_TIME,
 };
 use coupled::PlateModel;
@@ -750,7 +750,7 @@ fn history_figure(scene: &Scene, cases: &[TransientCase]) -> Plot {
     }
     if let Some(body) = scene.bodies.iter().find(|b| b.name == first.body) {
         let s = striker(scene, body, first.velocity);
-        let hertz = Striker { restitution: 1.0, law: ContactLaw::Flores, ..s };
+        let hertz = Striker { restitution: 1.0, law: ContactLaw::Flores(Flores), ..s };
         let tc = hertz.hertz_time();
         let o = simulate(&hertz, None, tc / STEPS_PER_CONTACT, 1.5 * tc);
         plot =
@@ -843,7 +843,7 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
         restitution: 1.0,
         mass: imp.mass,
         velocity: VERIFICATION_VELOCITY,
-        law: ContactLaw::Flores,
+        law: ContactLaw::Flores(Flores),
     };
     let tc = elastic.hertz_time();
     let mut h =
