@@ -15,7 +15,7 @@
 
 use analytic::contact_stiffness;
 use coupled::reduced::{ReducedModel, ReducedSettings, SignalSpec};
-use coupled::transient::{ContactLaw, Striker, TransientCase, TransientSettings};
+use coupled::transient::{law::Flores, ContactLaw, Striker, TransientCase, TransientSettings};
 use coupled::SupportSet;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use impact::scene::{Scene, SceneSource};
@@ -38,7 +38,7 @@ fn impacts(scene: &Scene, count: usize) -> Vec<(Striker, f64, f64)> {
                 restitution: scene.restitution,
                 mass: body.mass(),
                 velocity: 1.0 + 3.0 * next(),
-                law: ContactLaw::Flores,
+                law: ContactLaw::Flores(Flores),
             };
             (s, l * next(), b * next())
         })

@@ -282,17 +282,21 @@ fn solver_tolerance_is_bounded() {
     expect(&text, &["solver.tolerance = 1e-300"]);
 }
 
-/// The contact law is a scene choice: the paper's Flores law by default, Hertz and
-/// Thornton's elastic-plastic law by name, anything else refused naming the key.
+/// The contact law is a scene choice: the paper's Flores law by default, every law of the
+/// registry by its key, anything else refused naming the key.
 #[test]
 fn contact_law_is_a_scene_choice() {
     use coupled::transient::law::LawKind;
     assert_eq!(Scene::default_scene().contact_law, LawKind::Flores);
-    for (name, kind) in [("hertz", LawKind::Hertz), ("thornton", LawKind::Thornton), ("flores", LawKind::Flores)] {
-        let s = Scene::parse(&format!("contact_law = \"{name}\"\n{DEFAULT_SCENE}"), "t").unwrap();
+    assert_eq!(LawKind::from_key("thornton"), Some(LawKind::Thornton));
+    for &kind in LawKind::ALL {
+        let s = Scene::parse(&format!("contact_law = \"{}\"\n{DEFAULT_SCENE}", kind.key()), "t").unwrap();
         assert_eq!(s.contact_law, kind);
     }
     expect(&format!("contact_law = \"glue\"\n{DEFAULT_SCENE}"), &["contact_law", "'glue' is not a contact law"]);
+    // The refusal lists every key of the registry.
+    let keys: Vec<String> = LawKind::ALL.iter().map(|l| format!("\"{}\"", l.key())).collect();
+    expect(&format!("contact_law = \"glue\"\n{DEFAULT_SCENE}"), &keys.iter().map(String::as_str).collect::<Vec<_>>());
 }
 
 /// `[signals]`: defaults when absent, values in SI when given, and every bad value named

@@ -362,7 +362,7 @@ fn regime_rule(scene: &Scene, set: &SupportSet, imp: &Impact, c: f64) -> validit
         restitution: imp.restitution,
         mass: imp.mass,
         velocity: imp.velocity,
-        law: crate::transient::ContactLaw::Flores,
+        law: crate::transient::ContactLaw::Flores(crate::transient::law::Flores),
     };
     crate::regimes::rule(crate::regimes::RuleInputs::of(&s, &scene.plate, set, c))
 }

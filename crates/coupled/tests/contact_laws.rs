@@ -5,8 +5,9 @@
 use analytic::{DruckerPrager, Elastic, Plate, RockStrength, Sphere};
 use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
+use coupled::transient::law::{Flores, Hertz, Thornton};
 use coupled::transient::{
-    simulate, thornton_restitution, ContactLaw, Outcome, Striker, TransientCase, TransientSettings,
+    simulate, thornton_restitution, ContactLaw, Law, Outcome, Striker, TransientCase, TransientSettings,
 };
 use plate_fem::Supports;
 
@@ -20,13 +21,19 @@ fn coal() -> Sphere {
 }
 
 fn thornton(v: f64) -> Striker {
-    Striker { law: ContactLaw::thornton_for(&coal()), ..striker(&plate(), &coal(), 1.0, v) }
+    Striker { law: Thornton::for_body(&coal()).into(), ..striker(&plate(), &coal(), 1.0, v) }
+}
+
+/// Thornton's law of a striker made by [`thornton`].
+fn law_of(s: &Striker) -> Thornton {
+    let ContactLaw::Thornton(t) = s.law else { panic!("not Thornton's law: {:?}", s.law) };
+    t
 }
 
 /// v_y on a rigid target: ½mv_y² = (2/5)Kδ_y^{5/2}.
 fn rigid_yield_velocity() -> f64 {
     let s = thornton(1.0);
-    let dy = s.law.yield_compression(s.k).unwrap();
+    let dy = law_of(&s).yield_compression(s.k);
     (2.0 * 0.4 * s.k * dy.powf(2.5) / s.mass).sqrt()
 }
 
@@ -42,10 +49,10 @@ fn yield_onset_is_the_papers_delta_my() {
     let (b, s) = (coal(), thornton(1.0));
     let dp = DruckerPrager::of(&b);
     let d_my = dp.yield_compression(b.radius(), s.k);
-    let dy = s.law.yield_compression(s.k).unwrap();
+    let dy = law_of(&s).yield_compression(s.k);
     assert!((dy / d_my - 1.0).abs() < 1e-12, "δ_y {dy}, δ_my {d_my}");
     // At δ_my the Hertz centre pressure 3P/(2πa²), a = √(Rδ), is p_y.
-    let ContactLaw::Thornton { yield_pressure, radius } = s.law else { panic!() };
+    let Thornton { yield_pressure, radius } = law_of(&s);
     let p0 = 1.5 * s.k * d_my.powf(1.5) / (std::f64::consts::PI * radius * d_my);
     assert!((p0 / yield_pressure - 1.0).abs() < 1e-12);
 }
@@ -55,7 +62,7 @@ fn below_yield_thornton_is_hertz_exactly() {
     let vy = rigid_yield_velocity();
     for ratio in [0.1, 0.5, 0.999] {
         let t = thornton(ratio * vy);
-        let h = Striker { law: ContactLaw::Hertz, ..t };
+        let h = Striker { law: Hertz.into(), ..t };
         let dt = t.hertz_time() / 200.0;
         let mut a: Outcome = simulate(&t, None, dt, 5.0 * t.hertz_time());
         let b = simulate(&h, None, dt, 5.0 * t.hertz_time());
@@ -101,7 +108,7 @@ fn on_the_papers_plate_plastic_flow_caps_the_force_and_dissipates() {
         let plate = (last.plate_kinetic + last.plate_strain + last.springs) / e0;
         (o.force_max_interpolated, (o.final_velocity / v).powi(2), plate, last.dissipated / e0, -o.final_velocity / v)
     };
-    let thornton = ContactLaw::thornton_for(&coal());
+    let thornton = Thornton::for_body(&coal()).into();
     eprintln!("v_y (rigid) = {:.4e} m/s", rigid_yield_velocity());
     eprintln!(
         "{:>6} {:>9} | {:>10} {:>10} {:>10} | {:>8} {:>8} {:>8} {:>8}",
@@ -109,8 +116,8 @@ fn on_the_papers_plate_plastic_flow_caps_the_force_and_dissipates() {
     );
     let mut prev: Option<(f64, f64)> = None;
     for v in [0.008, 0.1, 1.0, 2.0] {
-        let h = run(ContactLaw::Hertz, 1.0, v);
-        let f = run(ContactLaw::Flores, 0.65, v);
+        let h = run(Hertz.into(), 1.0, v);
+        let f = run(Flores.into(), 0.65, v);
         let t = run(thornton, 1.0, v);
         for (name, r) in [("hertz", h), ("flores", f), ("thornton", t)] {
             eprintln!(

@@ -8,7 +8,7 @@ use coupled::regimes::{
 };
 use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
-use coupled::transient::{ContactLaw, Striker, TransientCase, TransientSettings};
+use coupled::transient::{law::Hertz, ContactLaw, Striker, TransientCase, TransientSettings};
 use coupled::{ComplianceModel, PlateModel};
 use plate_fem::Supports;
 
@@ -73,7 +73,7 @@ fn infinite_plate_force_is_the_damped_oscillator_peak() {
 #[test]
 fn quasi_static_contact_time_is_the_energy_integral() {
     let plate = steel_plate(1.0, 0.008);
-    let s = Striker { law: ContactLaw::Hertz, ..striker(&plate, &coal(0.025), 1.0, 0.008) };
+    let s = Striker { law: ContactLaw::Hertz(Hertz), ..striker(&plate, &coal(0.025), 1.0, 0.008) };
     for c in [0.0, 6.2e-7, 1e-5] {
         let u = |d: f64| 0.4 * s.k * d.powf(2.5) + 0.5 * c * s.k * s.k * d.powi(3);
         let e0 = 0.5 * s.mass * s.velocity * s.velocity;

@@ -5,7 +5,7 @@ use coupled::supports::SupportSet;
 use coupled::transient::case::striker;
 use coupled::transient::estimate::{choose, estimate, Budget, Quantities, State, DEFAULT_TOLERANCE};
 use coupled::transient::{
-    simulate, simulate_with, Contact, ContactLaw, Outcome, PlateFacts, SpringMass, Striker, TransientCase,
+    law::Flores, simulate, simulate_with, Contact, ContactLaw, Outcome, PlateFacts, SpringMass, Striker, TransientCase,
     TransientSettings,
 };
 use plate_fem::Supports;
@@ -197,7 +197,8 @@ impl Sdof {
 
 /// The transient loop on the spring-mass target.
 fn on_spring_mass(sd: &Sdof, steps: f64, window: f64) -> (Outcome, f64) {
-    let s = Striker { k: sd.k_contact, restitution: sd.e, mass: sd.m, velocity: sd.v0, law: ContactLaw::Flores };
+    let s =
+        Striker { k: sd.k_contact, restitution: sd.e, mass: sd.m, velocity: sd.v0, law: ContactLaw::Flores(Flores) };
     let dt = s.hertz_time() / steps;
     let mut target = SpringMass::new(sd.big_m, sd.k, dt);
     let facts = PlateFacts { static_compliance: Some(target.static_compliance()), ..Default::default() };

@@ -57,6 +57,43 @@ pub fn render(template: &str, text: &str, values: &[(&str, String)]) -> Result<S
     Ok(out)
 }
 
+/// A count in words for prose ("twelve runs"), in figures from 21 on.
+pub fn count_words(n: usize) -> String {
+    const WORDS: [&str; 21] = [
+        "no",
+        "one",
+        "two",
+        "three",
+        "four",
+        "five",
+        "six",
+        "seven",
+        "eight",
+        "nine",
+        "ten",
+        "eleven",
+        "twelve",
+        "thirteen",
+        "fourteen",
+        "fifteen",
+        "sixteen",
+        "seventeen",
+        "eighteen",
+        "nineteen",
+        "twenty",
+    ];
+    WORDS.get(n).map_or_else(|| n.to_string(), |w| w.to_string())
+}
+
+/// Names in prose: "A", "A and B", "A, B and C".
+pub fn and_list(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [head @ .., last] => format!("{} and {last}", head.join(", ")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,6 +113,14 @@ mod tests {
             render("t", "{{x}}", &[("x", "1".into()), ("x", "2".into())]),
             Err(TemplateError::Duplicate { .. })
         ));
+    }
+
+    #[test]
+    fn counts_and_lists_read_as_prose() {
+        assert_eq!(count_words(12), "twelve");
+        assert_eq!(count_words(21), "21");
+        assert_eq!(and_list(&["Hertz"]), "Hertz");
+        assert_eq!(and_list(&["Hertz", "Flores", "Thornton"]), "Hertz, Flores and Thornton");
     }
 
     #[test]

@@ -7,7 +7,7 @@ use coupled::discretisation::{mesh_for, plate_properties};
 use coupled::plan::impact_of;
 use coupled::regimes::{mass_ratio, OlssonRegime, RuleInputs};
 use coupled::transient::{
-    simulate, zener, ContactLaw, Discretisation, Estimated, Ladder, LawKind, Outcome, Sample, Striker,
+    law::Flores, simulate, zener, ContactLaw, Discretisation, Estimated, Ladder, LawKind, Outcome, Sample, Striker,
     TransientSettings, HERTZ_TIME,
 };
 use coupled::PlateModel;
@@ -18,7 +18,7 @@ use plate_fem::{Mesh, Model, PlateProperties, Supports};
 use scene::{Analysis, Scene, SceneSource, SupportSet};
 use std::time::Instant;
 
-use crate::template::render;
+use crate::template::{and_list, count_words, render};
 use crate::Failure;
 use studies::progress::Progress;
 
@@ -554,8 +554,9 @@ pub struct LawCase {
     pub permanent_set: f64,
 }
 
-/// Hertz, Flores and Thornton side by side on the scene's plate: the first body at the
-/// centre under the first condition, at [`LAW_RATIOS`] times its rigid-target yield velocity.
+/// Every law of the registry ([`LawKind::ALL`]: Hertz, Flores and Thornton) side by side on
+/// the scene's plate: the first body at the centre under the first condition, at
+/// [`LAW_RATIOS`] times its rigid-target yield velocity.
 pub fn laws(scene: &Scene, progress: &dyn Progress) -> Result<Vec<LawCase>, Failure> {
     let body = scene.bodies.first().ok_or("no body")?;
     let cond = scene.conditions.first().ok_or("no condition")?;
@@ -566,8 +567,8 @@ pub fn laws(scene: &Scene, progress: &dyn Progress) -> Result<Vec<LawCase>, Fail
     let disc = scene.transient_discretisation;
     let mut ladder = Ladder::new(&scene.plate, disc.start())?;
     let mut out = Vec::new();
-    progress.start(3 * LAW_RATIOS.len(), "contact-law runs");
-    for law in [LawKind::Hertz, LawKind::Flores, LawKind::Thornton] {
+    progress.start(LawKind::ALL.len() * LAW_RATIOS.len(), "contact-law runs");
+    for &law in LawKind::ALL {
         for ratio in LAW_RATIOS {
             let v = ratio * v_y;
             let s = Striker { law: law.law_for(body), ..striker(scene, body, v) };
@@ -750,7 +751,7 @@ fn history_figure(scene: &Scene, cases: &[TransientCase]) -> Plot {
     }
     if let Some(body) = scene.bodies.iter().find(|b| b.name == first.body) {
         let s = striker(scene, body, first.velocity);
-        let hertz = Striker { restitution: 1.0, law: ContactLaw::Flores, ..s };
+        let hertz = Striker { restitution: 1.0, law: ContactLaw::Flores(Flores), ..s };
         let tc = hertz.hertz_time();
         let o = simulate(&hertz, None, tc / STEPS_PER_CONTACT, 1.5 * tc);
         plot =
@@ -843,7 +844,7 @@ fn verification(scene: &Scene) -> Result<String, Failure> {
         restitution: 1.0,
         mass: imp.mass,
         velocity: VERIFICATION_VELOCITY,
-        law: ContactLaw::Flores,
+        law: ContactLaw::Flores(Flores),
     };
     let tc = elastic.hertz_time();
     let mut h =
@@ -1351,7 +1352,9 @@ pub fn study(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Trans
     let laws_md = if scene.wants(Analysis::ContactLaws) {
         laws_section(scene, &mut a, progress)?
     } else {
-        render("transient/laws-not-asked.md", LAWS_NOT_ASKED, &[])?
+        let laws: Vec<&str> = LawKind::ALL.iter().map(|l| l.name()).collect();
+        let runs = count_words(LawKind::ALL.len() * LAW_RATIOS.len());
+        render("transient/laws-not-asked.md", LAWS_NOT_ASKED, &[("laws", and_list(&laws)), ("runs", runs)])?
     };
     md.push_str(&laws_md);
 
@@ -1433,17 +1436,19 @@ fn laws_section(scene: &Scene, a: &mut Artifacts, progress: &dyn Progress) -> Re
         at(LawKind::Thornton, top).ok_or("no Thornton run")?,
     );
     let t_h = |c: &LawCase| striker(scene, &scene.bodies[0], c.velocity).hertz_time();
-    let law_series: Vec<Series> = [hertz, flores, thornton]
+    // The figure has every law of the registry; the prose compares the three named here.
+    let law_series = LawKind::ALL
         .iter()
-        .map(|c| {
+        .map(|&law| {
+            let c = at(law, top).ok_or("no run at the top velocity")?;
             let th = t_h(c);
-            whole_run(&c.estimate.outcome, c.law.key(), |t| t / th, |s| s.force)
+            Ok(whole_run(&c.estimate.outcome, c.law.key(), |t| t / th, |s| s.force))
         })
-        .collect();
+        .collect::<Result<Vec<Series>, Failure>>()?;
     a.add(
         "contact-laws.svg",
         line_plot(
-            &format!("Contact force at {top} x v_y, the three laws"),
+            &format!("Contact force at {top} x v_y, the {} laws", count_words(LawKind::ALL.len())),
             "t / t_H (Hertz time)",
             "P (N)",
             &law_series,

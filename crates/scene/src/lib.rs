@@ -567,11 +567,10 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
 /// Checks every field against its range, in the units of the file, then converts to SI.
 fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
-    let laws = [LawKind::Flores, LawKind::Hertz, LawKind::Thornton];
     let contact_law = match raw.contact_law.as_deref() {
-        None => LawKind::Flores,
-        Some(name) => laws.into_iter().find(|l| l.key() == name).ok_or_else(|| {
-            let keys: Vec<_> = laws.iter().map(|l| format!("\"{}\"", l.key())).collect();
+        None => LawKind::default(),
+        Some(name) => LawKind::from_key(name).ok_or_else(|| {
+            let keys: Vec<_> = LawKind::ALL.iter().map(|l| format!("\"{}\"", l.key())).collect();
             other("contact_law", format!("'{name}' is not a contact law; allowed: {}", keys.join(", ")))
         })?,
     };

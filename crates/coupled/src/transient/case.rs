@@ -1,7 +1,7 @@
 //! One transient case on a scene's plate: the sphere, the support set, the point and the
 //! velocity, with the discretisation the transient study validated.
 
-use super::{simulate_with, ContactLaw, Outcome, PlateFacts, Striker};
+use super::{law::Flores, simulate_with, ContactLaw, Outcome, PlateFacts, Striker};
 use crate::discretisation::{mesh_for, plate_properties};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
@@ -47,7 +47,7 @@ pub fn striker(plate: &Plate, body: &Sphere, restitution: f64, velocity: f64) ->
         restitution,
         mass: body.mass(),
         velocity,
-        law: ContactLaw::Flores,
+        law: ContactLaw::Flores(Flores),
     }
 }
 

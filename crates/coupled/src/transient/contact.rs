@@ -11,7 +11,7 @@
 //! enters with the largest compression before the step: within the step it is loading if
 //! δ(P) exceeds it and unloading otherwise, one continuous nondecreasing F either way.
 
-use super::law::ContactLaw;
+use super::law::{ContactLaw, ContactState};
 use serde::Serialize;
 
 /// The Hertz time constant 2 · 0.4 B(2/5, 1/2) · (5/4)^{2/5} = 3.21800, from
@@ -59,17 +59,30 @@ impl Striker {
     pub fn force_at_max_compression(&self, delta: f64) -> f64 {
         self.force(delta.max(0.0), 0.0)
     }
+    /// What the law sees of this striker after a largest compression `dmax` so far.
+    #[inline]
+    pub fn state(&self, dmax: f64) -> ContactState {
+        ContactState { k: self.k, restitution: self.restitution, velocity: self.velocity, max_compression: dmax }
+    }
     /// The law's force at δ, δ̇ after a largest compression `dmax` so far.
+    #[inline]
     pub fn force_after(&self, delta: f64, rate: f64, dmax: f64) -> f64 {
-        self.law.force(self.k, self.restitution, self.velocity, delta, rate, dmax)
+        self.law.force(&self.state(dmax), delta, rate)
     }
     /// The elastic energy in the contact at δ after a largest compression `dmax`.
+    #[inline]
     pub fn stored_energy(&self, delta: f64, dmax: f64) -> f64 {
-        self.law.stored_energy(self.k, delta, dmax)
+        self.law.stored_energy(&self.state(dmax), delta)
     }
     /// The permanent compression after a largest compression `dmax` (zero if elastic).
+    #[inline]
     pub fn permanent_set(&self, dmax: f64) -> f64 {
-        self.law.permanent_set(self.k, dmax)
+        self.law.permanent_set(&self.state(dmax))
+    }
+    /// Whether the law stores all the work done on it whatever the compression (Hertz,
+    /// Flores at e ≥ 1), so that the run's energy error is measured.
+    pub fn conserves(&self) -> bool {
+        self.law.conserves(&self.state(0.0))
     }
 }
 

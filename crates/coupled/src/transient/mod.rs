@@ -13,9 +13,9 @@
 //! mass on a spring, for checks against an ODE solution.
 //!
 //! ```
-//! use coupled::transient::{simulate, ContactLaw, Striker};
+//! use coupled::transient::{law::Flores, simulate, ContactLaw, Striker};
 //! // A coal sphere (Table 1) on a rigid target with e = 1 is Hertz's impact.
-//! let s = Striker { k: 5.11545e8, restitution: 1.0, mass: 0.0903, velocity: 0.008, law: ContactLaw::Flores };
+//! let s = Striker { k: 5.11545e8, restitution: 1.0, mass: 0.0903, velocity: 0.008, law: ContactLaw::Flores(Flores) };
 //! let tc = s.hertz_time();
 //! let o = simulate(&s, None, tc / 200.0, 3.0 * tc);
 //! assert!((o.force_max / s.hertz_force() - 1.0).abs() < 1e-4);
@@ -38,7 +38,8 @@ pub use contact::{contact_force, contact_force_after, Striker, HERTZ_TIME};
 pub use estimate::{
     choose, choose_on, estimate, Budget, Discretisation, Estimated, Ladder, Quantities, DEFAULT_TOLERANCE,
 };
-pub use law::{thornton_restitution, ContactLaw, LawKind};
+pub use law::thornton::thornton_restitution;
+pub use law::{ContactLaw, ContactState, Law, LawKind};
 pub use reference::zener;
 pub use target::{SpringMass, Target};
 
@@ -318,7 +319,7 @@ pub fn simulate_with<T: Target + ?Sized>(
     // (δ_p = 0 for the elastic laws, which leaves every test unchanged).
     let mut dmax: f64 = 0.0;
     let shifted = |e: &StepEnd, set: f64| StepEnd { delta: e.delta - set, ..*e };
-    let conserves = s.law.conserves(s.restitution);
+    let conserves = s.conserves();
     while t < t_max {
         let (wp, vp) = plate.as_mut().map_or((0.0, 0.0), |p| p.predict());
         let u_hat = u + dt * v + 0.25 * dt * dt * a;
