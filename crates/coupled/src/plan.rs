@@ -13,7 +13,7 @@ use crate::error::ModelError;
 use crate::scene::{Analysis, Scene};
 use crate::supports::SupportSet;
 use crate::transient::estimate::{Discretisation, Estimated, Ladder};
-use crate::transient::{case::striker, Outcome, Striker, TransientCase, TransientSettings};
+use crate::transient::{case::striker, LawKind, Outcome, Striker, TransientCase, TransientSettings};
 use crate::validity::{self, Validity};
 use analytic::{
     contact_stiffness, respond, yield_velocity, DruckerPrager, Impact, Method, PointCompliance, Response, Sphere,
@@ -662,7 +662,14 @@ pub fn transient_values(
 /// The striker of `body` on the scene's plate at `velocity`, with the scene's restitution and
 /// contact law.
 pub fn scene_striker(scene: &Scene, body: &Sphere, velocity: f64) -> Striker {
-    Striker { law: scene.contact_law.law_for(body), ..striker(&scene.plate, body, scene.restitution, velocity) }
+    law_striker(scene, body, velocity, scene.contact_law)
+}
+
+/// The striker of `body` on the scene's plate at `velocity` with the scene's restitution and
+/// the contact law `law` in place of the scene's: the same sphere under Hertz, Flores or
+/// Thornton, for comparing the laws on one impact.
+pub fn law_striker(scene: &Scene, body: &Sphere, velocity: f64, law: LawKind) -> Striker {
+    Striker { law: law.law_for(body), ..striker(&scene.plate, body, scene.restitution, velocity) }
 }
 
 /// One transient response row's values with their error estimate, and the estimate itself

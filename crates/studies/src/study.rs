@@ -55,3 +55,15 @@ impl Study for FemBench {
         Ok(crate::fem_bench::bench(scene, settings.bench_tolerance, nx, nz)?)
     }
 }
+
+/// The transient study ([`crate::transient`]): `impact dynamic`, and the main report's
+/// `dynamic` folder.
+pub struct Transient;
+
+impl Study for Transient {
+    const KEY: &'static str = "dynamic";
+    type Data = crate::transient::TransientData;
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::transient::compute(scene, settings, progress)
+    }
+}

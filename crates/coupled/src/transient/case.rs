@@ -153,9 +153,7 @@ impl TransientCase {
         steps_per_contact: f64,
     ) -> Result<Outcome, ModelError> {
         let dt = s.hertz_time() / steps_per_contact;
-        let mut nm = Newmark::new(&self.model, set.supports, dt, x, z)?;
-        let facts = PlateFacts { corner_springs: Some(corner_springs(&set.supports)), ..PlateFacts::default() };
-        Ok(simulate_with(s, Some(&mut nm), facts, dt, self.settings.window_contacts * s.hertz_time()))
+        first_contact_on(&self.model, set.supports, s, (x, z), dt, self.settings.window_contacts * s.hertz_time())
     }
 
     /// One impact with `steps_per_contact` steps per Hertz time instead of the settings'.
@@ -172,4 +170,24 @@ impl TransientCase {
         let facts = self.facts(&set.supports, x, z);
         Ok(simulate_with(s, Some(&mut nm), facts, dt, self.settings.window_contacts * s.hertz_time()))
     }
+}
+
+/// The first contact of `s` at (x, z) on `model` held by `supports`, with the time step `dt`
+/// and the window `t_max` (both in seconds) given directly: for runs timed by another
+/// contact time than Hertz's (Zener's on a large plate) and for plate models built outside a
+/// [`TransientCase`]. The run stops at the first separation: without the static compliance
+/// nothing bounds the plate's later excursions ([`super::PlateFacts`]), so that is the last
+/// instant its sequence is known to be the first contact's. The corner springs are known, so
+/// the spring energy at maximum compression is exact rather than interpolated.
+pub fn first_contact_on(
+    model: &Model,
+    supports: Supports,
+    s: &Striker,
+    (x, z): (f64, f64),
+    dt: f64,
+    t_max: f64,
+) -> Result<Outcome, ModelError> {
+    let mut nm = Newmark::new(model, supports, dt, x, z)?;
+    let facts = PlateFacts { corner_springs: Some(corner_springs(&supports)), ..PlateFacts::default() };
+    Ok(simulate_with(s, Some(&mut nm), facts, dt, t_max))
 }

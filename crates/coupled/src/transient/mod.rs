@@ -28,12 +28,13 @@
 pub mod case;
 pub mod contact;
 pub mod estimate;
+pub mod frames;
 pub mod interpolate;
 pub mod law;
 pub mod reference;
 pub mod target;
 
-pub use case::{TransientCase, TransientSettings};
+pub use case::{first_contact_on, TransientCase, TransientSettings};
 pub use contact::{contact_force, contact_force_after, Striker, HERTZ_TIME};
 pub use estimate::{
     choose, choose_on, estimate, Budget, Discretisation, Estimated, Ladder, Quantities, DEFAULT_TOLERANCE,
