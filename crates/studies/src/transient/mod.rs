@@ -1,6 +1,6 @@
 //! The transient study (`impact dynamic`, and the main report's transient section): the
 //! transient model against the quasi-static ones on the scene's cases ([`cases`]), the
-//! contact laws side by side above the yield velocity ([`laws`]), the quasi-static error
+//! contact laws side by side above the yield velocity ([`laws()`]), the quasi-static error
 //! over plate size and thickness ([`size_map`]), the model against closed forms
 //! ([`verification`]), and the numbers the findings quote ([`findings`]). Every run is the
 //! coupled library's (`coupled::transient`); the report crate renders the data.
