@@ -190,7 +190,8 @@ fn force_outside_its_range_is_refused_naming_flag_value_and_range() {
         let o = run(&["field", "--format", "vtu", "--x-mm", "100", "--z-mm", "200", "--force-n", bad, "--out", out]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{bad}: {err}");
-        assert!(err.contains(&format!("--force-n {bad} is outside the allowed range [1e-9, 1e12] N")), "{bad}: {err}");
+        let range = impact::scene::limits::FORCE_N;
+        assert!(err.contains(&format!("--force-n {bad} is outside the allowed range {range} N")), "{bad}: {err}");
         assert!(!std::path::Path::new(out).exists());
     }
 }

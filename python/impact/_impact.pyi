@@ -5,6 +5,8 @@ from os import PathLike
 from typing import Any
 
 __version__: str
+TRANSIENT_TOLERANCE: tuple[float, float]
+DEFAULT_TOLERANCE: float
 
 class SceneError(ValueError):
     """An invalid scene or argument, with the command line's message."""
