@@ -51,21 +51,21 @@ pub(super) struct RawEnsemble {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawRegion {
+pub(super) struct RawRegion {
     x_mm: (f64, f64),
     z_mm: (f64, f64),
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawPlacement {
+pub(super) struct RawPlacement {
     x_count: f64,
     z_count: f64,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawFamily {
+pub(super) struct RawFamily {
     name: String,
     class: String,
     count: f64,
@@ -78,7 +78,7 @@ struct RawFamily {
 }
 
 /// The keys each law takes, besides `distribution`.
-const LAWS: [(&str, &[&str]); 5] = [
+pub(super) const LAWS: [(&str, &[&str]); 5] = [
     ("uniform", &["min", "max"]),
     ("normal", &["mean", "sd", "min", "max"]),
     ("lognormal", &["median", "sigma_log", "min", "max"]),

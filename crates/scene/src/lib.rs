@@ -11,11 +11,12 @@ pub use coupled::scene::{even_points, Analysis, Points, Scene};
 use coupled::transient::LawKind;
 pub use coupled::SupportSet;
 use plate_fem::{CornerSupport, EdgeSupport, Supports};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 mod ensemble;
 pub mod limits;
+pub mod reference;
 pub use ensemble::{CANDIDATES_PER_SIDE, FALL_HEIGHT_M, FAMILY_COUNT, MAX_CANDIDATES_PER_SIDE, MAX_IMPACTS};
 
 /// The embedded default scene: the paper's Table 1.
@@ -211,7 +212,7 @@ struct RawBody {
 }
 
 /// The paper's support conditions as shorthands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum Preset {
     /// Con 1.
@@ -220,6 +221,25 @@ enum Preset {
     BothSprings,
     /// Con 3.
     FixedAndSprings,
+}
+
+impl Preset {
+    /// Every preset, in the paper's order.
+    const ALL: [Preset; 3] = [Preset::BothFixed, Preset::BothSprings, Preset::FixedAndSprings];
+
+    /// The support set's name when the scene gives none: the paper's.
+    fn default_name(self) -> &'static str {
+        match self {
+            Preset::BothFixed => "Con 1",
+            Preset::BothSprings => "Con 2",
+            Preset::FixedAndSprings => "Con 3",
+        }
+    }
+}
+
+/// The name of a support set that gives neither a name nor a preset, by its position from 1.
+fn default_set_name(number: impl std::fmt::Display) -> String {
+    format!("support set {number}")
 }
 
 #[derive(Debug, Deserialize)]
@@ -232,7 +252,7 @@ struct RawCondition {
     edges: Option<RawEdges>,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum CornerKind {
     Fixed,
@@ -256,7 +276,7 @@ struct RawCorners {
     right_far: Option<RawCorner>,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum RawEdge {
     Free,
@@ -316,7 +336,7 @@ impl Default for RawSolver {
     }
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum MethodName {
     Recursion,
@@ -352,6 +372,9 @@ impl From<InvalidParameter> for Invalid {
 fn other(field: impl Into<String>, message: impl Into<String>) -> Invalid {
     Invalid::Other { field: field.into(), message: message.into() }
 }
+
+/// The contact laws a scene may name.
+const CONTACT_LAWS: [LawKind; 3] = [LawKind::Flores, LawKind::Hertz, LawKind::Thornton];
 
 const MM: f64 = 1e-3;
 const GPA: f64 = 1e9;
@@ -509,10 +532,8 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
         }
     };
     let default_name = match c.supports {
-        Some(Preset::BothFixed) => "Con 1".to_string(),
-        Some(Preset::BothSprings) => "Con 2".to_string(),
-        Some(Preset::FixedAndSprings) => "Con 3".to_string(),
-        None => format!("support set {}", i + 1),
+        Some(p) => p.default_name().to_string(),
+        None => default_set_name(i + 1),
     };
     Ok(SupportSet::new(c.name.clone().unwrap_or(default_name), supports))
 }
@@ -520,11 +541,10 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
 /// Checks every field against its range, in the units of the file, then converts to SI.
 fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
-    let laws = [LawKind::Flores, LawKind::Hertz, LawKind::Thornton];
     let contact_law = match raw.contact_law.as_deref() {
-        None => LawKind::Flores,
-        Some(name) => laws.into_iter().find(|l| l.key() == name).ok_or_else(|| {
-            let keys: Vec<_> = laws.iter().map(|l| format!("\"{}\"", l.key())).collect();
+        None => LawKind::default(),
+        Some(name) => CONTACT_LAWS.into_iter().find(|l| l.key() == name).ok_or_else(|| {
+            let keys: Vec<_> = CONTACT_LAWS.iter().map(|l| format!("\"{}\"", l.key())).collect();
             other("contact_law", format!("'{name}' is not a contact law; allowed: {}", keys.join(", ")))
         })?,
     };
