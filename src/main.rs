@@ -16,6 +16,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use written::{in_range, Written};
 
+mod cli_doc;
 mod progress;
 mod written;
 
@@ -325,6 +326,12 @@ enum Command {
     },
     /// Print the embedded default scene (a template for your own).
     DefaultScene,
+    /// Print a generated reference: docs/cli.md or docs/scenes.md (a test keeps them equal).
+    #[command(hide = true)]
+    Reference {
+        #[arg(value_enum)]
+        what: cli_doc::Reference,
+    },
 }
 
 fn main() -> ExitCode {
@@ -655,6 +662,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             Ok(())
         }
         Command::DefaultScene => out(DEFAULT_SCENE),
+        Command::Reference { what } => out(&cli_doc::reference(what, Cli::command())),
         Command::Completions { shell } => {
             // Into a buffer first: clap_complete panics on a write error, and a closed pipe
             // (`impact completions bash | head`) should end quietly like every other command.
