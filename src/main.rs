@@ -9,13 +9,16 @@ use impact::present::table::Table;
 use impact::provenance::Provenance;
 use impact::report::identify::RowFiles;
 use impact::report::Failure;
-use impact::scene::{Analysis, Scene, SceneSource, DEFAULT_SCENE};
+use impact::scene::{limits, Analysis, Scene, SceneSource, DEFAULT_SCENE};
 use progress::Terminal;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use written::{in_range, Written};
 
+mod cli_doc;
 mod progress;
+mod written;
 
 #[derive(Parser)]
 #[command(
@@ -100,20 +103,19 @@ impl Common {
 /// How the transient model is discretised.
 #[derive(Args, Clone)]
 struct TransientArgs {
-    /// Relative error allowed on the transient model's P_max (the force at maximum
-    /// compression) and contact time: each case's mesh and time step are chosen so that its
-    /// error estimate is within it (in [1e-6, 0.1]).
-    #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_name = "REL")]
-    tolerance: f64,
+    // The help states the range from its one definition, hence no doc comment.
+    #[arg(long, default_value_t = Written::from(DEFAULT_TOLERANCE), value_name = "REL", help = format!(
+        "Relative error allowed on the transient model's P_max (the force at maximum compression) and contact time: each case's mesh and time step are chosen so that its error estimate is within it (in {})",
+        limits::TRANSIENT_TOLERANCE
+    ))]
+    tolerance: Written,
 }
 
 impl TransientArgs {
     /// The scene with this discretisation, or an error naming the flag.
     fn apply(&self, mut scene: Scene) -> Result<Scene, Failure> {
-        if !(1e-6..=0.1).contains(&self.tolerance) {
-            return Err(format!("--tolerance {} is outside the allowed range [1e-6, 0.1]", self.tolerance).into());
-        }
-        scene.transient_discretisation = Discretisation::tolerance(self.tolerance);
+        let tolerance = self.tolerance.within("--tolerance", limits::TRANSIENT_TOLERANCE, "")?;
+        scene.transient_discretisation = Discretisation::tolerance(tolerance);
         Ok(scene)
     }
 }
@@ -158,8 +160,12 @@ enum Command {
     Sweep {
         #[command(flatten)]
         common: Common,
-        /// Number of points on the centreline from 0 to L (the paper uses 101), at most 100000.
-        #[arg(long, default_value_t = 101, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+        #[arg(
+            long,
+            default_value_t = 101,
+            value_parser = clap::value_parser!(u32).range(limits::POINT_COUNT.lo as i64..=limits::POINT_COUNT.hi as i64),
+            help = format!("Number of points on the centreline from 0 to L (the paper uses 101), in {}", limits::POINT_COUNT)
+        )]
         count: u32,
     },
     /// Yield velocities at the scene's points (eqs. 51-54).
@@ -250,14 +256,14 @@ enum Command {
         /// Print JSON instead of tables.
         #[arg(long)]
         json: bool,
-        /// Relative error allowed at the plate centre, from the mesh convergence study.
-        #[arg(long, default_value_t = 1e-4)]
-        tolerance: f64,
-        /// Impact points along the length.
-        #[arg(long, default_value_t = 101)]
+        #[arg(long, default_value_t = Written::from(1e-4), help = format!(
+            "Relative error allowed at the plate centre, from the mesh convergence study (in {})",
+            limits::FEM_BENCH_TOLERANCE
+        ))]
+        tolerance: Written,
+        #[arg(long, default_value_t = 101, help = format!("Impact points along the length (in {})", limits::FEM_BENCH_POINTS))]
         nx: usize,
-        /// Impact points across the width.
-        #[arg(long, default_value_t = 21)]
+        #[arg(long, default_value_t = 21, help = format!("Impact points across the width (in {})", limits::FEM_BENCH_POINTS))]
         nz: usize,
     },
     /// Write the plate FE deflection field under a point load: JSON for meshio (see
@@ -281,8 +287,7 @@ enum Command {
         /// Load position across the width, mm.
         #[arg(long, allow_negative_numbers = true)]
         z_mm: f64,
-        /// Elements along the longer side.
-        #[arg(long, default_value_t = 40)]
+        #[arg(long, default_value_t = 40, help = format!("Elements along the longer side (in {})", limits::FIELD_ELEMENTS))]
         elements: usize,
         /// Output file (a regular file or a new one; `-` for standard output); default
         /// field.json or field.vtu by --format.
@@ -291,9 +296,10 @@ enum Command {
         /// File format.
         #[arg(long, value_enum, default_value_t = FieldFormat::Json)]
         format: FieldFormat,
-        /// Load, N, that scales every value in the .vtu (fields are linear in it), in
-        /// [1e-9, 1e12] N (default 1 N); the JSON is always per unit load.
-        #[arg(long, value_name = "F", allow_negative_numbers = true)]
+        #[arg(long, value_name = "F", allow_negative_numbers = true, help = format!(
+            "Load, N, that scales every value in the .vtu (fields are linear in it), in {} N (default 1 N); the JSON is always per unit load",
+            limits::FORCE_N
+        ))]
         force_n: Option<Written>,
         /// Scale the .vtu by the impact's maximum force instead: P_max of --body at
         /// --velocity-m-per-s at the load point by the quasi-static plate model (the paper's
@@ -321,6 +327,12 @@ enum Command {
     },
     /// Print the embedded default scene (a template for your own).
     DefaultScene,
+    /// Print a generated reference: docs/cli.md or docs/scenes.md (a test keeps them equal).
+    #[command(hide = true)]
+    Reference {
+        #[arg(value_enum)]
+        what: cli_doc::Reference,
+    },
 }
 
 fn main() -> ExitCode {
@@ -338,25 +350,6 @@ fn main() -> ExitCode {
     }
 }
 
-/// A number given on the command line, with the text it was written as: an error names the
-/// value as the user wrote it (`1e308`, not its 309 digits).
-#[derive(Clone, Debug)]
-struct Written {
-    text: String,
-    value: f64,
-}
-
-impl std::str::FromStr for Written {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        let value = s.trim().parse::<f64>().map_err(|_| format!("'{s}' is not a number"))?;
-        Ok(Written { text: s.to_string(), value })
-    }
-}
-
-/// The loads `impact field --force-n` accepts, N (see where it is checked).
-const FORCE_RANGE_N: (f64, f64) = (1e-9, 1e12);
-
 /// The impact `impact field` strikes: `--body` (default the scene's first) at
 /// `--velocity-m-per-s` (default the scene's first), checked against the scene's ranges.
 fn impact_of<'a>(
@@ -372,10 +365,7 @@ fn impact_of<'a>(
         })?,
     };
     let v = match velocity {
-        Some(v) if (1e-9..=1000.0).contains(&v.value) => v.value,
-        Some(v) => {
-            return Err(format!("--velocity-m-per-s {} is outside the allowed range [1e-9, 1000] m/s", v.text).into())
-        }
+        Some(v) => v.within("--velocity-m-per-s", limits::VELOCITY_M_PER_S, "m/s")?,
         None => *scene.velocities.first().ok_or("the scene has no velocity; give --velocity-m-per-s")?,
     };
     Ok((sphere, v))
@@ -542,11 +532,9 @@ fn execute(command: Command) -> Result<(), Failure> {
         }
         Command::FemBench { scene, json, tolerance, nx, nz } => {
             let scene = load(&scene)?;
-            if !(1e-12..1.0).contains(&tolerance) {
-                return Err(format!("--tolerance {tolerance} is outside the allowed range [1e-12, 1)").into());
-            }
-            if !(2..=1001).contains(&nx) || !(2..=1001).contains(&nz) {
-                return Err(format!("--nx {nx} and --nz {nz} must each be in [2, 1001]").into());
+            let tolerance = tolerance.within("--tolerance", limits::FEM_BENCH_TOLERANCE, "")?;
+            for (flag, n) in [("--nx", nx), ("--nz", nz)] {
+                in_range(flag, &n.to_string(), n as f64, limits::FEM_BENCH_POINTS, "")?;
             }
             let r = impact::report::fem_bench::bench(&scene, tolerance, nx, nz)?;
             if json {
@@ -580,11 +568,7 @@ fn execute(command: Command) -> Result<(), Failure> {
                 let names: Vec<&str> = scene.conditions.iter().map(|c| c.name.as_str()).collect();
                 format!("--condition '{condition}' is not in the scene; it has {names:?}")
             })?;
-            // 200 elements along the longer side is about 1.3e5 unknowns and well under a
-            // gigabyte for the factorization; beyond that the field is finer than any viewer needs.
-            if !(2..=200).contains(&elements) {
-                return Err(format!("--elements {elements} is outside the allowed range [2, 200]").into());
-            }
+            in_range("--elements", &elements.to_string(), elements as f64, limits::FIELD_ELEMENTS, "")?;
             let (l, b) = (scene.plate.length() * 1e3, scene.plate.width() * 1e3);
             if !(0.0..=l).contains(&x_mm) {
                 return Err(format!("--x-mm {x_mm} is outside the plate: the allowed range is [0, {l}] mm").into());
@@ -592,21 +576,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             if !(0.0..=b).contains(&z_mm) {
                 return Err(format!("--z-mm {z_mm} is outside the plate: the allowed range is [0, {b}] mm").into());
             }
-            // 1e12 N, a hundred thousand tonnes-force, is beyond any rock impact; under it every
-            // scaled value of every valid scene stays finite (the largest unit-load values, a
-            // deflection of about L²/(100 D) ≤ 1e22 m/N and a stress 6M/h² ≤ 1e13 Pa/N at the
-            // scene limits, times 1e12 are far below f64::MAX ≈ 1.8e308), and the writer still
-            // refuses any value that is not finite.
-            if let Some(f) = &force_n {
-                if !(FORCE_RANGE_N.0..=FORCE_RANGE_N.1).contains(&f.value) {
-                    return Err(format!(
-                        "--force-n {} is outside the allowed range [{:e}, {:e}] N",
-                        f.text, FORCE_RANGE_N.0, FORCE_RANGE_N.1
-                    )
-                    .into());
-                }
-            }
-            let force_n = force_n.map(|f| f.value);
+            let force_n = force_n.map(|f| f.within("--force-n", limits::FORCE_N, "N")).transpose()?;
             // The JSON format is defined per unit load; a scaled JSON would read as one.
             if format != FieldFormat::Vtu && (force_n.is_some() || force_of_impact) {
                 return Err("--force-n and --force-of-impact scale the .vtu only; add --format vtu (the JSON is per unit load, the .pvd at the impact's own force)".into());
@@ -693,6 +663,7 @@ fn execute(command: Command) -> Result<(), Failure> {
             Ok(())
         }
         Command::DefaultScene => out(DEFAULT_SCENE),
+        Command::Reference { what } => out(&cli_doc::reference(what, Cli::command())),
         Command::Completions { shell } => {
             // Into a buffer first: clap_complete panics on a write error, and a closed pipe
             // (`impact completions bash | head`) should end quietly like every other command.

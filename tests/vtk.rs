@@ -178,7 +178,8 @@ fn force_outside_its_range_is_refused_naming_flag_value_and_range() {
         let o = impact(["field", "--format", "vtu", "--x-mm", "100", "--z-mm", "200", "--force-n", bad, "--out", out])
             .fails_with(1);
         let err = o.stderr;
-        assert!(err.contains(&format!("--force-n {bad} is outside the allowed range [1e-9, 1e12] N")), "{bad}: {err}");
+        let range = impact::scene::limits::FORCE_N;
+        assert!(err.contains(&format!("--force-n {bad} is outside the allowed range {range} N")), "{bad}: {err}");
         assert!(!std::path::Path::new(out).exists());
     }
 }

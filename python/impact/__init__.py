@@ -55,10 +55,12 @@ from ._impact import ModelError, Scene, SceneError
 
 __all__ = [
     "Columns",
+    "DEFAULT_TOLERANCE",
     "ModelError",
     "Results",
     "Scene",
     "SceneError",
+    "TRANSIENT_TOLERANCE",
     "Transient",
     "ensemble_size",
     "identify",
@@ -69,6 +71,12 @@ __all__ = [
     "yield_velocity",
 ]
 __version__: str = _impact.__version__
+
+#: The transient model's relative tolerances accepted, ``(low, high)``, both ends included
+#: (``impact solve --tolerance``); from the Rust constant the command line checks.
+TRANSIENT_TOLERANCE: tuple[float, float] = _impact.TRANSIENT_TOLERANCE
+#: The transient model's relative tolerance when none is given.
+DEFAULT_TOLERANCE: float = _impact.DEFAULT_TOLERANCE
 
 #: A table as columns: name -> numpy array, every array one entry per row.
 Columns = dict[str, np.ndarray]
@@ -142,8 +150,9 @@ def solve(scene: SceneLike, model: Model = "beam", *, tolerance: float | None = 
             quasi-static, Richardson-extrapolated with an error estimate), "transient" (the
             plate in time, each response with its discretisation error) or "all".
         tolerance: the transient model's relative tolerance on the forces and the contact
-            time, for which each case's mesh and step are chosen (1e-6 to 0.1; default 1e-4,
-            ``impact solve --tolerance``).
+            time, for which each case's mesh and step are chosen (within
+            :data:`TRANSIENT_TOLERANCE`; default :data:`DEFAULT_TOLERANCE`, ``impact solve
+            --tolerance``).
 
     The scene's ``analyses`` decide what is computed ("responses", "yield-velocity").
     The numbers are those of ``impact solve --json`` for the same scene, bit for bit.
@@ -210,7 +219,8 @@ def transient(
             forces and the contact time, and give every response its error, exactly as
             ``impact solve --model transient`` computes a row; without, one run on the
             starting mesh (20 elements, 200 steps per Hertz contact time).
-        tolerance: the relative tolerance (1e-6 to 0.1; default 1e-4, ``--tolerance``).
+        tolerance: the relative tolerance (within :data:`TRANSIENT_TOLERANCE`; default
+            :data:`DEFAULT_TOLERANCE`, ``--tolerance``).
     """
     raw = _impact.transient(
         load_scene(scene),

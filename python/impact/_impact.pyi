@@ -7,6 +7,8 @@ from typing import Any, Literal
 Model = Literal["beam", "plate", "transient", "all"]
 
 __version__: str
+TRANSIENT_TOLERANCE: tuple[float, float]
+DEFAULT_TOLERANCE: float
 
 class SceneError(ValueError):
     """An invalid scene, with the command line's message (a bad argument is a plain

@@ -15,11 +15,11 @@ mod errors;
 mod identify;
 mod scene;
 
-use ::scene::{limits, Analysis, MAX_POINTS};
+use ::scene::{limits, Analysis};
 use analytic::params::{check, Range};
 use columns::Table;
 use coupled::plan::{scene_striker, transient_response, transient_values, ModelKind, ResponseRow, RowOutcome};
-use coupled::transient::{Discretisation, Ladder, Sample, TransientCase};
+use coupled::transient::{Discretisation, Ladder, Sample, TransientCase, DEFAULT_TOLERANCE};
 use errors::{argument_error, argument_message, model_error};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -51,11 +51,11 @@ fn run<'py>(
     let mut s = match sweep {
         None => scene.scene.clone(),
         Some(n) => {
-            let n = check("count", n, Range::closed(2.0, MAX_POINTS as f64), "").map_err(|e| argument_error(&e))?;
+            let n = check("count", n, limits::POINT_COUNT, "").map_err(|e| argument_error(&e))?;
             if n.fract() != 0.0 {
                 return Err(argument_message(
                     "count",
-                    format!("{n} is not a whole number; the allowed range is [2, {MAX_POINTS}]"),
+                    format!("{n} is not a whole number; the allowed range is {}", limits::POINT_COUNT),
                 ));
             }
             scene.scene.with_sweep(n as usize)
@@ -103,14 +103,13 @@ fn by_name(field: &str, name: &str, names: Vec<&str>) -> PyResult<usize> {
         .ok_or_else(|| argument_message(field, format!("'{name}' is not in the scene; it has {names:?}")))
 }
 
+// Python gets the range as a (low, high) pair, documented as including both ends.
+const _: () = assert!(limits::TRANSIENT_TOLERANCE.lo_closed && limits::TRANSIENT_TOLERANCE.hi_closed);
+
 /// The transient model's relative tolerance, checked as `impact solve --tolerance` checks it.
 fn transient_tolerance(t: f64) -> PyResult<f64> {
-    check("tolerance", t, TRANSIENT_TOLERANCE, "").map_err(|e| argument_error(&e))
+    check("tolerance", t, limits::TRANSIENT_TOLERANCE, "").map_err(|e| argument_error(&e))
 }
-
-/// The relative tolerances the transient model accepts: below 1e-6 the ladder's budget
-/// cannot reach it, above 0.1 an estimate is no longer one.
-const TRANSIENT_TOLERANCE: Range = Range::closed(1e-6, 0.1);
 
 /// One transient impact: `body` on the support set `condition` at (`x_mm`, `z_mm`) with
 /// `velocity_m_per_s`, with the scene's contact law and restitution. Returns
@@ -199,5 +198,9 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(transient, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The Python layer documents these from here rather than repeat the numbers.
+    let t = limits::TRANSIENT_TOLERANCE;
+    m.add("TRANSIENT_TOLERANCE", (t.lo, t.hi))?;
+    m.add("DEFAULT_TOLERANCE", DEFAULT_TOLERANCE)?;
     Ok(())
 }

@@ -27,6 +27,10 @@ impl Range {
     pub const fn open_closed(lo: f64, hi: f64) -> Self {
         Self { lo, hi, lo_closed: false, hi_closed: true }
     }
+    /// `[lo, hi)`.
+    pub const fn closed_open(lo: f64, hi: f64) -> Self {
+        Self { lo, hi, lo_closed: true, hi_closed: false }
+    }
     /// `[lo, hi]`.
     pub const fn closed(lo: f64, hi: f64) -> Self {
         Self { lo, hi, lo_closed: true, hi_closed: true }

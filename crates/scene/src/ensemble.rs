@@ -25,6 +25,10 @@ use serde::Deserialize;
 pub const MAX_IMPACTS: usize = 1_000_000;
 /// Most candidate sensor points along one side of a placement grid.
 pub const MAX_CANDIDATES_PER_SIDE: usize = 41;
+/// Candidate sensor points along each side of a placement grid: two reach both edges.
+pub const CANDIDATES_PER_SIDE: Range = Range::closed(2.0, MAX_CANDIDATES_PER_SIDE as f64);
+/// Impacts of one family.
+pub const FAMILY_COUNT: Range = Range::closed(1.0, MAX_IMPACTS as f64);
 /// Fall heights, m: up to 1 km (a free fall of 140 m/s, far beyond any caving).
 pub const FALL_HEIGHT_M: Range = Range::closed(1e-12, 1e3);
 
@@ -47,21 +51,21 @@ pub(super) struct RawEnsemble {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawRegion {
+pub(super) struct RawRegion {
     x_mm: (f64, f64),
     z_mm: (f64, f64),
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawPlacement {
+pub(super) struct RawPlacement {
     x_count: f64,
     z_count: f64,
 }
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawFamily {
+pub(super) struct RawFamily {
     name: String,
     class: String,
     count: f64,
@@ -74,7 +78,7 @@ struct RawFamily {
 }
 
 /// The keys each law takes, besides `distribution`.
-const LAWS: [(&str, &[&str]); 5] = [
+pub(super) const LAWS: [(&str, &[&str]); 5] = [
     ("uniform", &["min", "max"]),
     ("normal", &["mean", "sd", "min", "max"]),
     ("lognormal", &["median", "sigma_log", "min", "max"]),
@@ -226,7 +230,7 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
             "gangue" => Class::Gangue,
             c => return Err(other(key("class"), format!("'{c}' is not a class; allowed: \"coal\", \"gangue\""))),
         };
-        let n = count(&key("count"), f.count, 1, MAX_IMPACTS)?;
+        let n = count(&key("count"), f.count, FAMILY_COUNT)?;
         total += n;
         if total > MAX_IMPACTS {
             return Err(other(
@@ -289,8 +293,8 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
         None => (vec![], vec![]),
         Some(p) => {
             // A map needs two points a side: the grid runs from edge to edge.
-            let nx = count("ensemble.placement.x_count", p.x_count, 2, MAX_CANDIDATES_PER_SIDE)?;
-            let nz = count("ensemble.placement.z_count", p.z_count, 2, MAX_CANDIDATES_PER_SIDE)?;
+            let nx = count("ensemble.placement.x_count", p.x_count, CANDIDATES_PER_SIDE)?;
+            let nz = count("ensemble.placement.z_count", p.z_count, CANDIDATES_PER_SIDE)?;
             (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz))
         }
     };

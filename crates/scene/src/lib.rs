@@ -11,11 +11,13 @@ pub use coupled::scene::{even_points, Analysis, Points, Scene};
 use coupled::transient::LawKind;
 pub use coupled::SupportSet;
 use plate_fem::{CornerSupport, EdgeSupport, Supports};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 mod ensemble;
-pub use ensemble::{FALL_HEIGHT_M, MAX_CANDIDATES_PER_SIDE, MAX_IMPACTS};
+pub mod limits;
+pub mod reference;
+pub use ensemble::{CANDIDATES_PER_SIDE, FALL_HEIGHT_M, FAMILY_COUNT, MAX_CANDIDATES_PER_SIDE, MAX_IMPACTS};
 
 /// The embedded default scene: the paper's Table 1.
 pub const DEFAULT_SCENE: &str = include_str!("../../../scenes/paper-table-1.toml");
@@ -55,56 +57,6 @@ fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<(), Invalid
         ));
     }
     Ok(())
-}
-
-/// Accepted ranges, in the file's units. Each is wide against any real plate, rock or
-/// support and narrow enough that the SI values, and the powers of them the models take
-/// (δ^{5/2}, h³, R³), stay far from overflow and underflow.
-pub mod limits {
-    use analytic::params::Range;
-    /// Plate length and width, mm (1 mm to 100 m).
-    pub const PLATE_SIZE_MM: Range = Range::closed(1.0, 1e5);
-    /// Plate thickness, mm (1 µm to 10 m; and never more than the smaller side).
-    pub const THICKNESS_MM: Range = Range::closed(1e-3, 1e4);
-    /// Sphere radius, mm (1 µm to 10 m).
-    pub const RADIUS_MM: Range = Range::closed(1e-3, 1e4);
-    /// Young's moduli, GPa (1 kPa to 10 TPa).
-    pub const MODULUS_GPA: Range = Range::closed(1e-6, 1e4);
-    /// Densities, kg/m³.
-    pub const DENSITY_KG_M3: Range = Range::closed(1.0, 1e5);
-    /// Cohesion, MPa (1 Pa to 100 GPa).
-    pub const COHESION_MPA: Range = Range::closed(1e-6, 1e5);
-    /// Corner spring stiffness, N/m. Below ~1e-5 N/m the plate on its springs no longer
-    /// factors for its fundamental period (rigid-body eigenvalues ~k against plate
-    /// eigenvalues beyond 1e12); 1e-3 N/m is still a spring a 25 g rock compresses by
-    /// metres, far below any prop or jack.
-    pub const SPRING_N_PER_M: Range = Range::closed(1e-3, 1e18);
-    /// Largest ratio of the plate's longer to its shorter side: beyond it the plate is a
-    /// strip (a beam), and its elements become needles that do not factor.
-    pub const MAX_ASPECT_RATIO: f64 = 100.0;
-    /// Restitution of the Flores law: below 0.01 its damping term 8(1-e)/(5e) exceeds 100
-    /// and the law (built as an expansion about e = 1) has no meaning left; a = 2K/(5e)
-    /// also overflows as e → 0.
-    pub const RESTITUTION: Range = Range::open_closed(0.01, 1.0);
-    /// Impact velocity, m/s (above 1 km/s no contact law here has meaning).
-    pub const VELOCITY_M_PER_S: Range = Range::closed(1e-9, 1e3);
-    /// Signal window, ms (0.1 ms to 1 s: from a few contact times to far beyond the plate's
-    /// ring-down at the default damping).
-    pub const SIGNAL_WINDOW_MS: Range = Range::closed(0.1, 1000.0);
-    /// Sampling rate, Hz (100 Hz to 10 MHz: Nyquist frequencies from below a plate's first
-    /// modes to far beyond any mesh's).
-    pub const SAMPLE_RATE_HZ: Range = Range::closed(100.0, 1e7);
-    /// Most samples per channel of one impact (8 MB a channel).
-    pub const MAX_SAMPLES: f64 = 1e6;
-    /// Most modes of the reduced model: the transient model's 20-element mesh has at least
-    /// 1100 free DOFs on any support set of a plate of aspect ratio up to 1.3, and a mode
-    /// count near the DOF count is no longer a reduced model.
-    pub const MAX_MODES: usize = 1000;
-    /// Most sensors.
-    pub const MAX_SENSORS: usize = 64;
-    /// Relative tolerance of the energy balance: below 1e-14 double precision cannot
-    /// reach it (the bracketed Newton's rounding floor is ~2e-15); above 1e-3 the "root" is not one (a loose stop returns the starting value).
-    pub const SOLVER_TOLERANCE: Range = Range::closed(1e-14, 1e-3);
 }
 
 /// An invalid scene, with where it came from.
@@ -260,7 +212,7 @@ struct RawBody {
 }
 
 /// The paper's support conditions as shorthands.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum Preset {
     /// Con 1.
@@ -269,6 +221,25 @@ enum Preset {
     BothSprings,
     /// Con 3.
     FixedAndSprings,
+}
+
+impl Preset {
+    /// Every preset, in the paper's order.
+    const ALL: [Preset; 3] = [Preset::BothFixed, Preset::BothSprings, Preset::FixedAndSprings];
+
+    /// The support set's name when the scene gives none: the paper's.
+    fn default_name(self) -> &'static str {
+        match self {
+            Preset::BothFixed => "Con 1",
+            Preset::BothSprings => "Con 2",
+            Preset::FixedAndSprings => "Con 3",
+        }
+    }
+}
+
+/// The name of a support set that gives neither a name nor a preset, by its position from 1.
+fn default_set_name(number: impl std::fmt::Display) -> String {
+    format!("support set {number}")
 }
 
 #[derive(Debug, Deserialize)]
@@ -281,7 +252,7 @@ struct RawCondition {
     edges: Option<RawEdges>,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum CornerKind {
     Fixed,
@@ -305,7 +276,7 @@ struct RawCorners {
     right_far: Option<RawCorner>,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum RawEdge {
     Free,
@@ -365,7 +336,7 @@ impl Default for RawSolver {
     }
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
+#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 enum MethodName {
     Recursion,
@@ -402,15 +373,17 @@ fn other(field: impl Into<String>, message: impl Into<String>) -> Invalid {
     Invalid::Other { field: field.into(), message: message.into() }
 }
 
+/// The contact laws a scene may name.
+
 const MM: f64 = 1e-3;
 const GPA: f64 = 1e9;
 const MPA: f64 = 1e6;
 
-/// A whole count written as a TOML number, in [lo, hi].
-fn count(field: &str, value: f64, lo: usize, hi: usize) -> Result<usize, Invalid> {
-    let v = check(field, value, Range::closed(lo as f64, hi as f64), "")?;
+/// A whole count written as a TOML number, in `allowed` (a range of whole ends).
+fn count(field: &str, value: f64, allowed: Range) -> Result<usize, Invalid> {
+    let v = check(field, value, allowed, "")?;
     if v.fract() != 0.0 {
-        return Err(other(field, format!("{value} is not a whole number; the allowed range is [{lo}, {hi}]")));
+        return Err(other(field, format!("{value} is not a whole number; the allowed range is {allowed}")));
     }
     Ok(v as usize)
 }
@@ -447,7 +420,7 @@ fn validate_points(raw: &RawPoints, plate: &Plate, l_mm: f64, b_mm: f64) -> Resu
         return Ok(Points::Pairs { pairs: xs.into_iter().map(|x| (x, b / 2.0)).collect() });
     }
     if let Some(n) = raw.count {
-        return Ok(Points::centreline(l, b, count("points.count", n, 2, MAX_POINTS)?));
+        return Ok(Points::centreline(l, b, count("points.count", n, limits::POINT_COUNT)?));
     }
     if let Some(pairs) = &raw.pairs_mm {
         if pairs.is_empty() {
@@ -467,7 +440,9 @@ fn validate_points(raw: &RawPoints, plate: &Plate, l_mm: f64, b_mm: f64) -> Resu
     let g = raw.grid.as_ref().ok_or_else(|| other("points", "no points given"))?;
     let axis = |list: &Option<Vec<f64>>, n: Option<f64>, name: &str, range: Range, extent: f64| match (list, n) {
         (Some(v), None) => positions(&format!("points.grid.{name}_mm"), v, range),
-        (None, Some(n)) => Ok(even_points(extent, count(&format!("points.grid.{name}_count"), n, 2, MAX_POINTS)?)),
+        (None, Some(n)) => {
+            Ok(even_points(extent, count(&format!("points.grid.{name}_count"), n, limits::POINT_COUNT)?))
+        }
         _ => Err(other(format!("points.grid.{name}"), format!("give exactly one of {name}_mm or {name}_count"))),
     };
     let x = axis(&g.x_mm, g.x_count, "x", along, l)?;
@@ -556,10 +531,8 @@ fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> Result<Suppo
         }
     };
     let default_name = match c.supports {
-        Some(Preset::BothFixed) => "Con 1".to_string(),
-        Some(Preset::BothSprings) => "Con 2".to_string(),
-        Some(Preset::FixedAndSprings) => "Con 3".to_string(),
-        None => format!("support set {}", i + 1),
+        Some(p) => p.default_name().to_string(),
+        None => default_set_name(i + 1),
     };
     Ok(SupportSet::new(c.name.clone().unwrap_or(default_name), supports))
 }
@@ -709,10 +682,10 @@ fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let signals = validate_signals(raw.signals.as_ref(), length_mm, width_mm)?;
 
     let tolerance = check("solver.tolerance", raw.solver.tolerance, limits::SOLVER_TOLERANCE, "")?;
-    if !(1..=10_000).contains(&raw.solver.max_iterations) {
+    if !limits::SOLVER_ITERATIONS.contains(f64::from(raw.solver.max_iterations)) {
         return Err(other(
             "solver.max_iterations",
-            format!("{} is outside the allowed range [1, 10000]", raw.solver.max_iterations),
+            format!("{} is outside the allowed range {}", raw.solver.max_iterations, limits::SOLVER_ITERATIONS),
         ));
     }
     let solver = match raw.solver.method {
@@ -782,7 +755,7 @@ fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -> Result<Si
         None => d.damping_ratio,
     };
     let modes = match raw.modes {
-        Some(n) => count("signals.modes", n, 1, limits::MAX_MODES)?,
+        Some(n) => count("signals.modes", n, limits::MODES)?,
         None => d.modes,
     };
     let sensors = match &raw.sensors_mm {

@@ -1,0 +1,80 @@
+//! Accepted ranges, in the file's units. Each is wide against any real plate, rock or
+//! support and narrow enough that the SI values, and the powers of them the models take
+//! (δ^{5/2}, h³, R³), stay far from overflow and underflow.
+//!
+//! The command line's and the Python package's ranges are here too, so that the check, its
+//! message and the generated references (`docs/cli.md`, `docs/scenes.md`) read one number.
+
+use analytic::params::Range;
+
+/// Plate length and width, mm (1 mm to 100 m).
+pub const PLATE_SIZE_MM: Range = Range::closed(1.0, 1e5);
+/// Plate thickness, mm (1 µm to 10 m; and never more than the smaller side).
+pub const THICKNESS_MM: Range = Range::closed(1e-3, 1e4);
+/// Sphere radius, mm (1 µm to 10 m).
+pub const RADIUS_MM: Range = Range::closed(1e-3, 1e4);
+/// Young's moduli, GPa (1 kPa to 10 TPa).
+pub const MODULUS_GPA: Range = Range::closed(1e-6, 1e4);
+/// Densities, kg/m³.
+pub const DENSITY_KG_M3: Range = Range::closed(1.0, 1e5);
+/// Cohesion, MPa (1 Pa to 100 GPa).
+pub const COHESION_MPA: Range = Range::closed(1e-6, 1e5);
+/// Corner spring stiffness, N/m. Below ~1e-5 N/m the plate on its springs no longer
+/// factors for its fundamental period (rigid-body eigenvalues ~k against plate
+/// eigenvalues beyond 1e12); 1e-3 N/m is still a spring a 25 g rock compresses by
+/// metres, far below any prop or jack.
+pub const SPRING_N_PER_M: Range = Range::closed(1e-3, 1e18);
+/// Largest ratio of the plate's longer to its shorter side: beyond it the plate is a
+/// strip (a beam), and its elements become needles that do not factor.
+pub const MAX_ASPECT_RATIO: f64 = 100.0;
+/// Restitution of the Flores law: below 0.01 its damping term 8(1-e)/(5e) exceeds 100
+/// and the law (built as an expansion about e = 1) has no meaning left; a = 2K/(5e)
+/// also overflows as e → 0.
+pub const RESTITUTION: Range = Range::open_closed(0.01, 1.0);
+/// Impact velocity, m/s (above 1 km/s no contact law here has meaning).
+pub const VELOCITY_M_PER_S: Range = Range::closed(1e-9, 1e3);
+/// Signal window, ms (0.1 ms to 1 s: from a few contact times to far beyond the plate's
+/// ring-down at the default damping).
+pub const SIGNAL_WINDOW_MS: Range = Range::closed(0.1, 1000.0);
+/// Sampling rate, Hz (100 Hz to 10 MHz: Nyquist frequencies from below a plate's first
+/// modes to far beyond any mesh's).
+pub const SAMPLE_RATE_HZ: Range = Range::closed(100.0, 1e7);
+/// Most samples per channel of one impact (8 MB a channel).
+pub const MAX_SAMPLES: f64 = 1e6;
+/// Most modes of the reduced model: the transient model's 20-element mesh has at least
+/// 1100 free DOFs on any support set of a plate of aspect ratio up to 1.3, and a mode
+/// count near the DOF count is no longer a reduced model.
+pub const MAX_MODES: usize = 1000;
+/// Modes of the reduced model, `[signals] modes`.
+pub const MODES: Range = Range::closed(1.0, MAX_MODES as f64);
+/// Most sensors.
+pub const MAX_SENSORS: usize = 64;
+/// Relative tolerance of the energy balance: below 1e-14 double precision cannot
+/// reach it (the bracketed Newton's rounding floor is ~2e-15); above 1e-3 the "root" is not one (a loose stop returns the starting value).
+pub const SOLVER_TOLERANCE: Range = Range::closed(1e-14, 1e-3);
+/// Iteration limit of the energy-balance solver, `[solver] max_iterations`.
+pub const SOLVER_ITERATIONS: Range = Range::closed(1.0, 10_000.0);
+/// Evenly spaced points, `[points] count` and each side of `[points.grid]` (and `impact sweep
+/// --count`): two to reach both ends, at most [`MAX_POINTS`](crate::MAX_POINTS).
+pub const POINT_COUNT: Range = Range::closed(2.0, crate::MAX_POINTS as f64);
+
+// ------------------------------------------------------------ the command line and Python
+
+/// Relative error the transient model is asked for (`--tolerance`, Python's `tolerance`):
+/// below 1e-6 the ladder's budget cannot reach it, above 0.1 an estimate is no longer one.
+pub const TRANSIENT_TOLERANCE: Range = Range::closed(1e-6, 0.1);
+/// Relative error at the plate centre for `impact fem-bench --tolerance`, as the mesh
+/// convergence study takes it.
+pub const FEM_BENCH_TOLERANCE: Range = Range::closed_open(1e-12, 1.0);
+/// Impact points along each side of the `impact fem-bench` map (`--nx`, `--nz`).
+pub const FEM_BENCH_POINTS: Range = Range::closed(2.0, 1001.0);
+/// Elements along the longer side for `impact field --elements`: 200 is about 1.3e5
+/// unknowns and well under a gigabyte for the factorization; beyond that the field is finer
+/// than any viewer needs.
+pub const FIELD_ELEMENTS: Range = Range::closed(2.0, 200.0);
+/// The load that scales `impact field`'s .vtu (`--force-n`), N. 1e12 N, a hundred thousand
+/// tonnes-force, is beyond any rock impact; under it every scaled value of every valid scene
+/// stays finite (the largest unit-load values, a deflection of about L²/(100 D) ≤ 1e22 m/N
+/// and a stress 6M/h² ≤ 1e13 Pa/N at the scene limits, times 1e12 are far below f64::MAX ≈
+/// 1.8e308), and the writer still refuses any value that is not finite.
+pub const FORCE_N: Range = Range::closed(1e-9, 1e12);

@@ -1,0 +1,552 @@
+//! The scene format as Markdown (`impact reference scenes`, committed as `docs/scenes.md`):
+//! every table and key with its unit, allowed values, default and meaning, then the embedded
+//! default scene. Ranges and defaults are the parser's own constants and the allowed words
+//! the serde names of its types, so the reference says what the parser does; the tests check
+//! that every key of every table is described and nothing else.
+
+use super::ensemble::{CANDIDATES_PER_SIDE, FALL_HEIGHT_M, FAMILY_COUNT, LAWS, MAX_IMPACTS};
+use super::{
+    default_analyses, default_max_iterations, default_method, default_set_name, default_tolerance, limits, CornerKind,
+    MethodName, Preset, RawEdge, DEFAULT_SCENE, MAX_NAME_CHARS, MAX_POINTS, MAX_SCENE_BYTES,
+};
+use analytic::params::{compact, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
+use coupled::reduced::{ReducedSettings, SignalSettings};
+use coupled::scene::Analysis;
+use identify::{Class, Variable};
+use serde::Serialize;
+
+/// One key of a table.
+struct Key {
+    name: &'static str,
+    /// Its TOML type.
+    kind: &'static str,
+    unit: &'static str,
+    allowed: String,
+    /// The default, or "required" (or when it is required).
+    default: String,
+    meaning: String,
+}
+
+/// One TOML table (or array of tables) and its keys.
+struct Section {
+    /// The table as written in a scene (`[plate]`, `[[bodies]]`), or "Top level".
+    title: &'static str,
+    about: String,
+    keys: Vec<Key>,
+}
+
+const REQUIRED: &str = "required";
+const NUMBER: &str = "number";
+const STRING: &str = "string";
+const TABLE: &str = "table";
+const NO_UNIT: &str = "-";
+/// The values of a random variable of `[ensemble]`.
+const RANDOM: &str = "number or law table";
+
+fn key(
+    name: &'static str,
+    kind: &'static str,
+    unit: &'static str,
+    allowed: impl Into<String>,
+    default: impl Into<String>,
+    meaning: impl Into<String>,
+) -> Key {
+    Key { name, kind, unit, allowed: allowed.into(), default: default.into(), meaning: meaning.into() }
+}
+
+/// A number in `allowed`, in the file's `unit`.
+fn num(name: &'static str, unit: &'static str, allowed: Range, default: impl Into<String>, meaning: &str) -> Key {
+    key(name, NUMBER, unit, allowed.to_string(), default, meaning)
+}
+
+/// A whole number in `allowed`.
+fn whole(name: &'static str, allowed: Range, default: impl Into<String>, meaning: &str) -> Key {
+    key(name, "whole number", NO_UNIT, allowed.to_string(), default, meaning)
+}
+
+/// A sub-table, described in its own section.
+fn table(name: &'static str, kind: &'static str, section: &str, default: impl Into<String>, meaning: &str) -> Key {
+    key(name, kind, NO_UNIT, format!("see `{section}`"), default, meaning)
+}
+
+/// A value as a scene file writes it (a unit variant by its serde name, a list of them), as
+/// code.
+fn word<T: Serialize>(value: T) -> String {
+    format!("`{}`", toml::Value::try_from(value).expect("a TOML value"))
+}
+
+/// TOML strings, as a list to choose from.
+fn words<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
+    names.into_iter().map(word).collect::<Vec<_>>().join(", ")
+}
+
+/// What a name may be; `of` names its siblings, from which it must differ.
+fn name_rule(of: Option<&str>) -> String {
+    let rule = format!("1 to {MAX_NAME_CHARS} characters with a letter or digit");
+    match of {
+        None => rule,
+        Some(of) => format!("{rule}; differs from the other {of}' names in its letters or digits"),
+    }
+}
+
+fn top_level() -> Section {
+    let analyses: Vec<&str> = Analysis::ALL.iter().map(|a| a.key()).collect();
+    let keys = vec![
+        key(
+            "name",
+            STRING,
+            NO_UNIT,
+            name_rule(None),
+            REQUIRED,
+            "Names the scene in tables, reports and default output folders",
+        ),
+        key("description", STRING, NO_UNIT, "any", word(""), "One line on what the scene is"),
+        num(
+            "restitution",
+            NO_UNIT,
+            limits::RESTITUTION,
+            REQUIRED,
+            "Coefficient of restitution e of the Flores contact law (eq. 1)",
+        ),
+        key(
+            "contact_law",
+            STRING,
+            NO_UNIT,
+            words(coupled::transient::LawKind::ALL.iter().map(|l| l.key())),
+            word(coupled::transient::LawKind::default().key()),
+            "The transient and reduced models' contact law (the quasi-static models use the paper's Flores law)",
+        ),
+        key(
+            "analyses",
+            "list of strings",
+            NO_UNIT,
+            words(analyses),
+            word(default_analyses()),
+            "What to compute: nothing else is assembled, simulated or written",
+        ),
+        table("plate", TABLE, "[plate]", REQUIRED, "The plate"),
+        table(
+            "bodies",
+            "array of tables",
+            "[[bodies]]",
+            "required (none if \"identify\" is the only analysis)",
+            "The striking spheres",
+        ),
+        table("conditions", "array of tables", "[[conditions]]", "required, at least one", "The support sets"),
+        table("points", TABLE, "[points]", "required (none if \"identify\" is the only analysis)", "The impact points"),
+        table(
+            "velocities",
+            TABLE,
+            "[velocities]",
+            "required with \"responses\", \"transient\", \"size-map\" or \"regime-maps\"",
+            "The impact velocities",
+        ),
+        table("solver", TABLE, "[solver]", "its keys' defaults", "The energy-balance solver"),
+        table("transient", TABLE, "[transient]", "the scene's points", "Where the transient study strikes"),
+        table(
+            "signals",
+            TABLE,
+            "[signals]",
+            "its keys' defaults",
+            "The reduced model's sensor signals (`impact signals`, \"identify\")",
+        ),
+        table(
+            "ensemble",
+            TABLE,
+            "[ensemble]",
+            "required with \"identify\", refused without",
+            "The random impacts of the identification study",
+        ),
+    ];
+    Section { title: "Top level", about: String::new(), keys }
+}
+
+fn plate_and_bodies() -> Vec<Section> {
+    let plate = vec![
+        num("length_mm", "mm", limits::PLATE_SIZE_MM, REQUIRED, "Length L, along x"),
+        num("width_mm", "mm", limits::PLATE_SIZE_MM, REQUIRED, "Width B, along z"),
+        num("thickness_mm", "mm", limits::THICKNESS_MM, REQUIRED, "Thickness h; at most the smaller side"),
+        num("youngs_modulus_gpa", "GPa", limits::MODULUS_GPA, REQUIRED, "Young's modulus E"),
+        num("poisson_ratio", NO_UNIT, POISSON_RATIO, REQUIRED, "Poisson's ratio μ"),
+        num("density_kg_m3", "kg/m³", limits::DENSITY_KG_M3, REQUIRED, "Density ρ"),
+    ];
+    let bodies = vec![
+        key("name", STRING, NO_UNIT, name_rule(Some("bodies")), REQUIRED, "Names the body in tables and files"),
+        num("density_kg_m3", "kg/m³", limits::DENSITY_KG_M3, REQUIRED, "Density ρ₁"),
+        num("youngs_modulus_gpa", "GPa", limits::MODULUS_GPA, REQUIRED, "Young's modulus E₁"),
+        num("poisson_ratio", NO_UNIT, POISSON_RATIO, REQUIRED, "Poisson's ratio μ₁"),
+        num("cohesion_mpa", "MPa", limits::COHESION_MPA, REQUIRED, "Drucker-Prager cohesion of the rock (eq. 51)"),
+        num("friction_angle_deg", "deg", FRICTION_ANGLE_DEG, REQUIRED, "Internal friction angle φ (eq. 51)"),
+        num("radius_mm", "mm", limits::RADIUS_MM, REQUIRED, "Sphere radius R"),
+    ];
+    vec![
+        Section {
+            title: "[plate]",
+            about: format!(
+                "The plate, x along its length from the left end and z across its width from the near edge. Its longer side is at most {} times its shorter.",
+                compact(limits::MAX_ASPECT_RATIO)
+            ),
+            keys: plate,
+        },
+        Section { title: "[[bodies]]", about: "One table per striking sphere.".into(), keys: bodies },
+    ]
+}
+
+fn conditions() -> Vec<Section> {
+    let presets: Vec<String> = Preset::ALL.iter().map(|&p| format!("{} ({})", word(p), p.default_name())).collect();
+    let default_names: Vec<String> = Preset::ALL.iter().map(|p| word(p.default_name())).collect();
+    let spring = limits::SPRING_N_PER_M;
+    let set = vec![
+        key("name", STRING, NO_UNIT, name_rule(Some("support sets")), format!("{} by `supports`; {} (N its position from 1) otherwise", default_names.join(", "), word(default_set_name("N"))), "Names the support set in tables and files"),
+        key("supports", STRING, NO_UNIT, presets.join(", "), "none: give `corners` and `edges`", "The paper's support conditions: four fixed corners; four corner springs; fixed corners at x = 0 and springs at x = L"),
+        num("spring_stiffness_n_per_m", "N/m", spring, format!("required with {} and {}", word(Preset::BothSprings), word(Preset::FixedAndSprings)), "Stiffness k_T of each corner spring of a preset"),
+        table("corners", TABLE, "[conditions.corners]", "every corner free", "General supports: each corner (not with `supports`)"),
+        table("edges", TABLE, "[conditions.edges]", "every edge free", "General supports: each edge (not with `supports`)"),
+    ];
+    let corner_kinds = [CornerKind::Fixed, CornerKind::Free].map(word).join(", ");
+    let corner = |name, at| {
+        key(
+            name,
+            "string or table",
+            "N/m",
+            format!("{corner_kinds} or `{{ spring_n_per_m = k }}`, k in {spring}"),
+            word(CornerKind::Free),
+            format!("The corner at {at}"),
+        )
+    };
+    let edge_kinds = [RawEdge::Free, RawEdge::SimplySupported, RawEdge::Clamped].map(word).join(", ");
+    let edge = |name, at| key(name, STRING, NO_UNIT, edge_kinds.clone(), word(RawEdge::Free), format!("The edge {at}"));
+    vec![
+        Section {
+            title: "[[conditions]]",
+            about: "One table per support set: a preset (`supports`) or general supports (`corners` and `edges`), not both. General supports must hold the plate against every rigid-body motion.".into(),
+            keys: set,
+        },
+        Section {
+            title: "[conditions.corners]",
+            about: "Each corner fixed, free or on a spring.".into(),
+            keys: vec![
+                corner("left_near", "(x, z) = (0, 0)"),
+                corner("right_near", "(L, 0)"),
+                corner("left_far", "(0, B)"),
+                corner("right_far", "(L, B)"),
+            ],
+        },
+        Section {
+            title: "[conditions.edges]",
+            about: "Each edge free, simply supported or clamped.".into(),
+            keys: vec![edge("left", "x = 0"), edge("right", "x = L"), edge("near", "z = 0"), edge("far", "z = B")],
+        },
+    ]
+}
+
+fn points() -> Vec<Section> {
+    let count = limits::POINT_COUNT;
+    let points = vec![
+        key("x_mm", "list of numbers", "mm", "each in [0, L]", "-", "Positions on the centreline z = B/2"),
+        whole("count", count, "-", "Points evenly spaced on the centreline from x = 0 to L"),
+        key("pairs_mm", "list of [x, z]", "mm", "x in [0, L], z in [0, B]", "-", "Explicit points, in the order given"),
+        table("grid", TABLE, "[points.grid]", "-", "Every x with every z"),
+        key(
+            "z_mm",
+            "-",
+            "-",
+            "refused",
+            "-",
+            "Not a key: beside `x_mm` it would silently form a grid; write `pairs_mm` or `[points.grid]`",
+        ),
+    ];
+    let grid = vec![
+        key("x_mm", "list of numbers", "mm", "each in [0, L]", "-", "Positions along the length"),
+        whole("x_count", count, "-", "Positions evenly spaced from x = 0 to L"),
+        key("z_mm", "list of numbers", "mm", "each in [0, B]", "-", "Positions across the width"),
+        whole("z_count", count, "-", "Positions evenly spaced from z = 0 to B"),
+    ];
+    vec![
+        Section {
+            title: "[points]",
+            about: format!("Where the bodies strike: exactly one of `x_mm`, `count`, `pairs_mm` or `[points.grid]`; at most {MAX_POINTS} points."),
+            keys: points,
+        },
+        Section {
+            title: "[points.grid]",
+            about: "One of `x_mm` or `x_count`, and one of `z_mm` or `z_count`.".into(),
+            keys: grid,
+        },
+    ]
+}
+
+fn runs() -> Vec<Section> {
+    let d = SignalSettings::default();
+    let methods = [MethodName::Recursion, MethodName::Bracketed].map(word).join(", ");
+    vec![
+        Section {
+            title: "[velocities]",
+            about: String::new(),
+            keys: vec![key("m_per_s", "list of numbers", "m/s", format!("each in {}", limits::VELOCITY_M_PER_S), REQUIRED, "Impact velocities")],
+        },
+        Section {
+            title: "[solver]",
+            about: "The energy balance of the quasi-static models (eq. 14).".into(),
+            keys: vec![
+                key("method", STRING, NO_UNIT, methods, word(default_method()), "The paper's recursion (eqs. 15-19), or Newton's method from a bracket safeguarded by bisection"),
+                num("tolerance", NO_UNIT, limits::SOLVER_TOLERANCE, compact(default_tolerance()), "Largest accepted relative residual of the energy balance"),
+                whole("max_iterations", limits::SOLVER_ITERATIONS, default_max_iterations().to_string(), "Largest number of iterations"),
+            ],
+        },
+        Section {
+            title: "[transient]",
+            about: "The transient study's points (each a time integration), if not the scene's.".into(),
+            keys: vec![key("pairs_mm", "list of [x, z]", "mm", "x in [0, L], z in [0, B]", REQUIRED, "Where the transient study strikes")],
+        },
+        Section {
+            title: "[signals]",
+            about: format!(
+                "The reduced model's sensor signals. A window holds at most {} samples a channel (window_ms x rate_hz / 1000).",
+                compact(limits::MAX_SAMPLES)
+            ),
+            keys: vec![
+                num("window_ms", "ms", limits::SIGNAL_WINDOW_MS, compact(d.window * 1e3), "Length of each signal from first touch"),
+                num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, compact(d.rate_hz), "Sampling rate"),
+                num("damping_ratio", NO_UNIT, ReducedSettings::DAMPING_RATIO, compact(d.damping_ratio), "Modal damping ratio ζ"),
+                whole("modes", limits::MODES, d.modes.to_string(), "Modes the reduced model keeps (and at most the plate's free degrees of freedom)"),
+                key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate"),
+            ],
+        },
+    ]
+}
+
+fn ensemble() -> Vec<Section> {
+    let variables: Vec<&str> = Variable::ALL.iter().map(|v| v.key()).collect();
+    let ensemble = vec![
+        key(
+            "seed",
+            "integer",
+            NO_UNIT,
+            format!("[0, {}]", u64::MAX),
+            REQUIRED,
+            "Seed of every impact's random stream: the same seed, the same impacts on any number of threads",
+        ),
+        key(
+            "hold",
+            "list of strings",
+            NO_UNIT,
+            words(variables.iter().copied()),
+            word(&variables),
+            "The variables held at their medians, one at a time, to find which variability hides the difference",
+        ),
+        table("region", TABLE, "[ensemble.region]", "the whole plate", "Where the impacts land, uniformly"),
+        key(
+            "fall_height_m",
+            RANDOM,
+            "m",
+            FALL_HEIGHT_M.to_string(),
+            "-",
+            "Free fall from rest, v = √(2gh); give this or `velocity_m_per_s`",
+        ),
+        key(
+            "velocity_m_per_s",
+            RANDOM,
+            "m/s",
+            limits::VELOCITY_M_PER_S.to_string(),
+            "-",
+            "The impact velocity; give this or `fall_height_m`",
+        ),
+        table(
+            "placement",
+            TABLE,
+            "[ensemble.placement]",
+            "no placement maps",
+            "The candidate sensor grid of the placement maps",
+        ),
+        table(
+            "families",
+            "array of tables",
+            "[[ensemble.families]]",
+            "required, at least one of each class",
+            "The material families of the stream",
+        ),
+    ];
+    let laws: Vec<String> = LAWS.iter().map(|(law, keys)| format!("{} ({})", word(law), keys.join(", "))).collect();
+    vec![
+        Section {
+            title: "[ensemble]",
+            about: format!(
+                "The random impacts of the identification study. A random variable is a number (fixed) or a table naming its law: `{{ distribution = ..., ... }}`, one of {}. The bounds of every continuous law are required and lie in the variable's allowed range, so nothing drawn can leave it.",
+                laws.join(", ")
+            ),
+            keys: ensemble,
+        },
+        Section {
+            title: "[ensemble.region]",
+            about: String::new(),
+            keys: vec![
+                key("x_mm", "[low, high]", "mm", "in [0, L], low ≤ high", REQUIRED, "The region along the length"),
+                key("z_mm", "[low, high]", "mm", "in [0, B], low ≤ high", REQUIRED, "The region across the width"),
+            ],
+        },
+        Section {
+            title: "[ensemble.placement]",
+            about: String::new(),
+            keys: vec![
+                whole("x_count", CANDIDATES_PER_SIDE, REQUIRED, "Candidate sensor points along the length, edge to edge"),
+                whole("z_count", CANDIDATES_PER_SIDE, REQUIRED, "Candidate sensor points across the width, edge to edge"),
+            ],
+        },
+    ]
+}
+
+fn families() -> Section {
+    let classes = words([Class::Coal, Class::Gangue].map(|c| c.key()));
+    let random =
+        |name, unit, allowed: Range, meaning: &str| key(name, RANDOM, unit, allowed.to_string(), REQUIRED, meaning);
+    let families = vec![
+        key("name", STRING, NO_UNIT, name_rule(Some("families")), REQUIRED, "Names the family in tables"),
+        key("class", STRING, NO_UNIT, classes, REQUIRED, "What identification should call its impacts"),
+        whole(
+            "count",
+            FAMILY_COUNT,
+            REQUIRED,
+            &format!("Impacts of this family (all families together at most {MAX_IMPACTS})"),
+        ),
+        random("density_kg_m3", "kg/m³", limits::DENSITY_KG_M3, "Density ρ₁"),
+        random("youngs_modulus_gpa", "GPa", limits::MODULUS_GPA, "Young's modulus E₁"),
+        random("poisson_ratio", NO_UNIT, POISSON_RATIO, "Poisson's ratio μ₁"),
+        random("cohesion_mpa", "MPa", limits::COHESION_MPA, "Drucker-Prager cohesion (eq. 51)"),
+        random("friction_angle_deg", "deg", FRICTION_ANGLE_DEG, "Internal friction angle φ (eq. 51)"),
+        random("radius_mm", "mm", limits::RADIUS_MM, "Sphere radius R"),
+    ];
+    Section { title: "[[ensemble.families]]", about: "One table per material family.".into(), keys: families }
+}
+
+fn sections() -> Vec<Section> {
+    let mut all = vec![top_level()];
+    for part in [plate_and_bodies(), conditions(), points(), runs(), ensemble()] {
+        all.extend(part);
+    }
+    all.push(families());
+    all
+}
+
+/// A table cell: one line, no column break.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|").replace('\n', " ")
+}
+
+/// The scene format as Markdown: every table and key, then the embedded default scene.
+pub fn markdown() -> String {
+    let mut md = String::from("# Scene files\n\n");
+    md.push_str("<!-- Generated by `impact reference scenes` from crates/scene/src/reference.rs: do not edit. -->\n\n");
+    md.push_str(&format!(
+        "A scene is a TOML file of at most {MAX_SCENE_BYTES} bytes: what to compute, with the unit in each key's name. Every value is checked in the file's units against the range below, and an error names the key, the value as written and its range. `[a, b]` includes its ends, `(a, b)` excludes them; L and B are the plate's `length_mm` and `width_mm`. Unknown keys are refused. `impact default-scene` prints the example at the end, a template for your own.\n"
+    ));
+    for s in sections() {
+        let title = if s.title.starts_with('[') { format!("`{}`", s.title) } else { s.title.to_string() };
+        md.push_str(&format!("\n## {title}\n\n"));
+        if !s.about.is_empty() {
+            md.push_str(&format!("{}\n\n", s.about));
+        }
+        md.push_str("| Key | Type | Unit | Allowed | Default | Meaning |\n|---|---|---|---|---|---|\n");
+        for k in &s.keys {
+            md.push_str(&format!(
+                "| `{}` | {} | {} | {} | {} | {} |\n",
+                k.name,
+                cell(k.kind),
+                cell(k.unit),
+                cell(&k.allowed),
+                cell(&k.default),
+                cell(&k.meaning)
+            ));
+        }
+    }
+    md.push_str("\n## Example: the default scene\n\nThe paper's Table 1, embedded in the program.\n\n```toml\n");
+    md.push_str(DEFAULT_SCENE);
+    if !DEFAULT_SCENE.ends_with('\n') {
+        md.push('\n');
+    }
+    md.push_str("```\n");
+    md
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::ensemble::{RawEnsemble, RawFamily, RawPlacement, RawRegion};
+    use super::super::{
+        RawBody, RawCondition, RawCorners, RawEdges, RawGrid, RawPlate, RawPoints, RawScene, RawSignals, RawSolver,
+        RawTransient, RawVelocities,
+    };
+    use super::*;
+    use serde::de::{self, Visitor};
+    use serde::Deserialize;
+    use std::collections::BTreeSet;
+
+    /// A deserializer that only records the field names a derived `Deserialize` asks for.
+    struct Recorder<'a>(&'a mut &'static [&'static str]);
+
+    impl<'de> de::Deserializer<'de> for Recorder<'_> {
+        type Error = de::value::Error;
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(de::Error::custom("not a struct"))
+        }
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _: &'static str,
+            fields: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = fields;
+            Err(de::Error::custom("recorded"))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf option
+            unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier ignored_any
+        }
+    }
+
+    /// The keys a raw table accepts, from its serde derive.
+    fn fields<T: for<'de> Deserialize<'de>>() -> BTreeSet<&'static str> {
+        let mut names: &'static [&'static str] = &[];
+        let _ = T::deserialize(Recorder(&mut names));
+        names.iter().copied().collect()
+    }
+
+    #[test]
+    fn every_key_of_every_table_is_described_and_nothing_else() {
+        let tables = [
+            ("Top level", fields::<RawScene>()),
+            ("[plate]", fields::<RawPlate>()),
+            ("[[bodies]]", fields::<RawBody>()),
+            ("[[conditions]]", fields::<RawCondition>()),
+            ("[conditions.corners]", fields::<RawCorners>()),
+            ("[conditions.edges]", fields::<RawEdges>()),
+            ("[points]", fields::<RawPoints>()),
+            ("[points.grid]", fields::<RawGrid>()),
+            ("[velocities]", fields::<RawVelocities>()),
+            ("[solver]", fields::<RawSolver>()),
+            ("[transient]", fields::<RawTransient>()),
+            ("[signals]", fields::<RawSignals>()),
+            ("[ensemble]", fields::<RawEnsemble>()),
+            ("[ensemble.region]", fields::<RawRegion>()),
+            ("[ensemble.placement]", fields::<RawPlacement>()),
+            ("[[ensemble.families]]", fields::<RawFamily>()),
+        ];
+        let sections = sections();
+        let titles: Vec<&str> = sections.iter().map(|s| s.title).collect();
+        assert_eq!(titles, tables.iter().map(|(t, _)| *t).collect::<Vec<_>>(), "one section per raw table");
+        for (s, (title, accepted)) in sections.iter().zip(&tables) {
+            assert!(!accepted.is_empty(), "{title}: no fields recorded");
+            let described: BTreeSet<&str> = s.keys.iter().map(|k| k.name).collect();
+            assert_eq!(&described, accepted, "{title}: the keys described against the keys the parser accepts");
+        }
+    }
+
+    #[test]
+    fn the_reference_shows_the_parsers_ranges_and_the_default_scene() {
+        let md = markdown();
+        assert!(md.contains(&format!("| `restitution` | number | - | {} |", limits::RESTITUTION)));
+        let iterations = format!("| {} | {} |", limits::SOLVER_ITERATIONS, default_max_iterations());
+        assert!(md.contains(&format!("| `max_iterations` | whole number | - {iterations}")), "{md}");
+        assert!(md.contains(r#"| `supports` | string | - | `"both-fixed"` (Con 1), `"both-springs"` (Con 2), `"fixed-and-springs"` (Con 3) |"#));
+        assert!(md.ends_with(&format!("```toml\n{DEFAULT_SCENE}```\n")));
+    }
+}
