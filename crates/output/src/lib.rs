@@ -35,7 +35,7 @@ use serde::{Deserialize, Serialize};
 pub const MANIFEST: &str = ".impact-manifest.json";
 
 /// The mark of a single output file of ours: the opening of the compact JSON of
-/// [`crate::provenance::Provenance`] (its first field is the program's name), which a JSON
+/// `report::provenance::Provenance` (its first field is the program's name), which a JSON
 /// document carries as its first key and a `.vtu` in a comment before its root element. A
 /// single file has no room for a manifest; this is its signature instead.
 pub const FILE_MARK: &str = "{\"program\":\"impact\",";

@@ -339,33 +339,6 @@ pub fn yield_columns() -> Vec<Column<YieldRow>> {
     c
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_key_is_unique_and_in_the_key_form() {
-        let keys: Vec<&str> =
-            response_columns().iter().map(|c| c.key).chain(yield_columns().iter().map(|c| c.key)).collect();
-        for k in &keys {
-            assert!(k.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') && !k.contains("__"), "{k}");
-            // Newtons are `N`, hertz `Hz`: a lower-case unit word marks a column not converted.
-            assert!(!k.ends_with("_n") && !k.contains("_n_") && !k.ends_with("_hz"), "{k}");
-        }
-        let r: Vec<&str> = response_columns().iter().map(|c| c.key).collect();
-        let mut sorted = r.clone();
-        sorted.sort_unstable();
-        sorted.dedup();
-        assert_eq!(sorted.len(), r.len(), "a response key twice");
-    }
-
-    #[test]
-    fn spring_keys_are_key_words() {
-        assert_eq!(spring_key("spring at corner (L, 0)"), "spring_at_corner_L_0");
-        assert_eq!(spring_key("right spring"), "right_spring");
-    }
-}
-
 /// The result rows in the schema's keys, for JSON: `{"responses": [{key: value, ...}],
 /// "yields": [...]}`, each row holding the columns that apply to it (the spring forces among
 /// them); serialized straight from the rows, with no intermediate tree.
@@ -427,5 +400,32 @@ impl serde::Serialize for Rows<'_> {
         m.serialize_entry("responses", &Seq(&self.0.responses, &rc, spring_columns(&refs), |c, r| c.get(r)))?;
         m.serialize_entry("yields", &Seq(&self.0.yields, &yc, vec![], |_, _| None))?;
         m.end()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_key_is_unique_and_in_the_key_form() {
+        let keys: Vec<&str> =
+            response_columns().iter().map(|c| c.key).chain(yield_columns().iter().map(|c| c.key)).collect();
+        for k in &keys {
+            assert!(k.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') && !k.contains("__"), "{k}");
+            // Newtons are `N`, hertz `Hz`: a lower-case unit word marks a column not converted.
+            assert!(!k.ends_with("_n") && !k.contains("_n_") && !k.ends_with("_hz"), "{k}");
+        }
+        let r: Vec<&str> = response_columns().iter().map(|c| c.key).collect();
+        let mut sorted = r.clone();
+        sorted.sort_unstable();
+        sorted.dedup();
+        assert_eq!(sorted.len(), r.len(), "a response key twice");
+    }
+
+    #[test]
+    fn spring_keys_are_key_words() {
+        assert_eq!(spring_key("spring at corner (L, 0)"), "spring_at_corner_L_0");
+        assert_eq!(spring_key("right spring"), "right_spring");
     }
 }
