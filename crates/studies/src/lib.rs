@@ -6,6 +6,7 @@
 //!   memory and run budgets, the one entry point the command line and Python share;
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
 //!   &Settings, &dyn Progress) -> Data`), so far by [`signals`] and [`fem_bench`];
+//! * [`verdict`]: a statement's verdict under one model, to the model's resolution;
 //! * [`columns`]: one schema for the result rows (key with unit, header, kind, getter);
 //! * [`settings`]: the studies' shared settings, one place for each;
 //! * [`channel`]: the names of an identification's channels;
@@ -27,6 +28,7 @@ pub mod run;
 pub mod settings;
 pub mod signals;
 pub mod study;
+pub mod verdict;
 
 /// Any failure of a study, with its source.
 pub type Failure = Box<dyn std::error::Error>;
