@@ -55,3 +55,14 @@ impl Study for FemBench {
         Ok(crate::fem_bench::bench(scene, settings.bench_tolerance, nx, nz)?)
     }
 }
+
+/// The three-model yield study on the scene's own cases ([`crate::yield_models::scene`]).
+pub struct SceneYield;
+
+impl Study for SceneYield {
+    const KEY: &'static str = "yield-three-models";
+    type Data = crate::yield_models::scene::SceneYieldData;
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::yield_models::scene::compute(scene, settings, progress)
+    }
+}
