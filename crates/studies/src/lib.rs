@@ -5,10 +5,10 @@
 //! * [`run`]: a scene by the models a caller picks (beam, plate FE, transient), within the
 //!   memory and run budgets, the one entry point the command line and Python share;
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
-//!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`] and the
-//!   three-model yield study on a scene ([`yield_models::scene`]); the yield study on the
-//!   paper's scene ([`yield_models::paper`]) computes here from the printed tables the
-//!   `report` crate holds;
+//!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`], the
+//!   three-model yield study on a scene ([`yield_models::scene`]) and the regime maps
+//!   ([`regimes`]); the yield study on the paper's scene ([`yield_models::paper`]) computes
+//!   here from the printed tables the `report` crate holds;
 //! * [`verdict`]: a statement's verdict under one model, to the model's resolution;
 //! * [`columns`]: one schema for the result rows (key with unit, header, kind, getter);
 //! * [`settings`]: the studies' shared settings, one place for each;
@@ -27,6 +27,7 @@ pub mod channel;
 pub mod columns;
 pub mod fem_bench;
 pub mod progress;
+pub mod regimes;
 pub mod run;
 pub mod settings;
 pub mod signals;

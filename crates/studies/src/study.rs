@@ -66,3 +66,14 @@ impl Study for SceneYield {
         crate::yield_models::scene::compute(scene, settings, progress)
     }
 }
+
+/// The regime maps ([`crate::regimes`]).
+pub struct RegimeMaps;
+
+impl Study for RegimeMaps {
+    const KEY: &'static str = "regimes";
+    type Data = crate::regimes::RegimeData;
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::regimes::compute(scene, settings, progress)
+    }
+}
