@@ -20,6 +20,8 @@
 //! - [`reduced`]: the same impact on the plate's lowest modes plus a static correction,
 //!   fast enough for ensembles, with sensor signals;
 //! - [`plan`]: every model filling one row schema for a scene;
+//! - [`yield_root`]: the transient yield velocity, the v at which the transient δ_max
+//!   reaches δ_my of eq. 51;
 //! - [`identification`]: the random-impact ensemble of crate `identify` on the reduced model,
 //!   one support set at a time, features only.
 //!
@@ -56,6 +58,7 @@ pub mod scene;
 pub mod supports;
 pub mod transient;
 pub mod validity;
+pub mod yield_root;
 
 pub use compliance::{BeamModel, ComplianceModel, Estimate, PlateModel};
 pub use error::ModelError;

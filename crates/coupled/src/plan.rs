@@ -837,10 +837,9 @@ pub fn log_root(
     Ok((lo, hi))
 }
 
-/// The dynamic yield velocity: the v at which the transient δ_max reaches δ_my of eq. 51.
-/// ln(δ_max/δ_my) increases with ln v; [`log_root`] brackets it from the rigid-target
-/// value of the balance and closes the bracket to [`YIELD_ROOT_TOLERANCE`]. The error is the
-/// bracket's width.
+/// The dynamic yield velocity: the v at which the transient δ_max reaches δ_my of eq. 51
+/// ([`crate::yield_root`]). The error is the final bracket's width, to a relative
+/// [`YIELD_ROOT_TOLERANCE`].
 pub fn dynamic_yield(
     scene: &Scene,
     case: &TransientCase,
@@ -862,22 +861,13 @@ pub fn dynamic_yield_with(
     x: f64,
     z: f64,
 ) -> Result<YieldValues, ModelError> {
-    let k = contact_stiffness(body, scene.plate.material());
-    let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
-    let mut reach = |lv: f64| -> Result<f64, ModelError> {
-        let s = scene_striker(scene, body, lv.exp());
-        // δ_max is the first contact's: the run need not follow the later ones.
-        Ok((case.first_contact(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
-    };
-    // On a rigid target the balance gives the smallest v that reaches δ_my: start there.
-    let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
-    let (lo, hi) = log_root(&mut reach, v_rigid.ln(), YIELD_ROOT_TOLERANCE)?;
+    let root = crate::yield_root::transient_yield_with(scene, case, steps_per_contact, set, body, x, z)?;
     Ok(YieldValues {
         compliance: None,
         compliance_error: None,
-        yield_compression: d_my,
-        yield_velocity: (0.5 * (lo + hi)).exp(),
-        yield_velocity_error: Some(hi.exp() - lo.exp()),
+        yield_compression: root.yield_compression,
+        yield_velocity: root.velocity,
+        yield_velocity_error: Some(root.width),
         validity: Validity {
             elastic: None,
             quasi_static: None,

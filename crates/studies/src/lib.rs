@@ -5,11 +5,14 @@
 //! * [`run`]: a scene by the models a caller picks (beam, plate FE, transient), within the
 //!   memory and run budgets, the one entry point the command line and Python share;
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
-//!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`] and
-//!   [`transient`];
+//!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`],
+//!   [`transient`], the three-model yield study on a scene ([`yield_models::scene`]) and the
+//!   regime maps ([`regimes`]); the yield study on the paper's scene ([`yield_models::paper`])
+//!   computes here too;
 //! * [`transient`]: the transient model against the quasi-static ones, the contact laws,
 //!   the size map and the model's verification (`impact dynamic`);
 //! * [`field_series`]: the plate's deflection recorded during one contact;
+//! * [`verdict`]: a statement's verdict under one model, to the model's resolution;
 //! * [`columns`]: one schema for the result rows (key with unit, header, kind, getter);
 //! * [`settings`]: the studies' shared settings, one place for each;
 //! * [`channel`]: the names of an identification's channels;
@@ -29,11 +32,14 @@ pub mod fem_bench;
 pub mod field_series;
 pub mod paper;
 pub mod progress;
+pub mod regimes;
 pub mod run;
 pub mod settings;
 pub mod signals;
 pub mod study;
 pub mod transient;
+pub mod verdict;
+pub mod yield_models;
 
 /// Any failure of a study, with its source.
 pub type Failure = Box<dyn std::error::Error>;

@@ -67,3 +67,25 @@ impl Study for Transient {
         crate::transient::compute(scene, settings, progress)
     }
 }
+
+/// The three-model yield study on the scene's own cases ([`crate::yield_models::scene`]).
+pub struct SceneYield;
+
+impl Study for SceneYield {
+    const KEY: &'static str = "yield-three-models";
+    type Data = crate::yield_models::scene::SceneYieldData;
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::yield_models::scene::compute(scene, settings, progress)
+    }
+}
+
+/// The regime maps ([`crate::regimes`]).
+pub struct RegimeMaps;
+
+impl Study for RegimeMaps {
+    const KEY: &'static str = "regimes";
+    type Data = crate::regimes::RegimeData;
+    fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::regimes::compute(scene, settings, progress)
+    }
+}

@@ -20,6 +20,8 @@
 //!   (a log colour scale still shows 1.2, 1.5, 2, not log10 values).
 
 use std::fmt::Write as _;
+/// A statement's verdict under one model: data of the studies, drawn here by [`Matrix`].
+pub use studies::verdict::Verdict;
 
 /// Series with at most this many points get markers: few points joined by lines would read
 /// as a measured curve.
@@ -1025,70 +1027,6 @@ pub struct Matrix {
     pub cells: Vec<Vec<Verdict>>,
 }
 
-/// A statement's verdict under one model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Verdict {
-    /// The data show it.
-    Holds,
-    /// The data contradict it.
-    Fails,
-    /// A difference it rests on is within the model's resolution (its error estimate), and
-    /// nothing contradicts it: the model cannot tell.
-    NotResolved,
-    /// Not tested under this model.
-    NotTested,
-}
-
-impl Verdict {
-    /// The word tables and figures print.
-    pub fn word(self) -> &'static str {
-        match self {
-            Verdict::Holds => "yes",
-            Verdict::Fails => "no",
-            Verdict::NotResolved => "not resolved",
-            Verdict::NotTested => "–",
-        }
-    }
-
-    /// The verdict on a statement made of parts: it fails if any part fails, holds if every
-    /// part holds, and is not resolved otherwise (an empty statement holds).
-    pub fn all(parts: impl IntoIterator<Item = Verdict>) -> Verdict {
-        let mut out = Verdict::Holds;
-        for v in parts {
-            match v {
-                Verdict::Fails => return Verdict::Fails,
-                Verdict::NotResolved | Verdict::NotTested if out == Verdict::Holds => out = v,
-                _ => {}
-            }
-        }
-        out
-    }
-
-    /// Whether `a` exceeds `b` (`strict`) or is at least `b`, each known to within an absolute
-    /// `resolution`: a difference within the resolution is not resolved (a zero resolution,
-    /// an exact model, always decides).
-    pub fn compare(a: f64, b: f64, resolution: f64, strict: bool) -> Verdict {
-        let d = a - b;
-        if resolution > 0.0 && d.abs() <= resolution {
-            Verdict::NotResolved
-        } else if d > 0.0 || (!strict && d == 0.0) {
-            Verdict::Holds
-        } else {
-            Verdict::Fails
-        }
-    }
-}
-
-impl From<bool> for Verdict {
-    fn from(holds: bool) -> Self {
-        if holds {
-            Verdict::Holds
-        } else {
-            Verdict::Fails
-        }
-    }
-}
-
 /// `text` broken at spaces into lines of at most `width` characters.
 fn wrap(text: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = vec![];
@@ -1182,22 +1120,6 @@ mod tests {
         let svg = line_plot("t", "x", "y", &s, Scale::Linear);
         assert!(svg.starts_with("<svg"));
         assert!(svg.contains("Con 2"));
-    }
-
-    #[test]
-    fn verdicts_combine_and_compare_within_resolution() {
-        use Verdict::*;
-        assert_eq!(Verdict::all([Holds, Holds]), Holds);
-        assert_eq!(Verdict::all([Holds, NotResolved, Holds]), NotResolved);
-        assert_eq!(Verdict::all([NotResolved, Fails]), Fails);
-        // A difference smaller than what the model resolves decides nothing.
-        assert_eq!(Verdict::compare(1.0 + 1e-5, 1.0, 3.5e-5, true), NotResolved);
-        assert_eq!(Verdict::compare(1.0 - 1e-5, 1.0, 3.5e-5, true), NotResolved);
-        assert_eq!(Verdict::compare(1.0 + 1e-4, 1.0, 3.5e-5, true), Holds);
-        assert_eq!(Verdict::compare(1.0 - 1e-4, 1.0, 3.5e-5, true), Fails);
-        // An exact model decides every difference, and "at least" admits equality.
-        assert_eq!(Verdict::compare(1.0, 1.0, 0.0, false), Holds);
-        assert_eq!(Verdict::compare(1.0, 1.0, 0.0, true), Fails);
     }
 
     #[test]
