@@ -1,0 +1,163 @@
+//! One function per command, each in the shape plan → compute → render → commit: the scene
+//! is read and every flag checked before any work, the output target is prepared (so a run
+//! that cannot write fails before it spends time), the study computes, and its files are
+//! committed whole.
+
+use crate::cli::{Command, Common, FemBenchArgs};
+use crate::commit::{commit, commit_reporting, emit, prepare, print_json};
+use crate::progress::Terminal;
+use crate::written::in_range;
+use crate::{cli_doc, out};
+use clap::CommandFactory;
+use coupled::plan::{ModelKind, Results};
+use impact::output::OutputDir;
+use impact::present::rows::slug;
+use impact::provenance::Provenance;
+use impact::report::identify::RowFiles;
+use impact::report::Failure;
+use impact::scene::{limits, Analysis, Scene, SceneSource, DEFAULT_SCENE};
+use std::path::{Path, PathBuf};
+
+/// Runs one command.
+pub fn run(command: Command) -> Result<(), Failure> {
+    match command {
+        Command::Solve(c) => rows(&c, "solve", Ok),
+        Command::Sweep { common, count } => rows(&common, "sweep", |s| Ok(s.with_sweep(count as usize))),
+        Command::Yield(c) => rows(&c, "yield", |mut s| {
+            s.analyses = vec![Analysis::YieldVelocity];
+            Ok(s)
+        }),
+        Command::Paper { out, json } => paper(&out, json),
+        Command::Dynamic { scene, out, transient, json } => {
+            let scene = transient.apply(load_bodies(&scene, "dynamic")?)?;
+            let target = OutputDir::prepare(out.unwrap_or_else(|| default_out(&scene, "dynamic")))?;
+            let mut a = impact::report::transient::report(&scene, &Terminal::new())?;
+            Provenance::of(&scene).stamp(&mut a);
+            commit_reporting(target, &a, &scene, json)
+        }
+        Command::Signals { scene, out, json } => signals(&load(&scene)?, out, json),
+        Command::Compare { scene, out, transient, json } => {
+            let scene = transient.apply(load_bodies(&scene, "compare")?)?;
+            let target = OutputDir::prepare(out.unwrap_or_else(|| default_out(&scene, "compare")))?;
+            commit_reporting(target, &impact::report::scene_report(&scene, &Terminal::new())?, &scene, json)
+        }
+        Command::Identify { scene, out, json, no_features_csv } => identify(&scene, out, json, no_features_csv),
+        Command::Report { out, json } => {
+            let mut target = OutputDir::prepare(&out)?;
+            let scene = Scene::default_scene();
+            let artifacts = impact::report::full_report(&scene, &mut target, &Terminal::new())?;
+            // The provenance printed is that of the scene the report ran, as in its files.
+            commit_reporting(target, &artifacts, &impact::report::main_scene(&scene), json)
+        }
+        Command::FemBench(args) => fem_bench(&args),
+        Command::Field(args) => crate::field::run(&args),
+        Command::DefaultScene => out(DEFAULT_SCENE),
+        Command::Reference { what } => out(&cli_doc::reference(what, crate::cli::Cli::command())),
+        Command::Completions { shell } => {
+            // Into a buffer first: clap_complete panics on a write error, and a closed pipe
+            // (`impact completions bash | head`) should end quietly like every other command.
+            let mut script = Vec::new();
+            clap_complete::generate(shell, &mut crate::cli::Cli::command(), "impact", &mut script);
+            out(&String::from_utf8(script)?)
+        }
+    }
+}
+
+/// `solve`, `sweep` and `yield`: the scene's rows by the chosen models, `shape` turning the
+/// scene into the command's cases.
+fn rows(c: &Common, command: &str, shape: impl FnOnce(Scene) -> Result<Scene, Failure>) -> Result<(), Failure> {
+    let scene = shape(c.transient.apply(load_bodies(&c.scene, command)?)?)?;
+    let target = prepare(c.out.as_deref())?;
+    let r = results(&scene, &c.model.kinds())?;
+    emit(c, target, &scene, r)
+}
+
+/// `impact paper`: the paper's tables and figures reproduced on its own scene.
+fn paper(dir: &Path, json: bool) -> Result<(), Failure> {
+    let target = OutputDir::prepare(dir)?;
+    let scene = impact::report::paper::Paper::new().scene;
+    let mut a = impact::report::paper::reproduce()?;
+    Provenance::of(&scene).stamp(&mut a);
+    commit_reporting(target, &a, &scene, json)
+}
+
+/// `impact signals`: the reduced model's time series into files, its first-contact numbers
+/// on the terminal.
+fn signals(scene: &Scene, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
+    let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(scene, "signals")))?;
+    let (run, tables, mut artifacts) = impact::report::signals::signals(scene)?;
+    Provenance::of(scene).stamp(&mut artifacts);
+    commit(target, &artifacts)?;
+    if json {
+        return print_json(scene, &run);
+    }
+    let text: Vec<String> = tables.iter().map(|t| t.to_text()).collect();
+    out(&format!("scene: {} ({})\n\n{}", scene.name, scene.description, text.join("\n")))
+}
+
+/// `impact identify`: the scene's ensemble, checked against every budget before it runs.
+fn identify(path: &Path, dir: Option<PathBuf>, json: bool, no_features_csv: bool) -> Result<(), Failure> {
+    let scene = Scene::load(path)?;
+    impact::report::identify::checked_study(&scene)?;
+    let mut target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "identify")))?;
+    let files = if no_features_csv { RowFiles::Impacts } else { RowFiles::All };
+    let (artifacts, summary) = impact::report::identify::write(&scene, &mut target, "", files)?;
+    commit(target, &artifacts)?;
+    if json {
+        return print_json(&scene, &summary);
+    }
+    for t in impact::report::identify::summary_tables(&summary) {
+        out(&format!("{}\n", t.to_text()))?;
+    }
+    Ok(())
+}
+
+/// `impact fem-bench`: the plate FE compliance map timed on the mesh that reaches the
+/// tolerance.
+fn fem_bench(args: &FemBenchArgs) -> Result<(), Failure> {
+    let scene = load(&args.scene)?;
+    let tolerance = args.tolerance.within("--tolerance", limits::FEM_BENCH_TOLERANCE, "")?;
+    for (flag, n) in [("--nx", args.nx), ("--nz", args.nz)] {
+        in_range(flag, &n.to_string(), n as f64, limits::FEM_BENCH_POINTS, "")?;
+    }
+    let r = impact::report::fem_bench::bench(&scene, tolerance, args.nx, args.nz)?;
+    if args.json {
+        return print_json(&scene, &r);
+    }
+    for t in impact::report::fem_bench::bench_tables(&r) {
+        out(&format!("\n{}", t.to_text()))?;
+    }
+    Ok(())
+}
+
+/// The scene at `path`, or the embedded default.
+pub fn load(path: &Option<PathBuf>) -> Result<Scene, Failure> {
+    Ok(match path {
+        Some(p) => Scene::load(p)?,
+        None => Scene::default_scene(),
+    })
+}
+
+/// A scene for the commands that strike its bodies at its points: a scene written only for
+/// `impact identify` has neither (its ensemble draws its own).
+fn load_bodies(path: &Option<PathBuf>, command: &str) -> Result<Scene, Failure> {
+    let scene = load(path)?;
+    if scene.bodies.is_empty() || scene.points.is_empty() {
+        return Err(format!(
+            "scene {}: impact {command} strikes the scene's [[bodies]] at its [points], and it has none (a scene whose only analysis is \"identify\" is for impact identify)",
+            scene.name
+        )
+        .into());
+    }
+    Ok(scene)
+}
+
+/// The one rule for default output folders: `impact-out/<scene name as a file name>-<command>`.
+fn default_out(scene: &Scene, command: &str) -> PathBuf {
+    PathBuf::from("impact-out").join(format!("{}-{command}", slug(&scene.name)))
+}
+
+/// The scene's rows by each requested model (the library's [`impact::run::results`]).
+fn results(scene: &Scene, models: &[ModelKind]) -> Result<Results, Failure> {
+    impact::run::results(scene, models, &Terminal::new())
+}
