@@ -1,0 +1,279 @@
+//! Validation: every field checked against its range in the file's units, then converted to
+//! SI once, into a [`Scene`].
+
+use crate::limits;
+use crate::raw::*;
+use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
+use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
+use coupled::scene::{Analysis, Points, Scene};
+use coupled::transient::LawKind;
+use coupled::SupportSet;
+
+mod points;
+mod signals;
+mod supports;
+
+use crate::{ensemble, slug, MAX_NAME_CHARS};
+use points::{transient_points, validate_points};
+use signals::validate_signals;
+use supports::validate_condition;
+
+pub(crate) enum Invalid {
+    Range(InvalidParameter),
+    Other { field: String, message: String },
+}
+
+impl From<InvalidParameter> for Invalid {
+    fn from(e: InvalidParameter) -> Self {
+        Self::Range(e)
+    }
+}
+
+pub(crate) fn other(field: impl Into<String>, message: impl Into<String>) -> Invalid {
+    Invalid::Other { field: field.into(), message: message.into() }
+}
+
+pub(crate) const MM: f64 = 1e-3;
+pub(crate) const GPA: f64 = 1e9;
+pub(crate) const MPA: f64 = 1e6;
+
+/// Checks a display name: not empty, not too long, and distinct from the names before it
+/// even after reduction to a file-name stem (reports name files after it: "A" and "a!"
+/// would write the same file).
+pub(crate) fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<(), Invalid> {
+    if name.trim().is_empty() {
+        return Err(other(field, "is empty; give it a name"));
+    }
+    let n = name.chars().count();
+    if n > MAX_NAME_CHARS {
+        return Err(other(field, format!("is {n} characters long; the allowed range is [1, {MAX_NAME_CHARS}]")));
+    }
+    let stem = slug(name);
+    if stem.is_empty() {
+        return Err(other(field, format!("'{name}' has no letter or digit; file names are made from it")));
+    }
+    if let Some(e) = earlier.iter().find(|e| slug(e) == stem) {
+        return Err(other(
+            field,
+            format!(
+                "'{name}' and '{e}' give the same file name '{stem}'; names must differ in their letters or digits"
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A whole count written as a TOML number, in `allowed` (a range of whole ends).
+pub(crate) fn count(field: &str, value: f64, allowed: Range) -> Result<usize, Invalid> {
+    let v = check(field, value, allowed, "")?;
+    if v.fract() != 0.0 {
+        return Err(other(field, format!("{value} is not a whole number; the allowed range is {allowed}")));
+    }
+    Ok(v as usize)
+}
+
+/// Checks every field against its range, in the units of the file, then converts to SI.
+pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
+    let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
+    let contact_law = contact_law(raw.contact_law.as_deref())?;
+    check_name("name".into(), &raw.name, &[])?;
+    let plate = validate_plate(&raw.plate)?;
+    let (length_mm, width_mm) = (raw.plate.length_mm, raw.plate.width_mm);
+    let analyses = validate_analyses(&raw.analyses)?;
+    // Every analysis but identification strikes the scene's bodies at its points; the
+    // identification study draws its own from [ensemble].
+    let needs_bodies = analyses.iter().any(|a| *a != Analysis::Identify);
+    if raw.bodies.is_empty() && needs_bodies {
+        return Err(other("bodies", "at least one [[bodies]] entry is required"));
+    }
+    let bodies = validate_bodies(&raw.bodies)?;
+    let conditions = validate_conditions(&raw.conditions, &plate)?;
+    let points = match &raw.points {
+        Some(p) => validate_points(p, &plate, length_mm, width_mm)?,
+        None if needs_bodies => {
+            return Err(other("points", "a [points] table is required (x_mm, count, pairs_mm or [points.grid])"))
+        }
+        None => Points::Pairs { pairs: vec![] },
+    };
+    let transient_points = match &raw.transient {
+        None => points.pairs(),
+        Some(t) => transient_points(t, &plate, length_mm, width_mm)?,
+    };
+    Ok(Scene {
+        velocities: validate_velocities(raw.velocities.as_ref(), &analyses)?,
+        signals: validate_signals(raw.signals.as_ref(), length_mm, width_mm)?,
+        solver: validate_solver(&raw.solver)?,
+        ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
+        name: raw.name,
+        description: raw.description,
+        plate,
+        bodies,
+        restitution,
+        contact_law,
+        conditions,
+        points,
+        transient_points,
+        analyses,
+        transient_discretisation: coupled::transient::Discretisation::default(),
+    })
+}
+
+/// `contact_law`: a key of the law registry, or the default law.
+fn contact_law(name: Option<&str>) -> Result<LawKind, Invalid> {
+    match name {
+        None => Ok(LawKind::default()),
+        Some(name) => LawKind::from_key(name).ok_or_else(|| {
+            let keys: Vec<_> = LawKind::ALL.iter().map(|l| format!("\"{}\"", l.key())).collect();
+            other("contact_law", format!("'{name}' is not a contact law; allowed: {}", keys.join(", ")))
+        }),
+    }
+}
+
+/// `[plate]`: material, size and density, a plate (not a strip, not a block).
+fn validate_plate(p: &RawPlate) -> Result<Plate, Invalid> {
+    let plate_material = Elastic::new(
+        check("plate.youngs_modulus_gpa", p.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa")? * GPA,
+        check("plate.poisson_ratio", p.poisson_ratio, POISSON_RATIO, "")?,
+    )?;
+    let length_mm = check("plate.length_mm", p.length_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let width_mm = check("plate.width_mm", p.width_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let thickness_mm = check("plate.thickness_mm", p.thickness_mm, limits::THICKNESS_MM, "mm")?;
+    let aspect = length_mm.max(width_mm) / length_mm.min(width_mm);
+    if aspect > limits::MAX_ASPECT_RATIO {
+        return Err(other(
+            "plate.length_mm and plate.width_mm",
+            format!(
+                "{length_mm} mm by {width_mm} mm is an aspect ratio of {}; the allowed range is [1, {}] (a narrower plate is a strip: model it as the beam it is)",
+                analytic::params::compact(aspect),
+                limits::MAX_ASPECT_RATIO
+            ),
+        ));
+    }
+    if thickness_mm > length_mm.min(width_mm) {
+        return Err(other(
+            "plate.thickness_mm",
+            format!(
+                "{thickness_mm} mm is more than the plate's smaller side {} mm: not a plate",
+                length_mm.min(width_mm)
+            ),
+        ));
+    }
+    Ok(Plate::new(
+        length_mm * MM,
+        width_mm * MM,
+        thickness_mm * MM,
+        check("plate.density_kg_m3", p.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?,
+        plate_material,
+    )?)
+}
+
+/// `analyses`: not empty; each named once (a repeat is dropped).
+fn validate_analyses(raw: &[Analysis]) -> Result<Vec<Analysis>, Invalid> {
+    if raw.is_empty() {
+        let keys: Vec<&str> = Analysis::ALL.iter().map(|a| a.key()).collect();
+        return Err(other("analyses", format!("the list is empty; allowed entries: {}", keys.join(", "))));
+    }
+    let mut analyses: Vec<Analysis> = Vec::new();
+    for &a in raw {
+        if !analyses.contains(&a) {
+            analyses.push(a);
+        }
+    }
+    Ok(analyses)
+}
+
+/// `[[bodies]]`: each sphere's material, strength, density, radius and a distinct name.
+fn validate_bodies(raw: &[RawBody]) -> Result<Vec<Sphere>, Invalid> {
+    let mut bodies = Vec::with_capacity(raw.len());
+    for (i, b) in raw.iter().enumerate() {
+        let f = |k: &str| format!("bodies[{i}].{k}");
+        let material = Elastic::new(
+            check(&f("youngs_modulus_gpa"), b.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa")? * GPA,
+            check(&f("poisson_ratio"), b.poisson_ratio, POISSON_RATIO, "")?,
+        )?;
+        let strength = RockStrength::new(
+            check(&f("cohesion_mpa"), b.cohesion_mpa, limits::COHESION_MPA, "MPa")? * MPA,
+            check(&f("friction_angle_deg"), b.friction_angle_deg, FRICTION_ANGLE_DEG, "deg")?,
+        )?;
+        let density = check(&f("density_kg_m3"), b.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?;
+        let radius = check(&f("radius_mm"), b.radius_mm, limits::RADIUS_MM, "mm")? * MM;
+        let earlier: Vec<&str> = bodies.iter().map(|s: &Sphere| s.name.as_str()).collect();
+        check_name(f("name"), &b.name, &earlier)?;
+        bodies.push(Sphere::new(b.name.clone(), density, radius, material, strength)?);
+    }
+    Ok(bodies)
+}
+
+/// `[[conditions]]`: at least one support set, each with a distinct name.
+fn validate_conditions(raw: &[RawCondition], plate: &Plate) -> Result<Vec<SupportSet>, Invalid> {
+    if raw.is_empty() {
+        return Err(other("conditions", "at least one [[conditions]] entry is required"));
+    }
+    let mut conditions: Vec<SupportSet> = Vec::with_capacity(raw.len());
+    for (i, c) in raw.iter().enumerate() {
+        let set = validate_condition(i, c, plate)?;
+        let earlier: Vec<&str> = conditions.iter().map(|n| n.name.as_str()).collect();
+        check_name(format!("conditions[{i}].name"), &set.name, &earlier)?;
+        conditions.push(set);
+    }
+    Ok(conditions)
+}
+
+/// `[velocities]`: required by the analyses that strike at a velocity, each in range.
+fn validate_velocities(raw: Option<&RawVelocities>, analyses: &[Analysis]) -> Result<Vec<f64>, Invalid> {
+    let needs_velocity = analyses
+        .iter()
+        .any(|a| matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps));
+    match raw {
+        Some(v) => {
+            if v.m_per_s.is_empty() {
+                return Err(other("velocities.m_per_s", "the list is empty; give at least one velocity"));
+            }
+            let mut out = Vec::with_capacity(v.m_per_s.len());
+            for (j, &vel) in v.m_per_s.iter().enumerate() {
+                out.push(check(&format!("velocities.m_per_s[{j}]"), vel, limits::VELOCITY_M_PER_S, "m/s")?);
+            }
+            Ok(out)
+        }
+        None if needs_velocity => Err(other(
+            "velocities.m_per_s",
+            "is required when analyses include \"responses\", \"transient\", \"size-map\" or \"regime-maps\"",
+        )),
+        None => Ok(vec![]),
+    }
+}
+
+/// `[solver]`: the root finder of the energy balance with its tolerance and iteration cap.
+fn validate_solver(raw: &RawSolver) -> Result<Method, Invalid> {
+    let tolerance = check("solver.tolerance", raw.tolerance, limits::SOLVER_TOLERANCE, "")?;
+    if !limits::SOLVER_ITERATIONS.contains(f64::from(raw.max_iterations)) {
+        return Err(other(
+            "solver.max_iterations",
+            format!("{} is outside the allowed range {}", raw.max_iterations, limits::SOLVER_ITERATIONS),
+        ));
+    }
+    Ok(match raw.method {
+        MethodName::Recursion => Method::Recursion { tolerance, max_iterations: raw.max_iterations },
+        MethodName::Bracketed => Method::Bracketed { tolerance, max_iterations: raw.max_iterations },
+    })
+}
+
+/// `[ensemble]`: present exactly when the "identify" analysis is asked for.
+fn validate_ensemble(
+    raw: Option<&ensemble::RawEnsemble>,
+    analyses: &[Analysis],
+    length_mm: f64,
+    width_mm: f64,
+) -> Result<Option<identify::Study>, Invalid> {
+    match (raw, analyses.contains(&Analysis::Identify)) {
+        (Some(e), true) => Ok(Some(ensemble::validate_ensemble(e, length_mm, width_mm)?)),
+        (None, false) => Ok(None),
+        (None, true) => {
+            Err(other("ensemble", "the \"identify\" analysis needs an [ensemble] table (the random impacts)"))
+        }
+        (Some(_), false) => Err(other(
+            "ensemble",
+            "is read only by the \"identify\" analysis; add \"identify\" to analyses or remove the table",
+        )),
+    }
+}

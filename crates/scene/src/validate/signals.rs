@@ -1,0 +1,61 @@
+//! `[signals]`: the reduced model's window, sampling rate, damping, modes and sensors.
+
+use super::{count, other, Invalid, MM};
+use crate::limits;
+use crate::raw::*;
+use analytic::params::{check, Range};
+use coupled::reduced::SignalSettings;
+
+/// `[signals]`: each key in its range (the file's units), converted to SI; absent keys take
+/// the defaults of [`SignalSettings`].
+pub(super) fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -> Result<SignalSettings, Invalid> {
+    let d = SignalSettings::default();
+    let Some(raw) = raw else { return Ok(d) };
+    let window_ms = match raw.window_ms {
+        Some(w) => check("signals.window_ms", w, limits::SIGNAL_WINDOW_MS, "ms")?,
+        None => d.window * 1e3,
+    };
+    let rate_hz = match raw.rate_hz {
+        Some(r) => check("signals.rate_hz", r, limits::SAMPLE_RATE_HZ, "Hz")?,
+        None => d.rate_hz,
+    };
+    let samples = window_ms * 1e-3 * rate_hz;
+    if samples > limits::MAX_SAMPLES {
+        return Err(other(
+            "signals.window_ms and signals.rate_hz",
+            format!(
+                "{window_ms} ms at {rate_hz} Hz is {} samples per channel; at most {} are allowed",
+                analytic::params::compact(samples.ceil()),
+                analytic::params::compact(limits::MAX_SAMPLES)
+            ),
+        ));
+    }
+    let damping_ratio = match raw.damping_ratio {
+        Some(z) => check("signals.damping_ratio", z, coupled::reduced::ReducedSettings::DAMPING_RATIO, "")?,
+        None => d.damping_ratio,
+    };
+    let modes = match raw.modes {
+        Some(n) => count("signals.modes", n, limits::MODES)?,
+        None => d.modes,
+    };
+    let sensors = match &raw.sensors_mm {
+        None => Vec::new(),
+        Some(list) => {
+            if list.len() > limits::MAX_SENSORS {
+                return Err(other(
+                    "signals.sensors_mm",
+                    format!("{} sensors; at most {} are allowed", list.len(), limits::MAX_SENSORS),
+                ));
+            }
+            let (along, across) = (Range::closed(0.0, l_mm), Range::closed(0.0, b_mm));
+            let mut out = Vec::with_capacity(list.len());
+            for (j, &(x, z)) in list.iter().enumerate() {
+                let x = check(&format!("signals.sensors_mm[{j}][0] (x)"), x, along, "mm")? * MM;
+                let z = check(&format!("signals.sensors_mm[{j}][1] (z)"), z, across, "mm")? * MM;
+                out.push((x, z));
+            }
+            out
+        }
+    };
+    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, modes, sensors })
+}
