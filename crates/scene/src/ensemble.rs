@@ -105,73 +105,7 @@ fn distribution(
 ) -> Result<Distribution, Invalid> {
     let law = match v {
         toml::Value::Float(_) | toml::Value::Integer(_) => Distribution::Fixed { value: number(field, v)? },
-        toml::Value::Table(t) => {
-            let names: Vec<&str> = LAWS.iter().map(|(n, _)| *n).collect();
-            let kind = match t.get("distribution") {
-                Some(toml::Value::String(s)) => s.as_str(),
-                _ => {
-                    return Err(other(
-                        format!("{field}.distribution"),
-                        format!("is required: one of {}, or give a plain number for a fixed value", names.join(", ")),
-                    ))
-                }
-            };
-            let Some((_, keys)) = LAWS.iter().find(|(n, _)| *n == kind) else {
-                return Err(other(
-                    format!("{field}.distribution"),
-                    format!("'{kind}' is not a distribution; allowed: {}", names.join(", ")),
-                ));
-            };
-            for k in t.keys() {
-                if k != "distribution" && !keys.contains(&k.as_str()) {
-                    return Err(other(
-                        format!("{field}.{k}"),
-                        format!("is not a parameter of the {kind} law; it takes {}", keys.join(", ")),
-                    ));
-                }
-            }
-            let get = |k: &str| -> Result<f64, Invalid> {
-                match t.get(k) {
-                    Some(v) => number(&format!("{field}.{k}"), v),
-                    None => Err(other(
-                        format!("{field}.{k}"),
-                        format!("is required by the {kind} law ({})", keys.join(", ")),
-                    )),
-                }
-            };
-            match kind {
-                "uniform" => Distribution::Uniform { min: get("min")?, max: get("max")? },
-                "normal" => {
-                    Distribution::Normal { mean: get("mean")?, sd: get("sd")?, min: get("min")?, max: get("max")? }
-                }
-                "lognormal" => Distribution::LogNormal {
-                    median: get("median")?,
-                    sigma_log: get("sigma_log")?,
-                    min: get("min")?,
-                    max: get("max")?,
-                },
-                "rosin-rammler" => Distribution::RosinRammler {
-                    scale: get("scale")?,
-                    shape: get("shape")?,
-                    min: get("min")?,
-                    max: get("max")?,
-                },
-                _ => {
-                    let Some(toml::Value::Array(list)) = t.get("values") else {
-                        return Err(other(
-                            format!("{field}.values"),
-                            "is required by the choice law: a list of numbers",
-                        ));
-                    };
-                    let values = list
-                        .iter()
-                        .enumerate()
-                        .map(|(j, v)| number(&format!("{field}.values[{j}]"), v))
-                        .collect::<Result<Vec<f64>, Invalid>>()?;
-                    Distribution::Choice { values }
-                }
-            }
-        }
+        toml::Value::Table(t) => law_table(field, t)?,
         other_value => {
             return Err(other(field, format!("{other_value} is neither a number nor a {{ distribution = ... }} table")))
         }
@@ -186,24 +120,68 @@ fn distribution(
     Ok(checked.scaled(to_si))
 }
 
-/// Checks the `[ensemble]` table against the plate (length and width in mm).
-pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64) -> Result<Study, Invalid> {
-    const MM: f64 = 1e-3;
-    let region = match &raw.region {
-        None => Region { x: (0.0, length_mm * MM), z: (0.0, width_mm * MM) },
-        Some(r) => {
-            let along = Range::closed(0.0, length_mm);
-            let across = Range::closed(0.0, width_mm);
-            let x0 = check("ensemble.region.x_mm[0]", r.x_mm.0, along, "mm")?;
-            let x1 = check("ensemble.region.x_mm[1]", r.x_mm.1, along, "mm")?;
-            let z0 = check("ensemble.region.z_mm[0]", r.z_mm.0, across, "mm")?;
-            let z1 = check("ensemble.region.z_mm[1]", r.z_mm.1, across, "mm")?;
-            if x0 > x1 || z0 > z1 {
-                return Err(other("ensemble.region", "give each side as [low, high] with low ≤ high"));
-            }
-            Region { x: (x0 * MM, x1 * MM), z: (z0 * MM, z1 * MM) }
+/// A `{ distribution = "...", ... }` table: a law of [`LAWS`] with exactly its parameters.
+fn law_table(field: &str, t: &toml::map::Map<String, toml::Value>) -> Result<Distribution, Invalid> {
+    let names: Vec<&str> = LAWS.iter().map(|(n, _)| *n).collect();
+    let Some(toml::Value::String(kind)) = t.get("distribution") else {
+        return Err(other(
+            format!("{field}.distribution"),
+            format!("is required: one of {}, or give a plain number for a fixed value", names.join(", ")),
+        ));
+    };
+    let kind = kind.as_str();
+    let Some((_, keys)) = LAWS.iter().find(|(n, _)| *n == kind) else {
+        return Err(other(
+            format!("{field}.distribution"),
+            format!("'{kind}' is not a distribution; allowed: {}", names.join(", ")),
+        ));
+    };
+    if let Some(k) = t.keys().find(|k| *k != "distribution" && !keys.contains(&k.as_str())) {
+        return Err(other(
+            format!("{field}.{k}"),
+            format!("is not a parameter of the {kind} law; it takes {}", keys.join(", ")),
+        ));
+    }
+    let get = |k: &str| -> Result<f64, Invalid> {
+        match t.get(k) {
+            Some(v) => number(&format!("{field}.{k}"), v),
+            None => Err(other(format!("{field}.{k}"), format!("is required by the {kind} law ({})", keys.join(", ")))),
         }
     };
+    Ok(match kind {
+        "uniform" => Distribution::Uniform { min: get("min")?, max: get("max")? },
+        "normal" => Distribution::Normal { mean: get("mean")?, sd: get("sd")?, min: get("min")?, max: get("max")? },
+        "lognormal" => Distribution::LogNormal {
+            median: get("median")?,
+            sigma_log: get("sigma_log")?,
+            min: get("min")?,
+            max: get("max")?,
+        },
+        "rosin-rammler" => Distribution::RosinRammler {
+            scale: get("scale")?,
+            shape: get("shape")?,
+            min: get("min")?,
+            max: get("max")?,
+        },
+        _ => {
+            let Some(toml::Value::Array(list)) = t.get("values") else {
+                return Err(other(format!("{field}.values"), "is required by the choice law: a list of numbers"));
+            };
+            let values = list
+                .iter()
+                .enumerate()
+                .map(|(j, v)| number(&format!("{field}.values[{j}]"), v))
+                .collect::<Result<Vec<f64>, Invalid>>()?;
+            Distribution::Choice { values }
+        }
+    })
+}
+
+const MM: f64 = 1e-3;
+
+/// Checks the `[ensemble]` table against the plate (length and width in mm).
+pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64) -> Result<Study, Invalid> {
+    let region = region(raw.region.as_ref(), length_mm, width_mm)?;
     let speed = match (&raw.fall_height_m, &raw.velocity_m_per_s) {
         (Some(h), None) => Speed::FallHeight(distribution("ensemble.fall_height_m", h, FALL_HEIGHT_M, "m", 1.0)?),
         (None, Some(v)) => {
@@ -216,12 +194,46 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
             ))
         }
     };
-    if raw.families.is_empty() {
+    let families = families(&raw.families)?;
+    let hold = hold(raw.hold.as_deref())?;
+    let (candidates_x, candidates_z) = match &raw.placement {
+        None => (vec![], vec![]),
+        Some(p) => {
+            // A map needs two points a side: the grid runs from edge to edge.
+            let nx = count("ensemble.placement.x_count", p.x_count, CANDIDATES_PER_SIDE)?;
+            let nz = count("ensemble.placement.z_count", p.z_count, CANDIDATES_PER_SIDE)?;
+            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz))
+        }
+    };
+    Ok(Study { ensemble: Ensemble { region, speed, families, seed: raw.seed }, candidates_x, candidates_z, hold })
+}
+
+/// `ensemble.region`: where the lumps strike, inside the plate; the whole plate by default.
+fn region(raw: Option<&RawRegion>, length_mm: f64, width_mm: f64) -> Result<Region, Invalid> {
+    let Some(r) = raw else {
+        return Ok(Region { x: (0.0, length_mm * MM), z: (0.0, width_mm * MM) });
+    };
+    let along = Range::closed(0.0, length_mm);
+    let across = Range::closed(0.0, width_mm);
+    let x0 = check("ensemble.region.x_mm[0]", r.x_mm.0, along, "mm")?;
+    let x1 = check("ensemble.region.x_mm[1]", r.x_mm.1, along, "mm")?;
+    let z0 = check("ensemble.region.z_mm[0]", r.z_mm.0, across, "mm")?;
+    let z1 = check("ensemble.region.z_mm[1]", r.z_mm.1, across, "mm")?;
+    if x0 > x1 || z0 > z1 {
+        return Err(other("ensemble.region", "give each side as [low, high] with low ≤ high"));
+    }
+    Ok(Region { x: (x0 * MM, x1 * MM), z: (z0 * MM, z1 * MM) })
+}
+
+/// `[[ensemble.families]]`: distinct names, a class each, counts within the impact budget,
+/// and both classes present (telling coal from gangue needs both).
+fn families(raw: &[RawFamily]) -> Result<Vec<Family>, Invalid> {
+    if raw.is_empty() {
         return Err(other("ensemble.families", "at least one [[ensemble.families]] entry is required"));
     }
-    let mut families: Vec<Family> = Vec::with_capacity(raw.families.len());
+    let mut families: Vec<Family> = Vec::with_capacity(raw.len());
     let mut total = 0usize;
-    for (i, f) in raw.families.iter().enumerate() {
+    for (i, f) in raw.iter().enumerate() {
         let key = |k: &str| format!("ensemble.families[{i}].{k}");
         let earlier: Vec<&str> = families.iter().map(|f| f.name.as_str()).collect();
         super::check_name(key("name"), &f.name, &earlier)?;
@@ -238,29 +250,7 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
                 format!("the families' counts add up to {total}; at most {MAX_IMPACTS} impacts"),
             ));
         }
-        families.push(Family {
-            name: f.name.clone(),
-            class,
-            count: n,
-            density: distribution(&key("density_kg_m3"), &f.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3", 1.0)?,
-            youngs_modulus: distribution(
-                &key("youngs_modulus_gpa"),
-                &f.youngs_modulus_gpa,
-                limits::MODULUS_GPA,
-                "GPa",
-                1e9,
-            )?,
-            poisson_ratio: distribution(&key("poisson_ratio"), &f.poisson_ratio, POISSON_RATIO, "", 1.0)?,
-            cohesion: distribution(&key("cohesion_mpa"), &f.cohesion_mpa, limits::COHESION_MPA, "MPa", 1e6)?,
-            friction_angle_deg: distribution(
-                &key("friction_angle_deg"),
-                &f.friction_angle_deg,
-                FRICTION_ANGLE_DEG,
-                "deg",
-                1.0,
-            )?,
-            radius: distribution(&key("radius_mm"), &f.radius_mm, limits::RADIUS_MM, "mm", MM)?,
-        });
+        families.push(family(f, class, n, &key)?);
     }
     for class in [Class::Coal, Class::Gangue] {
         if !families.iter().any(|f| f.class == class) {
@@ -270,33 +260,49 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
             ));
         }
     }
-    let hold = match &raw.hold {
-        None => Variable::ALL.to_vec(),
-        Some(list) => {
-            let mut out = Vec::new();
-            for (j, name) in list.iter().enumerate() {
-                let v = Variable::ALL.into_iter().find(|v| v.key() == name).ok_or_else(|| {
-                    let keys: Vec<&str> = Variable::ALL.iter().map(|v| v.key()).collect();
-                    other(
-                        format!("ensemble.hold[{j}]"),
-                        format!("'{name}' is not a variable; allowed: {}", keys.join(", ")),
-                    )
-                })?;
-                if !out.contains(&v) {
-                    out.push(v);
-                }
-            }
-            out
+    Ok(families)
+}
+
+/// One family's laws, each in its range and converted to SI.
+fn family(f: &RawFamily, class: Class, count: usize, key: &dyn Fn(&str) -> String) -> Result<Family, Invalid> {
+    Ok(Family {
+        name: f.name.clone(),
+        class,
+        count,
+        density: distribution(&key("density_kg_m3"), &f.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3", 1.0)?,
+        youngs_modulus: distribution(
+            &key("youngs_modulus_gpa"),
+            &f.youngs_modulus_gpa,
+            limits::MODULUS_GPA,
+            "GPa",
+            1e9,
+        )?,
+        poisson_ratio: distribution(&key("poisson_ratio"), &f.poisson_ratio, POISSON_RATIO, "", 1.0)?,
+        cohesion: distribution(&key("cohesion_mpa"), &f.cohesion_mpa, limits::COHESION_MPA, "MPa", 1e6)?,
+        friction_angle_deg: distribution(
+            &key("friction_angle_deg"),
+            &f.friction_angle_deg,
+            FRICTION_ANGLE_DEG,
+            "deg",
+            1.0,
+        )?,
+        radius: distribution(&key("radius_mm"), &f.radius_mm, limits::RADIUS_MM, "mm", MM)?,
+    })
+}
+
+/// `ensemble.hold`: the variables held at their medians one at a time (every variable by
+/// default), each named once.
+fn hold(raw: Option<&[String]>) -> Result<Vec<Variable>, Invalid> {
+    let Some(list) = raw else { return Ok(Variable::ALL.to_vec()) };
+    let mut out = Vec::new();
+    for (j, name) in list.iter().enumerate() {
+        let v = Variable::ALL.into_iter().find(|v| v.key() == name).ok_or_else(|| {
+            let keys: Vec<&str> = Variable::ALL.iter().map(|v| v.key()).collect();
+            other(format!("ensemble.hold[{j}]"), format!("'{name}' is not a variable; allowed: {}", keys.join(", ")))
+        })?;
+        if !out.contains(&v) {
+            out.push(v);
         }
-    };
-    let (candidates_x, candidates_z) = match &raw.placement {
-        None => (vec![], vec![]),
-        Some(p) => {
-            // A map needs two points a side: the grid runs from edge to edge.
-            let nx = count("ensemble.placement.x_count", p.x_count, CANDIDATES_PER_SIDE)?;
-            let nz = count("ensemble.placement.z_count", p.z_count, CANDIDATES_PER_SIDE)?;
-            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz))
-        }
-    };
-    Ok(Study { ensemble: Ensemble { region, speed, families, seed: raw.seed }, candidates_x, candidates_z, hold })
+    }
+    Ok(out)
 }
