@@ -512,7 +512,8 @@ fn execute(command: Command) -> Result<(), Failure> {
             let dir = dir.unwrap_or_else(|| default_out(&scene, "identify"));
             let mut target = OutputDir::prepare(&dir)?;
             let files = if no_features_csv { RowFiles::Impacts } else { RowFiles::All };
-            let (artifacts, summary) = impact::report::identify::write(&scene, &mut target, "", files)?;
+            let (artifacts, summary) =
+                impact::report::identify::write(&scene, &mut target, "", files, &Terminal::new())?;
             commit(target, &artifacts)?;
             if json {
                 print_json(&scene, &summary)?;
