@@ -56,8 +56,8 @@ pub(super) fn run_set(
     let (force_max, contact_time) = contact_quantities(&main, &half, seed);
     let groups = classifiers::groups(&infos, sep.best_sensor, sep.converged, settings.sensors.len());
     let classifiers = classifiers::accuracies(&main, &half, groups, seed)?;
-    let (held, reference) =
-        variability::held_runs(scene, study, set, &model, &sensors, &infos, sep.reference(), seed, progress)?;
+    let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
+    let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
     let (fc, fg) = split(&main.force_max, main.table.classes());
     let detail = ConditionDetail {
         maps: placement::maps(study, &grid, &infos, &sep.all),

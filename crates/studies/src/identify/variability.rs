@@ -20,15 +20,28 @@ use identify::roc::{auc_with_error, Auc};
 use identify::{Feature, Held, Study};
 use scene::{Scene, SupportSet};
 
+/// A feature of one channel, the channel by its kind.
+type ChannelFeature = (ChannelKind, &'static dyn Feature);
+
+/// The main run of a support set, which the variability study reruns in part.
+pub struct MainRun<'a> {
+    /// Its reduced model.
+    pub model: &'a ReducedModel,
+    /// Its sensors: the named ones, then the candidate grid's ([`super::run_sensors`]).
+    pub sensors: &'a [(f64, f64)],
+    /// Its channels.
+    pub infos: &'a [ChannelInfo],
+}
+
 /// The reference feature on the reference instrument: its sensors (the named ones, then the
 /// reference feature's if it is a grid point) and the reference's channel kind and feature
 /// on them.
 fn reference_instrument(
     named: &[(f64, f64)],
-    sensors: &[(f64, f64)],
-    infos: &[ChannelInfo],
+    main: &MainRun<'_>,
     reference: Option<Separability>,
-) -> (Vec<(f64, f64)>, Option<(ChannelKind, &'static dyn Feature)>) {
+) -> (Vec<(f64, f64)>, Option<ChannelFeature>) {
+    let (sensors, infos) = (main.sensors, main.infos);
     let mut reference_sensors = named.to_vec();
     let mut reference = reference.map(|s| (infos[s.channel].kind, s.feature));
     if let Some((kind, feature)) = reference {
@@ -59,31 +72,23 @@ pub fn variants(study: &Study) -> Vec<Held> {
     variants
 }
 
-/// The variability study on `set` (its main run's `model`, `sensors` and channels `infos`),
-/// against the `reference` entry of the main run; the k-th run's streams derive from
-/// `seed ^ (100 + k)` (bootstrap) and `seed ^ (200 + k)` (folds). Returns the runs and the
-/// reference feature in words (its channel on the reference instrument and its name).
-#[allow(clippy::too_many_arguments)]
+/// The variability study on `set`, rerunning its `main` run's model, against the `reference`
+/// entry of the main run; the k-th run's streams derive from `seed ^ (100 + k)` (bootstrap)
+/// and `seed ^ (200 + k)` (folds). Returns the runs and the reference feature in words (its
+/// channel on the reference instrument and its name).
 pub fn held_runs(
     scene: &Scene,
     study: &Study,
     set: &SupportSet,
-    model: &ReducedModel,
-    sensors: &[(f64, f64)],
-    infos: &[ChannelInfo],
+    main: &MainRun<'_>,
     reference: Option<Separability>,
     seed: u64,
     progress: &dyn Progress,
 ) -> Result<(Vec<Held1>, Option<String>), Failure> {
-    let (ref_sensors, reference) = reference_instrument(&scene.signals.sensors, sensors, infos, reference);
+    let (ref_sensors, reference) = reference_instrument(&scene.signals.sensors, main, reference);
     let plate = &scene.plate;
-    let instrument = Instrument::new(
-        model,
-        plate,
-        &spec(&scene.signals, ref_sensors.clone()),
-        scene.restitution,
-        scene.contact_law,
-    )?;
+    let spec = spec(&scene.signals, ref_sensors.clone());
+    let instrument = Instrument::new(main.model, plate, &spec, scene.restitution, scene.contact_law)?;
     let ref_infos = channel_infos(&instrument, &ref_sensors, plate);
     let all_channels: Vec<usize> = (0..ref_infos.len()).collect();
     let mut held = Vec::new();
