@@ -212,7 +212,7 @@ fn shards_are_the_main_runs_impacts() {
     let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0;
     let mut records = Vec::new();
     for range in [0..7, 7..7, 7..24] {
-        let shard = ensemble::shard(&scene, &model, &sensors, range).unwrap();
+        let shard = ensemble::shard(scene, &model, &sensors, range).unwrap();
         if !shard.records.is_empty() {
             let labels = |c: &[ChannelInfo]| c.iter().map(|i| i.label()).collect::<Vec<_>>();
             assert_eq!(labels(&shard.channels), labels(&seen.channels));
