@@ -101,7 +101,7 @@ fn identify(path: &Path, dir: Option<PathBuf>, json: bool, no_features_csv: bool
     impact::report::identify::checked_study(&scene)?;
     let mut target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "identify")))?;
     let files = if no_features_csv { RowFiles::Impacts } else { RowFiles::All };
-    let (artifacts, summary) = impact::report::identify::write(&scene, &mut target, "", files)?;
+    let (artifacts, summary) = impact::report::identify::write(&scene, &mut target, "", files, &Terminal::new())?;
     commit(target, &artifacts)?;
     if json {
         return print_json(&scene, &summary);

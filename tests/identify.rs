@@ -207,6 +207,7 @@ fn the_report_writes_what_identify_writes() {
         &mut out,
         "identify/small-identify",
         impact::report::identify::RowFiles::Impacts,
+        &impact::report::Silent,
     )
     .unwrap();
     out.commit(&files).unwrap();

@@ -6,20 +6,20 @@
 //! row depends only on the scene and `i`: any split of the ensemble into index ranges gives,
 //! concatenated, the rows of one run of the whole ensemble, bit for bit. That is what
 //! `impact.shards` distributes. The reduced model (the plate's modes) is built once per process
-//! and support set and kept for the next shards ([`reduced_model`]).
+//! and support set and kept for the next shards ([`reduced_model`]); the impacts themselves are
+//! computed by `studies::identify::ensemble::shard`, as `impact identify` computes them.
 
 use crate::columns::{Kind, Table};
 use crate::errors::{argument_error, argument_message, model_error};
 use ::identify::features::FEATURES;
-use ::identify::Held;
+use ::identify::Ensemble;
 use analytic::params::{check, Range};
-use coupled::identification::{ImpactRecord, Instrument};
-use coupled::reduced::{Quantity, ReducedModel, SignalSpec};
-use coupled::validity::QUASI_STATIC_MIN_RATIO;
+use coupled::reduced::ReducedModel;
+use coupled::SupportSet;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::sync::{Arc, Mutex};
-use studies::channel::ChannelInfo;
+use studies::identify::ensemble::{shard, validity_flags, Shard};
 
 /// Reduced models built in this process, most recent last, by (scene text, support set): a
 /// Dask worker runs many shards of one scene and support set, and their model (the plate's
@@ -75,106 +75,57 @@ const SCHEMA: [(&str, Kind); 20] = [
     ("unfinished", Kind::Flag),
 ];
 
-/// The validity flags of one impact, as `coupled::identification` counts them.
-fn flags(r: &ImpactRecord) -> Vec<&'static str> {
-    let mut f = Vec::new();
-    if r.compression_ratio > 1.0 {
-        f.push("beyond elastic range");
-    }
-    if r.hertz_time_ratio < QUASI_STATIC_MIN_RATIO {
-        f.push("not quasi-static");
-    }
-    if r.contacts > 1 {
-        f.push("re-contact");
-    }
-    if r.contact_time.is_none() {
-        f.push("contact unfinished in the window");
-    }
-    f
-}
-
-/// Impacts `start..stop` of the scene's ensemble on the support set `condition`, with the
-/// scene's signals (window, rate, modes, damping, every quantity, the corners) at the scene's
-/// named sensors or at `sensors_mm` ((x, z) in mm): draws, contact quantities, validity and
-/// every channel's features.
-#[pyfunction]
-#[pyo3(signature = (scene, condition, start, stop, sensors_mm = None))]
-pub fn identify<'py>(
-    py: Python<'py>,
-    scene: &crate::scene::Scene,
-    condition: &str,
-    start: f64,
-    stop: f64,
-    sensors_mm: Option<Vec<(f64, f64)>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let s = &scene.scene;
+/// The scene's ensemble and its support set `condition`, or why the arguments do not name them.
+fn ensemble_and_set<'s>(s: &'s coupled::Scene, condition: &str) -> PyResult<(&'s Ensemble, &'s SupportSet)> {
     let study = s.ensemble.as_ref().ok_or_else(|| {
         argument_message(
             "scene",
             "has no [ensemble] table; impact identify's scenes (scenes/caving-stream.toml) have one".into(),
         )
     })?;
-    let e = &study.ensemble;
     let set = s.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
         let names: Vec<&str> = s.conditions.iter().map(|c| c.name.as_str()).collect();
         argument_message("condition", format!("'{condition}' is not in the scene; it has {names:?}"))
     })?;
-    let n = e.len() as f64;
+    Ok((&study.ensemble, set))
+}
+
+/// `start..stop` as impact indices of an ensemble of `n`: whole numbers, in order, at most
+/// [`MAX_SHARD`] apart.
+fn shard_range(n: usize, start: f64, stop: f64) -> PyResult<std::ops::Range<usize>> {
+    let n = n as f64;
     let arg = |name: &str, v: f64, r: Range| check(name, v, r, "").map_err(|err| argument_error(&err));
     let start = arg("start", start, Range::closed(0.0, n))?;
     let stop = arg("stop", stop, Range::closed(start, n.min(start + MAX_SHARD)))?;
     if start.fract() != 0.0 || stop.fract() != 0.0 {
         return Err(argument_message("start, stop", format!("{start}, {stop} are not whole numbers")));
     }
-    let (start, stop) = (start as usize, stop as usize);
-    let settings = &s.signals;
-    let sensors = match sensors_mm {
-        None => settings.sensors.clone(),
-        Some(list) => {
-            let (l_mm, b_mm) = (s.plate.length() * 1e3, s.plate.width() * 1e3);
-            list.iter()
-                .enumerate()
-                .map(|(j, &(x, z))| {
-                    let x = check(&format!("sensors_mm[{j}][0] (x)"), x, Range::closed(0.0, l_mm), "mm");
-                    let z = check(&format!("sensors_mm[{j}][1] (z)"), z, Range::closed(0.0, b_mm), "mm");
-                    match (x, z) {
-                        (Ok(x), Ok(z)) => Ok((x * 1e-3, z * 1e-3)),
-                        (Err(err), _) | (_, Err(err)) => Err(argument_error(&err)),
-                    }
-                })
-                .collect::<PyResult<Vec<_>>>()?
-        }
-    };
-    let spec = SignalSpec {
-        window: settings.window,
-        rate_hz: settings.rate_hz,
-        sensors: sensors.clone(),
-        quantities: Quantity::ALL.to_vec(),
-        corners: true,
-    };
-    let computed = py
-        .detach(|| -> Result<_, String> {
-            if start == stop {
-                return Ok((vec![], vec![]));
+    Ok(start as usize..stop as usize)
+}
+
+/// The sensors of a shard: the scene's named ones, or `sensors_mm` ((x, z) in mm) checked to
+/// lie on the plate, in m.
+fn sensors(s: &coupled::Scene, sensors_mm: Option<Vec<(f64, f64)>>) -> PyResult<Vec<(f64, f64)>> {
+    let Some(list) = sensors_mm else { return Ok(s.signals.sensors.clone()) };
+    let (l_mm, b_mm) = (s.plate.length() * 1e3, s.plate.width() * 1e3);
+    list.iter()
+        .enumerate()
+        .map(|(j, &(x, z))| {
+            let x = check(&format!("sensors_mm[{j}][0] (x)"), x, Range::closed(0.0, l_mm), "mm");
+            let z = check(&format!("sensors_mm[{j}][1] (z)"), z, Range::closed(0.0, b_mm), "mm");
+            match (x, z) {
+                (Ok(x), Ok(z)) => Ok((x * 1e-3, z * 1e-3)),
+                (Err(err), _) | (_, Err(err)) => Err(argument_error(&err)),
             }
-            let model = reduced_model(scene.text(), s, set)?;
-            let instrument =
-                Instrument::new(&model, &s.plate, &spec, s.restitution, s.contact_law).map_err(|x| x.to_string())?;
-            let records = (start..stop)
-                .map(|i| {
-                    let draw = e.draw(i, Held::NONE).ok_or_else(|| format!("impact {i} is beyond the ensemble"))?;
-                    let name = e.families[draw.family].name.clone();
-                    instrument.impact(draw, &name).map(|r| (name, r)).map_err(|x| format!("impact {i}: {x}"))
-                })
-                .collect::<Result<Vec<_>, String>>()?;
-            Ok((instrument.channels(), records))
         })
-        .map_err(model_error)?;
-    let (channels, records) = computed;
-    // Channels named as the identify report names them ("acceleration at (229.2, 180) mm").
-    let labels: Vec<String> = channels.iter().map(|&c| ChannelInfo::new(c, &sensors, &s.plate).label()).collect();
-    let mut t = Table::new(records.len(), &SCHEMA);
-    for (row, (family, r)) in records.iter().enumerate() {
+        .collect()
+}
+
+/// The shard as columns: [`SCHEMA`], then every channel's features named as the identify
+/// report names the channel ("acceleration at (229.2, 180) mm: peak (m/s^2)").
+fn table(shard: &Shard) -> Table {
+    let mut t = Table::new(shard.records.len(), &SCHEMA);
+    for (row, (family, r)) in shard.records.iter().enumerate() {
         let d = &r.draw;
         t.int("index", row, d.index as i64);
         t.text("family", row, family);
@@ -199,19 +150,47 @@ pub fn identify<'py>(
         t.num("contact_time_s", row, r.contact_time.unwrap_or(f64::NAN));
         t.flag("unfinished", row, r.contact_time.is_none());
         t.int("contacts", row, r.contacts as i64);
-        let f = flags(r);
+        let f = validity_flags(r);
         // The quasi-static criterion is a regime label here (the reduced model is
         // transient), so it does not make an impact invalid.
         t.flag("valid", row, f.iter().all(|x| *x == "not quasi-static"));
         t.text("validity_flags", row, &f.join("; "));
-        for ((c, label), features) in channels.iter().zip(&labels).zip(r.channel_features()) {
+        for (c, features) in shard.channels.iter().zip(r.channel_features()) {
+            let label = c.label();
             for (feature, value) in FEATURES.iter().zip(features) {
-                let name = format!("{label}: {} ({})", feature.key(), feature.unit(c.unit()));
-                t.num(&name, row, *value);
+                t.num(&format!("{label}: {} ({})", feature.key(), feature.unit(c.unit)), row, *value);
             }
         }
     }
+    t
+}
+
+/// Impacts `start..stop` of the scene's ensemble on the support set `condition`, with the
+/// scene's signals (window, rate, modes, damping, every quantity, the corners) at the scene's
+/// named sensors or at `sensors_mm` ((x, z) in mm): draws, contact quantities, validity and
+/// every channel's features.
+#[pyfunction]
+#[pyo3(signature = (scene, condition, start, stop, sensors_mm = None))]
+pub fn identify<'py>(
+    py: Python<'py>,
+    scene: &crate::scene::Scene,
+    condition: &str,
+    start: f64,
+    stop: f64,
+    sensors_mm: Option<Vec<(f64, f64)>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = &scene.scene;
+    let (e, set) = ensemble_and_set(s, condition)?;
+    let range = shard_range(e.len(), start, stop)?;
+    let sensors = sensors(s, sensors_mm)?;
+    let computed = py.detach(|| -> Result<Shard, String> {
+        if range.is_empty() {
+            return Ok(Shard { channels: vec![], records: vec![] });
+        }
+        let model = reduced_model(scene.text(), s, set)?;
+        shard(s, &model, &sensors, range).map_err(|x| x.to_string())
+    });
     // An empty shard has no feature columns (they follow from the channels the reduced
     // model records); `impact.shards.merge` leaves empty shards out.
-    t.into_py_all(py)
+    table(&computed.map_err(model_error)?).into_py_all(py)
 }

@@ -170,7 +170,8 @@ pub fn full_report(scene: &Scene, out: &mut OutputDir, progress: &dyn Progress) 
     let mut identified = Vec::new();
     for (file, text) in IDENTIFY_SCENES {
         let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;
-        let (files, summary) = identify::write(&s, out, &format!("identify/{}", slug(&s.name)), RowFiles::Impacts)?;
+        let (files, summary) =
+            identify::write(&s, out, &format!("identify/{}", slug(&s.name)), RowFiles::Impacts, progress)?;
         all.extend(files);
         identified.push((file, s, summary));
     }

@@ -6,9 +6,9 @@
 //!   memory and run budgets, the one entry point the command line and Python share;
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
 //!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`],
-//!   [`transient`], the three-model yield study on a scene ([`yield_models::scene`]) and the
-//!   regime maps ([`regimes`]); the yield study on the paper's scene ([`yield_models::paper`])
-//!   computes here too;
+//!   [`transient`], the three-model yield study on a scene ([`yield_models::scene`]), the
+//!   regime maps ([`regimes`]) and the identification ([`identify`]); the yield study on the
+//!   paper's scene ([`yield_models::paper`]) computes here too;
 //! * [`transient`]: the transient model against the quasi-static ones, the contact laws,
 //!   the size map and the model's verification (`impact dynamic`);
 //! * [`field_series`]: the plate's deflection recorded during one contact;
@@ -30,6 +30,7 @@ pub mod channel;
 pub mod columns;
 pub mod fem_bench;
 pub mod field_series;
+pub mod identify;
 pub mod paper;
 pub mod progress;
 pub mod regimes;

@@ -89,3 +89,15 @@ impl Study for RegimeMaps {
         crate::regimes::compute(scene, settings, progress)
     }
 }
+
+/// The coal-gangue identification over the scene's random-impact ensemble ([`crate::identify`]):
+/// `impact identify`, and the identification pages of `impact report`.
+pub struct Identify;
+
+impl Study for Identify {
+    const KEY: &'static str = "identify";
+    type Data = crate::identify::IdentifyData;
+    fn compute(scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::identify::compute(scene, progress)
+    }
+}

@@ -1,0 +1,79 @@
+//! What an identification run records: the named sensors and the candidate grid as one list
+//! of sensors, their channels, and what the features of a run cost in memory.
+
+use crate::channel::ChannelInfo;
+use crate::Failure;
+use coupled::identification::Instrument;
+use coupled::reduced::{Quantity, SignalSettings, SignalSpec};
+use identify::features::FEATURES;
+use identify::Study;
+use scene::{Scene, SupportSet};
+
+/// Channels an identification records per impact on `set`: three quantities at every named
+/// and candidate sensor (once where they coincide), and the held or sprung corners.
+pub fn channels_per_impact(scene: &Scene, study: &Study, set: &SupportSet) -> usize {
+    let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0.len();
+    let corners = set.supports.corners.iter().filter(|c| !matches!(c, plate_fem::CornerSupport::Free)).count();
+    3 * sensors + corners
+}
+
+/// The sensors of an identification run: the named sensors, then the candidate grid's points
+/// that are not at a named sensor; and, for each grid point in [`Study::candidates`] order,
+/// the index of the sensor that records it. A grid point at a named sensor is that sensor (the
+/// same signals), so its channels are recorded, ranked and written once, under the named
+/// sensor. Positions coincide within 1e-9 of the plate's larger side, far below the
+/// millimetre digits a scene gives them in.
+pub fn run_sensors(named: &[(f64, f64)], study: &Study, plate: &analytic::Plate) -> (Vec<(f64, f64)>, Vec<usize>) {
+    let tol = 1e-9 * plate.length().max(plate.width());
+    let mut sensors = named.to_vec();
+    let grid = study
+        .candidates()
+        .into_iter()
+        .map(|(x, z)| {
+            named.iter().position(|&(nx, nz)| (nx - x).abs() <= tol && (nz - z).abs() <= tol).unwrap_or_else(|| {
+                sensors.push((x, z));
+                sensors.len() - 1
+            })
+        })
+        .collect();
+    (sensors, grid)
+}
+
+/// Bytes of features one run holds: [`FEATURES`] of 8 bytes each per impact and channel.
+pub fn feature_bytes(impacts: usize, channels: usize) -> usize {
+    impacts.saturating_mul(channels).saturating_mul(FEATURES.len() * 8)
+}
+
+/// The error of a support set on which nothing is recorded.
+pub fn no_channels(set: &str) -> Failure {
+    format!(
+        "support set '{set}' records no channel (no named sensor, no candidate grid, no spring or fixed corner): give [signals] sensors_mm or [ensemble.placement]"
+    )
+    .into()
+}
+
+/// The signals of a run at `sensors`: the scene's window and rate, every quantity, the
+/// corners.
+pub fn spec(settings: &SignalSettings, sensors: Vec<(f64, f64)>) -> SignalSpec {
+    SignalSpec {
+        window: settings.window,
+        rate_hz: settings.rate_hz,
+        sensors,
+        quantities: Quantity::ALL.to_vec(),
+        corners: true,
+    }
+}
+
+/// The channels `instrument` records at `sensors` on `plate`, named.
+pub fn channel_infos(instrument: &Instrument<'_>, sensors: &[(f64, f64)], plate: &analytic::Plate) -> Vec<ChannelInfo> {
+    instrument.channels().into_iter().map(|k| ChannelInfo::new(k, sensors, plate)).collect()
+}
+
+/// The name of a recorded quantity, as [`ChannelInfo::quantity`] has it.
+pub fn quantity_name(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Displacement => "displacement",
+        Quantity::Velocity => "velocity",
+        Quantity::Acceleration => "acceleration",
+    }
+}

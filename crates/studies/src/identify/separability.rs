@@ -1,0 +1,143 @@
+//! How well each feature of each channel separates coal from gangue: its ROC AUC
+//! (Mann-Whitney, with DeLong's standard error), ranked by max(AUC, 1 - AUC), with a
+//! percentile bootstrap interval for the entries shown and the change of the AUC from N/2 to
+//! N modes on the same impacts.
+
+use super::{resolved, ClassValues, Ranked, LEVEL, TOP};
+use crate::channel::ChannelInfo;
+use coupled::identification::ConditionRun;
+use identify::features::{Duration, Peak, FEATURES};
+use identify::placement::{best, separabilities, Separability};
+use identify::roc::{auc_with_error, bootstrap_interval, BOOTSTRAP_RESAMPLES};
+use identify::{Class, Feature};
+
+/// `values` split by `classes` into coal's and gangue's, in impact order.
+pub fn split(values: &[f64], classes: &[Class]) -> (Vec<f64>, Vec<f64>) {
+    let mut c = Vec::new();
+    let mut g = Vec::new();
+    for (v, k) in values.iter().zip(classes) {
+        match k {
+            Class::Coal => c.push(*v),
+            Class::Gangue => g.push(*v),
+        }
+    }
+    (c, g)
+}
+
+/// One column's AUC with its error and bootstrap interval (resampled by the stream of
+/// `seed`), and its change from `half_auc`, the AUC of the same impacts on N/2 modes.
+pub fn ranked(
+    channel: String,
+    feature: &'static dyn Feature,
+    (coal, gangue): (&[f64], &[f64]),
+    half_auc: Option<f64>,
+    seed: u64,
+) -> Ranked {
+    let auc = auc_with_error(coal, gangue);
+    Ranked {
+        channel,
+        feature,
+        auc,
+        interval: bootstrap_interval(coal, gangue, BOOTSTRAP_RESAMPLES, LEVEL, seed),
+        resolution: half_auc.map(|h| auc.auc - h),
+    }
+}
+
+/// The paper's contact quantities, P_max and the first contact's duration t_c, scored as
+/// features are, with their change from N/2 to N modes.
+pub fn contact_quantities(run: &ConditionRun, half: &ConditionRun, seed: u64) -> (Ranked, Ranked) {
+    let classes = run.table.classes();
+    let half_of = |values: &[f64]| {
+        let (c, g) = split(values, half.table.classes());
+        auc_with_error(&c, &g).auc
+    };
+    let (fc, fg) = split(&run.force_max, classes);
+    let force_max = ranked("contact force P_max".into(), &Peak, (&fc, &fg), Some(half_of(&half.force_max)), seed ^ 1);
+    let (tc, tg) = split(&run.contact_time, classes);
+    let contact_time =
+        ranked("contact time t_c".into(), &Duration, (&tc, &tg), Some(half_of(&half.contact_time)), seed ^ 2);
+    (force_max, contact_time)
+}
+
+/// The separability of every feature of every channel of a run beside the same impacts' on
+/// half the modes.
+pub struct Separation<'a> {
+    run: &'a ConditionRun,
+    infos: &'a [ChannelInfo],
+    seed: u64,
+    half: Vec<Separability>,
+    /// Every channel's every feature, channel-major.
+    pub all: Vec<Separability>,
+    /// The same, most separating first (ties to the earlier channel).
+    pub order: Vec<Separability>,
+    /// The most separating entry whose AUC the modal truncation moves by less than its
+    /// sampling error or the resolution ([`resolved`]).
+    pub converged: Option<Separability>,
+    /// The most separating entry at a sensor (not a corner).
+    pub best_sensor: Option<Separability>,
+}
+
+impl<'a> Separation<'a> {
+    /// The separabilities of `run` (its channels `infos`) and of `half`, the same impacts on
+    /// half the modes; bootstrap streams derive from `seed`.
+    pub fn new(run: &'a ConditionRun, half: &ConditionRun, infos: &'a [ChannelInfo], seed: u64) -> Self {
+        let all = separabilities(&run.table);
+        let half = separabilities(&half.table);
+        let mut order = all.clone();
+        order.sort_by(|a, b| b.auc.separability().total_cmp(&a.auc.separability()).then(a.channel.cmp(&b.channel)));
+        let half_auc = |s: &Separability| half[s.channel * FEATURES.len() + s.feature.index()].auc.auc;
+        let converged = order.iter().find(|s| resolved(s.auc.auc - half_auc(s), s.auc.standard_error)).copied();
+        let sensor_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_some()).collect();
+        let best_sensor = if sensor_channels.is_empty() { None } else { best(&all, &sensor_channels) };
+        Self { run, infos, seed, half, all, order, converged, best_sensor }
+    }
+
+    /// The reference feature of the variability study: the most separating one the modal
+    /// truncation does not move, else the best sensor's.
+    pub fn reference(&self) -> Option<Separability> {
+        self.converged.or(self.best_sensor)
+    }
+
+    /// `s` scored with its interval (the `k`-th bootstrap stream) and its change from N/2 modes.
+    pub fn ranked(&self, s: &Separability, k: usize) -> Ranked {
+        let (c, g) = self.run.table.split(s.channel, s.feature);
+        let h = self.half[s.channel * FEATURES.len() + s.feature.index()].auc.auc;
+        ranked(self.infos[s.channel].label(), s.feature, (&c, &g), Some(h), self.seed.wrapping_add(k as u64))
+    }
+
+    /// The [`TOP`] most separating entries, scored.
+    pub fn ranking(&self) -> Vec<Ranked> {
+        self.order.iter().take(TOP).enumerate().map(|(k, s)| self.ranked(s, k)).collect()
+    }
+
+    /// The best sensor's point (x, z), mm, and its best feature, scored.
+    pub fn best_sensor_ranked(&self) -> Option<((f64, f64), Ranked)> {
+        self.best_sensor.map(|s| {
+            let at = self.infos[s.channel].at;
+            ((at.0 * 1e3, at.1 * 1e3), self.ranked(&s, TOP + 1))
+        })
+    }
+
+    /// The most separating entry the modal truncation does not move, scored.
+    pub fn converged_ranked(&self) -> Option<Ranked> {
+        self.converged.map(|s| self.ranked(&s, TOP + 2))
+    }
+
+    /// The variability study's reference feature, scored.
+    pub fn reference_ranked(&self) -> Option<Ranked> {
+        self.reference().map(|s| self.ranked(&s, TOP + 3))
+    }
+
+    /// The most separating feature's values by class, for its histogram.
+    pub fn best_values(&self) -> Option<ClassValues> {
+        let top = self.order.first()?;
+        let (coal, gangue) = self.run.table.split(top.channel, top.feature);
+        let info = &self.infos[top.channel];
+        Some(ClassValues {
+            label: format!("{} {} ({})", info.label(), top.feature.name(), top.feature.unit(info.unit)),
+            coal,
+            gangue,
+            scale: top.feature.is_scale(),
+        })
+    }
+}

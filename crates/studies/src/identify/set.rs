@@ -1,0 +1,87 @@
+//! The identification on one support set: the main run, the same impacts on half the modes,
+//! and every score of [`super`] composed into the set's result and section data.
+
+use super::ensemble::{half_modes, run};
+use super::sensors::{channel_infos, no_channels, run_sensors, spec};
+use super::separability::{contact_quantities, split, Separation};
+use super::{
+    classifiers, full_model, placement, variability, ClassValues, ConditionDetail, ConditionResult, MainImpact, Sink,
+};
+use crate::progress::Progress;
+use crate::Failure;
+use coupled::identification::{Instrument, CHUNK};
+use coupled::reduced::ReducedModel;
+use identify::features::FEATURES;
+use identify::{Held, Study};
+use scene::{Scene, SupportSet};
+use std::time::Instant;
+
+/// The identification on `set`, the `index`-th support set of `scene`: the main run's
+/// impacts handed to `sink`, the result and what its section shows.
+pub(super) fn run_set(
+    scene: &Scene,
+    study: &Study,
+    set: &SupportSet,
+    index: usize,
+    progress: &dyn Progress,
+    sink: &mut Sink<'_>,
+) -> Result<(ConditionResult, ConditionDetail), Failure> {
+    let (plate, settings, e) = (&scene.plate, &scene.signals, &study.ensemble);
+    let started = Instant::now();
+    let model = ReducedModel::new(plate, set, settings.reduced())?;
+    let setup_seconds = started.elapsed().as_secs_f64();
+
+    // The main run: named sensors, then the candidate grid (less its points at named
+    // sensors), every quantity, the corners.
+    let (sensors, grid) = run_sensors(&settings.sensors, study, plate);
+    let instrument =
+        Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
+    let infos = channel_infos(&instrument, &sensors, plate);
+    if infos.is_empty() {
+        return Err(no_channels(&set.name));
+    }
+    let t0 = Instant::now();
+    let main = run(study, Held::NONE, &instrument, &set.name, "ensemble", progress, |record| {
+        let family = &e.families[record.draw.family].name;
+        sink(&MainImpact { condition: &set.name, record, family, channels: &infos })
+    })?;
+    let run_seconds = t0.elapsed().as_secs_f64();
+    let full_model = full_model::check(scene, study, set, &instrument)?;
+    let feature_bytes = 2 * main.table.bytes() + CHUNK * infos.len() * FEATURES.len() * 8;
+    let half = half_modes(scene, study, set, &sensors, progress)?;
+
+    // Each support set's bootstrap and fold streams, apart from the other sets'.
+    let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    let sep = Separation::new(&main, &half, &infos, seed);
+    let (force_max, contact_time) = contact_quantities(&main, &half, seed);
+    let groups = classifiers::groups(&infos, sep.best_sensor, sep.converged, settings.sensors.len());
+    let classifiers = classifiers::accuracies(&main, &half, groups, seed)?;
+    let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
+    let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
+    let (fc, fg) = split(&main.force_max, main.table.classes());
+    let detail = ConditionDetail {
+        maps: placement::maps(study, &grid, &infos, &sep.all),
+        best: sep.best_values(),
+        force_max: ClassValues { label: "P_max (N)".into(), coal: fc, gangue: fg, scale: true },
+        reference,
+    };
+    let result = ConditionResult {
+        condition: set.name.clone(),
+        fundamental_hz: main.fundamental_hz,
+        validity: main.validity,
+        ranking: sep.ranking(),
+        best_sensor: sep.best_sensor_ranked(),
+        best_converged: sep.converged_ranked(),
+        force_max,
+        contact_time,
+        classifiers,
+        reference: sep.reference_ranked(),
+        held,
+        setup_seconds,
+        run_seconds,
+        impacts_per_second: e.len() as f64 / run_seconds.max(1e-9),
+        feature_bytes,
+        full_model,
+    };
+    Ok((result, detail))
+}

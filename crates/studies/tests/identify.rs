@@ -1,0 +1,224 @@
+//! The identification study on a small ensemble (24 impacts, one support set), its numbers
+//! against references that share no code with the statistics: the AUC as the Mann-Whitney
+//! count over every (coal, gangue) pair, DeLong's standard error from its structural
+//! components summed pair by pair, and the placement maps and the ranking's order from those
+//! counts; and the shards Python computes against the study's own impacts.
+
+use coupled::identification::ImpactRecord;
+use coupled::reduced::ReducedModel;
+use identify::{Class, FEATURES};
+use scene::{Scene, SceneSource};
+use std::sync::OnceLock;
+use studies::channel::ChannelInfo;
+use studies::identify::{compute_with, ensemble, run_sensors, IdentifyData, MainImpact, Ranked};
+use studies::progress::Silent;
+
+/// Twelve coal and twelve gangue spheres of spread size at low speed (elastic contacts) on
+/// Con 1, 16 modes over a 5 ms window, a named sensor at the centre, a 2 x 2 candidate grid,
+/// and size held in the variability study.
+const SCENE: &str = r#"
+name = "tiny-identify"
+restitution = 0.65
+analyses = ["identify"]
+
+[plate]
+length_mm = 458.4
+width_mm = 360.0
+thickness_mm = 8.0
+youngs_modulus_gpa = 210.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+
+[[conditions]]
+name = "Con 1"
+supports = "both-fixed"
+
+[signals]
+modes = 16
+window_ms = 5.0
+sensors_mm = [[229.2, 180.0]]
+
+[ensemble]
+seed = 5
+placement = { x_count = 2, z_count = 2 }
+hold = ["size"]
+velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
+
+[[ensemble.families]]
+name = "coal"
+class = "coal"
+count = 12
+density_kg_m3 = 1380.0
+youngs_modulus_gpa = 2.26
+poisson_ratio = 0.28
+cohesion_mpa = 8.39
+friction_angle_deg = 25.0
+radius_mm = { distribution = "uniform", min = 15.0, max = 35.0 }
+
+[[ensemble.families]]
+name = "gangue"
+class = "gangue"
+count = 12
+density_kg_m3 = 2400.0
+youngs_modulus_gpa = 16.0
+poisson_ratio = 0.28
+cohesion_mpa = 37.68
+friction_angle_deg = 37.0
+radius_mm = { distribution = "uniform", min = 15.0, max = 35.0 }
+"#;
+
+/// The AUC and every number derived from it are ratios of pair counts (halves for ties) to
+/// n₀n₁ = 144, computed here pair by pair and in the study by sorted ranks: the two agree to
+/// the rounding of sums of at most 144 terms of order 1, far below 1e-12.
+const EXACT: f64 = 1e-12;
+
+/// ψ(gangue, coal) of the Mann-Whitney statistic: 1 if gangue reads higher, ½ on a tie.
+fn psi(g: f64, c: f64) -> f64 {
+    if g > c {
+        1.0
+    } else if g == c {
+        0.5
+    } else {
+        0.0
+    }
+}
+
+/// P(gangue > coal) + ½P(=) by counting every pair, and DeLong's standard error from the
+/// structural components V(gᵢ) = mean over coal of ψ, V(cⱼ) = mean over gangue of ψ:
+/// SE² = s²(V(g))/n₁ + s²(V(c))/n₀ with sample variances (DeLong, DeLong and
+/// Clarke-Pearson 1988).
+fn mann_whitney(coal: &[f64], gangue: &[f64]) -> (f64, f64) {
+    let (n0, n1) = (coal.len() as f64, gangue.len() as f64);
+    let v_g: Vec<f64> = gangue.iter().map(|&g| coal.iter().map(|&c| psi(g, c)).sum::<f64>() / n0).collect();
+    let v_c: Vec<f64> = coal.iter().map(|&c| gangue.iter().map(|&g| psi(g, c)).sum::<f64>() / n1).collect();
+    let auc = v_g.iter().sum::<f64>() / n1;
+    let var = |v: &[f64]| v.iter().map(|x| (x - auc).powi(2)).sum::<f64>() / (v.len() as f64 - 1.0);
+    (auc, (var(&v_g) / n1 + var(&v_c) / n0).sqrt())
+}
+
+/// The main run as the sink saw it: every impact and the channels.
+struct Seen {
+    records: Vec<ImpactRecord>,
+    channels: Vec<ChannelInfo>,
+}
+
+impl Seen {
+    /// One column by class: `value` of every impact, coal's and gangue's.
+    fn split(&self, value: impl Fn(&ImpactRecord) -> f64) -> (Vec<f64>, Vec<f64>) {
+        let of = |k: Class| self.records.iter().filter(|r| r.draw.class == k).map(&value).collect();
+        (of(Class::Coal), of(Class::Gangue))
+    }
+
+    /// Feature `f` (its index in FEATURES) of channel `c` by class.
+    fn feature(&self, c: usize, f: usize) -> (Vec<f64>, Vec<f64>) {
+        self.split(|r| r.features[c * FEATURES.len() + f])
+    }
+
+    /// The channel and feature a ranked entry names.
+    fn column_of(&self, r: &Ranked) -> (usize, usize) {
+        let c = self.channels.iter().position(|i| i.label() == r.channel).expect("a channel of the run");
+        (c, FEATURES.iter().position(|f| f.key() == r.feature.key()).expect("a feature"))
+    }
+}
+
+/// The study on [`SCENE`], run once for both tests.
+fn run() -> &'static (Scene, IdentifyData, Seen) {
+    static RUN: OnceLock<(Scene, IdentifyData, Seen)> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let scene = Scene::parse(SCENE, "tiny").unwrap();
+        let mut seen = Seen { records: Vec::new(), channels: Vec::new() };
+        let data = compute_with(&scene, &Silent, &mut |m: &MainImpact<'_>| {
+            seen.records.push(m.record.clone());
+            seen.channels = m.channels.to_vec();
+            Ok(())
+        })
+        .unwrap();
+        (scene, data, seen)
+    })
+}
+
+/// Every AUC of the support set's result is the pair count of its column, with DeLong's
+/// error; the ranking is in order of max(AUC, 1 - AUC) and opens with the best column of the
+/// run; each placement map is the pair counts of its feature at the grid's channels.
+#[test]
+fn aucs_are_the_pair_counts_of_the_impacts() {
+    let (_, data, seen) = run();
+    let c = &data.summary.conditions[0];
+    assert_eq!(seen.records.len(), 24);
+    assert_eq!((data.summary.impacts, data.summary.classes), (24, (12, 12)));
+    assert_eq!(c.validity.impacts, 24);
+
+    let check = |r: &Ranked, (coal, gangue): (Vec<f64>, Vec<f64>)| {
+        let (auc, se) = mann_whitney(&coal, &gangue);
+        assert!((r.auc.auc - auc).abs() < EXACT, "{} {}: {} against {auc}", r.channel, r.feature.key(), r.auc.auc);
+        assert!((r.auc.standard_error - se).abs() < EXACT, "{}: {} against {se}", r.channel, r.auc.standard_error);
+        assert!(r.interval.0 <= r.interval.1 && (0.0..=1.0).contains(&r.interval.0) && r.interval.1 <= 1.0);
+    };
+    check(&c.force_max, seen.split(|r| r.force_max));
+    check(&c.contact_time, seen.split(|r| r.contact_time.unwrap_or(0.0)));
+    assert!(!c.ranking.is_empty());
+    for r in c.ranking.iter().chain(&c.best_converged).chain(&c.reference) {
+        let (ch, f) = seen.column_of(r);
+        check(r, seen.feature(ch, f));
+    }
+
+    // The order: by separability, and the first is the best of every column of the run.
+    let separability = |a: f64| a.max(1.0 - a);
+    for w in c.ranking.windows(2) {
+        assert!(separability(w[0].auc.auc) >= separability(w[1].auc.auc));
+    }
+    let best = (0..seen.channels.len())
+        .flat_map(|ch| (0..FEATURES.len()).map(move |f| (ch, f)))
+        .map(|(ch, f)| {
+            let (coal, gangue) = seen.feature(ch, f);
+            separability(mann_whitney(&coal, &gangue).0)
+        })
+        .fold(0.0, f64::max);
+    assert!((separability(c.ranking[0].auc.auc) - best).abs() < EXACT);
+
+    // The maps: every quantity over the 2 x 2 grid, each point the pair count of its channel.
+    let maps = &data.details[0].maps;
+    assert_eq!(maps.len(), 3);
+    for m in maps {
+        let f = m.feature.index();
+        for (i, x) in m.x_mm.iter().enumerate() {
+            for (j, z) in m.z_mm.iter().enumerate() {
+                let ch = seen
+                    .channels
+                    .iter()
+                    .position(|k| {
+                        k.quantity == m.quantity && (k.at.0 * 1e3 - x).abs() < 1e-9 && (k.at.1 * 1e3 - z).abs() < 1e-9
+                    })
+                    .expect("a channel at the grid point");
+                let (coal, gangue) = seen.feature(ch, f);
+                let s = separability(mann_whitney(&coal, &gangue).0);
+                assert!((m.separability[i][j] - s).abs() < EXACT, "{} at ({x}, {z}) mm", m.quantity);
+            }
+        }
+    }
+    // The variability study: size held, then position, size and speed.
+    assert_eq!(c.held.iter().map(|h| h.held.as_str()).collect::<Vec<_>>(), ["size", "position, size and speed"]);
+}
+
+/// What Python's shards compute (any range of the ensemble on a kept reduced model) is, bit
+/// for bit, what the study's main run handed its sink: the impacts depend only on the scene
+/// and their index.
+#[test]
+fn shards_are_the_main_runs_impacts() {
+    let (scene, data, seen) = run();
+    let set = &scene.conditions[0];
+    let model = ReducedModel::new(&scene.plate, set, scene.signals.reduced()).unwrap();
+    let study = scene.ensemble.as_ref().unwrap();
+    let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0;
+    let mut records = Vec::new();
+    for range in [0..7, 7..7, 7..24] {
+        let shard = ensemble::shard(scene, &model, &sensors, range).unwrap();
+        if !shard.records.is_empty() {
+            let labels = |c: &[ChannelInfo]| c.iter().map(|i| i.label()).collect::<Vec<_>>();
+            assert_eq!(labels(&shard.channels), labels(&seen.channels));
+        }
+        records.extend(shard.records.into_iter().map(|(_, r)| r));
+    }
+    assert!(records == seen.records);
+    assert_eq!(data.summary.conditions[0].validity.impacts, records.len());
+}
