@@ -175,8 +175,15 @@ impl<'m> CornerFamily<'m> {
         1e4 * p.rigidity() / (p.length * p.width)
     }
 
-    /// Factorizes the base (edges as given, corners on springs `k_base`).
+    /// Factorizes the base (edges as given, corners on springs `k_base`). Elastic edges are
+    /// refused: the 4 x 4 algebra follows the corners, not the energy the edge springs
+    /// take from the plate's store; factorize such a support set with [`Model::factorize`].
     pub fn new(model: &'m Model, edges: [EdgeSupport; 4], k_base: f64) -> Result<Self, FemError> {
+        if edges.iter().any(|e| matches!(e, EdgeSupport::Elastic(_))) {
+            return Err(FemError::Support(format!(
+                "corner families take free, simply supported or clamped edges, not {edges:?}; factorize elastic edges one support set at a time (Model::factorize)"
+            )));
+        }
         // The base is well conditioned (stiff springs at all corners); its residuals are
         // reported with every probe, and refinement is left to the caller.
         let base =
@@ -494,6 +501,7 @@ impl<'m> CornerFamily<'m> {
             compliance,
             plate_compliance: compliance - springs,
             corners: out,
+            edge_spring_compliance: 0.0,
             residual: p.residual,
         };
         Ok((r, Audit { scale, system }))
@@ -596,6 +604,7 @@ impl<'m> CornerFamily<'m> {
             compliance: c_fix + spring_part,
             plate_compliance: c_fix + beta * beta / s,
             corners: out,
+            edge_spring_compliance: 0.0,
             residual: p.residual,
         };
         (r, Audit { scale: scale + spring_part, system: None })
