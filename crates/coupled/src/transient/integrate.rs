@@ -20,9 +20,10 @@ pub fn simulate(s: &Striker, plate: Option<&mut Newmark<'_>>, dt: f64, t_max: f6
 /// and follows it until the sphere has left for good or `t_max`.
 ///
 /// Every step is the same: the contact force solves the Flores law at the end of the step
-/// ([`contact::contact_force`]); it is zero while the predicted compression is negative, so
-/// after a separation the plate vibrates freely, the sphere flies on ballistically (no
-/// gravity) and a later contact is found by the same solve. A contact begins when the force
+/// ([`contact::contact_force`](super::contact::contact_force)); it is zero while the
+/// predicted compression is negative, so after a separation the plate vibrates freely, the
+/// sphere flies on ballistically (no gravity) and a later contact is found by the same
+/// solve. A contact begins when the force
 /// becomes positive and ends when δ crosses zero with zero force ([`separated`]).
 ///
 /// **Stopping rule.** After a separation the plate moves freely, and its energy
