@@ -80,7 +80,8 @@ pub fn response(scene: &Scene, imp: &Impact, c: &PointCompliance) -> Result<Resp
 }
 
 /// Runs the scene's responses and yield velocities with a quasi-static `model`; `periods`
-/// are the fundamental periods of the scene's support sets ([`fundamental_periods`]).
+/// are the fundamental periods of the scene's support sets
+/// ([`fundamental_periods`](super::fundamental_periods)).
 pub fn run(
     scene: &Scene,
     model: &dyn ComplianceModel,
