@@ -3,7 +3,7 @@
 //! reacts, R_c = N_c(p)P - k_cᵀw - m_cᵀẅ with k_c and m_c its rows of the unsupported K and
 //! M, on the modes and as residual fields.
 
-use plate_fem::{element, Corner, CornerSupport, Factorization, Mesh, Model, Modes};
+use plate_fem::{element, Corner, CornerSupport, Factorization, Mesh, Model, Modes, Supports};
 
 /// One corner's data: its support, its modal rows and its residual fields.
 #[derive(Debug, Clone)]
@@ -29,7 +29,7 @@ pub(super) fn corner_data(
     model: &Model,
     fact: &Factorization<'_>,
     modes: &Modes,
-    supports: &plate_fem::Supports,
+    supports: &Supports,
     phi: &[f64],
 ) -> Vec<CornerData> {
     let mesh = model.mesh();
@@ -42,7 +42,7 @@ pub(super) fn corner_data(
             continue;
         }
         corners.push(match support {
-            CornerSupport::Fixed => fixed_corner(model, fact, modes, phi, c),
+            CornerSupport::Fixed => fixed_corner(model, (fact, supports), modes, phi, c),
             CornerSupport::Spring(_) | CornerSupport::Free => {
                 let n = modes.count();
                 let mut e = vec![0.0; model.dofs()];
@@ -62,9 +62,16 @@ pub(super) fn corner_data(
     corners
 }
 
-/// A fixed corner: its stiffness and mass rows k_c, m_c of the unsupported K and M (the held
-/// DOF's own entry left out), on the modes and as residual fields R k_c, R m_c.
-fn fixed_corner(model: &Model, fact: &Factorization<'_>, modes: &Modes, phi: &[f64], c: Corner) -> CornerData {
+/// A fixed corner: its stiffness and mass rows k_c, m_c of K and M before the corner is held
+/// (the held DOF's own entry left out; K with the elastic edges of `supports`, which share
+/// the load with the corner), on the modes and as residual fields R k_c, R m_c.
+fn fixed_corner(
+    model: &Model,
+    (fact, supports): (&Factorization<'_>, &Supports),
+    modes: &Modes,
+    phi: &[f64],
+    c: Corner,
+) -> CornerData {
     let (mesh, props) = (model.mesh(), model.props());
     let (n, ndof) = (modes.count(), model.dofs());
     let dof = mesh.corner_w_dof(c.index());
@@ -72,7 +79,7 @@ fn fixed_corner(model: &Model, fact: &Factorization<'_>, modes: &Modes, phi: &[f
     // element, whose matrices give them.
     let (ex, ez, local) = corner_element(mesh, c);
     let (a, b) = mesh.element_size(ex, ez);
-    let ke = element::stiffness(a, b, props.rigidity(), props.poisson_ratio);
+    let ke = model.element_stiffness(ex, ez, supports);
     let me = element::mass(a, b, props.density * props.thickness);
     let dofs = mesh.element_dofs(ex, ez);
     let (mut kc, mut mc) = (vec![0.0; ndof], vec![0.0; ndof]);

@@ -326,8 +326,9 @@ impl Model {
     }
 
     /// The stiffness of element (ex, ez) with the Winkler forms of the elastic edges of
-    /// `supports` on its sides: its part of the supported K.
-    fn element_stiffness(&self, ex: usize, ez: usize, supports: &Supports) -> Mat16 {
+    /// `supports` on its sides: its part of the supported K before any DOF is held (what a
+    /// held DOF's reaction is computed from). Without elastic edges, the bending form alone.
+    pub fn element_stiffness(&self, ex: usize, ez: usize, supports: &Supports) -> Mat16 {
         let (a, b) = self.mesh.element_size(ex, ez);
         let mut k = element::stiffness(a, b, self.props.rigidity(), self.props.poisson_ratio);
         let (nx, nz) = (self.mesh.nx(), self.mesh.nz());
