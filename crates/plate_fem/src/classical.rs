@@ -14,11 +14,17 @@
 //! e^{α(y-b/2)}, α(y-b/2) e^{α(y-b/2)}, e^{-α(y+b/2)}, α(y+b/2) e^{-α(y+b/2)}.
 //! With simply supported y-edges this is Navier's plate (its centre coefficient is
 //! 0.01160 P a²/D for a square); with free y-edges, Lévy's plate strip.
+//!
+//! An elastically supported y-edge (a Winkler line spring of k per length) is a free edge
+//! whose Kirchhoff shear meets the spring: M_y = 0 and D(w_yyy + (2 - ν) w_xxy) = ±k w at
+//! y = ±b/2 (the natural boundary conditions of the energy with ½k∮w² added; Timoshenko &
+//! Woinowsky-Krieger, §24 and §47 for the edge shear). It spans the free edge (k = 0) and
+//! the simply supported one (k → ∞).
 
 use nalgebra::{Matrix4, Vector4};
 
 /// Boundary condition on the edges y = ±b/2.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum YEdge {
     /// w = 0 and M_y = 0: Y = Y'' = 0.
     Simple,
@@ -26,6 +32,9 @@ pub enum YEdge {
     Clamped,
     /// M_y = 0 and the Kirchhoff shear V_y = 0.
     Free,
+    /// M_y = 0 and the Kirchhoff shear balancing a line spring of stiffness k per length
+    /// (N/m², k ≥ 0): D(w_yyy + (2 - ν) w_xxy) = ±k w at y = ±b/2.
+    Elastic(f64),
 }
 
 /// Y and its first three derivatives.
@@ -56,19 +65,23 @@ fn homogeneous(alpha: f64, b: f64, y: f64) -> [Derivs; 4] {
     ]
 }
 
-/// The two boundary operators of an edge applied to Y.
-fn edge_rows(kind: YEdge, alpha: f64, nu: f64, y: &Derivs) -> [f64; 2] {
+/// The two boundary operators of an edge applied to Y, for a plate of rigidity `d` and an
+/// edge whose outward normal is `outward` (+1 at y = b/2, -1 at y = -b/2).
+fn edge_rows(kind: YEdge, alpha: f64, nu: f64, d: f64, outward: f64, y: &Derivs) -> [f64; 2] {
     let a2 = alpha * alpha;
     match kind {
         YEdge::Simple => [y[0], y[2]],
         YEdge::Clamped => [y[0], y[1]],
         // M_y ∝ Y'' - ν α² Y; V_y ∝ Y''' - (2 - ν) α² Y'.
         YEdge::Free => [y[2] - nu * a2 * y[0], y[3] - (2.0 - nu) * a2 * y[1]],
+        // The shear carries the spring: Y''' - (2 - ν) α² Y' = ±(k/D) Y (w_xx = -α² w).
+        YEdge::Elastic(k) => [y[2] - nu * a2 * y[0], y[3] - (2.0 - nu) * a2 * y[1] - outward * k / d * y[0]],
     }
 }
 
-/// Y_m(y) per unit q_m/(4Dα³) for the load line at η, edges `kind` at y = ±b/2.
-fn harmonic(alpha: f64, b: f64, nu: f64, kind: YEdge, eta: f64, y: f64) -> f64 {
+/// Y_m(y) per unit q_m/(4Dα³) for the load line at η, edges `kind` at y = ±b/2, on a plate
+/// of rigidity `d` and Poisson ratio `nu`.
+fn harmonic(alpha: f64, b: f64, (d, nu): (f64, f64), kind: YEdge, eta: f64, y: f64) -> f64 {
     let edges = [b / 2.0, -b / 2.0];
     let mut m = Matrix4::zeros();
     let mut r = Vector4::zeros();
@@ -78,10 +91,11 @@ fn harmonic(alpha: f64, b: f64, nu: f64, kind: YEdge, eta: f64, y: f64) -> f64 {
         // shear jump of the point load would fall outside the lower edge and cancel.
         let s = if ye == eta && ye < 0.0 { -0.0 } else { ye - eta };
         let g = strip(alpha, s);
-        let rows_g = edge_rows(kind, alpha, nu, &g);
+        let outward = ye.signum();
+        let rows_g = edge_rows(kind, alpha, nu, d, outward, &g);
         let h = homogeneous(alpha, b, ye);
         for k in 0..4 {
-            let rows_h = edge_rows(kind, alpha, nu, &h[k]);
+            let rows_h = edge_rows(kind, alpha, nu, d, outward, &h[k]);
             m[(2 * e, k)] = rows_h[0];
             m[(2 * e + 1, k)] = rows_h[1];
         }
@@ -111,7 +125,7 @@ pub struct LevyPlate {
     pub b: f64,
     /// Flexural rigidity D = E h³ / 12(1 - ν²) (N·m).
     pub d: f64,
-    /// Poisson's ratio ν (enters only through free edges).
+    /// Poisson's ratio ν (enters only through free and elastic edges).
     pub nu: f64,
     /// Condition on both edges y = ±b/2.
     pub y_edges: YEdge,
@@ -131,7 +145,9 @@ impl LevyPlate {
             if qm == 0.0 || sx == 0.0 {
                 continue;
             }
-            w += qm / (4.0 * self.d * alpha.powi(3)) * harmonic(alpha, self.b, self.nu, self.y_edges, eta, y) * sx;
+            w += qm / (4.0 * self.d * alpha.powi(3))
+                * harmonic(alpha, self.b, (self.d, self.nu), self.y_edges, eta, y)
+                * sx;
         }
         w
     }
@@ -205,6 +221,32 @@ mod tests {
             1e-10,
         );
         assert_relative_eq!(levy, w, max_relative = 1e-6);
+    }
+
+    /// An elastic y-edge spans the free and the simply supported edges: k = 0 is the free
+    /// edge to rounding, and the deflection falls monotonically with k towards Navier's
+    /// plate, its distance from it shrinking like 1/k (the edge deflection is the edge
+    /// reaction over k).
+    #[test]
+    fn elastic_edges_span_free_and_simple() {
+        let (a, b, d, nu) = (1.0, 0.6, 2.0, 0.3);
+        let w = |y_edges| LevyPlate { a, b, d, nu, y_edges }.deflection((0.4, 0.1), (0.4, 0.1), 400);
+        let free = w(YEdge::Free);
+        assert_relative_eq!(w(YEdge::Elastic(0.0)), free, max_relative = 1e-14);
+        let simple = w(YEdge::Simple);
+        let mut last = free;
+        let mut gaps = Vec::new();
+        for e in 0..12 {
+            let k = 10f64.powi(e) * d / b.powi(3);
+            let wk = w(YEdge::Elastic(k));
+            assert!(wk < last && wk > simple, "k = {k:e}: {wk:e} not in ({simple:e}, {last:e})");
+            last = wk;
+            gaps.push((wk - simple) * k);
+        }
+        // (w_k - w_simple) k tends to a constant: the first-order term in 1/k.
+        let (g10, g11) = (gaps[10], gaps[11]);
+        assert!((g11 / g10 - 1.0).abs() < 1e-3, "{gaps:?}");
+        assert_relative_eq!(w(YEdge::Elastic(1e20)), simple, max_relative = 1e-12);
     }
 
     /// A long plate strip (b ≫ a) under a centre load approaches the infinite strip, whose

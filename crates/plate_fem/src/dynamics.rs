@@ -10,7 +10,7 @@
 //! The module knows nothing of what produces F.
 
 use crate::model::{symmetric_upper_apply, Factorization, Model};
-use crate::supports::{Corner, CornerSupport, Supports};
+use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
 use crate::FemError;
 use faer::{sparse::SparseColMat, Mat};
 
@@ -39,7 +39,7 @@ pub struct PlateEnergy {
     pub kinetic: f64,
     /// ½ wᵀ K w without the springs: the plate's bending strain energy.
     pub strain: f64,
-    /// Σ ½ k_i w_i² over the corner springs.
+    /// Σ ½ k_i w_i² over the corner springs, plus ½ k ∮ w² ds over the elastic edges.
     pub springs: f64,
 }
 
@@ -128,7 +128,7 @@ impl<'m> Newmark<'m> {
         let kinetic = 0.5 * dot(&self.v, &symmetric_upper_apply(&self.mass, &self.v));
         let total = 0.5 * dot(&self.w, &symmetric_upper_apply(&self.stiffness, &self.w));
         let mesh = self.model.mesh();
-        let springs: f64 = Corner::ALL
+        let mut springs: f64 = Corner::ALL
             .iter()
             .zip(&self.supports.corners)
             .map(|(c, s)| match *s {
@@ -136,6 +136,9 @@ impl<'m> Newmark<'m> {
                 _ => 0.0,
             })
             .sum();
+        if self.supports.edges.iter().any(|e| matches!(e, EdgeSupport::Elastic(_))) {
+            springs += 0.5 * self.model.edge_spring_store(&self.supports, &self.w);
+        }
         PlateEnergy { kinetic, strain: total - springs, springs }
     }
 

@@ -8,6 +8,10 @@
 //! approaches from below). It is exact for bicubic fields; its energy error is O(h²)
 //! for smooth solutions. Integration by 4 x 4 Gauss points is exact for the stiffness
 //! (degree ≤ 6 per direction) and the consistent mass (degree 6).
+//!
+//! This module holds the element's basis ([`shape`], [`curvature`], [`basis`]); its
+//! matrices are the plate's bilinear forms integrated by [`crate::assembly`]
+//! ([`stiffness`] and [`mass`] name the two the plate always has).
 
 use nalgebra::{SMatrix, SVector};
 
@@ -67,37 +71,37 @@ pub fn bending_matrix(d: f64, nu: f64) -> SMatrix<f64, 3, 3> {
     SMatrix::<f64, 3, 3>::new(d, d * nu, 0.0, d * nu, d, 0.0, 0.0, 0.0, d * (1.0 - nu) / 2.0)
 }
 
-/// 4-point Gauss-Legendre rule on [0, 1].
-const GAUSS: [(f64, f64); 4] = [
-    (0.069_431_844_202_973_71, 0.173_927_422_568_726_9),
-    (0.330_009_478_207_571_9, 0.326_072_577_431_273_1),
-    (0.669_990_521_792_428_1, 0.326_072_577_431_273_1),
-    (0.930_568_155_797_026_3, 0.173_927_422_568_726_9),
-];
-
-/// Element stiffness K_e = ∫ Bᵀ D B dA for flexural rigidity `d` and Poisson ratio `nu`.
-pub fn stiffness(a: f64, b: f64, d: f64, nu: f64) -> Mat16 {
-    let dm = bending_matrix(d, nu);
-    let mut k = Mat16::zeros();
-    for &(xi, wx) in &GAUSS {
-        for &(eta, wz) in &GAUSS {
-            let bm = curvature(a, b, xi, eta);
-            k += bm.transpose() * dm * bm * (wx * wz * a * b);
-        }
-    }
-    0.5 * (k + k.transpose())
+/// The values at one point of one basis function N_k: what a bilinear form's integrand
+/// reads ([`crate::assembly`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Basis {
+    /// Deflection N_k.
+    pub w: f64,
+    /// Curvature (∂²N_k/∂x², ∂²N_k/∂z², 2∂²N_k/∂x∂z), the rows of [`curvature`].
+    pub curvature: [f64; 3],
 }
 
-/// Consistent mass M_e = ∫ ρh Nᵀ N dA for mass per area `rho_h`.
+/// All 16 basis functions at (ξ, η) of an a x b element: the same products as [`shape`] and
+/// [`curvature`], from one evaluation of the Hermite functions.
+pub fn basis(a: f64, b: f64, xi: f64, eta: f64) -> [Basis; 16] {
+    let (fx, dx, ddx) = hermite(xi, a);
+    let (fz, dz, ddz) = hermite(eta, b);
+    std::array::from_fn(|k| {
+        let (p, q) = factors(k);
+        Basis { w: fx[p] * fz[q], curvature: [ddx[p] * fz[q], fx[p] * ddz[q], 2.0 * dx[p] * dz[q]] }
+    })
+}
+
+/// Element stiffness K_e = ∫ κᵀ D κ dA for flexural rigidity `d` and Poisson ratio `nu`:
+/// the bending form [`crate::assembly::bending`] on the element.
+pub fn stiffness(a: f64, b: f64, d: f64, nu: f64) -> Mat16 {
+    crate::assembly::bending(d, nu).element(a, b)
+}
+
+/// Consistent mass M_e = ∫ ρh Nᵀ N dA for mass per area `rho_h`: the inertia form
+/// [`crate::assembly::inertia`] on the element.
 pub fn mass(a: f64, b: f64, rho_h: f64) -> Mat16 {
-    let mut m = Mat16::zeros();
-    for &(xi, wx) in &GAUSS {
-        for &(eta, wz) in &GAUSS {
-            let n = shape(a, b, xi, eta);
-            m += n * n.transpose() * (wx * wz * a * b * rho_h);
-        }
-    }
-    0.5 * (m + m.transpose())
+    crate::assembly::inertia(rho_h).element(a, b)
 }
 
 #[cfg(test)]

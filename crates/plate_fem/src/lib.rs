@@ -1,14 +1,17 @@
 //! # Kirchhoff plate finite elements with corner point supports and springs
 //!
 //! The compliance C(x, z) of a thin rectangular plate at any point, under any combination
-//! of corner supports (fixed or springs) and edge supports (simple or clamped), with its
-//! split into the plate's strain energy and each spring's energy, and the support
-//! reactions. The crate knows nothing about rocks or spheres.
+//! of corner supports (fixed or springs) and edge supports (simple, clamped or elastic line
+//! springs), with its split into the plate's strain energy and each spring's energy, and
+//! the support reactions. The crate knows nothing about rocks or spheres.
 //!
 //! It reads top-down:
 //! - [`mesh`]: tensor grids over [0, L] x [0, B];
 //! - [`element`]: the Bogner-Fox-Schmit rectangle (conforming C¹, bicubic Hermite);
-//! - [`supports`]: corners, edges, and the rigid-body check;
+//! - [`assembly`]: the weak form as code: bending, inertia and edge-spring forms, each a
+//!   small integrand, integrated over elements and element sides by one Gauss assembler;
+//! - [`supports`]: corners, edges (free, simple, clamped or elastic), and the rigid-body
+//!   check;
 //! - [`model`]: assembly with one symbolic Cholesky analysis per mesh, one numeric
 //!   factorization per support set (faer), and point probes by reciprocity;
 //! - [`corners`]: any corner stiffness set from one factorization, by a rank-4 update
@@ -53,6 +56,7 @@
 
 #![warn(missing_docs)]
 
+pub mod assembly;
 pub mod classical;
 pub mod convergence;
 pub mod corners;

@@ -1,5 +1,10 @@
-//! Supports: corner points (fixed or on springs) and edges (simply supported or clamped),
-//! in any combination, with the rigid-body check that must pass before factorization.
+//! Supports: corner points (fixed or on springs) and edges (simply supported, clamped or on
+//! an elastic line support), in any combination, with the rigid-body check that must pass
+//! before factorization.
+//!
+//! A held DOF (a fixed corner, a simple or clamped edge) is a constraint; a spring is
+//! energy: a corner spring ½ k w² at one DOF, an elastic edge ½ k ∮ w² ds along the edge,
+//! the Winkler form of [`crate::assembly::winkler`] on the element sides that lie on it.
 
 use crate::mesh::{Mesh, DOFS_PER_NODE};
 use crate::FemError;
@@ -48,7 +53,7 @@ pub enum CornerSupport {
 }
 
 /// What holds an edge.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum EdgeSupport {
     /// Nothing holds the edge.
     Free,
@@ -56,6 +61,44 @@ pub enum EdgeSupport {
     Simple,
     /// w = 0 and normal slope = 0 along the edge.
     Clamped,
+    /// An elastic line support: a Winkler spring of stiffness k per length (N/m², k > 0
+    /// and finite) under the whole edge, pressing back with k w per length; slopes free.
+    /// The limit k → 0 is the free edge, k → ∞ the simply supported one.
+    ///
+    /// Scenes do not offer it yet (the scene format and the command line name free,
+    /// simply supported and clamped edges only); it is used through this library.
+    ///
+    /// ```
+    /// use plate_fem::{EdgeSupport, Mesh, Model, PlateProperties, Supports};
+    /// let plate = PlateProperties {
+    ///     length: 1.0,
+    ///     width: 0.6,
+    ///     thickness: 0.01,
+    ///     youngs_modulus: 210e9,
+    ///     poisson_ratio: 0.3,
+    ///     density: 7850.0,
+    /// };
+    /// let model = Model::new(plate, Mesh::uniform(1.0, 0.6, 10, 6)?)?;
+    /// let centre = (0.5, 0.3);
+    /// let on = |edge| {
+    ///     let s = Supports { edges: [EdgeSupport::Simple, EdgeSupport::Simple, edge, edge], ..Supports::FREE };
+    ///     model.factorize(&s)?.respond(centre.0, centre.1)
+    /// };
+    /// // Between the free and the simply supported edges, and the springs hold energy.
+    /// let (free, simple) = (on(EdgeSupport::Free)?, on(EdgeSupport::Simple)?);
+    /// let elastic = on(EdgeSupport::Elastic(1e6))?;
+    /// assert!(simple.compliance < elastic.compliance && elastic.compliance < free.compliance);
+    /// assert!(elastic.edge_spring_compliance > 0.0);
+    /// # Ok::<(), plate_fem::FemError>(())
+    /// ```
+    Elastic(f64),
+}
+
+impl EdgeSupport {
+    /// Whether the edge is held (w = 0 on it): simply supported or clamped.
+    pub fn holds(self) -> bool {
+        matches!(self, EdgeSupport::Simple | EdgeSupport::Clamped)
+    }
 }
 
 /// Edges in the order x = 0, x = L, z = 0, z = B.
@@ -74,6 +117,15 @@ pub enum Edge {
 impl Edge {
     /// The four edges in this crate's order.
     pub const ALL: [Edge; 4] = [Edge::Left, Edge::Right, Edge::Near, Edge::Far];
+    /// The edge's name in messages, "edge x = 0" etc.
+    pub fn name(self) -> &'static str {
+        match self {
+            Edge::Left => "edge x = 0",
+            Edge::Right => "edge x = L",
+            Edge::Near => "edge z = 0",
+            Edge::Far => "edge z = B",
+        }
+    }
 }
 
 /// A complete support set.
@@ -120,8 +172,9 @@ impl Supports {
     /// Checks the values and that no rigid-body motion (w = c₀ + c₁x + c₂z) stays free.
     ///
     /// A rigid motion is suppressed when the support conditions it must satisfy have rank
-    /// three: each fixed corner or positive spring gives [1, x, z]; a supported edge gives
-    /// its two end points; a clamped edge also fixes the normal slope.
+    /// three: each fixed corner or positive spring gives [1, x, z]; a supported or elastic
+    /// edge gives its two end points (a rigid motion without energy in the edge springs
+    /// vanishes on the whole edge); a clamped edge also fixes the normal slope.
     pub fn validate(&self, length: f64, width: f64) -> Result<(), FemError> {
         for (c, s) in Corner::ALL.iter().zip(&self.corners) {
             if let CornerSupport::Spring(k) = *s {
@@ -131,6 +184,14 @@ impl Supports {
                         c.name()
                     )));
                 }
+            }
+        }
+        for (e, k) in self.elastic_edges() {
+            if !(k.is_finite() && k > 0.0) {
+                return Err(FemError::Support(format!(
+                    "{} edge spring stiffness {k} N/m² is outside the allowed range (0, inf) N/m² (use Free for no support, Simple for a rigid one)",
+                    e.name()
+                )));
             }
         }
         // Rows scaled by the plate size so the rank test is dimensionless.
@@ -189,7 +250,7 @@ impl Supports {
         }
         let (nx, nz) = (mesh.nx(), mesh.nz());
         for (e, sup) in Edge::ALL.iter().zip(&self.edges) {
-            if *sup == EdgeSupport::Free {
+            if !sup.holds() {
                 continue;
             }
             // Along an x = const edge, w and w_z interpolate w; the normal slope is w_x,
@@ -212,6 +273,18 @@ impl Supports {
         out.sort_unstable();
         out.dedup();
         out
+    }
+
+    /// (edge, stiffness per length) of every elastic edge, in [`Edge::ALL`] order.
+    pub fn elastic_edges(&self) -> Vec<(Edge, f64)> {
+        Edge::ALL
+            .iter()
+            .zip(&self.edges)
+            .filter_map(|(&e, s)| match *s {
+                EdgeSupport::Elastic(k) => Some((e, k)),
+                _ => None,
+            })
+            .collect()
     }
 
     /// (corner w DOF, stiffness) of every corner spring.
@@ -266,6 +339,23 @@ mod tests {
             ..Supports::FREE
         };
         cantilever.validate(1.0, 0.5).unwrap();
+    }
+
+    /// An elastic edge holds the plate as a simple edge does (two of them, opposite, hold
+    /// it), and its stiffness must be positive and finite.
+    #[test]
+    fn elastic_edges_hold_and_are_checked() {
+        use EdgeSupport::*;
+        let two = |k| Supports { edges: [Elastic(k), Elastic(k), Free, Free], ..Supports::FREE };
+        two(1e6).validate(1.0, 0.5).unwrap();
+        let one = Supports { edges: [Elastic(1e6), Free, Free, Free], ..Supports::FREE };
+        assert!(one.validate(1.0, 0.5).unwrap_err().to_string().contains("rigid-body"));
+        for k in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let e = two(k).validate(1.0, 0.5).unwrap_err().to_string();
+            assert!(e.contains("edge x = 0 edge spring stiffness") && e.contains("N/m²"), "{e}");
+        }
+        assert!(two(1e6).constrained_dofs(&Mesh::uniform(1.0, 0.5, 2, 2).unwrap()).is_empty());
+        assert_eq!(two(2.0).elastic_edges(), vec![(Edge::Left, 2.0), (Edge::Right, 2.0)]);
     }
 
     #[test]

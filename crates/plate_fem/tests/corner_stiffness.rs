@@ -339,6 +339,7 @@ fn old_update(fam: &CornerFamily, p: &BasePoint, corners: [CornerSupport; 4]) ->
         compliance,
         plate_compliance: compliance - springs,
         corners: out,
+        edge_spring_compliance: 0.0,
         residual: p.residual,
     }
 }

@@ -50,6 +50,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod channels;
+mod corners;
+mod impact;
 pub mod plan;
 pub mod signals;
 pub mod target;
@@ -62,15 +65,14 @@ pub use target::FreeSteps;
 use crate::discretisation::{mesh_for, plate_properties};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
-use crate::transient::{simulate_with, Outcome, PlateFacts, Striker};
+use crate::transient::{Outcome, Striker};
 use analytic::params::{check, Range};
 use analytic::Plate;
+use corners::{corner_data, CornerData};
 use plate_fem::modes::shape_at;
-use plate_fem::{element, Corner, CornerSupport, Mesh, Model, Modes, ResidualFlexibility};
+use plate_fem::{Mesh, Model, Modes, ResidualFlexibility};
 use serde::Serialize;
-use signals::{dot, ChannelRows, FreeMaps};
-use target::{ChannelRow, CornerPoint, ModalTarget, Recording};
-use window::{free_window, BlockMaps};
+use signals::FreeMaps;
 
 /// How the truncated modes enter.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
@@ -170,23 +172,6 @@ impl SignalSettings {
     }
 }
 
-/// One corner's data: its support, its modal rows and its residual fields.
-#[derive(Debug, Clone)]
-struct CornerData {
-    corner: Corner,
-    support: CornerSupport,
-    /// The corner's w DOF.
-    dof: usize,
-    /// Spring or free corner: φᵢ(c); fixed corner: (Kφᵢ)_c, its stiffness row on the mode.
-    row: Vec<f64>,
-    /// Fixed corner: (Mφᵢ)_c, its mass row on the mode.
-    mass_row: Option<Vec<f64>>,
-    /// Spring or free corner: R e_c; fixed corner: R k_c (k_c its stiffness row).
-    field: Vec<f64>,
-    /// Fixed corner: R m_c (m_c its mass row).
-    mass_field: Option<Vec<f64>>,
-}
-
 /// The reduced model of one plate on one support set.
 pub struct ReducedModel {
     set: SupportSet,
@@ -260,60 +245,7 @@ impl ReducedModel {
             }
         }
         let omega = modes.omegas().to_vec();
-        let mesh = model.mesh().clone();
-        let mut corners = Vec::new();
-        for c in Corner::ALL {
-            let support = set.supports.corners[c.index()];
-            let dof = mesh.corner_w_dof(c.index());
-            if fact.held().contains(&dof) && support != CornerSupport::Fixed {
-                // Held by an edge: no channel, no deflection.
-                continue;
-            }
-            let entry = match support {
-                CornerSupport::Fixed => {
-                    // The held DOF's rows of the unsupported K and M: the corner node belongs to
-                    // one element, whose matrices give them.
-                    let (ex, ez, local) = corner_element(&mesh, c);
-                    let (a, b) = mesh.element_size(ex, ez);
-                    let ke = element::stiffness(a, b, props.rigidity(), props.poisson_ratio);
-                    let me = element::mass(a, b, props.density * props.thickness);
-                    let dofs = mesh.element_dofs(ex, ez);
-                    let (mut kc, mut mc) = (vec![0.0; ndof], vec![0.0; ndof]);
-                    for k in 0..16 {
-                        if dofs[k] != dof {
-                            kc[dofs[k]] += ke[(local, k)];
-                            mc[dofs[k]] += me[(local, k)];
-                        }
-                    }
-                    let on_modes = |r: &[f64]| -> Vec<f64> {
-                        (0..n).map(|i| (0..16).map(|k| r[dofs[k]] * phi[dofs[k] * n + i]).sum()).collect()
-                    };
-                    CornerData {
-                        corner: c,
-                        support,
-                        dof,
-                        row: on_modes(&kc),
-                        mass_row: Some(on_modes(&mc)),
-                        field: modes.residual_field(&fact, &kc),
-                        mass_field: Some(modes.residual_field(&fact, &mc)),
-                    }
-                }
-                CornerSupport::Spring(_) | CornerSupport::Free => {
-                    let mut e = vec![0.0; ndof];
-                    e[dof] = 1.0;
-                    CornerData {
-                        corner: c,
-                        support,
-                        dof,
-                        row: phi[dof * n..(dof + 1) * n].to_vec(),
-                        mass_row: None,
-                        field: modes.residual_field(&fact, &e),
-                        mass_field: None,
-                    }
-                }
-            };
-            corners.push(entry);
-        }
+        let corners = corner_data(&model, &fact, &modes, &set.supports, &phi);
         drop(fact);
         Ok(Self { set: set.clone(), settings, model, modes, omega, phi, residual, corners, simd: pulp::Arch::new() })
     }
@@ -366,93 +298,6 @@ impl ReducedModel {
         Ok(modal_compliance(&phi_p, &self.omega) + c_res)
     }
 
-    /// Prepares `spec` on this model: every channel's coefficient rows (one solve per
-    /// sensor, for its residual field) and the exact maps over 1 to
-    /// [`window::BLOCK`] sample intervals.
-    pub fn probes(&self, spec: &SignalSpec) -> Result<Probes, ModelError> {
-        check("signals.window", spec.window, Range::open_closed(0.0, 10.0), "s")?;
-        check("signals.rate_hz", spec.rate_hz, Range::closed(10.0, 1e7), "Hz")?;
-        check("signals.samples", spec.window * spec.rate_hz, Range::closed(1.0, 1e7), "")?;
-        let n = self.omega.len();
-        let zeta = self.settings.damping_ratio;
-        let fact = self.model.factorize(&self.set.supports)?;
-        let mut rows = Vec::new();
-        let mut fields = Vec::new();
-        let w2 = |i: usize| self.omega[i] * self.omega[i];
-        for (s, &(x, z)) in spec.sensors.iter().enumerate() {
-            let phi_s = self.point(x, z)?.phi;
-            let f = fields.len();
-            fields.push(self.modes.residual_field(&fact, &fact.load_vector(x, z)?));
-            for q in &spec.quantities {
-                rows.push(match q {
-                    Quantity::Displacement => ChannelRows {
-                        kind: ChannelKind::Displacement { sensor: s },
-                        a: phi_s.clone(),
-                        b: vec![0.0; n],
-                        c: None,
-                        direct: None,
-                        res: [Some((f, 1.0)), None, None],
-                        damped_inertia: false,
-                    },
-                    Quantity::Velocity => ChannelRows {
-                        kind: ChannelKind::Velocity { sensor: s },
-                        a: vec![0.0; n],
-                        b: phi_s.clone(),
-                        c: None,
-                        direct: None,
-                        res: [None, Some((f, 1.0)), None],
-                        damped_inertia: false,
-                    },
-                    Quantity::Acceleration => ChannelRows {
-                        kind: ChannelKind::Acceleration { sensor: s },
-                        a: (0..n).map(|i| -w2(i) * phi_s[i]).collect(),
-                        b: (0..n).map(|i| -2.0 * zeta * self.omega[i] * phi_s[i]).collect(),
-                        c: Some(phi_s.clone()),
-                        direct: None,
-                        res: [None, None, Some((f, 1.0))],
-                        damped_inertia: false,
-                    },
-                });
-            }
-        }
-        if spec.corners {
-            for c in &self.corners {
-                match (c.support, &c.mass_row, &c.mass_field) {
-                    (CornerSupport::Spring(k), _, _) => {
-                        let f = fields.len();
-                        fields.push(c.field.clone());
-                        rows.push(ChannelRows {
-                            kind: ChannelKind::SpringForce { corner: c.corner },
-                            a: c.row.iter().map(|r| k * r).collect(),
-                            b: vec![0.0; n],
-                            c: None,
-                            direct: None,
-                            res: [Some((f, k)), None, None],
-                            damped_inertia: false,
-                        });
-                    }
-                    // R_c = N_c(p)P - k_cᵀw - m_cᵀ(ẅ + modal damping): ℓ_d = -k_c, ℓ_a = -m_c.
-                    (CornerSupport::Fixed, Some(mass_row), Some(mass_field)) => {
-                        let (fk, fm) = (fields.len(), fields.len() + 1);
-                        fields.push(c.field.clone());
-                        fields.push(mass_field.clone());
-                        rows.push(ChannelRows {
-                            kind: ChannelKind::Reaction { corner: c.corner },
-                            a: (0..n).map(|i| w2(i) * mass_row[i] - c.row[i]).collect(),
-                            b: vec![0.0; n],
-                            c: Some(mass_row.iter().map(|m| -m).collect()),
-                            direct: Some(c.dof),
-                            res: [Some((fk, -1.0)), None, Some((fm, -1.0))],
-                            damped_inertia: true,
-                        });
-                    }
-                    _ => {}
-                }
-            }
-        }
-        Ok(Probes::new(spec, rows, fields, &self.omega, zeta))
-    }
-
     /// One impact of `striker` at (x, z) with the signals of `probes` (see the module).
     pub fn impact(&self, striker: &Striker, x: f64, z: f64, probes: &Probes) -> Result<ReducedOutcome, ModelError> {
         self.impact_with(striker, x, z, probes, FreeSteps::Exact)
@@ -491,144 +336,11 @@ impl ReducedModel {
         let map = (free == FreeSteps::Exact).then(|| FreeMaps::new(&self.omega, self.settings.damping_ratio, dt));
         self.run(striker, x, z, probes, map, dt, every)
     }
-
-    #[allow(clippy::too_many_arguments)]
-    fn run(
-        &self,
-        striker: &Striker,
-        x: f64,
-        z: f64,
-        probes: &Probes,
-        mut map: Option<FreeMaps>,
-        dt: f64,
-        every: usize,
-    ) -> Result<ReducedOutcome, ModelError> {
-        let pt = self.point(x, z)?;
-        let zeta = self.settings.damping_ratio;
-        let static_compliance = modal_compliance(&pt.phi, &self.omega) + pt.c_res;
-        // The truncated modes: one more mode (ω_ψ² = C_res/m_ψ, ψ̂ = ψ/√m_ψ, ψ̂ᵀN = C_res/√m_ψ)
-        // or the static correction. Without compliance or mass left to carry (all modes
-        // kept, to rounding) there is neither.
-        let carried = pt.c_res > 1e-12 * static_compliance && pt.m_res > 0.0;
-        let residual_mode = (self.settings.correction == Correction::ResidualMode && carried)
-            .then(|| ((pt.c_res / pt.m_res).sqrt(), pt.m_res.sqrt()));
-        let at_p = |f: &[f64]| -> f64 { (0..16).map(|k| pt.shape[k] * f[pt.dofs[k]]).sum() };
-        let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_p(f)).collect();
-        let (mut omega, mut phi_p) = (self.omega.clone(), pt.phi.clone());
-        let c_res = match residual_mode {
-            Some((w, root_m)) => {
-                omega.push(w);
-                phi_p.push(pt.c_res / root_m);
-                if let Some(m) = map.as_mut() {
-                    m.push(w, zeta, dt);
-                }
-                0.0
-            }
-            None if self.settings.correction == Correction::Static => pt.c_res,
-            None => 0.0,
-        };
-        // Channels on the (extended) modes.
-        let n_ext = omega.len();
-        // Every channel is y = A·q + B·q̇ + D P on the (extended) modes; free of force D P
-        // drops out.
-        let mut rec = Recording { rows: Vec::with_capacity(probes.rows.len()), every, samples: probes.spec.samples() };
-        for r in &probes.rows {
-            let ell = |k: usize| r.res[k].map_or(0.0, |(f, s)| s * field_at_p[f]);
-            let mut a = r.a.clone();
-            let mut b = r.b.clone();
-            let mut d = r.c.as_ref().map_or(0.0, |c| dot(c, &pt.phi))
-                + r.direct.map_or(0.0, |dof| (0..16).filter(|&k| pt.dofs[k] == dof).map(|k| pt.shape[k]).sum());
-            match residual_mode {
-                Some((w, root_m)) => {
-                    let (ld, lv, la) = (ell(0) / root_m, ell(1) / root_m, ell(2) / root_m);
-                    a.push(ld - w * w * la);
-                    b.push(if r.damped_inertia { lv } else { lv - 2.0 * zeta * w * la });
-                    d += la * phi_p[n_ext - 1];
-                }
-                // The static correction: a displacement, no rate.
-                None => d += if c_res > 0.0 { ell(0) } else { 0.0 },
-            }
-            let nonzero = |x: Vec<f64>| x.iter().any(|&x| x != 0.0).then_some(x);
-            rec.rows.push(ChannelRow { a: nonzero(a), b: nonzero(b), d });
-        }
-        let mut corner_points: [Option<CornerPoint>; 4] = Default::default();
-        for c in &self.corners {
-            if c.support != CornerSupport::Fixed {
-                let spring = if let CornerSupport::Spring(k) = c.support { k } else { 0.0 };
-                let mut row = c.row.clone();
-                let d = match residual_mode {
-                    Some((_, root_m)) => {
-                        row.push(at_p(&c.field) / root_m);
-                        0.0
-                    }
-                    None => {
-                        if c_res > 0.0 {
-                            at_p(&c.field)
-                        } else {
-                            0.0
-                        }
-                    }
-                };
-                corner_points[c.corner.index()] = Some(CornerPoint { row, d, spring });
-            }
-        }
-        let facts = PlateFacts {
-            static_compliance: Some(static_compliance),
-            corner_springs: Some(self.set.supports.corners.map(|c| match c {
-                CornerSupport::Spring(k) => k,
-                _ => 0.0,
-            })),
-            follow_unbounded: true,
-        };
-        let extra_maps = residual_mode.map(|(w, _)| BlockMaps::new(&[w], zeta, probes.spec.interval()));
-        let mut target = ModalTarget::new(omega, zeta, phi_p, c_res, dt, map, corner_points, Some(rec), self.simd);
-        let window = probes.spec.window;
-        let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
-        // The rest of the window: on to the next sample step (or, time-stepped, to the end),
-        // then exact free vibration at the sample times.
-        let want = probes.spec.samples();
-        if !probes.rows.is_empty() && target.recorded() < want {
-            if target.exact() {
-                let gap = (target.recorded() * every).saturating_sub(target.steps());
-                target.advance_free(gap);
-            } else {
-                while target.recorded() < want {
-                    target.advance_free(1);
-                }
-            }
-        }
-        let recorded = target.recorded();
-        let mut out = std::mem::take(&mut target.out);
-        if recorded < want && recorded > 0 {
-            let (q, v) = target.state();
-            let maps = [probes.block_maps.modes(), extra_maps.as_ref().map_or(&[], |m| m.modes())];
-            free_window(self.simd, &maps, q, v, target.rows(), &mut out, want - recorded);
-        }
-        let channels = probes.rows.iter().zip(out).map(|(r, samples)| Channel { kind: r.kind, samples }).collect();
-        Ok(ReducedOutcome {
-            outcome,
-            signals: Signals { rate_hz: probes.spec.rate_hz, channels },
-            dt,
-            static_compliance,
-            residual_compliance: pt.c_res,
-            residual_mode_hz: residual_mode.map(|(w, _)| w / (2.0 * std::f64::consts::PI)),
-        })
-    }
 }
 
 /// Σ φᵢ(p)²/ωᵢ²: the modes' part of the static compliance.
 fn modal_compliance(phi_p: &[f64], omega: &[f64]) -> f64 {
     phi_p.iter().zip(omega).map(|(f, w)| f * f / (w * w)).sum()
-}
-
-/// The element holding a corner node and the corner's local w DOF in it.
-fn corner_element(mesh: &Mesh, c: Corner) -> (usize, usize, usize) {
-    match c {
-        Corner::LeftNear => (0, 0, 0),
-        Corner::RightNear => (mesh.nx() - 1, 0, 4),
-        Corner::LeftFar => (0, mesh.nz() - 1, 8),
-        Corner::RightFar => (mesh.nx() - 1, mesh.nz() - 1, 12),
-    }
 }
 
 #[cfg(test)]

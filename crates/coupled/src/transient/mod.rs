@@ -29,6 +29,7 @@ pub mod case;
 pub mod contact;
 pub mod estimate;
 pub mod frames;
+mod integrate;
 pub mod interpolate;
 pub mod law;
 pub mod reference;
@@ -39,12 +40,12 @@ pub use contact::{contact_force, contact_force_after, Striker, HERTZ_TIME};
 pub use estimate::{
     choose, choose_on, estimate, Budget, Discretisation, Estimated, Ladder, Quantities, DEFAULT_TOLERANCE,
 };
+pub use integrate::{simulate, simulate_with};
 pub use law::thornton::thornton_restitution;
 pub use law::{ContactLaw, ContactState, Law, LawKind};
 pub use reference::zener;
 pub use target::{SpringMass, Target};
 
-use plate_fem::dynamics::Newmark;
 use serde::Serialize;
 
 /// One sample of the history.
@@ -154,40 +155,6 @@ pub struct Contact {
     pub steps: usize,
 }
 
-/// The energy bookkeeping of one step: every store of the sphere, the contact and the
-/// plate, and E₀ minus their sum (the Flores damping and numerical loss). Returns the
-/// sample and the sum of the stores.
-fn energies<T: Target + ?Sized>(
-    s: &Striker,
-    plate: Option<&T>,
-    t: f64,
-    p: f64,
-    (delta, dmax): (f64, f64),
-    v: f64,
-) -> (Sample, f64) {
-    let m = s.mass;
-    let e0 = 0.5 * m * s.velocity * s.velocity;
-    let en = plate.map(|p| p.energy());
-    let (pk, ps, sp) = en.map_or((0.0, 0.0, 0.0), |e| (e.kinetic, e.strain, e.springs));
-    let contact = s.stored_energy(delta, dmax);
-    let kin = 0.5 * m * v * v;
-    let stored = kin + contact + pk + ps + sp;
-    let sample = Sample {
-        t,
-        force: p,
-        compression: delta,
-        sphere_velocity: v,
-        plate_displacement: plate.map_or(0.0, |p| p.point_state().0),
-        sphere_kinetic: kin,
-        contact,
-        plate_kinetic: pk,
-        plate_strain: ps,
-        springs: sp,
-        dissipated: e0 - stored,
-    };
-    (sample, stored)
-}
-
 /// The separation test: contact has been made, the force is zero and the compression
 /// crossed zero inside this step. Returns the crossing as a fraction of the step (linear
 /// interpolation of δ).
@@ -213,15 +180,6 @@ pub struct PlateFacts {
     pub follow_unbounded: bool,
 }
 
-/// Integrates the impact of `s` on `plate` (or a rigid target when None) with step `dt` up
-/// to `t_max`. The plate's static compliance is unknown here, so nothing proves a later
-/// contact impossible short of integrating to `t_max`: the run stops at the first
-/// separation (`left_at` None, `contacts` the first contact only) unless the target is
-/// rigid, where it has provably ended. [`simulate_with`] follows the whole sequence.
-pub fn simulate(s: &Striker, plate: Option<&mut Newmark<'_>>, dt: f64, t_max: f64) -> Outcome {
-    simulate_with(s, plate, PlateFacts::default(), dt, t_max)
-}
-
 /// The state at the end of a step, everything the in-step interpolants need.
 #[derive(Debug, Clone, Copy)]
 struct StepEnd {
@@ -244,247 +202,5 @@ struct StepEnd {
 impl StepEnd {
     fn plate_energy(&self) -> f64 {
         self.plate_kinetic + self.plate_strain + self.springs
-    }
-}
-
-/// Integrates the impact of `s` on `plate` (or a rigid target when None) with step `dt`,
-/// and follows it until the sphere has left for good or `t_max`.
-///
-/// Every step is the same: the contact force solves the Flores law at the end of the step
-/// ([`contact::contact_force`]); it is zero while the predicted compression is negative, so
-/// after a separation the plate vibrates freely, the sphere flies on ballistically (no
-/// gravity) and a later contact is found by the same solve. A contact begins when the force
-/// becomes positive and ends when δ crosses zero with zero force ([`separated`]).
-///
-/// **Stopping rule.** After a separation the plate moves freely, and its energy
-/// E_p = ½ẇᵀMẇ + ½wᵀKw (kinetic, strain and springs) is constant: exactly so for the FE
-/// model, and exactly so at the step ends for Newmark's average-acceleration rule, which
-/// conserves this quadratic energy of a linear system. By Cauchy-Schwarz in the K inner
-/// product the point deflection w_p = Nᵀw obeys |w_p| ≤ √(wᵀKw · NᵀK⁻¹N) ≤ √(2E_p C_p) = W
-/// for all later time, C_p the static compliance at the point. The sphere's displacement u
-/// (toward the plate, from the first touch) is linear in time once free. Contact needs
-/// δ = u - w_p > 0, so once u < -W with u̇ ≤ 0 no contact can ever occur again: the run
-/// stops there. A rigid target has W = 0, so it stops at the first separation. Without C_p
-/// the run stops at the first separation or, with [`PlateFacts::follow_unbounded`], follows
-/// the free motion to `t_max`; either way [`Outcome::left_at`] is None. A target that knows a
-/// tighter bound on its later free motion gives it by [`Target::free_reach`] (the modal
-/// plate does: Σᵢ|φᵢ(p)| times each mode's amplitude), and the smaller bound is used.
-///
-/// The first-contact fields of [`Outcome`] (and its `history`) are exactly those of a run
-/// that stops at the first separation; the later samples go to `later_history`.
-pub fn simulate_with<T: Target + ?Sized>(
-    s: &Striker,
-    mut plate: Option<&mut T>,
-    facts: PlateFacts,
-    dt: f64,
-    t_max: f64,
-) -> Outcome {
-    let m = s.mass;
-    let e0 = 0.5 * m * s.velocity * s.velocity;
-    let g = plate.as_ref().map_or(0.0, |p| p.point_flexibility());
-    let (mut u, mut v, mut a) = (0.0, s.velocity, 0.0);
-    // Room for the steps of about two rigid-target contact times, so that the histories of
-    // a first contact seldom grow by copying.
-    let expected = (2.0 * s.hertz_time() / dt).clamp(16.0, 4096.0) as usize;
-    let mut history = Vec::with_capacity(expected);
-    let mut later_history = Vec::with_capacity(expected);
-    let (mut started, mut t, mut steps) = (false, 0.0, 0usize);
-    let (mut contact_time, mut rebound, mut plate_velocity) = (None, None, None);
-    let (mut max_err, mut max_err_total): (f64, f64) = (0.0, 0.0);
-    let mut prev_delta: f64 = 0.0;
-    let (mut best_delta, mut corners_at_max) = (f64::NEG_INFINITY, [0.0; 4]);
-    // The sequence: step ends of the first contact (for the in-step maxima), the contacts.
-    let mut prev = StepEnd {
-        t: 0.0,
-        v: s.velocity,
-        delta: 0.0,
-        rate: s.velocity,
-        force: 0.0,
-        wp: 0.0,
-        vp: 0.0,
-        corners: [0.0; 4],
-        corner_rates: [0.0; 4],
-        plate_kinetic: 0.0,
-        plate_strain: 0.0,
-        springs: 0.0,
-    };
-    let mut first_ends = Vec::with_capacity(expected + 1);
-    first_ends.push(prev);
-    let mut first_done = false;
-    let mut contacts: Vec<Contact> = Vec::new();
-    let mut current: Option<Contact> = None;
-    let mut first_steps = 0usize;
-    let mut left_at = None;
-    // The largest compression so far and the permanent compression it left: a plastic
-    // contact opens at δ = δ_p, not at δ = 0, so the contact sequence is followed on δ - δ_p
-    // (δ_p = 0 for the elastic laws, which leaves every test unchanged).
-    let mut dmax: f64 = 0.0;
-    let shifted = |e: &StepEnd, set: f64| StepEnd { delta: e.delta - set, ..*e };
-    let conserves = s.conserves();
-    while t < t_max {
-        let (wp, vp) = plate.as_mut().map_or((0.0, 0.0), |p| p.predict());
-        let u_hat = u + dt * v + 0.25 * dt * dt * a;
-        let v_hat = v + 0.5 * dt * a;
-        let (d0, d1) = (u_hat - wp, 0.25 * dt * dt / m + g);
-        let (r0, r1) = (v_hat - vp, 0.5 * dt / m + 2.0 * g / dt);
-        let p = contact_force_after(s, dmax, d0, d1, r0, r1);
-        let a_new = -p / m;
-        u = u_hat + 0.25 * dt * dt * a_new;
-        v = v_hat + 0.5 * dt * a_new;
-        a = a_new;
-        if let Some(pl) = plate.as_mut() {
-            pl.commit(p);
-        }
-        t += dt;
-        steps += 1;
-        let delta = d0 - d1 * p;
-        let rate = r0 - r1 * p;
-        dmax = dmax.max(delta);
-        let set = s.permanent_set(dmax);
-        let (sample, stored) = energies(s, plate.as_deref(), t, p, (delta, dmax), v);
-        let (wp_now, vp_now) = plate.as_ref().map_or((0.0, 0.0), |p| p.point_state());
-        let corners = plate.as_ref().map_or([0.0; 4], |p| p.corner_displacements());
-        // Trapezoidal rule: c_{n+1} - c_n = Δt/2 (ċ_n + ċ_{n+1}) gives the corner rates exactly.
-        let corner_rates: [f64; 4] =
-            std::array::from_fn(|i| 2.0 * (corners[i] - prev.corners[i]) / dt - prev.corner_rates[i]);
-        let end = StepEnd {
-            t,
-            v,
-            delta,
-            rate,
-            force: p,
-            wp: wp_now,
-            vp: vp_now,
-            corners,
-            corner_rates,
-            plate_kinetic: sample.plate_kinetic,
-            plate_strain: sample.plate_strain,
-            springs: sample.springs,
-        };
-        if conserves {
-            max_err_total = max_err_total.max((stored - e0).abs() / e0);
-        }
-        // The contact sequence, with start and end on the in-step interpolant of δ.
-        match current.as_mut() {
-            None if p > 0.0 => {
-                let start = interpolate::crossing(&shifted(&prev, set), &shifted(&end, set), dt);
-                current = Some(Contact {
-                    start,
-                    duration: 0.0,
-                    peak_force: p,
-                    impulse: 0.5 * dt * (prev.force + p),
-                    rebound_velocity: v,
-                    steps: 1,
-                });
-            }
-            None => {}
-            Some(c) => {
-                c.peak_force = c.peak_force.max(p);
-                c.impulse += 0.5 * dt * (prev.force + p);
-                c.steps += 1;
-                if separated(true, p, delta - set, prev.delta - set).is_some() {
-                    c.duration = interpolate::crossing(&shifted(&prev, set), &shifted(&end, set), dt) - c.start;
-                    c.rebound_velocity = v;
-                    contacts.extend(current.take());
-                }
-            }
-        }
-        if first_done {
-            later_history.push(sample);
-        } else {
-            if conserves {
-                max_err = max_err.max((stored - e0).abs() / e0);
-            }
-            history.push(sample);
-            first_ends.push(end);
-            // The last of equal maxima, as a max over the history would pick.
-            if delta >= best_delta {
-                best_delta = delta;
-                corners_at_max = corners;
-            }
-            if p > 0.0 {
-                started = true;
-            }
-            if let Some(frac) = separated(started, p, delta - set, prev_delta - set) {
-                contact_time = Some(t - dt + frac * dt);
-                rebound = Some(v);
-                plate_velocity = plate.as_ref().map(|p| p.point_state().1).or(Some(0.0));
-                first_done = true;
-                first_steps = steps;
-            }
-            prev_delta = delta;
-        }
-        prev = end;
-        // The stopping rule (see the doc comment): free, moving away, beyond the plate's reach.
-        if first_done && current.is_none() {
-            // The energy bound, or the target's own bound on its free motion if tighter.
-            let energy = facts.static_compliance.map(|c| (2.0 * end.plate_energy().max(0.0) * c).sqrt());
-            // The target's own bound may cost it a pass over its state, so with the energy
-            // bound at hand it is asked only when it could decide: the sphere moves away, is
-            // not already beyond the energy bound, and is beyond the point's present
-            // deflection (which any bound on the later motion exceeds, so short of it the
-            // own bound cannot stop the run either).
-            let undecided = |w: f64| v > 0.0 || u >= -wp_now.abs() || u < -w;
-            let own = plate.as_ref().map(|p| if energy.is_some_and(undecided) { None } else { p.free_reach() });
-            let reach = match own {
-                None => Some(0.0),
-                Some(own) => match (own, energy) {
-                    (Some(a), Some(b)) => Some(a.min(b)),
-                    (a, b) => a.or(b),
-                },
-            };
-            match reach {
-                Some(w) if v <= 0.0 && u < -w => {
-                    left_at = Some(t);
-                    break;
-                }
-                None if !facts.follow_unbounded => break,
-                _ => {}
-            }
-        }
-    }
-    let imax =
-        history.iter().enumerate().max_by(|x, y| x.1.compression.total_cmp(&y.1.compression)).map_or(0, |(i, _)| i);
-    let at_max = history.get(imax).copied().unwrap_or(Sample {
-        t: 0.0,
-        force: 0.0,
-        compression: 0.0,
-        sphere_velocity: s.velocity,
-        plate_displacement: 0.0,
-        sphere_kinetic: e0,
-        contact: 0.0,
-        plate_kinetic: 0.0,
-        plate_strain: 0.0,
-        springs: 0.0,
-        dissipated: 0.0,
-    });
-    let interpolated = interpolate::first_contact(s, &first_ends, facts.corner_springs, dt);
-    let total_impulse = contacts.iter().map(|c| c.impulse).sum::<f64>() + current.as_ref().map_or(0.0, |c| c.impulse);
-    Outcome {
-        force_max: history.iter().map(|h| h.force).fold(0.0, f64::max),
-        compression_max: at_max.compression,
-        time_of_max_compression: at_max.t,
-        contact_time,
-        rebound_velocity: rebound,
-        plate_velocity_at_separation: plate_velocity,
-        apparent_restitution: rebound.map(|r| -r / s.velocity),
-        at_max_compression: at_max,
-        corners_at_max_compression: corners_at_max,
-        steps: if first_done { first_steps } else { steps },
-        max_energy_error: max_err,
-        history,
-        force_max_interpolated: interpolated.force_max,
-        compression_max_interpolated: interpolated.at_max.compression,
-        time_of_max_compression_interpolated: interpolated.at_max.t,
-        at_max_compression_interpolated: interpolated.at_max,
-        corners_at_max_compression_interpolated: interpolated.corners,
-        contacts,
-        unfinished_contact: current,
-        total_impulse,
-        final_velocity: v,
-        left_at,
-        steps_total: steps,
-        max_energy_error_total: max_err_total,
-        later_history,
     }
 }

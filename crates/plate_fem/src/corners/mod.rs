@@ -97,11 +97,15 @@
 //! that still fails is a [`FemError::CornerUpdate`] naming the corner stiffnesses and what
 //! failed.
 
-use crate::model::{CornerResponse, Factorization, Model, PointResponse};
+use crate::model::{Factorization, Model, PointResponse};
 use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
 use crate::FemError;
 use faer::Mat;
-use nalgebra::{DMatrix, DVector, Matrix4, Vector4};
+use nalgebra::{Matrix4, Vector4};
+
+mod check;
+mod condensation;
+mod update;
 
 /// The base factorization and its corner flexibility.
 pub struct CornerFamily<'m> {
@@ -175,8 +179,15 @@ impl<'m> CornerFamily<'m> {
         1e4 * p.rigidity() / (p.length * p.width)
     }
 
-    /// Factorizes the base (edges as given, corners on springs `k_base`).
+    /// Factorizes the base (edges as given, corners on springs `k_base`). Elastic edges are
+    /// refused: the 4 x 4 algebra follows the corners, not the energy the edge springs
+    /// take from the plate's store; factorize such a support set with [`Model::factorize`].
     pub fn new(model: &'m Model, edges: [EdgeSupport; 4], k_base: f64) -> Result<Self, FemError> {
+        if edges.iter().any(|e| matches!(e, EdgeSupport::Elastic(_))) {
+            return Err(FemError::Support(format!(
+                "corner families take free, simply supported or clamped edges, not {edges:?}; factorize elastic edges one support set at a time (Model::factorize)"
+            )));
+        }
         // The base is well conditioned (stiff springs at all corners); its residuals are
         // reported with every probe, and refinement is left to the caller.
         let base =
@@ -377,227 +388,5 @@ impl<'m> CornerFamily<'m> {
             })
             .collect();
         FemError::CornerUpdate { corners: names.join(", "), k_base: self.k_base, what }
-    }
-
-    /// The a-posteriori check (module docs).
-    fn check(&self, p: &BasePoint, corners: &[CornerSupport; 4], r: &PointResponse, a: &Audit) -> Result<(), FemError> {
-        let eps = f64::EPSILON;
-        let springs: f64 = r.corners.iter().map(|c| c.spring_compliance).sum();
-        let fail = |what: String| Err(self.failure(corners, what));
-        let finite = r.compliance.is_finite()
-            && r.plate_compliance.is_finite()
-            && r.corners.iter().all(|c| c.reaction.is_finite() && c.spring_compliance.is_finite());
-        if !finite {
-            return fail(format!(
-                "non-finite result (C = {:e} m/N, plate store {:e} m/N) at (x = {}, z = {}) m",
-                r.compliance, r.plate_compliance, p.x, p.z
-            ));
-        }
-        if let Some((i, c)) = r.corners.iter().enumerate().find(|(_, c)| c.spring_compliance < 0.0) {
-            return fail(format!("negative spring store {:e} m/N at {}", c.spring_compliance, Corner::ALL[i].name()));
-        }
-        let allowance = ROUNDOFF_ULPS * eps * (a.scale + springs);
-        if r.compliance < -allowance {
-            return fail(format!(
-                "negative compliance C = {:e} m/N under a positive load at (x = {}, z = {}) m (round-off allowance {:e})",
-                r.compliance, p.x, p.z, allowance
-            ));
-        }
-        if r.plate_compliance < -allowance {
-            return fail(format!(
-                "negative plate store {:e} m/N at (x = {}, z = {}) m (C = {:e} m/N, spring stores {:e} m/N, round-off allowance {:e})",
-                r.plate_compliance, p.x, p.z, r.compliance, springs, allowance
-            ));
-        }
-        let bookkeeping = (r.compliance - r.plate_compliance - springs).abs();
-        if bookkeeping > allowance.max(ROUNDOFF_ULPS * eps * r.compliance.abs()) {
-            return fail(format!(
-                "stores do not add up: C = {:e} m/N, plate {:e} m/N, springs {:e} m/N",
-                r.compliance, r.plate_compliance, springs
-            ));
-        }
-        if self.edges == [EdgeSupport::Free; 4] {
-            let sum = r.total_reaction();
-            if (sum - 1.0).abs() > EQUILIBRIUM_TOLERANCE {
-                return fail(format!(
-                    "reactions sum to {sum} of the unit load at (x = {}, z = {}) m (allowed error {EQUILIBRIUM_TOLERANCE:e})",
-                    p.x, p.z
-                ));
-            }
-        }
-        if let Some((cond, residual)) = a.system {
-            if cond.is_nan() || cond * eps > UPDATE_SOLVE_BOUND {
-                return fail(format!(
-                    "the 4 x 4 update matrix has condition {cond:e}: its solve may keep fewer than {:.0} digits",
-                    -(UPDATE_SOLVE_BOUND.log10())
-                ));
-            }
-            if residual.is_nan() || residual > ROUNDOFF_ULPS * eps {
-                return fail(format!("the 4 x 4 update solve has relative residual {residual:e}"));
-            }
-        }
-        Ok(())
-    }
-
-    /// The rank-4 update, operation for operation as it always was (results reproduced bit
-    /// for bit), plus what the check needs.
-    fn update(&self, p: &BasePoint, corners: [CornerSupport; 4]) -> Result<(PointResponse, Audit), FemError> {
-        let s: Vec<usize> = (0..4).filter(|&i| corners[i] != CornerSupport::Spring(self.k_base)).collect();
-        let inv_delta = |i: usize| match corners[i] {
-            CornerSupport::Fixed => 0.0,
-            CornerSupport::Free => -1.0 / self.k_base,
-            CornerSupport::Spring(k) => 1.0 / (k - self.k_base),
-        };
-        let m = s.len();
-        let mut system = None;
-        let lambda = if m == 0 {
-            DVector::zeros(0)
-        } else {
-            let mat = DMatrix::from_fn(m, m, |a, b| self.g[(s[a], s[b])] + if a == b { inv_delta(s[a]) } else { 0.0 });
-            let rhs = DVector::from_fn(m, |a, _| p.u[s[a]]);
-            let lambda = mat
-                .clone()
-                .lu()
-                .solve(&rhs)
-                .ok_or_else(|| FemError::Singular("corner update matrix is singular".into()))?;
-            let norm1 = |x: &DMatrix<f64>| x.column_iter().map(|c| c.abs().sum()).fold(0.0, f64::max);
-            let cond = mat.clone().try_inverse().map_or(f64::INFINITY, |inv| norm1(&mat) * norm1(&inv));
-            let res = (&mat * &lambda - &rhs).amax()
-                / (norm1(&mat.transpose()) * lambda.amax() + rhs.amax()).max(f64::MIN_POSITIVE);
-            system = Some((cond, res));
-            lambda
-        };
-        let mut compliance = p.compliance;
-        let mut scale = p.compliance.abs();
-        let mut w = p.u;
-        for (a, &i) in s.iter().enumerate() {
-            compliance -= p.u[i] * lambda[a];
-            scale += (p.u[i] * lambda[a]).abs();
-            for r in 0..4 {
-                w[r] -= self.g[(r, i)] * lambda[a];
-            }
-        }
-        let mut out = [CornerResponse { reaction: 0.0, spring_compliance: 0.0 }; 4];
-        for c in Corner::ALL {
-            let i = c.index();
-            let extra = s.iter().position(|&j| j == i).map_or(0.0, |a| lambda[a]);
-            out[i] = match corners[i] {
-                CornerSupport::Free => CornerResponse { reaction: 0.0, spring_compliance: 0.0 },
-                CornerSupport::Fixed => CornerResponse { reaction: self.k_base * w[i] + extra, spring_compliance: 0.0 },
-                CornerSupport::Spring(k) => CornerResponse { reaction: k * w[i], spring_compliance: k * w[i] * w[i] },
-            };
-        }
-        let springs: f64 = out.iter().map(|c| c.spring_compliance).sum();
-        let r = PointResponse {
-            x: p.x,
-            z: p.z,
-            compliance,
-            plate_compliance: compliance - springs,
-            corners: out,
-            residual: p.residual,
-        };
-        Ok((r, Audit { scale, system }))
-    }
-
-    /// The fixed-corner compliance C_fix and reactions f = G⁻¹u, by the update to four
-    /// fixed corners (the same operations as [`update`](Self::update) for Con 1, so C_fix
-    /// is bit for bit the update's Con 1 value), with the size of the terms that cancel.
-    fn fixed_corners(&self, p: &BasePoint) -> Result<(f64, Vector4<f64>, f64), FemError> {
-        let mat = DMatrix::from_fn(4, 4, |a, b| self.g[(a, b)]);
-        let rhs = DVector::from_fn(4, |a, _| p.u[a]);
-        let f = mat.lu().solve(&rhs).ok_or_else(|| FemError::Singular("base corner flexibility is singular".into()))?;
-        let mut c = p.compliance;
-        let mut scale = p.compliance.abs();
-        for i in 0..4 {
-            c -= p.u[i] * f[i];
-            scale += (p.u[i] * f[i]).abs();
-        }
-        Ok((c, Vector4::from_fn(|i, _| f[i]), scale))
-    }
-
-    /// Condensation onto the corners (module docs) with twist stiffness `s`. Needs free
-    /// edges and at most one free corner (checked by the caller).
-    fn condensed(&self, p: &BasePoint, corners: [CornerSupport; 4], s: f64) -> (PointResponse, Audit) {
-        let (c_fix, f, scale) = match self.fixed_corners(p) {
-            Ok(v) => v,
-            Err(_) => (f64::NAN, Vector4::repeat(f64::NAN), f64::NAN),
-        };
-        let t = TWIST;
-        // Statics fixes f in the three rigid directions exactly (the element represents the
-        // rigid motions exactly, so Σ f_i (1, x_i, z_i) = (1, x, z) in algebra); only the
-        // twist component τ = tᵀf/4 depends on the plate. In the orthogonal basis 1,
-        // h_x = (-1, 1, -1, 1), h_z = (-1, -1, 1, 1), t of R⁴, f = 1/4 + (2x/L - 1)/4 h_x +
-        // (2z/B - 1)/4 h_z + τ t. Replacing the solved rigid components (good to the base
-        // solve's residual, ~1e-11) by the exact ones makes the soft-spring limits, which
-        // depend on them alone, exact to round-off.
-        let mesh = self.base.model().mesh();
-        let (xi, zeta) = (p.x / mesh.length(), p.z / mesh.width());
-        let tau = (0..4).map(|i| t[i] * f[i]).sum::<f64>() / 4.0;
-        let (hx, hz) = ([-1.0, 1.0, -1.0, 1.0], [-1.0, -1.0, 1.0, 1.0]);
-        let f = Vector4::from_fn(|i, _| {
-            0.25 + 0.25 * (2.0 * xi - 1.0) * hx[i] + 0.25 * (2.0 * zeta - 1.0) * hz[i] + tau * t[i]
-        });
-        let phi = |i: usize| match corners[i] {
-            CornerSupport::Fixed => 0.0,
-            CornerSupport::Spring(k) => 1.0 / k,
-            CornerSupport::Free => f64::INFINITY,
-        };
-        let free = (0..4).find(|&i| corners[i] == CornerSupport::Free);
-        // The twist force β and the spring part fᵀc of C.
-        let (beta, spring_part) = match free {
-            Some(fc) => {
-                // φ_f → ∞: the free corner's reaction f_f - t_f β vanishes.
-                let beta = t[fc] * f[fc];
-                let rest: f64 = (0..4)
-                    .filter(|&j| j != fc)
-                    .map(|j| {
-                        let r = f[j] - t[j] * beta;
-                        phi(j) * r * r
-                    })
-                    .sum();
-                (beta, f[fc] * f[fc] / s + rest)
-            }
-            None => {
-                let m = (0..4).map(phi).fold(0.0, f64::max);
-                if m == 0.0 {
-                    (0.0, 0.0)
-                } else {
-                    // ψ = φ/m ∈ [0, 1]; numerator and denominator divided by s m.
-                    let psi: Vec<f64> = (0..4).map(|i| phi(i) / m).collect();
-                    let a: f64 = psi.iter().sum();
-                    let b: f64 = (0..4).map(|i| t[i] * psi[i] * f[i]).sum();
-                    let q: f64 = (0..4).map(|i| psi[i] * f[i] * f[i]).sum();
-                    let mut lagrange = 0.0;
-                    for i in 0..4 {
-                        for j in i + 1..4 {
-                            let d = f[i] * t[j] - f[j] * t[i];
-                            lagrange += psi[i] * psi[j] * d * d;
-                        }
-                    }
-                    let den = 1.0 / (s * m) + a;
-                    (b / den, (q / s + m * lagrange) / den)
-                }
-            }
-        };
-        let mut out = [CornerResponse { reaction: 0.0, spring_compliance: 0.0 }; 4];
-        for i in 0..4 {
-            out[i] = match corners[i] {
-                CornerSupport::Free => CornerResponse { reaction: 0.0, spring_compliance: 0.0 },
-                CornerSupport::Fixed => CornerResponse { reaction: f[i] - t[i] * beta, spring_compliance: 0.0 },
-                CornerSupport::Spring(k) => {
-                    let r = f[i] - t[i] * beta;
-                    CornerResponse { reaction: r, spring_compliance: r * r / k }
-                }
-            };
-        }
-        let r = PointResponse {
-            x: p.x,
-            z: p.z,
-            compliance: c_fix + spring_part,
-            plate_compliance: c_fix + beta * beta / s,
-            corners: out,
-            residual: p.residual,
-        };
-        (r, Audit { scale: scale + spring_part, system: None })
     }
 }

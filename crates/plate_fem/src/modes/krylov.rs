@@ -1,0 +1,254 @@
+//! The shift-invert block Krylov iteration (module docs of [`super`]): an M-orthonormal
+//! basis grown by K⁻¹M, Rayleigh-Ritz on it (Parlett, *The Symmetric Eigenvalue Problem*,
+//! 1998, ch. 11 and 13).
+
+use super::EigenMethod;
+use super::{col, dot, finish, Modes, Pencil, BLOCK, RESIDUAL_TOLERANCE};
+use crate::model::{symmetric_upper_apply, Factorization};
+use crate::FemError;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par};
+use nalgebra::DMatrix;
+
+/// A deterministic pseudo-random vector (xorshift64*), zero on held DOFs: a start block with
+/// a component along every mode, whatever the plate's symmetry.
+fn random_vector(state: &mut u64, held: &[bool]) -> Vec<f64> {
+    held.iter()
+        .map(|&h| {
+            *state ^= *state >> 12;
+            *state ^= *state << 25;
+            *state ^= *state >> 27;
+            let r = state.wrapping_mul(0x2545_f491_4f6c_dd1d);
+            if h {
+                0.0
+            } else {
+                (r >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            }
+        })
+        .collect()
+}
+
+/// An M-orthonormal basis with its images under M and K, grown block by block.
+struct Basis {
+    q: Mat<f64>,
+    mq: Mat<f64>,
+    kq: Mat<f64>,
+    len: usize,
+}
+
+impl Basis {
+    fn new(n: usize, capacity: usize) -> Self {
+        Self { q: Mat::zeros(n, capacity), mq: Mat::zeros(n, capacity), kq: Mat::zeros(n, capacity), len: 0 }
+    }
+
+    /// Removes the components along the basis from `w` (M inner product), twice.
+    fn orthogonalize(&self, w: &mut Mat<f64>) {
+        if self.len == 0 {
+            return;
+        }
+        let q = self.q.as_ref().subcols(0, self.len);
+        let mq = self.mq.as_ref().subcols(0, self.len);
+        for _ in 0..2 {
+            let mut c = Mat::<f64>::zeros(self.len, w.ncols());
+            matmul(c.as_mut(), Accum::Replace, mq.transpose(), w.as_ref(), 1.0, Par::Seq);
+            matmul(w.as_mut(), Accum::Add, q, c.as_ref(), -1.0, Par::Seq);
+        }
+    }
+
+    /// Appends the columns of `w` that are independent of the basis, M-normalized; a column
+    /// that has (numerically) no new direction is replaced by a random one. Returns the
+    /// indices of the appended columns.
+    fn append(&mut self, pencil: &Pencil, mut w: Mat<f64>, seed: &mut u64) -> std::ops::Range<usize> {
+        let n = w.nrows();
+        self.orthogonalize(&mut w);
+        let start = self.len;
+        for j in 0..w.ncols() {
+            if self.len == self.q.ncols() {
+                break;
+            }
+            let mut v = col(&w, j);
+            let mut tries = 0;
+            // The block is already orthogonal to the basis before it; a random replacement
+            // is not.
+            let mut from = start;
+            loop {
+                let norm0 = dot(&v, &symmetric_upper_apply(&pencil.m, &v)).max(0.0).sqrt();
+                // Two passes against the block's earlier columns (or everything).
+                for _ in 0..2 {
+                    for c in from..self.len {
+                        let a: f64 = (0..n).map(|i| self.mq[(i, c)] * v[i]).sum();
+                        for (i, vi) in v.iter_mut().enumerate() {
+                            *vi -= a * self.q[(i, c)];
+                        }
+                    }
+                }
+                let mv = symmetric_upper_apply(&pencil.m, &v);
+                let norm = dot(&v, &mv).max(0.0).sqrt();
+                if norm > 1e-10 * norm0 && norm > 0.0 {
+                    let kv = symmetric_upper_apply(&pencil.k, &v);
+                    for i in 0..n {
+                        self.q[(i, self.len)] = v[i] / norm;
+                        self.mq[(i, self.len)] = mv[i] / norm;
+                        self.kq[(i, self.len)] = kv[i] / norm;
+                    }
+                    self.len += 1;
+                    break;
+                }
+                tries += 1;
+                if tries > 3 {
+                    break;
+                }
+                v = random_vector(seed, &pencil.held);
+                from = 0;
+            }
+        }
+        start..self.len
+    }
+}
+
+impl Modes {
+    /// The lowest `count` modes by shift-invert block Krylov on the factorization `fact`
+    /// of K (see the module).
+    pub fn krylov(fact: &Factorization<'_>, count: usize) -> Result<Self, FemError> {
+        let model = fact.model();
+        let supports = *fact.supports();
+        let pencil = Pencil::new(model, &supports)?;
+        let n = model.dofs();
+        let free = pencil.free();
+        Self::check_count(count, free)?;
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let capacity = free.min((3 * count + 8 * BLOCK).max(count + 16 * BLOCK));
+        let mut basis = Basis::new(n, capacity);
+        // Start: K⁻¹M applied once to a random block, which damps the highest modes.
+        let b = BLOCK.min(free);
+        let mut x = Mat::<f64>::zeros(n, b);
+        for j in 0..b {
+            let r = random_vector(&mut seed, &pencil.held);
+            let mr = symmetric_upper_apply(&pencil.m, &r);
+            for i in 0..n {
+                x[(i, j)] = mr[i];
+            }
+        }
+        fact.solve_unchecked(&mut x);
+        let mut block = basis.append(&pencil, x, &mut seed);
+        let mut next_check = (3 * count / 2 + 2 * BLOCK).min(free);
+        loop {
+            if basis.len >= next_check || basis.len == capacity {
+                if let Some(modes) = rayleigh_ritz(&basis, count, &pencil)? {
+                    let (omega, shapes, residuals, orthogonality) = modes;
+                    let worst = residuals.iter().copied().fold(0.0, f64::max);
+                    if worst <= RESIDUAL_TOLERANCE || basis.len == free {
+                        if worst > RESIDUAL_TOLERANCE {
+                            return Err(FemError::Modes(format!(
+                                "the complete basis of {free} vectors left a residual {worst:e} above {RESIDUAL_TOLERANCE:e}: the stiffness or mass is too ill conditioned"
+                            )));
+                        }
+                        return Ok(Self {
+                            mesh: model.mesh().clone(),
+                            supports,
+                            omega,
+                            shapes,
+                            residuals,
+                            orthogonality,
+                            method: EigenMethod::Krylov { basis: basis.len },
+                        });
+                    }
+                    if basis.len == capacity {
+                        // Grow the basis: keep what was built.
+                        let grown = free.min(capacity + count.max(8 * BLOCK));
+                        let mut bigger = Basis::new(n, grown);
+                        for c in 0..basis.len {
+                            for i in 0..n {
+                                bigger.q[(i, c)] = basis.q[(i, c)];
+                                bigger.mq[(i, c)] = basis.mq[(i, c)];
+                                bigger.kq[(i, c)] = basis.kq[(i, c)];
+                            }
+                        }
+                        bigger.len = basis.len;
+                        basis = bigger;
+                    }
+                }
+                next_check = (basis.len + (count / 4).max(2 * BLOCK)).min(free);
+            }
+            if block.is_empty() {
+                // The Krylov space is invariant: continue from a random block.
+                let r = random_vector(&mut seed, &pencil.held);
+                let w = Mat::from_fn(n, 1, |i, _| r[i]);
+                block = basis.append(&pencil, w, &mut seed);
+                continue;
+            }
+            // Next block: K⁻¹ M X for the last block X (M X is stored).
+            let mut w = Mat::<f64>::zeros(n, block.len());
+            for (j, c) in block.clone().enumerate() {
+                for i in 0..n {
+                    w[(i, j)] = basis.mq[(i, c)];
+                }
+            }
+            fact.solve_unchecked(&mut w);
+            block = basis.append(&pencil, w, &mut seed);
+        }
+    }
+}
+
+/// Rayleigh-Ritz of (K, M) on the basis; the lowest `count` pairs, or None if the basis is
+/// still smaller than `count`.
+#[allow(clippy::type_complexity)]
+fn rayleigh_ritz(
+    basis: &Basis,
+    count: usize,
+    pencil: &Pencil,
+) -> Result<Option<(Vec<f64>, Mat<f64>, Vec<f64>, f64)>, FemError> {
+    let d = basis.len;
+    if d < count {
+        return Ok(None);
+    }
+    let q = basis.q.as_ref().subcols(0, d);
+    let kq = basis.kq.as_ref().subcols(0, d);
+    let mut kp = Mat::<f64>::zeros(d, d);
+    matmul(kp.as_mut(), Accum::Replace, q.transpose(), kq, 1.0, Par::Seq);
+    let a = DMatrix::from_fn(d, d, |i, j| 0.5 * (kp[(i, j)] + kp[(j, i)]));
+    let eig = a.symmetric_eigen();
+    let mut order: Vec<usize> = (0..d).collect();
+    order.sort_by(|&x, &y| eig.eigenvalues[x].total_cmp(&eig.eigenvalues[y]));
+    let s = Mat::<f64>::from_fn(d, count, |i, j| eig.eigenvectors[(i, order[j])]);
+    let mut shapes = Mat::<f64>::zeros(q.nrows(), count);
+    matmul(shapes.as_mut(), Accum::Replace, q, s.as_ref(), 1.0, Par::Seq);
+    finish(shapes, pencil).map(Some)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Mesh;
+    use crate::model::{Model, PlateProperties};
+    use crate::supports::Supports;
+
+    fn plate(l: f64, b: f64) -> PlateProperties {
+        PlateProperties {
+            length: l,
+            width: b,
+            thickness: 0.008,
+            youngs_modulus: 210e9,
+            poisson_ratio: 0.3,
+            density: 7850.0,
+        }
+    }
+
+    /// On a mesh small enough for both, the Krylov modes are the dense modes: frequencies to
+    /// 1e-10 (both are exact eigenpairs of the same pencil, to their residuals), shapes to
+    /// 1e-6 (a shape's error is its residual over the gap to the next frequency).
+    #[test]
+    fn krylov_matches_dense_on_a_small_mesh() {
+        let model = Model::new(plate(0.4584, 0.36), Mesh::uniform(0.4584, 0.36, 8, 6).unwrap()).unwrap();
+        for s in [Supports::con1(), Supports::con3(5e8), Supports::all_edges_simple()] {
+            let dense = Modes::dense(&model, &s, 30).unwrap();
+            let fact = model.factorize(&s).unwrap();
+            let kry = Modes::krylov(&fact, 30).unwrap();
+            for (a, b) in dense.omegas().iter().zip(kry.omegas()) {
+                assert!((a / b - 1.0).abs() < 1e-10, "{a} {b}");
+            }
+            assert!(kry.residuals().iter().all(|&r| r < RESIDUAL_TOLERANCE), "{:?}", kry.residuals());
+            assert!(kry.orthogonality() < 1e-10 && dense.orthogonality() < 1e-10);
+        }
+    }
+}

@@ -1,0 +1,143 @@
+//! The residual flexibility of the modes a [`Modes`] leaves out, element by element.
+
+use super::Modes;
+use crate::element::{self, Vec16};
+use crate::mesh::Mesh;
+use crate::model::{symmetric_upper_apply, Factorization};
+use crate::FemError;
+use faer::Mat;
+
+/// R = K⁻¹ - Σ_{i≤N} φᵢφᵢᵀ/ωᵢ² on every element: the residual flexibility of the modes a
+/// [`Modes`] leaves out, at any point by one element evaluation; and RMR, the mass of the
+/// residual static shape.
+///
+/// With the load vector N(p) of a unit force at p, ψ(p) = R N(p) is the static deflection
+/// of the truncated modes alone. It is M-orthogonal to the kept modes (ΦᵀMK⁻¹ = Ω⁻²Φᵀ),
+/// its stiffness ψᵀKψ and its load participation ψᵀN both equal C_res(p) = N(p)ᵀRN(p) (RKR =
+/// R), and its mass is m_ψ(p) = ψᵀMψ = N(p)ᵀ(RMR)N(p) with RMR = K⁻¹MK⁻¹ - Σᵢφᵢφᵢᵀ/ωᵢ⁴. As
+/// one more Ritz vector beside the modes it is a "residual mode" of frequency
+/// ω_ψ² = C_res/m_ψ, which keeps the static correction's compliance and adds the truncated
+/// modes' inertia (the residual-vector augmentation of a modal basis: Dickens, Nakagawa &
+/// Wittbrodt, *A critique of mode acceleration and modal truncation augmentation methods for
+/// modal response analysis*, Computers & Structures 62 (1997) 985).
+#[derive(Debug, Clone)]
+pub struct ResidualFlexibility {
+    mesh: Mesh,
+    /// Per element (row order, ex fastest), R's 16 x 16 block, row-major.
+    blocks: Vec<[f64; 256]>,
+    /// Per element, RMR's block.
+    mass_blocks: Vec<[f64; 256]>,
+}
+
+impl ResidualFlexibility {
+    /// Assembles the element blocks of K⁻¹ and K⁻¹MK⁻¹ from solves with unit loads on every
+    /// free DOF (in blocks of 64 columns) and subtracts the modes' parts.
+    pub fn new(fact: &Factorization<'_>, modes: &Modes) -> Result<Self, FemError> {
+        let model = fact.model();
+        let mesh = model.mesh().clone();
+        if modes.mesh != mesh || modes.supports != *fact.supports() {
+            return Err(FemError::Modes(
+                "the modes belong to another mesh or support set than the factorization".into(),
+            ));
+        }
+        let mass = model.supported_mass(fact.supports())?;
+        let n = model.dofs();
+        let (nx, nz) = (mesh.nx(), mesh.nz());
+        let mut blocks = vec![[0.0f64; 256]; mesh.elements()];
+        let mut mass_blocks = vec![[0.0f64; 256]; mesh.elements()];
+        let held: std::collections::HashSet<usize> = fact.held().iter().copied().collect();
+        const CHUNK: usize = 64;
+        let cols: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
+        let nodes_x = nx + 1;
+        let harvest = |blocks: &mut [[f64; 256]], x: &Mat<f64>, j: usize, d: usize| {
+            let node = d / 4;
+            let q = d % 4;
+            let (i, jn) = (node % nodes_x, node / nodes_x);
+            for ez in jn.saturating_sub(1)..=jn.min(nz - 1) {
+                for ex in i.saturating_sub(1)..=i.min(nx - 1) {
+                    let local_node = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                        .iter()
+                        .position(|&(di, dj)| ex + di == i && ez + dj == jn)
+                        .unwrap_or(0);
+                    let l = 4 * local_node + q;
+                    let dofs = mesh.element_dofs(ex, ez);
+                    let b = &mut blocks[ez * nx + ex];
+                    for k in 0..16 {
+                        b[k * 16 + l] = x[(dofs[k], j)];
+                    }
+                }
+            }
+        };
+        for chunk in cols.chunks(CHUNK) {
+            let mut x = Mat::<f64>::zeros(n, chunk.len());
+            for (j, &d) in chunk.iter().enumerate() {
+                x[(d, j)] = 1.0;
+            }
+            fact.solve_in_place(&mut x);
+            let mut y = Mat::<f64>::zeros(n, chunk.len());
+            for j in 0..chunk.len() {
+                let mx = symmetric_upper_apply(&mass, x.col_as_slice(j));
+                y.col_as_slice_mut(j).copy_from_slice(&mx);
+            }
+            fact.solve_in_place(&mut y);
+            for (j, &d) in chunk.iter().enumerate() {
+                harvest(&mut blocks, &x, j, d);
+                harvest(&mut mass_blocks, &y, j, d);
+            }
+        }
+        let shapes = modes.shapes();
+        let count = modes.count();
+        for ez in 0..nz {
+            for ex in 0..nx {
+                let dofs = mesh.element_dofs(ex, ez);
+                let e = ez * nx + ex;
+                for (b, power) in [(&mut blocks[e], 2), (&mut mass_blocks[e], 4)] {
+                    for k in 0..16 {
+                        for l in 0..16 {
+                            let modal: f64 = (0..count)
+                                .map(|m| shapes[(dofs[k], m)] * shapes[(dofs[l], m)] / modes.omega[m].powi(power))
+                                .sum();
+                            b[k * 16 + l] -= modal;
+                        }
+                    }
+                    for k in 0..16 {
+                        for l in 0..k {
+                            let s = 0.5 * (b[k * 16 + l] + b[l * 16 + k]);
+                            b[k * 16 + l] = s;
+                            b[l * 16 + k] = s;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(Self { mesh, blocks, mass_blocks })
+    }
+
+    /// N(p)ᵀ R N(p) at p = (x, z), m/N: the static compliance of the truncated modes.
+    pub fn at(&self, x: f64, z: f64) -> Result<f64, FemError> {
+        let loc = self.mesh.locate(x, z)?;
+        let (a, b) = self.mesh.element_size(loc.ex, loc.ez);
+        let n = element::shape(a, b, loc.xi, loc.eta);
+        Ok(self.quadratic(loc.ez * self.mesh.nx() + loc.ex, &n))
+    }
+
+    /// Nᵀ R N on element `e` for shape values `n` (m/N).
+    pub fn quadratic(&self, e: usize, n: &Vec16) -> f64 {
+        quadratic(&self.blocks[e], n)
+    }
+
+    /// Nᵀ (RMR) N on element `e` for shape values `n`: the mass m_ψ of the residual shape
+    /// ψ = RN, kg·(m/N)².
+    pub fn mass_quadratic(&self, e: usize, n: &Vec16) -> f64 {
+        quadratic(&self.mass_blocks[e], n)
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+}
+
+fn quadratic(b: &[f64; 256], n: &Vec16) -> f64 {
+    (0..16).map(|k| n[k] * (0..16).map(|l| b[k * 16 + l] * n[l]).sum::<f64>()).sum()
+}
