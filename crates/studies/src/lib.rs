@@ -4,11 +4,13 @@
 //!
 //! * [`run`]: a scene by the models a caller picks (beam, plate FE, transient), within the
 //!   memory and run budgets, the one entry point the command line and Python share;
-//! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
-//!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`],
-//!   [`transient`], the three-model yield study on a scene ([`yield_models::scene`]) and the
-//!   regime maps ([`regimes`]); the yield study on the paper's scene ([`yield_models::paper`])
-//!   computes here too;
+//! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene, &Settings,
+//!   &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`], [`transient`], the
+//!   three-model yield study on a scene ([`yield_models::scene`]), the regime maps ([`regimes`])
+//!   and the plate FE verification ([`fem_verification`]); the yield study on the paper's scene
+//!   ([`yield_models::paper`]) computes here too;
+//! * [`fem_verification`]: the plate elements against the classical series, on the scene's
+//!   plate, and against scikit-fem;
 //! * [`transient`]: the transient model against the quasi-static ones, the contact laws,
 //!   the size map and the model's verification (`impact dynamic`);
 //! * [`field_series`]: the plate's deflection recorded during one contact;
@@ -29,6 +31,7 @@
 pub mod channel;
 pub mod columns;
 pub mod fem_bench;
+pub mod fem_verification;
 pub mod field_series;
 pub mod paper;
 pub mod progress;

@@ -89,3 +89,16 @@ impl Study for RegimeMaps {
         crate::regimes::compute(scene, settings, progress)
     }
 }
+
+/// The plate FE verification ([`crate::fem_verification`]) on the scene's plate, against the
+/// classical series and the committed scikit-fem data.
+pub struct FemVerification;
+
+impl Study for FemVerification {
+    const KEY: &'static str = "fem";
+    type Data = crate::fem_verification::FemVerificationData;
+    fn compute(scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        let reference = crate::fem_verification::Reference::embedded()?;
+        crate::fem_verification::compute(scene, &reference, progress)
+    }
+}
