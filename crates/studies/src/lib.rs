@@ -6,9 +6,12 @@
 //!   memory and run budgets, the one entry point the command line and Python share;
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene, &Settings,
 //!   &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`], [`transient`], the
-//!   three-model yield study on a scene ([`yield_models::scene`]), the regime maps ([`regimes`])
-//!   and the plate FE verification ([`fem_verification`]); the yield study on the paper's scene
-//!   ([`yield_models::paper`]) computes here too;
+//!   three-model yield study on a scene ([`yield_models::scene`]), the regime maps ([`regimes`]),
+//!   the beam against the plate ([`comparison`]) and the plate FE verification
+//!   ([`fem_verification`]); the yield study on the paper's scene ([`yield_models::paper`])
+//!   computes here too;
+//! * [`comparison`]: the beam and the plate FE model through the same balance, at the scene's
+//!   points, over the plate, across widths and on extreme inputs (`impact compare`);
 //! * [`fem_verification`]: the plate elements against the classical series, on the scene's
 //!   plate, and against scikit-fem;
 //! * [`transient`]: the transient model against the quasi-static ones, the contact laws,
@@ -30,6 +33,7 @@
 
 pub mod channel;
 pub mod columns;
+pub mod comparison;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field_series;

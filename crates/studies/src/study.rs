@@ -102,3 +102,14 @@ impl Study for FemVerification {
         crate::fem_verification::compute(scene, &reference, progress)
     }
 }
+
+/// The beam against the plate FE model ([`crate::comparison`]): `impact compare`.
+pub struct Comparison;
+
+impl Study for Comparison {
+    const KEY: &'static str = "compare";
+    type Data = crate::comparison::ComparisonData;
+    fn compute(scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::comparison::compute(scene, progress)
+    }
+}
