@@ -8,7 +8,6 @@ pub mod present;
 pub mod provenance;
 
 pub mod comparison;
-pub mod conclusions;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;

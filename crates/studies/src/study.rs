@@ -113,3 +113,15 @@ impl Study for Comparison {
         crate::comparison::compute(scene, progress)
     }
 }
+
+/// The paper's own studies under both models ([`crate::paper_studies`]), on the paper's
+/// scene whatever scene is given.
+pub struct PaperStudies;
+
+impl Study for PaperStudies {
+    const KEY: &'static str = "paper-studies";
+    type Data = crate::paper_studies::PaperStudiesData;
+    fn compute(_scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::paper_studies::compute(progress)
+    }
+}
