@@ -125,3 +125,15 @@ impl Study for PaperStudies {
         crate::paper_studies::compute(progress)
     }
 }
+
+/// The paper's section IV reproduced ([`crate::paper::reproduce`]): `impact paper`, on the
+/// paper's scene whatever scene is given.
+pub struct Reproduction;
+
+impl Study for Reproduction {
+    const KEY: &'static str = "paper";
+    type Data = crate::paper::ReproductionData;
+    fn compute(_scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::paper::reproduce(&crate::paper::PrintedTables::embedded()?, progress)
+    }
+}
