@@ -373,8 +373,6 @@ fn other(field: impl Into<String>, message: impl Into<String>) -> Invalid {
     Invalid::Other { field: field.into(), message: message.into() }
 }
 
-/// The contact laws a scene may name.
-
 const MM: f64 = 1e-3;
 const GPA: f64 = 1e9;
 const MPA: f64 = 1e6;
