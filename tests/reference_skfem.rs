@@ -92,7 +92,7 @@ fn data_carries_provenance() {
     for case in CASES {
         let v = load(case).unwrap();
         for key in ["scikit-fem", "meshio", "numpy", "scipy", "python"] {
-            assert!(v.versions[key].is_string(), "{case}: version of {key}");
+            assert!(v.versions.iter().any(|(k, v)| k == key && !v.is_empty()), "{case}: version of {key}");
         }
         for r in v.argyris.iter().chain(&v.morley) {
             assert!(r.dofs > 0 && r.seconds > 0.0 && r.nx > 0 && r.nz > 0);

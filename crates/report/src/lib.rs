@@ -8,7 +8,6 @@ pub mod present;
 pub mod provenance;
 
 pub mod comparison;
-pub mod conclusions;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;
@@ -109,7 +108,7 @@ pub fn scene_report(scene: &Scene, progress: &dyn Progress) -> Result<Artifacts,
     } else if let Some(finding) = &regime_maps {
         extra.sections.push_str(&render("comparison/regimes.md", REGIMES, &[("finding", finding.clone())])?);
     }
-    let mut a = comparison::report_with(scene, &extra)?;
+    let mut a = comparison::report_with(scene, &extra, progress)?;
     for (dir, mut part, of) in nested {
         Provenance::of(of).stamp(&mut part);
         a.nest(dir, part);

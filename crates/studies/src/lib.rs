@@ -7,8 +7,19 @@
 //! * [`study`]: the [`study::Study`] trait every study implements (`compute(&Scene,
 //!   &Settings, &dyn Progress) -> Data`), so far by [`signals`], [`fem_bench`],
 //!   [`transient`], the three-model yield study on a scene ([`yield_models::scene`]), the
-//!   regime maps ([`regimes`]) and the identification ([`identify`]); the yield study on the
-//!   paper's scene ([`yield_models::paper`]) computes here too;
+//!   regime maps ([`regimes`]), the beam against the plate ([`comparison`]), the plate FE
+//!   verification ([`fem_verification`]), the paper's studies under both models
+//!   ([`paper_studies`]), the paper's reproduction ([`paper::reproduce`]) and the
+//!   identification ([`identify`]); the yield study on the paper's scene
+//!   ([`yield_models::paper`]) computes here too;
+//! * [`comparison`]: the beam and the plate FE model through the same balance, at the scene's
+//!   points, over the plate, across widths and on extreme inputs (`impact compare`);
+//! * [`fem_verification`]: the plate elements against the classical series, on the scene's
+//!   plate, and against scikit-fem;
+//! * [`paper_studies`]: section V's conclusions, Tables 6-8 and 11 and the figures under
+//!   both models;
+//! * [`paper`]: the paper's setting, its printed tables and their reproduction (`impact paper`);
+//! * [`identify`]: coal-gangue identification over a random-impact ensemble (`impact identify`);
 //! * [`transient`]: the transient model against the quasi-static ones, the contact laws,
 //!   the size map and the model's verification (`impact dynamic`);
 //! * [`field_series`]: the plate's deflection recorded during one contact;
@@ -28,10 +39,13 @@
 
 pub mod channel;
 pub mod columns;
+pub mod comparison;
 pub mod fem_bench;
+pub mod fem_verification;
 pub mod field_series;
 pub mod identify;
 pub mod paper;
+pub mod paper_studies;
 pub mod progress;
 pub mod regimes;
 pub mod run;

@@ -101,3 +101,51 @@ impl Study for Identify {
         crate::identify::compute(scene, progress)
     }
 }
+
+/// The plate FE verification ([`crate::fem_verification`]) on the scene's plate, against the
+/// classical series and the committed scikit-fem data.
+pub struct FemVerification;
+
+impl Study for FemVerification {
+    const KEY: &'static str = "fem";
+    type Data = crate::fem_verification::FemVerificationData;
+    fn compute(scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        let reference = crate::fem_verification::Reference::embedded()?;
+        crate::fem_verification::compute(scene, &reference, progress)
+    }
+}
+
+/// The beam against the plate FE model ([`crate::comparison`]): `impact compare`.
+pub struct Comparison;
+
+impl Study for Comparison {
+    const KEY: &'static str = "compare";
+    type Data = crate::comparison::ComparisonData;
+    fn compute(scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::comparison::compute(scene, progress)
+    }
+}
+
+/// The paper's own studies under both models ([`crate::paper_studies`]), on the paper's
+/// scene whatever scene is given.
+pub struct PaperStudies;
+
+impl Study for PaperStudies {
+    const KEY: &'static str = "paper-studies";
+    type Data = crate::paper_studies::PaperStudiesData;
+    fn compute(_scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::paper_studies::compute(progress)
+    }
+}
+
+/// The paper's section IV reproduced ([`crate::paper::reproduce`]): `impact paper`, on the
+/// paper's scene whatever scene is given.
+pub struct Reproduction;
+
+impl Study for Reproduction {
+    const KEY: &'static str = "paper";
+    type Data = crate::paper::ReproductionData;
+    fn compute(_scene: &Scene, _settings: &Settings, progress: &dyn Progress) -> Result<Self::Data, Failure> {
+        crate::paper::reproduce(&crate::paper::PrintedTables::embedded()?, progress)
+    }
+}

@@ -7,7 +7,7 @@ use crate::columns::sig;
 // ------------------------------------------------------------------ comparison
 
 /// How a reproduced number stands against print.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub enum Verdict {
     /// Within half a unit of the last printed digit.
     WithinPrint,
@@ -20,7 +20,7 @@ pub enum Verdict {
 }
 
 /// One printed number beside its reproductions (all in the printed units).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Comparison {
     pub table: String,
     pub case: String,
@@ -112,38 +112,59 @@ fn finest<'a>(cells: impl IntoIterator<Item = &'a PrintedText>) -> f64 {
     cells.into_iter().filter(|c| c.printed.value != 0.0).map(|c| c.printed.half_ulp).fold(f64::INFINITY, f64::min)
 }
 
-/// Every printed number of Tables 2-4 and 6-12 beside its reproduction.
-pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Comparison>, PrintedError> {
-    let plate = paper.scene.plate;
-    let l = plate.length();
-    let mut out = Vec::new();
-    let cmp =
-        |table: &str, case: String, quantity: String, cell: &PrintedText, scale: f64, eq, rec: Option<f64>, col| {
-            Comparison {
-                table: table.to_string(),
-                case,
-                quantity,
-                printed: cell.printed,
-                printed_text: cell.text.clone(),
-                equations: eq / scale,
-                recursion: rec.map(|r| r / scale),
-                column_half_ulp: col,
-            }
-        };
+/// One printed cell beside its reproduction: the printed table, the case and quantity as the
+/// comparison names them, and the reproduction in the column's unit (`scale`), with the
+/// column's resolution for a bare 0.
+struct Cell<'a> {
+    table: &'a str,
+    case: String,
+    quantity: String,
+    printed: &'a PrintedText,
+    scale: f64,
+    column_half_ulp: f64,
+}
 
+impl Cell<'_> {
+    fn beside(self, equations: f64, recursion: Option<f64>) -> Comparison {
+        Comparison {
+            table: self.table.to_string(),
+            case: self.case,
+            quantity: self.quantity,
+            printed: self.printed.printed,
+            printed_text: self.printed.text.clone(),
+            equations: equations / self.scale,
+            recursion: recursion.map(|r| r / self.scale),
+            column_half_ulp: self.column_half_ulp,
+        }
+    }
+}
+
+/// The response of `body` under Con `cond` at x on the paper's plate.
+fn response(paper: &Paper, body: &Sphere, cond: usize, x: f64, v: f64, how: Solve) -> Response {
+    paper.respond(&paper.scene.plate, body, Paper::condition(cond, paper.k_t), x, v, how)
+}
+
+/// Table 2: the yield velocities of eqs. 52-54 at Areas 1-7.
+fn table2(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Comparison>, PrintedError> {
     let t2 = &printed.table2;
+    let mut out = Vec::new();
     for row in &t2.rows {
         let body = body(paper, &row.body)?;
         for (i, (cell, x)) in row.values.iter().zip(&t2.x).enumerate() {
             let v = paper.yield_velocity(body, Paper::condition(row.condition, paper.k_t), x.printed.value);
             let case = format!("{} Con {} Area {}", body.name, row.condition, i + 1);
-            out.push(cmp("Table 2", case, format!("v_y ({})", t2.unit), cell, 1.0, v, None, 0.0));
+            let quantity = format!("v_y ({})", t2.unit);
+            let c = Cell { table: "Table 2", case, quantity, printed: cell, scale: 1.0, column_half_ulp: 0.0 };
+            out.push(c.beside(v, None));
         }
     }
+    Ok(out)
+}
 
-    let resp = |body: &Sphere, cond: usize, x: f64, v: f64, how| {
-        paper.respond(&plate, body, Paper::condition(cond, paper.k_t), x, v, how)
-    };
+/// Tables 3 and 4: the coal's responses and spring forces along the plate at 0.008 m/s.
+fn tables3_4(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Comparison>, PrintedError> {
+    let l = paper.scene.plate.length();
+    let mut out = Vec::new();
     let t3 = &printed.table3;
     let coal3 = body(paper, &t3.body)?;
     for block in &t3.blocks {
@@ -152,26 +173,15 @@ pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Compari
         for (point, row) in t3.rows.iter().zip(&block.values) {
             for (column, cell) in t3.columns.iter().zip(row) {
                 let x = point.x_over_length * l;
-                let (eq, rec) = (
-                    resp(coal3, column.condition, x, V_TABLE3, Solve::Converged),
-                    resp(coal3, column.condition, x, V_TABLE3, Solve::PaperRecursion),
-                );
+                let eq = response(paper, coal3, column.condition, x, V_TABLE3, Solve::Converged);
+                let rec = response(paper, coal3, column.condition, x, V_TABLE3, Solve::PaperRecursion);
                 let case = format!("{} {}", point.label, column.label);
-                let q = block.quantity;
-                out.push(cmp(
-                    "Table 3",
-                    case,
-                    block.label.clone(),
-                    cell,
-                    block.scale,
-                    q.of(&eq),
-                    Some(q.of(&rec)),
-                    col,
-                ));
+                let (quantity, scale) = (block.label.clone(), block.scale);
+                let c = Cell { table: "Table 3", case, quantity, printed: cell, scale, column_half_ulp: col };
+                out.push(c.beside(block.quantity.of(&eq), Some(block.quantity.of(&rec))));
             }
         }
     }
-
     let t4 = &printed.table4;
     let coal4 = body(paper, &t4.body)?;
     let col4 = finest(t4.rows.iter().flat_map(|r| &r.values));
@@ -179,15 +189,23 @@ pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Compari
         for (point, cell) in t4.columns.iter().zip(&row.values) {
             let q = Quantity::SpringForce(row.spring);
             let x = point.x_over_length * l;
-            let eq = resp(coal4, row.condition, x, V_TABLE3, Solve::Converged);
-            let rec = resp(coal4, row.condition, x, V_TABLE3, Solve::PaperRecursion);
+            let eq = response(paper, coal4, row.condition, x, V_TABLE3, Solve::Converged);
+            let rec = response(paper, coal4, row.condition, x, V_TABLE3, Solve::PaperRecursion);
             let case = format!("{} {}", row.label, point.label);
-            out.push(cmp("Table 4", case, t4.label.clone(), cell, 1.0, q.of(&eq), Some(q.of(&rec)), col4));
+            let quantity = t4.label.clone();
+            let c = Cell { table: "Table 4", case, quantity, printed: cell, scale: 1.0, column_half_ulp: col4 };
+            out.push(c.beside(q.of(&eq), Some(q.of(&rec))));
         }
     }
+    Ok(out)
+}
 
-    let mid = l / 2.0;
-    let at_mid = |b: &Sphere, cond: usize, how| resp(b, cond, mid, V_TABLE6, how);
+/// Tables 6-10: the three spheres' responses at the midpoint at 0.0025 m/s, and their
+/// differences.
+fn tables6_10(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Comparison>, PrintedError> {
+    let mid = paper.scene.plate.length() / 2.0;
+    let at_mid = |b: &Sphere, cond: usize, how| response(paper, b, cond, mid, V_TABLE6, how);
+    let mut out = Vec::new();
     for tab in &printed.tables6_8 {
         let table = format!("Table {}", tab.table);
         let col = finest(tab.rows.iter().flat_map(|r| &r.values));
@@ -196,21 +214,12 @@ pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Compari
             let (eq, rec) =
                 (at_mid(body, tab.condition, Solve::Converged), at_mid(body, tab.condition, Solve::PaperRecursion));
             for (c, cell) in tab.columns.iter().zip(&row.values) {
-                let q = c.quantity;
-                out.push(cmp(
-                    &table,
-                    body.name.clone(),
-                    c.label.clone(),
-                    cell,
-                    c.scale,
-                    q.of(&eq),
-                    Some(q.of(&rec)),
-                    col,
-                ));
+                let (case, quantity) = (body.name.clone(), c.label.clone());
+                let cell = Cell { table: &table, case, quantity, printed: cell, scale: c.scale, column_half_ulp: col };
+                out.push(cell.beside(c.quantity.of(&eq), Some(c.quantity.of(&rec))));
             }
         }
     }
-
     for tab in &printed.tables9_10 {
         let table = format!("Table {}", tab.table);
         let col = finest(tab.rows.iter().flat_map(|r| &r.values));
@@ -223,31 +232,32 @@ pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Compari
                 let case = format!("{} - {} Con {cond}", minuend.name, subtrahend.name);
                 let q = c.quantity;
                 let (eq, rec) = (q.of(&me) - q.of(&se), q.of(&mr) - q.of(&sr));
-                out.push(cmp(&table, case, c.label.clone(), cell, c.scale, eq, Some(rec), col));
+                let quantity = c.label.clone();
+                let cell = Cell { table: &table, case, quantity, printed: cell, scale: c.scale, column_half_ulp: col };
+                out.push(cell.beside(eq, Some(rec)));
             }
         }
     }
+    Ok(out)
+}
 
+/// Tables 11 and 12: the springs' energy at the midpoint at 0.0025 m/s, and its differences.
+fn tables11_12(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Comparison>, PrintedError> {
+    let mid = paper.scene.plate.length() / 2.0;
     let t11 = &printed.table11;
     let value11 = |body: &Sphere, col: usize, how| {
         let c = &t11.columns[col];
-        c.quantity.of(&at_mid(body, c.condition, how))
+        c.quantity.of(&response(paper, body, c.condition, mid, V_TABLE6, how))
     };
+    let mut out = Vec::new();
     let col11 = finest(t11.rows.iter().flat_map(|r| &r.values));
     for row in &t11.rows {
         let body = body(paper, &row.body)?;
         for (ci, cell) in row.values.iter().enumerate() {
             let (eq, rec) = (value11(body, ci, Solve::Converged), value11(body, ci, Solve::PaperRecursion));
-            out.push(cmp(
-                "Table 11",
-                body.name.clone(),
-                t11.columns[ci].label.clone(),
-                cell,
-                1.0,
-                eq,
-                Some(rec),
-                col11,
-            ));
+            let (case, quantity) = (body.name.clone(), t11.columns[ci].label.clone());
+            let c = Cell { table: "Table 11", case, quantity, printed: cell, scale: 1.0, column_half_ulp: col11 };
+            out.push(c.beside(eq, Some(rec)));
         }
     }
     let t12 = &printed.table12;
@@ -260,9 +270,26 @@ pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Compari
             let diff = |how| value11(minuend, col, how) - value11(subtrahend, col, how);
             let case = format!("{} - {}", minuend.name, subtrahend.name);
             let (eq, rec) = (diff(Solve::Converged), diff(Solve::PaperRecursion));
-            out.push(cmp("Table 12", case, label.clone(), cell, 1.0, eq, Some(rec), col12));
+            let c = Cell {
+                table: "Table 12",
+                case,
+                quantity: label.clone(),
+                printed: cell,
+                scale: 1.0,
+                column_half_ulp: col12,
+            };
+            out.push(c.beside(eq, Some(rec)));
         }
     }
+    Ok(out)
+}
+
+/// Every printed number of Tables 2-4 and 6-12 beside its reproduction.
+pub fn comparisons(paper: &Paper, printed: &PrintedTables) -> Result<Vec<Comparison>, PrintedError> {
+    let mut out = table2(paper, printed)?;
+    out.extend(tables3_4(paper, printed)?);
+    out.extend(tables6_10(paper, printed)?);
+    out.extend(tables11_12(paper, printed)?);
     Ok(out)
 }
 

@@ -5,7 +5,7 @@ use super::*;
 
 /// Table 3's cell at x = L under Con 3: its deflection is printed in the wrong unit and its
 /// plate energy ratio as 0.
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct UnitSlip {
     /// The deflection as printed.
     pub printed: String,
@@ -54,7 +54,7 @@ pub fn unit_slip(paper: &Paper, printed: &PrintedTables) -> Result<UnitSlip, Pri
 
 /// Cells of Tables 3-4 that the recursion leaves beyond print rounding but within the
 /// threshold (the bare 0 is noted on its own).
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct CloseCells {
     /// How many.
     pub count: usize,
@@ -95,7 +95,7 @@ pub fn close_cells(rows: &[Comparison], explainer: &impl Fn(&Comparison) -> Opti
 }
 
 /// What Table 2 and its δ_my inversion show.
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct InversionFindings {
     /// Mean relative deviation of the equations from print, coal.
     pub t2_deviation_coal: f64,

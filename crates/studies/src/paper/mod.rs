@@ -11,11 +11,15 @@
 
 mod compare;
 mod findings;
+mod panels;
 mod printed;
+mod reproduce;
 
 pub use compare::*;
 pub use findings::*;
+pub use panels::*;
 pub use printed::*;
+pub use reproduce::*;
 
 use analytic::{
     beam_compliance, contact_stiffness, evaluate, yield_velocity, Condition, DruckerPrager, Impact, Method, Plate,

@@ -50,7 +50,7 @@ pub enum PrintedError {
 }
 
 /// A printed number: its value and half a unit of its last printed digit.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Printed {
     pub value: f64,
     pub half_ulp: f64,
