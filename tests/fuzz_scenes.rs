@@ -90,33 +90,76 @@ const PROPS_SET: &str = "[conditions.edges]          # left x = 0, right x = L, 
 /// Hand-written hostile scenes: the refusal must contain every needle; None: accepted, and
 /// computed inside the invariants.
 fn corpus() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
-    let long = "x".repeat(10_000);
+    [numbers(), names_and_keys(), points_and_analyses(), supports()].concat()
+}
+
+/// Numbers: NaN, inf, denormals, each range's ends and just past them, wrong types.
+fn numbers() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
     vec![
-        ("NaN length", with("length_mm = 458.4", "length_mm = nan"), Some(vec!["plate.length_mm = NaN", "[1, 100000] mm"])),
+        (
+            "NaN length",
+            with("length_mm = 458.4", "length_mm = nan"),
+            Some(vec!["plate.length_mm = NaN", "[1, 100000] mm"]),
+        ),
         ("-NaN width", with("width_mm = 360.0", "width_mm = -nan"), Some(vec!["plate.width_mm"])),
         ("inf thickness", with("thickness_mm = 8.0", "thickness_mm = +inf"), Some(vec!["plate.thickness_mm = inf"])),
-        ("-inf modulus", with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = -inf"), Some(vec!["plate.youngs_modulus_gpa"])),
+        (
+            "-inf modulus",
+            with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = -inf"),
+            Some(vec!["plate.youngs_modulus_gpa"]),
+        ),
         ("zero length, integer", with("length_mm = 458.4", "length_mm = 0"), Some(vec!["plate.length_mm = 0"])),
         ("negative length", with("length_mm = 458.4", "length_mm = -458.4"), Some(vec!["plate.length_mm = -458.4"])),
         ("denormal radius", with("radius_mm = 25.0", "radius_mm = 5e-324"), Some(vec!["bodies[0].radius_mm = 5e-324"])),
-        ("huge modulus", with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = 1e300"), Some(vec!["plate.youngs_modulus_gpa = 1e300"])),
-        ("length just below 1 mm", with("length_mm = 458.4", "length_mm = 0.9999999999"), Some(vec!["plate.length_mm"])),
-        ("length just above 100 m", with("length_mm = 458.4", "length_mm = 100000.00000001"), Some(vec!["plate.length_mm"])),
+        (
+            "huge modulus",
+            with("youngs_modulus_gpa = 210.0", "youngs_modulus_gpa = 1e300"),
+            Some(vec!["plate.youngs_modulus_gpa = 1e300"]),
+        ),
+        (
+            "length just below 1 mm",
+            with("length_mm = 458.4", "length_mm = 0.9999999999"),
+            Some(vec!["plate.length_mm"]),
+        ),
+        (
+            "length just above 100 m",
+            with("length_mm = 458.4", "length_mm = 100000.00000001"),
+            Some(vec!["plate.length_mm"]),
+        ),
         (
             "a 100 m x 1 mm x 1 mm strip, integers for floats",
-            with("length_mm = 458.4\nwidth_mm = 360.0\nthickness_mm = 8.0", "length_mm = 100000\nwidth_mm = 1\nthickness_mm = 1"),
+            with(
+                "length_mm = 458.4\nwidth_mm = 360.0\nthickness_mm = 8.0",
+                "length_mm = 100000\nwidth_mm = 1\nthickness_mm = 1",
+            ),
             Some(vec!["plate.width_mm", "aspect ratio"]),
         ),
         ("thickness equal to the smaller side", with("thickness_mm = 8.0", "thickness_mm = 360.0"), None),
-        ("thickness just over the smaller side", with("thickness_mm = 8.0", "thickness_mm = 360.0000001"), Some(vec!["plate.thickness_mm", "not a plate"])),
+        (
+            "thickness just over the smaller side",
+            with("thickness_mm = 8.0", "thickness_mm = 360.0000001"),
+            Some(vec!["plate.thickness_mm", "not a plate"]),
+        ),
         ("thinnest plate", with("thickness_mm = 8.0", "thickness_mm = 0.001"), None),
-        ("Poisson ratio 0.5", with("poisson_ratio = 0.3", "poisson_ratio = 0.5"), Some(vec!["plate.poisson_ratio = 0.5"])),
+        (
+            "Poisson ratio 0.5",
+            with("poisson_ratio = 0.3", "poisson_ratio = 0.5"),
+            Some(vec!["plate.poisson_ratio = 0.5"]),
+        ),
         ("restitution 0", with("restitution = 0.65", "restitution = 0"), Some(vec!["restitution = 0"])),
         ("restitution 1", with("restitution = 0.65", "restitution = 1"), None),
         ("restitution 1e-290", with("restitution = 0.65", "restitution = 1e-290"), Some(vec!["restitution = 1e-290"])),
-        ("friction angle 90", with("friction_angle_deg = 25.0", "friction_angle_deg = 90"), Some(vec!["bodies[0].friction_angle_deg = 90"])),
+        (
+            "friction angle 90",
+            with("friction_angle_deg = 25.0", "friction_angle_deg = 90"),
+            Some(vec!["bodies[0].friction_angle_deg = 90"]),
+        ),
         ("sphere far larger than the plate", with("radius_mm = 25.0", "radius_mm = 10000"), None),
-        ("springs of 1e-6 N/m", with("spring_stiffness_n_per_m = 5.11545e8", "spring_stiffness_n_per_m = 1e-6"), Some(vec!["conditions[1].spring_stiffness_n_per_m"])),
+        (
+            "springs of 1e-6 N/m",
+            with("spring_stiffness_n_per_m = 5.11545e8", "spring_stiffness_n_per_m = 1e-6"),
+            Some(vec!["conditions[1].spring_stiffness_n_per_m"]),
+        ),
         ("springs of 1e18 N/m", with("spring_stiffness_n_per_m = 5.11545e8", "spring_stiffness_n_per_m = 1e18"), None),
         (
             "springs just under 1e-3 N/m",
@@ -130,31 +173,108 @@ fn corpus() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
         ),
         ("velocities empty", with("m_per_s = [0.008, 0.0025]", "m_per_s = []"), Some(vec!["velocities.m_per_s"])),
         ("velocities at their ends", with("m_per_s = [0.008, 0.0025]", "m_per_s = [1e-9, 1000]"), None),
-        ("denormal velocity", with("m_per_s = [0.008, 0.0025]", "m_per_s = [5e-324]"), Some(vec!["velocities.m_per_s[0] = 5e-324"])),
+        (
+            "denormal velocity",
+            with("m_per_s = [0.008, 0.0025]", "m_per_s = [5e-324]"),
+            Some(vec!["velocities.m_per_s[0] = 5e-324"]),
+        ),
         ("length as a string", with("length_mm = 458.4", "length_mm = \"458.4\""), Some(vec!["length_mm"])),
-        ("max_iterations as a float", format!("{DEFAULT_SCENE}\n[solver]\nmax_iterations = 200.0\n"), Some(vec!["max_iterations"])),
-        ("max_iterations 0", format!("{DEFAULT_SCENE}\n[solver]\nmax_iterations = 0\n"), Some(vec!["solver.max_iterations"])),
+        (
+            "max_iterations as a float",
+            format!("{DEFAULT_SCENE}\n[solver]\nmax_iterations = 200.0\n"),
+            Some(vec!["max_iterations"]),
+        ),
+        (
+            "max_iterations 0",
+            format!("{DEFAULT_SCENE}\n[solver]\nmax_iterations = 0\n"),
+            Some(vec!["solver.max_iterations"]),
+        ),
         ("tolerance 1e-16", format!("{DEFAULT_SCENE}\n[solver]\ntolerance = 1e-16\n"), Some(vec!["solver.tolerance"])),
-        ("loosest solver", format!("{DEFAULT_SCENE}\n[solver]\nmethod = \"recursion\"\ntolerance = 1e-3\nmax_iterations = 10000\n"), None),
+        (
+            "loosest solver",
+            format!("{DEFAULT_SCENE}\n[solver]\nmethod = \"recursion\"\ntolerance = 1e-3\nmax_iterations = 10000\n"),
+            None,
+        ),
+    ]
+}
+
+/// Names (empty, long, colliding as file names) and keys (unknown, missing, repeated).
+fn names_and_keys() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
+    let long = "x".repeat(10_000);
+    vec![
         ("empty scene name", with("name = \"paper-table-1\"", "name = \"\""), Some(vec!["name", "empty"])),
-        ("10,000-character scene name", with("name = \"paper-table-1\"", &format!("name = \"{long}\"")), Some(vec!["name", "10000 characters"])),
-        ("10,000-character body name", with("name = \"coal\"", &format!("name = \"{long}\"")), Some(vec!["bodies[0].name", "10000 characters"])),
+        (
+            "10,000-character scene name",
+            with("name = \"paper-table-1\"", &format!("name = \"{long}\"")),
+            Some(vec!["name", "10000 characters"]),
+        ),
+        (
+            "10,000-character body name",
+            with("name = \"coal\"", &format!("name = \"{long}\"")),
+            Some(vec!["bodies[0].name", "10000 characters"]),
+        ),
         ("empty body name", with("name = \"coal\"", "name = \"\""), Some(vec!["bodies[0].name"])),
-        ("duplicate body names", with("name = \"gangue 2\"", "name = \"gangue 1\""), Some(vec!["bodies[2].name", "same file name"])),
-        ("body names differing by case", with("name = \"gangue 2\"", "name = \"Gangue 1\""), Some(vec!["bodies[2].name", "same file name"])),
-        ("body names differing by punctuation", with("name = \"gangue 2\"", "name = \"gangue-1\""), Some(vec!["bodies[2].name", "same file name"])),
-        ("duplicate condition names", with("name = \"Con 2\"", "name = \"Con 1\""), Some(vec!["conditions[1].name", "same file name"])),
-        ("condition names differing by case", with("name = \"Con 2\"", "name = \"con 1\""), Some(vec!["conditions[1].name", "same file name"])),
+        (
+            "duplicate body names",
+            with("name = \"gangue 2\"", "name = \"gangue 1\""),
+            Some(vec!["bodies[2].name", "same file name"]),
+        ),
+        (
+            "body names differing by case",
+            with("name = \"gangue 2\"", "name = \"Gangue 1\""),
+            Some(vec!["bodies[2].name", "same file name"]),
+        ),
+        (
+            "body names differing by punctuation",
+            with("name = \"gangue 2\"", "name = \"gangue-1\""),
+            Some(vec!["bodies[2].name", "same file name"]),
+        ),
+        (
+            "duplicate condition names",
+            with("name = \"Con 2\"", "name = \"Con 1\""),
+            Some(vec!["conditions[1].name", "same file name"]),
+        ),
+        (
+            "condition names differing by case",
+            with("name = \"Con 2\"", "name = \"con 1\""),
+            Some(vec!["conditions[1].name", "same file name"]),
+        ),
         ("a name with CSV and Markdown syntax", with("name = \"Con 2\"", "name = \"a|b, \\\"c\\\"\\nd\""), None),
-        ("unknown key", with("width_mm = 360.0", "width_mm = 360.0\nwidht_mm = 1.0"), Some(vec!["widht_mm", "unknown field"])),
+        (
+            "unknown key",
+            with("width_mm = 360.0", "width_mm = 360.0\nwidht_mm = 1.0"),
+            Some(vec!["widht_mm", "unknown field"]),
+        ),
         ("missing key", with("width_mm = 360.0\n", ""), Some(vec!["width_mm", "missing"])),
         ("duplicate key", with("width_mm = 360.0", "width_mm = 360.0\nwidth_mm = 361.0"), Some(vec!["width_mm"])),
+    ]
+}
+
+/// Where the bodies strike, and which analyses are asked for.
+fn points_and_analyses() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
+    vec![
         ("points on the ends", with(X_LINE, "x_mm = [0, 458.4]"), None),
         ("points at the corners", with(X_LINE, "pairs_mm = [[0, 0], [458.4, 360], [0, 360], [458.4, 0]]"), None),
-        ("a point just past the far edge", with(X_LINE, "pairs_mm = [[229.2, 360.0000001]]"), Some(vec!["points.pairs_mm[0][1] (z)"])),
-        ("a grid of one column", with(X_LINE, "[points.grid]\nx_count = 1\nz_count = 3\n#"), Some(vec!["points.grid.x_count"])),
-        ("a grid of 2.5 columns", with(X_LINE, "[points.grid]\nx_count = 2.5\nz_count = 3\n#"), Some(vec!["points.grid.x_count", "whole"])),
-        ("a grid of 1000 x 1000", with(X_LINE, "[points.grid]\nx_count = 1000\nz_count = 1000\n#"), Some(vec!["points.grid", "100000"])),
+        (
+            "a point just past the far edge",
+            with(X_LINE, "pairs_mm = [[229.2, 360.0000001]]"),
+            Some(vec!["points.pairs_mm[0][1] (z)"]),
+        ),
+        (
+            "a grid of one column",
+            with(X_LINE, "[points.grid]\nx_count = 1\nz_count = 3\n#"),
+            Some(vec!["points.grid.x_count"]),
+        ),
+        (
+            "a grid of 2.5 columns",
+            with(X_LINE, "[points.grid]\nx_count = 2.5\nz_count = 3\n#"),
+            Some(vec!["points.grid.x_count", "whole"]),
+        ),
+        (
+            "a grid of 1000 x 1000",
+            with(X_LINE, "[points.grid]\nx_count = 1000\nz_count = 1000\n#"),
+            Some(vec!["points.grid", "100000"]),
+        ),
         ("a grid on the edges", with(X_LINE, "[points.grid]\nx_mm = [0, 458.4]\nz_mm = [0, 360]\n#"), None),
         ("101 points", with(X_LINE, "count = 101\n#"), None),
         ("100001 points", with(X_LINE, "count = 100001\n#"), Some(vec!["points.count"])),
@@ -165,6 +285,12 @@ fn corpus() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
             with(ANALYSES, "analyses = [\"yield-velocity\"]").replace(VELOCITIES, ""),
             None,
         ),
+    ]
+}
+
+/// Support sets: presets, edges, corners and props, singular ones included; text that is not TOML.
+fn supports() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
+    vec![
         ("no support sets", DEFAULT_SCENE.replace("[[conditions]]", "[[old]]"), Some(vec!["conditions"])),
         ("unknown preset", with("supports = \"both-fixed\"", "supports = \"pinned\""), Some(vec!["supports", "pinned"])),
         (

@@ -243,6 +243,21 @@ impl Rng {
     }
 }
 
+/// Starts a writer committing generation `gen` to `target` and SIGKILLs it after `wait_ms`.
+fn kill_writer_after(exe: &Path, target: &Path, gen: u64, wait_ms: f64) {
+    let mut child = Command::new(exe)
+        .args(["--exact", "writer_child", "--nocapture", "--test-threads=1"])
+        .env(WRITER_ENV, target)
+        .env("IMPACT_OUTPUT_FAULTS_GEN", gen.to_string())
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_secs_f64(wait_ms / 1e3));
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+}
+
 /// A child writing a 300-file set in a loop is SIGKILLed at random points. After every kill
 /// the target must be one whole set, and after the next successful run in this process
 /// nothing stale may remain beside it.
@@ -275,19 +290,9 @@ fn killed_writer_leaves_a_whole_set() {
     let start = Instant::now();
     while kills < 30 && start.elapsed() < Duration::from_secs(15) {
         let before = gen;
-        let mut child = Command::new(&exe)
-            .args(["--exact", "writer_child", "--nocapture", "--test-threads=1"])
-            .env(WRITER_ENV, &target)
-            .env("IMPACT_OUTPUT_FAULTS_GEN", (gen + 1).to_string())
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap();
         // Past the child's start-up, then anywhere within a few of its commits.
         let wait_ms = 5.0 + (rng.next() % 1000) as f64 / 1000.0 * (10.0 + 2.5 * commit_ms);
-        std::thread::sleep(Duration::from_secs_f64(wait_ms / 1e3));
-        child.kill().unwrap(); // SIGKILL
-        child.wait().unwrap();
+        kill_writer_after(&exe, &target, gen + 1, wait_ms);
         kills += 1;
         if !leftovers(dir.path()).is_empty() {
             stage_left += 1;

@@ -176,6 +176,12 @@ pub fn check_results(stats: &mut Stats, label: &str, scene: &Scene, results: &Re
             stats.fail("non-finite validity measure in a response row", at);
         }
     }
+    check_yield_rows(stats, label, results);
+    check_rendered(stats, label, results);
+}
+
+/// Every yield row: finite, C ≥ 0, δ_my and v_y positive, validity measures finite.
+pub fn check_yield_rows(stats: &mut Stats, label: &str, results: &Results) {
     for r in &results.yields {
         let Some(v) = r.values() else { continue };
         stats.rows_checked += 1;
@@ -195,7 +201,6 @@ pub fn check_results(stats: &mut Stats, label: &str, scene: &Scene, results: &Re
             stats.fail("non-finite validity measure in a yield row", at);
         }
     }
-    check_rendered(stats, label, results);
 }
 
 /// Tables (text, Markdown, CSV) and JSON: no NaN or inf token, every number cell of a

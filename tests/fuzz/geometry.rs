@@ -29,59 +29,7 @@ pub fn points_op() -> impl Strategy<Value = Op> {
         prop::sample::select(vec![arr(vec![f(1.0)]), arr(vec![f(1.0), f(2.0), f(3.0)]), arr(vec![]), f(1.0)]);
     let layout = (0..9usize, xs, zs, counts.clone(), counts, prop::collection::vec(pair, 0..5), bad_pair);
     layout.prop_map(|(kind, xs, zs, c1, c2, pairs, bad)| {
-        let mut t = toml::Table::new();
-        let what = match kind {
-            0 => {
-                t.insert("x_mm".into(), arr(xs));
-                "x_mm"
-            }
-            1 => {
-                t.insert("count".into(), c1);
-                "count"
-            }
-            2 => {
-                t.insert("pairs_mm".into(), arr(pairs));
-                "pairs_mm"
-            }
-            3 => {
-                let mut g = toml::Table::new();
-                g.insert("x_mm".into(), arr(xs));
-                g.insert("z_mm".into(), arr(zs));
-                t.insert("grid".into(), Value::Table(g));
-                "grid of lists"
-            }
-            4 => {
-                let mut g = toml::Table::new();
-                g.insert("x_count".into(), c1);
-                g.insert("z_count".into(), c2);
-                t.insert("grid".into(), Value::Table(g));
-                "grid of counts"
-            }
-            5 => {
-                let mut g = toml::Table::new();
-                g.insert("x_mm".into(), arr(xs));
-                g.insert("x_count".into(), c1);
-                g.insert("z_count".into(), c2);
-                t.insert("grid".into(), Value::Table(g));
-                "grid with x twice"
-            }
-            6 => {
-                t.insert("x_mm".into(), arr(xs));
-                t.insert("z_mm".into(), arr(zs));
-                "x_mm beside z_mm"
-            }
-            7 => {
-                t.insert("x_mm".into(), arr(xs));
-                t.insert("count".into(), c1);
-                "x_mm and count"
-            }
-            _ => {
-                let mut p = pairs;
-                p.push(bad);
-                t.insert("pairs_mm".into(), arr(p));
-                "pairs with a malformed pair"
-            }
-        };
+        let (t, what) = points_table(kind, xs, zs, c1, c2, pairs, bad);
         let v = Value::Table(t);
         Op {
             label: format!("points = {what}: {v}"),
@@ -90,6 +38,74 @@ pub fn points_op() -> impl Strategy<Value = Op> {
             edit: Edit::Set("points".into(), v),
         }
     })
+}
+
+/// The `[points]` table of layout `kind` (a list, a count, pairs, grids, and the mixtures a
+/// scene must refuse), with its description.
+#[allow(clippy::too_many_arguments)]
+fn points_table(
+    kind: usize,
+    xs: Vec<Value>,
+    zs: Vec<Value>,
+    c1: Value,
+    c2: Value,
+    pairs: Vec<Value>,
+    bad: Value,
+) -> (toml::Table, &'static str) {
+    let mut t = toml::Table::new();
+    let what = match kind {
+        0 => {
+            t.insert("x_mm".into(), arr(xs));
+            "x_mm"
+        }
+        1 => {
+            t.insert("count".into(), c1);
+            "count"
+        }
+        2 => {
+            t.insert("pairs_mm".into(), arr(pairs));
+            "pairs_mm"
+        }
+        3 => {
+            let mut g = toml::Table::new();
+            g.insert("x_mm".into(), arr(xs));
+            g.insert("z_mm".into(), arr(zs));
+            t.insert("grid".into(), Value::Table(g));
+            "grid of lists"
+        }
+        4 => {
+            let mut g = toml::Table::new();
+            g.insert("x_count".into(), c1);
+            g.insert("z_count".into(), c2);
+            t.insert("grid".into(), Value::Table(g));
+            "grid of counts"
+        }
+        5 => {
+            let mut g = toml::Table::new();
+            g.insert("x_mm".into(), arr(xs));
+            g.insert("x_count".into(), c1);
+            g.insert("z_count".into(), c2);
+            t.insert("grid".into(), Value::Table(g));
+            "grid with x twice"
+        }
+        6 => {
+            t.insert("x_mm".into(), arr(xs));
+            t.insert("z_mm".into(), arr(zs));
+            "x_mm beside z_mm"
+        }
+        7 => {
+            t.insert("x_mm".into(), arr(xs));
+            t.insert("count".into(), c1);
+            "x_mm and count"
+        }
+        _ => {
+            let mut p = pairs;
+            p.push(bad);
+            t.insert("pairs_mm".into(), arr(p));
+            "pairs with a malformed pair"
+        }
+    };
+    (t, what)
 }
 
 pub fn spring_values() -> Vec<Value> {
