@@ -163,38 +163,10 @@ pub enum Command {
     Yield(Common),
     /// Beam against plate FE for a scene: the studies the scene names, into DIR (default
     /// impact-out/<scene name>-compare).
-    Compare {
-        /// Scene file; default: the paper's Table 1.
-        #[arg(long, value_name = "FILE")]
-        scene: Option<PathBuf>,
-        /// Directory for the files, written whole or not at all (an existing one only if empty or
-        /// an earlier output of impact); default
-        /// impact-out/<scene name>-<command>.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        #[command(flatten)]
-        transient: TransientArgs,
-        /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
-        #[arg(long)]
-        json: bool,
-    },
+    Compare(StudyArgs),
     /// Transient impact against the quasi-static models for a scene (default out:
     /// impact-out/<scene name>-dynamic).
-    Dynamic {
-        /// Scene file; default: the paper's Table 1.
-        #[arg(long, value_name = "FILE")]
-        scene: Option<PathBuf>,
-        /// Directory for the files, written whole or not at all (an existing one only if empty or
-        /// an earlier output of impact); default
-        /// impact-out/<scene name>-<command>.
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
-        #[command(flatten)]
-        transient: TransientArgs,
-        /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
-        #[arg(long)]
-        json: bool,
-    },
+    Dynamic(StudyArgs),
     /// Sensor signals of the scene's impacts by the reduced-order model (its `[signals]`
     /// table): every support set, body, transient point and velocity; the time series as CSV
     /// (default out: impact-out/<scene name>-signals), the first-contact numbers with their
@@ -350,4 +322,23 @@ pub struct FemBenchArgs {
     pub nx: usize,
     #[arg(long, default_value_t = 21, help = format!("Impact points across the width (in {})", limits::FEM_BENCH_POINTS))]
     pub nz: usize,
+}
+
+// The options of `impact compare` and `impact dynamic` (no doc comment: each variant's is its
+// help).
+#[derive(Args)]
+pub struct StudyArgs {
+    /// Scene file; default: the paper's Table 1.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
+    /// Directory for the files, written whole or not at all (an existing one only if empty or
+    /// an earlier output of impact); default
+    /// impact-out/<scene name>-<command>.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    #[command(flatten)]
+    pub transient: TransientArgs,
+    /// Print a JSON summary of the run (provenance, findings, files written) to stdout.
+    #[arg(long)]
+    pub json: bool,
 }

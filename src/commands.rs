@@ -3,7 +3,7 @@
 //! that cannot write fails before it spends time), the study computes, and its files are
 //! committed whole.
 
-use crate::cli::{Command, Common, FemBenchArgs};
+use crate::cli::{Command, Common, FemBenchArgs, StudyArgs};
 use crate::commit::{commit, commit_reporting, emit, prepare, print_json};
 use crate::progress::Terminal;
 use crate::written::in_range;
@@ -28,7 +28,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
             Ok(s)
         }),
         Command::Paper { out, json } => paper(&out, json),
-        Command::Dynamic { scene, out, transient, json } => {
+        Command::Dynamic(StudyArgs { scene, out, transient, json }) => {
             let scene = transient.apply(load_bodies(&scene, "dynamic")?)?;
             let target = OutputDir::prepare(out.unwrap_or_else(|| default_out(&scene, "dynamic")))?;
             let mut a = impact::report::transient::report(&scene, &Terminal::new())?;
@@ -36,7 +36,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
             commit_reporting(target, &a, &scene, json)
         }
         Command::Signals { scene, out, json } => signals(&load(&scene)?, out, json),
-        Command::Compare { scene, out, transient, json } => {
+        Command::Compare(StudyArgs { scene, out, transient, json }) => {
             let scene = transient.apply(load_bodies(&scene, "compare")?)?;
             let target = OutputDir::prepare(out.unwrap_or_else(|| default_out(&scene, "compare")))?;
             commit_reporting(target, &impact::report::scene_report(&scene, &Terminal::new())?, &scene, json)

@@ -98,6 +98,21 @@ impl Mesh {
     pub fn node(&self, i: usize, j: usize) -> usize {
         j * self.xs.len() + i
     }
+    /// Every node's (x, z), in node-number order (x fastest).
+    pub fn node_points(&self) -> Vec<[f64; 2]> {
+        self.zs.iter().flat_map(|&z| self.xs.iter().map(move |&x| [x, z])).collect()
+    }
+    /// Every element's four nodes, counter-clockwise from its (x, z)-lowest corner, in
+    /// element order (x fastest): the quadrilaterals of a VTK or meshio grid.
+    pub fn quads(&self) -> Vec<[usize; 4]> {
+        let (nx, nz) = (self.nx(), self.nz());
+        (0..nz)
+            .flat_map(|ez| (0..nx).map(move |ex| (ex, ez)))
+            .map(|(ex, ez)| {
+                [self.node(ex, ez), self.node(ex + 1, ez), self.node(ex + 1, ez + 1), self.node(ex, ez + 1)]
+            })
+            .collect()
+    }
     /// Largest element side.
     pub fn h_max(&self) -> f64 {
         let m = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);

@@ -100,19 +100,7 @@ pub fn field(scene: &Scene, condition: &SupportSet, x: f64, z: f64, n: usize) ->
     let f = model.factorize(&condition.supports)?;
     let w = f.deflection_field(x, z)?;
     let residual = f.respond(x, z)?.residual;
-    let (nx, nz) = (mesh.nx(), mesh.nz());
-    let mut points = Vec::with_capacity(mesh.nodes());
-    for j in 0..=nz {
-        for i in 0..=nx {
-            points.push([mesh.xs()[i], mesh.zs()[j]]);
-        }
-    }
-    let mut quads = Vec::with_capacity(mesh.elements());
-    for ez in 0..nz {
-        for ex in 0..nx {
-            quads.push([mesh.node(ex, ez), mesh.node(ex + 1, ez), mesh.node(ex + 1, ez + 1), mesh.node(ex, ez + 1)]);
-        }
-    }
+    let (points, quads) = (mesh.node_points(), mesh.quads());
     let comp = |q: usize| (0..mesh.nodes()).map(|n| w[4 * n + q]).collect::<Vec<f64>>();
     let moments = model.centre_moments(&w);
     Ok(FieldFile {

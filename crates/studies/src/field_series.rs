@@ -64,19 +64,7 @@ pub fn contact_series(
     let dt = s.hertz_time() / STEPS_PER_CONTACT;
     let t_max = WINDOW_HERTZ_TIMES * s.hertz_time();
     let run = first_contact_frames(case.model(), cond.supports, &s, (x, z), dt, t_max, FRAME_EVERY)?;
-    let (nx, nz) = (mesh.nx(), mesh.nz());
-    let mut points = Vec::with_capacity(mesh.nodes());
-    for j in 0..=nz {
-        for i in 0..=nx {
-            points.push([mesh.xs()[i], mesh.zs()[j]]);
-        }
-    }
-    let mut quads = Vec::with_capacity(mesh.elements());
-    for ez in 0..nz {
-        for ex in 0..nx {
-            quads.push([mesh.node(ex, ez), mesh.node(ex + 1, ez), mesh.node(ex + 1, ez + 1), mesh.node(ex, ez + 1)]);
-        }
-    }
+    let (points, quads) = (mesh.node_points(), mesh.quads());
     let history = run.outcome.history;
     let frames = run
         .frames

@@ -217,7 +217,6 @@ impl<'m> Factorization<'m> {
         let n = self.model.dofs();
         let mut out = Vec::with_capacity(points.len());
         for chunk in points.chunks(BLOCK) {
-            let _ = n;
             let mut rhs = Mat::<f64>::zeros(n, chunk.len());
             let mut loads = Vec::with_capacity(chunk.len());
             for (j, &(x, z)) in chunk.iter().enumerate() {
