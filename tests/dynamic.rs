@@ -254,8 +254,8 @@ fn findings_name_recontact_and_elastic_laws_beyond_yield() {
         ..coal_con1_centre(vec![Analysis::Transient])
     };
     let (a, found) = impact::report::transient::study(&scene, &Silent).unwrap();
-    assert_eq!(found.numbers["struck_more_than_once"], 2, "{}", found.numbers);
-    assert_eq!(found.numbers["beyond_elastic_with_elastic_law"], 1, "{}", found.numbers);
+    assert_eq!(found.numbers.struck_more_than_once, 2, "{:?}", found.numbers);
+    assert_eq!(found.numbers.beyond_elastic_with_elastic_law, 1, "{:?}", found.numbers);
     assert!(found.contacts.contains("2 of 2 cases are struck more than once"), "{}", found.contacts);
     assert!(found.elastic.contains("1 of 2 cases compress the rock beyond δ_my"), "{}", found.elastic);
     let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();

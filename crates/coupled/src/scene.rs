@@ -8,80 +8,63 @@ use crate::transient::{Discretisation, LawKind};
 use analytic::{Method, Plate, Sphere};
 use serde::{Deserialize, Serialize};
 
-/// What a scene asks for. Nothing that is not asked for is assembled, factorized,
-/// simulated or written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Analysis {
+/// Declares [`Analysis`], one line per analysis: its doc, its variant and its key in scene
+/// files (the order is the order reports present them).
+macro_rules! analyses {
+    ($($(#[doc = $doc:literal])* $variant:ident => $key:literal,)*) => {
+        /// What a scene asks for. Nothing that is not asked for is assembled, factorized,
+        /// simulated or written.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Deserialize, Serialize)]
+        pub enum Analysis {
+            $($(#[doc = $doc])* #[serde(rename = $key)] $variant,)*
+        }
+
+        impl Analysis {
+            /// Every analysis, in the order reports present them.
+            pub const ALL: &'static [Analysis] = &[$(Analysis::$variant),*];
+
+            /// The name used in scene files.
+            pub fn key(self) -> &'static str {
+                match self {
+                    $(Analysis::$variant => $key,)*
+                }
+            }
+        }
+    };
+}
+
+analyses! {
     /// Responses at maximum compression for every velocity.
-    Responses,
+    Responses => "responses",
     /// Yield velocities (eqs. 51-54).
-    YieldVelocity,
+    YieldVelocity => "yield-velocity",
     /// Beam against plate over the whole plate (x along the length, z across the width).
-    WidthMaps,
+    WidthMaps => "width-maps",
     /// Plate against beam at the centre as the width-to-length ratio B/L changes.
-    AspectRatio,
+    AspectRatio => "aspect-ratio",
     /// Accuracy of the plate compliance against computing time, per mesh.
-    ErrorVsTime,
+    ErrorVsTime => "error-vs-time",
     /// Both models at extreme compliances, velocities and moduli.
-    ExtremeCases,
+    ExtremeCases => "extreme-cases",
     /// The plate FE and transient models against their classical references.
-    Verification,
+    Verification => "verification",
     /// Transient against quasi-static at the scene's points.
-    Transient,
+    Transient => "transient",
     /// The transient study's contact laws side by side (Hertz, Flores, Thornton) at multiples
     /// of the yield velocity: twelve transient runs with error estimates, written only when
     /// asked for.
-    ContactLaws,
+    ContactLaws => "contact-laws",
     /// The quasi-static error of the transient model over plate size and thickness.
-    SizeMap,
+    SizeMap => "size-map",
     /// The regime maps: the quasi-static error over plate size, thickness, sphere mass and
     /// spring stiffness for Con 1-3, beside Olsson's and Christoforou and Yigit's criteria
     /// and the closed-form rule.
-    RegimeMaps,
+    RegimeMaps => "regime-maps",
     /// The paper's own studies: its conclusions item by item and its figures redone with
     /// both models (the paper's plate only).
-    PaperStudies,
+    PaperStudies => "paper-studies",
     /// Coal-gangue identification over the scene's random-impact ensemble (`[ensemble]`).
-    Identify,
-}
-
-impl Analysis {
-    /// Every analysis, in the order reports present them.
-    pub const ALL: [Analysis; 13] = [
-        Analysis::Responses,
-        Analysis::YieldVelocity,
-        Analysis::WidthMaps,
-        Analysis::AspectRatio,
-        Analysis::ErrorVsTime,
-        Analysis::ExtremeCases,
-        Analysis::Verification,
-        Analysis::Transient,
-        Analysis::ContactLaws,
-        Analysis::SizeMap,
-        Analysis::RegimeMaps,
-        Analysis::PaperStudies,
-        Analysis::Identify,
-    ];
-
-    /// The name used in scene files.
-    pub fn key(self) -> &'static str {
-        match self {
-            Analysis::Responses => "responses",
-            Analysis::YieldVelocity => "yield-velocity",
-            Analysis::WidthMaps => "width-maps",
-            Analysis::AspectRatio => "aspect-ratio",
-            Analysis::ErrorVsTime => "error-vs-time",
-            Analysis::ExtremeCases => "extreme-cases",
-            Analysis::Verification => "verification",
-            Analysis::Transient => "transient",
-            Analysis::ContactLaws => "contact-laws",
-            Analysis::SizeMap => "size-map",
-            Analysis::RegimeMaps => "regime-maps",
-            Analysis::PaperStudies => "paper-studies",
-            Analysis::Identify => "identify",
-        }
-    }
+    Identify => "identify",
 }
 
 /// Impact points, (x, z) in m: x from the left end in [0, L], z from the near edge in [0, B].

@@ -138,6 +138,24 @@ fn reciprocity() {
     assert_relative_eq!(ab, ba, max_relative = 1e-12);
 }
 
+/// The field and the response from one solve are those of the two separate paths (the same
+/// right-hand side through the same factor, so equal to the last bit), and the field read at
+/// the load point is the compliance C = Nᵀw (to round-off of the interpolation, 1e-12).
+#[test]
+fn one_solve_gives_the_field_and_the_response() {
+    let p = plate(0.4584, 0.36);
+    let model = Model::new(p, Mesh::uniform(0.4584, 0.36, 12, 9).unwrap()).unwrap();
+    for sup in [Supports::con1(), Supports::con3(1e6)] {
+        let f = model.factorize(&sup).unwrap();
+        for (x, z) in [(0.2292, 0.18), (0.1234, 0.0567), (0.0, 0.18)] {
+            let (r, w) = f.respond_with_field(x, z).unwrap();
+            assert_eq!(w, f.deflection_field(x, z).unwrap());
+            assert_eq!(r, f.respond(x, z).unwrap());
+            assert_relative_eq!(model.evaluate(&w, x, z).unwrap(), r.compliance, max_relative = 1e-12);
+        }
+    }
+}
+
 /// Energy bookkeeping and statics: the stores sum to C, the reactions to the load.
 #[test]
 fn stores_and_reactions_balance() {

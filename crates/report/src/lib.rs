@@ -13,6 +13,7 @@ pub mod fem_verification;
 pub mod field;
 pub mod field_series;
 pub mod identify;
+pub mod nested;
 pub mod paper;
 pub mod paper_studies;
 pub mod plate_field;
@@ -25,10 +26,9 @@ pub mod yield_models;
 
 use crate::identify::RowFiles;
 use crate::present::rows::slug;
-use crate::present::table::percent;
 use crate::provenance::Provenance;
 use crate::template::render;
-use coupled::{Analysis, Scene};
+use coupled::Scene;
 use output::{Artifacts, OutputDir};
 use scene::SceneSource;
 
@@ -39,89 +39,36 @@ pub use studies::Failure;
 pub type Report = fn(&Scene) -> Result<Artifacts, Failure>;
 
 /// Everything a scene asks `impact compare` for: the beam-against-plate comparison, and
-/// beside it, each in its own folder, the studies the scene names; the comparison's page
-/// shows what each found (the three-model yield table and figures, the transient cases'
-/// contacts, errors and regimes, the regime maps) and links it. Every CSV and JSON carries
-/// its scene's provenance.
+/// beside it, each in its own folder, the studies of [`nested::NESTED`] the scene names; the
+/// comparison's page shows what each found (the three-model yield table and figures, the
+/// transient cases' contacts, errors and regimes, the regime maps) and links it. Every CSV and
+/// JSON carries its scene's provenance.
 ///
 /// The paper's studies run on the paper's own scene, whatever `scene` is (their files carry
 /// that scene's provenance). A scene that asks for yield velocities and the transient study
 /// but not for the paper's studies gets the three-model yield study on its own cases.
 pub fn scene_report(scene: &Scene, progress: &dyn Progress) -> Result<Artifacts, Failure> {
-    let paper_scene = paper::Paper::new().scene;
-    let mut nested: Vec<(&str, Artifacts, &Scene)> = Vec::new();
     let mut extra = comparison::StudySections::default();
-    if scene.wants(Analysis::PaperStudies) {
-        nested.push(("paper-studies", paper_studies::report(&paper_scene)?, &paper_scene));
-        extra.sections.push_str(&render("comparison/paper-studies.md", PAPER_STUDIES, &[])?);
+    let mut parts = Vec::new();
+    for study in nested::NESTED.iter().filter(|s| s.wanted(scene)) {
+        let n = study.run(scene, progress)?;
+        extra.findings.extend(n.findings);
+        extra.sections.push_str(&n.section);
+        parts.push((study.folder(), n.files, n.of));
     }
-    let yields = if scene.wants(Analysis::PaperStudies) {
-        Some((yield_models::study(&paper_scene)?, &paper_scene))
-    } else if scene.wants(Analysis::YieldVelocity) && scene.wants(Analysis::Transient) {
-        Some((yield_models::scene_study(scene, progress)?, scene))
-    } else {
-        None
-    };
-    if let Some(((part, summary), of)) = yields {
-        nested.push((yield_models::FOLDER, part, of));
-        extra.findings.push(summary.finding);
-        extra.sections.push_str(&summary.section);
-    }
-    let dynamic = if scene.wants(Analysis::Transient) {
-        let (part, summary) = transient::study(scene, progress)?;
-        nested.push(("dynamic", part, scene));
-        Some(summary)
-    } else {
-        None
-    };
-    let regime_maps = if scene.wants(Analysis::RegimeMaps) {
-        let (part, finding) = regimes::study(scene)?;
-        nested.push(("regimes", part, scene));
-        Some(finding)
-    } else {
-        None
-    };
-    if let Some(t) = &dynamic {
-        extra.findings.push(render(
-            "comparison/finding-transient.md",
-            FINDING_TRANSIENT,
-            &[
-                ("cases", t.numbers["cases"].to_string()),
-                ("repeated", t.numbers["struck_more_than_once"].to_string()),
-                ("unfinished", t.numbers["unfinished_in_window"].to_string()),
-                ("beyond", t.numbers["beyond_elastic_with_elastic_law"].to_string()),
-                ("above", t.numbers["above_tolerance"].to_string()),
-                ("error_lo", percent(t.numbers["quasi_static_force_error"][0].as_f64().unwrap_or(f64::NAN))),
-                ("error_hi", percent(t.numbers["quasi_static_force_error"][1].as_f64().unwrap_or(f64::NAN))),
-            ],
-        )?);
-        extra.sections.push_str(&render(
-            "comparison/transient.md",
-            TRANSIENT,
-            &[
-                ("points", scene.transient_points.len().to_string()),
-                ("cases", t.numbers["cases"].to_string()),
-                ("findings", t.lines()),
-                ("regimes", regime_maps.clone().unwrap_or_default()),
-            ],
-        )?);
-    } else if let Some(finding) = &regime_maps {
-        extra.sections.push_str(&render("comparison/regimes.md", REGIMES, &[("finding", finding.clone())])?);
+    // A blank line closes the nested studies' sections (the regime maps' finding may close
+    // the transient section's list, so the sections themselves end without one).
+    if !extra.sections.is_empty() {
+        extra.sections.push('\n');
     }
     let mut a = comparison::report_with(scene, &extra, progress)?;
-    for (dir, mut part, of) in nested {
-        Provenance::of(of).stamp(&mut part);
+    for (dir, mut part, of) in parts {
+        Provenance::of(&of).stamp(&mut part);
         a.nest(dir, part);
     }
     Provenance::of(scene).stamp(&mut a);
     Ok(a)
 }
-
-// The main report's sections on the studies nested beside the comparison.
-const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
-const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
-const REGIMES: &str = include_str!("templates/comparison/regimes.md");
-const FINDING_TRANSIENT: &str = include_str!("templates/comparison/finding-transient.md");
 
 /// The scene the main report runs: `scene` with its transient cases to
 /// [`studies::settings::REPORT_TOLERANCE`] (its files carry this scene's provenance).

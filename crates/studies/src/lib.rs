@@ -42,6 +42,7 @@ pub mod columns;
 pub mod comparison;
 pub mod fem_bench;
 pub mod fem_verification;
+pub mod field;
 pub mod field_series;
 pub mod identify;
 pub mod paper;

@@ -237,6 +237,22 @@ impl<'m> Factorization<'m> {
         Ok(out)
     }
 
+    /// The response at (x, z) and the deflection field w = K⁻¹N behind it (4 values per
+    /// node), from one solve: the field is that of [`Factorization::deflection_field`] and the
+    /// response that of [`Factorization::respond`], residual included.
+    pub fn respond_with_field(&self, x: f64, z: f64) -> Result<(PointResponse, Vec<f64>), FemError> {
+        let load = self.model.load(x, z)?;
+        let mut rhs = Mat::<f64>::zeros(self.model.dofs(), 1);
+        for (d, v) in load.0.iter().zip(load.1.iter()) {
+            rhs[(*d, 0)] += v;
+        }
+        let residuals = self.solve_in_place(&mut rhs);
+        let w: Vec<f64> = rhs.col(0).iter().copied().collect();
+        let mut r = self.response_from_field(x, z, &load, &w);
+        r.residual = residuals[0];
+        Ok((r, w))
+    }
+
     /// Response at one point.
     pub fn respond(&self, x: f64, z: f64) -> Result<PointResponse, FemError> {
         Ok(self.respond_many(&[(x, z)])?.remove(0))

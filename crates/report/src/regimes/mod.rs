@@ -23,7 +23,10 @@ pub use studies::regimes::{
     MapRow, RegimeData, Score, Slice, MAP_MESH, MAP_STEPS, RADIUS_FACTORS, SCALES, SPRINGS, THICKNESS_FACTORS,
 };
 use studies::study::{RegimeMaps, Study};
-use studies::{progress::Silent, settings::Settings};
+use studies::{
+    progress::{Progress, Silent},
+    settings::Settings,
+};
 use tables::{full_table, grid_table, mid_thickness, olsson_table, points_table, score_table, spring_table};
 
 const TEMPLATE: &str = include_str!("../templates/regimes.md");
@@ -268,13 +271,13 @@ pub fn files(scene: &Scene, d: &RegimeData) -> Result<(Artifacts, String), Failu
 
 /// The regime-maps report.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
-    Ok(study(scene)?.0)
+    Ok(study(scene, &Silent)?.0)
 }
 
 /// [`report`], and its finding for the main report: one Markdown bullet line linking the
 /// study (nested in the folder `regimes`).
-pub fn study(scene: &Scene) -> Result<(Artifacts, String), Failure> {
-    let data = RegimeMaps::compute(scene, &Settings::default(), &Silent)?;
+pub fn study(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, String), Failure> {
+    let data = RegimeMaps::compute(scene, &Settings::default(), progress)?;
     files(scene, &data)
 }
 

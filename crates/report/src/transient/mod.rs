@@ -48,7 +48,7 @@ pub fn comparison(
 
 /// What the study found, each finding a Markdown bullet line rendered from the templates: the
 /// study's page opens with them, and the main report's transient section repeats them.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TransientSummary {
     /// Per body: t_c/T₁, the quasi-static error and the plate's share of E₀.
     pub bodies: String,
@@ -60,8 +60,8 @@ pub struct TransientSummary {
     pub errors: String,
     /// The regime criteria on the scene's cases.
     pub regimes: String,
-    /// The counts behind the lines, for `findings.json`.
-    pub numbers: serde_json::Value,
+    /// The counts behind the lines, for `findings.json` and the main report's finding.
+    pub numbers: studies::transient::findings::Numbers,
 }
 
 impl TransientSummary {

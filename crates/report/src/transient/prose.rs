@@ -131,7 +131,7 @@ pub(super) fn findings(scene: &Scene, data: &TransientData) -> Result<TransientS
         elastic: elastic_finding(scene, f)?,
         errors: errors_finding(f)?,
         regimes: regimes_finding(f)?,
-        numbers: serde_json::to_value(&f.numbers)?,
+        numbers: f.numbers.clone(),
     })
 }
 

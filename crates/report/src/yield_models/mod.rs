@@ -73,12 +73,12 @@ impl Study for PaperYield {
 
 /// The study: the paper's own scene, whatever `scene` is.
 pub fn report(scene: &Scene) -> Result<Artifacts, Failure> {
-    Ok(study(scene)?.0)
+    Ok(study(scene, &Silent)?.0)
 }
 
 /// [`report`], and what the main report shows of it.
-pub fn study(scene: &Scene) -> Result<(Artifacts, YieldSummary), Failure> {
-    let data = PaperYield::compute(scene, &Settings::default(), &Silent)?;
+pub fn study(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, YieldSummary), Failure> {
+    let data = PaperYield::compute(scene, &Settings::default(), progress)?;
     paper::files(&data, &PrintedTables::embedded()?)
 }
 
