@@ -64,7 +64,15 @@ impl Striker {
     pub fn state(&self, dmax: f64) -> ContactState {
         ContactState { k: self.k, restitution: self.restitution, velocity: self.velocity, max_compression: dmax }
     }
-    /// The law's force at δ, δ̇ after a largest compression `dmax` so far.
+    /// What the law sees in a contact that began at approach velocity `approach` (δ̇ at
+    /// its onset: v₀ for the first contact, the relative velocity at touch for a later one),
+    /// after a largest compression `dmax` so far.
+    #[inline]
+    pub fn state_in(&self, dmax: f64, approach: f64) -> ContactState {
+        ContactState { velocity: approach, ..self.state(dmax) }
+    }
+    /// The law's force at δ, δ̇ after a largest compression `dmax` so far, in the first
+    /// contact (approach velocity v₀).
     #[inline]
     pub fn force_after(&self, delta: f64, rate: f64, dmax: f64) -> f64 {
         self.law.force(&self.state(dmax), delta, rate)
@@ -89,12 +97,13 @@ impl Striker {
 /// Solves h(P) = P - F(δ(P), δ̇(P)) = 0 for P ≥ 0 (h increasing): Illinois false position
 /// on the bracket [0, F(δ̂, δ̇̂)], for a contact never compressed before.
 pub fn contact_force(s: &Striker, d0: f64, d1: f64, r0: f64, r1: f64) -> f64 {
-    contact_force_after(s, 0.0, d0, d1, r0, r1)
+    contact_force_after(s, &s.state(0.0), d0, d1, r0, r1)
 }
 
-/// As [`contact_force`] after a largest compression `dmax` in earlier steps.
-pub fn contact_force_after(s: &Striker, dmax: f64, d0: f64, d1: f64, r0: f64, r1: f64) -> f64 {
-    let f = |p: f64| s.force_after(d0 - d1 * p, r0 - r1 * p, dmax);
+/// As [`contact_force`] in the contact `c` (its largest compression in earlier steps and its
+/// approach velocity, [`Striker::state_in`]).
+pub fn contact_force_after(s: &Striker, c: &ContactState, d0: f64, d1: f64, r0: f64, r1: f64) -> f64 {
+    let f = |p: f64| s.law.force(c, d0 - d1 * p, r0 - r1 * p);
     let hi0 = f(0.0);
     if hi0 <= 0.0 {
         return 0.0;

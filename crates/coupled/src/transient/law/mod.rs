@@ -53,7 +53,9 @@ pub struct ContactState {
     pub k: f64,
     /// Restitution e (the Flores law's damping).
     pub restitution: f64,
-    /// Impact velocity v₀ > 0 (the scale of the Flores law's damping), m/s.
+    /// The approach velocity δ̇⁻ > 0 of this contact (the scale of the Flores law's damping),
+    /// m/s: the impact velocity v₀ for the first contact, the relative normal velocity at
+    /// touch for a later one.
     pub velocity: f64,
     /// The largest compression so far δ_m, m: loading while δ ≥ δ_m, unloading below.
     pub max_compression: f64,
