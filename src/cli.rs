@@ -118,8 +118,9 @@ pub enum FieldFormat {
     Json,
     /// VTK XML UnstructuredGrid, with stresses and the near-load flag.
     Vtu,
-    /// The transient model's deflection during contact: a ParaView time series (`.pvd`
-    /// with one `.vtu` per frame, and the run's history.csv) into a directory.
+    /// The transient model's plate through the whole impact and two fundamental periods of
+    /// ringing after: a ParaView time series (`.pvd` with one `.vtu` per frame: deflection,
+    /// moments, stresses; and the run's history.csv) into a directory.
     Pvd,
 }
 

@@ -75,9 +75,10 @@ def check_rust_vtu(check, path, doc, force, h, load):
           f"({int(near.sum())} elements)")
 
 
-def check_rust_pvd(check, series_dir, doc, load):
-    """meshio reads every frame the .pvd names; each frame's struck-node deflection is the
-    history's plate displacement at the same time. The history's value is N^T w with the
+def check_rust_pvd(check, series_dir, doc, load, thickness):
+    """meshio reads every frame the .pvd names (the contacts and the ringing after); each
+    frame's struck-node deflection is the history's plate displacement at the same time, and
+    its surface stresses are 6M/h^2 of its moments. The history's value is N^T w with the
     element's shape functions evaluated at the node, which are 1 and 0 up to the round-off of
     the node coordinates: hence a 1e-12 relative tolerance rather than equality."""
     import csv
@@ -94,20 +95,25 @@ def check_rust_pvd(check, series_dir, doc, load):
     by_time = {float(r["t_s"]): float(r["plate_displacement_m"]) for r in rows}
     pts = np.asarray(doc["points"])
     node = int(np.argmin((pts[:, 0] - load[0]) ** 2 + (pts[:, 1] - load[1]) ** 2))
-    same_mesh, warp, matched, worst, peak = True, True, 0, 0.0, 0.0
+    same_mesh, warp, stresses, matched, worst, peak = True, True, True, 0, 0.0, 0.0
     for d, t in zip(sets, times):
         m = meshio.read(series_dir / d.get("file"))
         same_mesh &= np.array_equal(m.points[:, :2], pts) and np.array_equal(m.cells_dict["quad"], np.asarray(doc["quads"]))
-        w = np.asarray(m.point_data["w"])
+        w = np.asarray(m.point_data["w_m"])
         w = w[:, 0] if w.ndim == 2 else w
-        disp = m.point_data["displacement"]
+        disp = m.point_data["displacement_m"]
         warp &= disp.shape == (len(w), 3) and np.array_equal(disp, np.column_stack([0 * w, 0 * w, w]))
+        for k in ("x", "z", "xz"):
+            moment = np.asarray(m.cell_data[f"M_{k}_N_m_per_m"][0]).ravel()
+            sigma = np.asarray(m.cell_data[f"sigma_{k}_Pa"][0]).ravel()
+            stresses &= np.allclose(sigma, 6.0 * moment / thickness**2, rtol=1e-14, atol=0.0)
         peak = max(peak, float(np.abs(w).max()))
         if t in by_time:
             matched += 1
             worst = max(worst, abs(w[node] - by_time[t]))
     check(f"{tag} every frame on the same mesh", same_mesh)
     check(f"{tag} every frame: displacement = (0, 0, w)", warp)
+    check(f"{tag} every frame: sigma = 6 M / h^2", stresses)
     check(f"{tag} frames after t = 0 found in history.csv", matched == len(sets) - 1, f"({matched} of {len(sets) - 1})")
     check(f"{tag} struck-node w = history plate displacement", peak > 0 and worst <= 1e-12 * peak, f"(worst {worst:.1e} m of {peak:.2e} m)")
 
@@ -172,7 +178,7 @@ def main(argv=None):
              "--format", "pvd", "--out", str(series)],
             check=True,
         )
-        check_rust_pvd(check, series, doc, (x, z))
+        check_rust_pvd(check, series, doc, (x, z), plate["thickness"])
 
     passed = sum(results)
     failed = len(results) - passed

@@ -1,12 +1,14 @@
-//! The plate's deflection during the contact, as a ParaView time series: one `.vtu` per
-//! recorded step and a `.pvd` collection that names them with their times.
+//! The plate through the whole impact and its ringing after, as a ParaView time series: one
+//! `.vtu` per recorded step and a `.pvd` collection that names them with their times.
 //!
 //! The transient model (sphere, contact law and plate FE dynamics integrated together, the
-//! same run as `impact dynamic`) is run once with the deflection field recorded every few
-//! steps ([`studies::field_series`]). Each `.vtu` has the point data `displacement`
-//! = (0, 0, w), so "Warp By Vector" bends the plate in every frame, and `w`. Beside them,
-//! `history.csv` holds every step of the run (time, force, compression, the struck point's
-//! deflection): the frame at time t is the step of the same t, so the two can be checked
+//! same run as `impact dynamic`) is run once with the deflection and the moments recorded
+//! every few steps, then the free plate rings on ([`studies::field_series`]). Each `.vtu` has
+//! the point data `displacement_m` = (0, 0, w), so "Warp By Vector" bends the plate in every
+//! frame, and `w_m`; the cell data the moments, the surface bending stresses and `near_load`
+//! ([`crate::present::vtk::frame_vtu`]). Beside them, `history.csv` holds every step of the run
+//! (time, force, compression, the struck point's deflection, the sphere's velocity), the
+//! ringing included: the frame at time t is the step of the same t, so the two can be checked
 //! against each other.
 
 use crate::present::table::Table;
@@ -48,7 +50,9 @@ pub fn write(series: &FieldSeries) -> Result<Artifacts, Failure> {
     let mut listed = Vec::new();
     for f in &series.frames {
         let file = format!("frames/step-{:05}.vtu", f.step);
-        a.add(&file, crate::present::vtk::deflection_vtu(&series.title, &series.points, &series.quads, &f.w)?);
+        let mesh = (&series.points[..], &series.quads[..]);
+        let fields = (&f.w[..], &f.moments[..]);
+        a.add(&file, crate::present::vtk::frame_vtu(&series.title, mesh, fields, series.thickness, series.load)?);
         listed.push((f.t, file));
     }
     a.add("contact.pvd", pvd(&listed));

@@ -158,19 +158,42 @@ fn with_metadata(xml: Vec<u8>, meta: &Metadata, numbers: &[(String, f64)]) -> Re
     Ok(out.into_bytes())
 }
 
-/// A deflection field alone as a `.vtu`: the mesh (nodes (x, z) in m, counter-clockwise
-/// quads) with the point data `displacement` = (0, 0, w) and `w`, m. One frame of a time
-/// series.
-pub fn deflection_vtu(
+/// Names of one frame's arrays in a time series, each with its SI unit: the point data
+/// `displacement_m` = (0, 0, w) and `w_m`; the cell data, the element-centre moments and the
+/// surface bending stresses σ = 6M/h², and `near_load` (1 on the elements touching the struck
+/// point, whose moments sample the point-load singularity).
+pub const FRAME_POINT: [&str; 2] = ["displacement_m", "w_m"];
+/// See [`FRAME_POINT`].
+pub const FRAME_MOMENTS: [&str; 3] = ["M_x_N_m_per_m", "M_z_N_m_per_m", "M_xz_N_m_per_m"];
+/// See [`FRAME_POINT`].
+pub const FRAME_STRESSES: [&str; 3] = ["sigma_x_Pa", "sigma_z_Pa", "sigma_xz_Pa"];
+
+/// One frame of a time series as a `.vtu`: the mesh (nodes (x, z) in m, counter-clockwise
+/// quads), the deflection `w` (m) at the nodes and the element-centre `moments` (N·m/m) of a
+/// plate of `thickness` (m), struck at `load` (x, z); the arrays of [`FRAME_POINT`],
+/// [`FRAME_MOMENTS`] and [`FRAME_STRESSES`], and `near_load`.
+pub fn frame_vtu(
     title: &str,
-    nodes: &[[f64; 2]],
-    quads: &[[usize; 4]],
-    w: &[f64],
+    (nodes, quads): (&[[f64; 2]], &[[usize; 4]]),
+    (w, moments): (&[f64], &[[f64; 3]]),
+    thickness: f64,
+    load: [f64; 2],
 ) -> Result<Vec<u8>, vtkio::Error> {
     let points: Vec<f64> = nodes.iter().flat_map(|p| [p[0], p[1], 0.0]).collect();
     let connectivity: Vec<u64> = quads.iter().flatten().map(|&n| n as u64).collect();
     let offsets: Vec<u64> = (1..=quads.len() as u64).map(|i| 4 * i).collect();
     let displacement: Vec<f64> = w.iter().flat_map(|&w| [0.0, 0.0, w]).collect();
+    let six_over_h2 = 6.0 / (thickness * thickness);
+    let mut cell = Vec::new();
+    for (k, name) in FRAME_MOMENTS.iter().enumerate() {
+        cell.push(Attribute::scalars(*name, 1).with_data(moments.iter().map(|m| m[k]).collect::<Vec<f64>>()));
+    }
+    for (k, name) in FRAME_STRESSES.iter().enumerate() {
+        let sigma: Vec<f64> = moments.iter().map(|m| six_over_h2 * m[k]).collect();
+        cell.push(Attribute::scalars(*name, 1).with_data(sigma));
+    }
+    let near: Vec<f64> = touching(nodes, quads, load).into_iter().map(|n| f64::from(u8::from(n))).collect();
+    cell.push(Attribute::scalars("near_load", 1).with_data(near));
     let vtk = Vtk {
         version: Version::new((1, 0)),
         title: title.to_string(),
@@ -184,14 +207,28 @@ pub fn deflection_vtu(
             },
             data: Attributes {
                 point: vec![
-                    Attribute::vectors("displacement").with_data(displacement),
-                    Attribute::scalars("w", 1).with_data(w.to_vec()),
+                    Attribute::vectors(FRAME_POINT[0]).with_data(displacement),
+                    Attribute::scalars(FRAME_POINT[1], 1).with_data(w.to_vec()),
                 ],
-                cell: vec![],
+                cell,
             },
         }),
     };
     let mut bytes = Vec::new();
     vtk.write_xml(&mut bytes)?;
     Ok(bytes)
+}
+
+/// Per element: whether the closed rectangle contains the load point (to 1e-9 of the plate's
+/// extent, so that a load typed in millimetres on a node touches every element sharing it).
+fn touching(nodes: &[[f64; 2]], quads: &[[usize; 4]], [x, z]: [f64; 2]) -> Vec<bool> {
+    let extent = nodes.iter().fold(0.0f64, |a, p| a.max(p[0].abs()).max(p[1].abs()));
+    let tol = 1e-9 * extent;
+    quads
+        .iter()
+        .map(|q| {
+            let (lo, hi) = (nodes[q[0]], nodes[q[2]]);
+            (lo[0] - tol..=hi[0] + tol).contains(&x) && (lo[1] - tol..=hi[1] + tol).contains(&z)
+        })
+        .collect()
 }
