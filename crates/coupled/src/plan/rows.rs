@@ -63,13 +63,13 @@ pub enum Evidence {
         contacts: usize,
         /// The impulse of all of them, N·s.
         total_impulse: f64,
-        /// Its estimated absolute error where the impact is one contact that ended (v₀ times
-        /// the restitution's error, impulse m(v₀ - v_f)); None after several contacts, whose
-        /// later ones the estimate's runs do not follow.
+        /// Its estimated absolute error: for one contact that ended, v₀ times the
+        /// restitution's error times m; after several, from the estimate's levels followed
+        /// through every contact (None where their contact counts differ).
         total_impulse_error: Option<f64>,
         /// Sphere velocity at the end of the run, m/s (negative: away from the plate).
         final_velocity: f64,
-        /// Its estimated absolute error, m/s (v₀ times the restitution's; one contact only).
+        /// Its estimated absolute error, m/s (as `total_impulse_error`).
         final_velocity_error: Option<f64>,
         /// Whether the run proved that no further contact can occur (else the window ended).
         left_for_good: bool,

@@ -108,9 +108,19 @@ fn state_errors(e: &Estimated, springs: &SpringCorners, weights: &[f64; 4], e0: 
 /// the error estimates of `errors` when given.
 fn transient_evidence(o: &Outcome, s: &Striker, dt: f64, errors: Option<&Estimated>) -> Evidence {
     // One contact that ended: the rebound is the first contact's, -e v₀, so the final
-    // velocity and the impulse m(v₀ - v_f) carry v₀ times the restitution's error.
+    // velocity and the impulse m(v₀ - v_f) carry v₀ times the restitution's error. After
+    // several contacts both come from the levels followed through every contact, where those
+    // agree on the count.
     let single = o.contacts.len() == 1 && o.unfinished_contact.is_none() && o.left_at.is_some();
-    let final_velocity_error = errors.filter(|_| single).map(|e| s.velocity * e.error.restitution.abs());
+    let end = errors.and_then(|e| e.sequence.as_ref()).and_then(|q| q.end_error);
+    let final_velocity_error = match errors {
+        Some(e) if single => Some(s.velocity * e.error.restitution.abs()),
+        _ => end.map(|e| e.final_velocity),
+    };
+    let total_impulse_error = match errors {
+        Some(_) if single => final_velocity_error.map(|dv| s.mass * dv),
+        _ => end.map(|e| e.total_impulse),
+    };
     Evidence::Transient {
         steps: o.steps,
         time_step: dt,
@@ -127,7 +137,7 @@ fn transient_evidence(o: &Outcome, s: &Striker, dt: f64, errors: Option<&Estimat
         met_tolerance: errors.is_none_or(|e| e.met_tolerance),
         contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
         total_impulse: o.total_impulse,
-        total_impulse_error: final_velocity_error.map(|dv| s.mass * dv),
+        total_impulse_error,
         final_velocity: o.final_velocity,
         final_velocity_error,
         left_for_good: o.left_at.is_some(),

@@ -23,6 +23,7 @@
 //! ([`super::interpolate`]), which vary smoothly with Δt; the sampled maxima jump with the
 //! phase of the steps and do not.
 
+use super::sequence_estimate::{sequence_estimate, SequenceEstimate};
 use super::{Outcome, Striker, TransientCase, TransientSettings};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
@@ -120,7 +121,7 @@ impl State {
 
 /// A set of numbers an estimate covers, as a list in a fixed order, so that one Richardson
 /// estimate ([`richardson`]) serves [`Quantities`] and [`State`] alike.
-trait Components: Copy {
+pub(super) trait Components: Copy {
     fn to_list(self) -> Vec<f64>;
     fn from_list(list: &[f64]) -> Self;
 }
@@ -174,7 +175,7 @@ impl Components for State {
 /// Richardson's estimate in one direction (Δt or h), component by component: the order p
 /// observed from the `coarse`, value and `fine` levels ([`observed_order`]; 2 without a
 /// coarse level) and the absolute error F|Q - Q_fine|/(1 - 2^{-p}). Returns (orders, errors).
-fn richardson<Q: Components>(q: Q, fine: Q, coarse: Option<Q>) -> (Q, Q) {
+pub(super) fn richardson<Q: Components>(q: Q, fine: Q, coarse: Option<Q>) -> (Q, Q) {
     let (q, fine, coarse) = (q.to_list(), fine.to_list(), coarse.map(Q::to_list));
     let order: Vec<f64> =
         (0..q.len()).map(|i| coarse.as_ref().map_or(2.0, |c| observed_order(c[i], q[i], fine[i]))).collect();
@@ -184,7 +185,7 @@ fn richardson<Q: Components>(q: Q, fine: Q, coarse: Option<Q>) -> (Q, Q) {
 }
 
 /// The component-wise sum of two error estimates.
-fn sum<Q: Components>(a: Q, b: Q) -> Q {
+pub(super) fn sum<Q: Components>(a: Q, b: Q) -> Q {
     let (a, b) = (a.to_list(), b.to_list());
     Q::from_list(&a.iter().zip(&b).map(|(x, y)| x + y).collect::<Vec<_>>())
 }
@@ -217,6 +218,10 @@ pub struct Estimated {
     pub met_tolerance: bool,
     /// The (n, N) run itself, followed through every contact.
     pub outcome: Outcome,
+    /// Every contact of an impact struck more than once, and its end, with their errors from
+    /// the same levels followed through every contact (None for a single contact, whose
+    /// numbers are the first contact's above).
+    pub sequence: Option<SequenceEstimate>,
 }
 
 impl Estimated {
@@ -271,13 +276,16 @@ fn combine(
         tolerance: None,
         met_tolerance: true,
         outcome,
+        sequence: None,
     }
 }
 
 /// The estimate for one case: `base`, `fine` and `coarse` are the same plate on n, 2n and
 /// n/2 elements ([`TransientCase::refined`], [`TransientCase::coarsened`]);
 /// `steps_per_contact` is N. The (n, N) run follows every contact; the four runs that only
-/// estimate its error stop at the first separation ([`TransientCase::first_contact`]).
+/// estimate its error stop at the first separation ([`TransientCase::first_contact`]) when the
+/// impact is one contact that ended, and otherwise follow every contact too, for the
+/// estimate of the whole sequence ([`sequence_estimate`]).
 pub fn estimate_on(
     base: &TransientCase,
     fine: &TransientCase,
@@ -289,13 +297,26 @@ pub fn estimate_on(
 ) -> Result<Estimated, ModelError> {
     let o = base.run_steps(set, s, x, z, steps_per_contact)?;
     let q = run_of(&o, s);
-    let first =
-        |c: &TransientCase, n: f64| -> Result<Run, ModelError> { Ok(run_of(&c.first_contact(set, s, x, z, n)?, s)) };
-    let q_dt = first(base, 2.0 * steps_per_contact)?;
-    let q_2dt = first(base, 0.5 * steps_per_contact)?;
-    let q_h = first(fine, steps_per_contact)?;
-    let q_2h = coarse.map(|c| first(c, steps_per_contact)).transpose()?;
-    Ok(combine(q, (q_2dt, q_dt), (q_2h, q_h), (base.settings().elements, steps_per_contact), o))
+    let single = o.contacts.len() == 1 && o.unfinished_contact.is_none() && o.left_at.is_some();
+    // The first contact's numbers are those of the whole run up to its first separation, so
+    // a level followed through every contact gives the same first-contact estimate.
+    let level = |c: &TransientCase, n: f64| -> Result<Outcome, ModelError> {
+        if single {
+            c.first_contact(set, s, x, z, n)
+        } else {
+            c.run_steps(set, s, x, z, n)
+        }
+    };
+    let o_dt = level(base, 2.0 * steps_per_contact)?;
+    let o_2dt = level(base, 0.5 * steps_per_contact)?;
+    let o_h = level(fine, steps_per_contact)?;
+    let o_2h = coarse.map(|c| level(c, steps_per_contact)).transpose()?;
+    let sequence = (!single).then(|| sequence_estimate(&o, (&o_dt, &o_2dt), (&o_h, o_2h.as_ref())));
+    let (q_dt, q_2dt, q_h) = (run_of(&o_dt, s), run_of(&o_2dt, s), run_of(&o_h, s));
+    let q_2h = o_2h.as_ref().map(|o| run_of(o, s));
+    let mut e = combine(q, (q_2dt, q_dt), (q_2h, q_h), (base.settings().elements, steps_per_contact), o);
+    e.sequence = sequence;
+    Ok(e)
 }
 
 /// The estimate for one case on `elements` and `steps_per_contact` (builds the meshes).

@@ -33,6 +33,7 @@ mod integrate;
 pub mod interpolate;
 pub mod law;
 pub mod reference;
+pub mod sequence_estimate;
 pub mod target;
 
 pub use case::{first_contact_on, TransientCase, TransientSettings};
