@@ -4,6 +4,7 @@
 
 use crate::present::table::{sig, Cell, Table};
 use coupled::regimes::OlssonRegime;
+use coupled::transient::sequence_estimate::ContactValues;
 use coupled::Validity;
 use studies::transient::size_map::SizeRow;
 use studies::transient::{contact_count, end_state, peak_over_contacts, LawCase, TransientCase};
@@ -112,11 +113,16 @@ pub fn contacts_table(cases: &[TransientCase]) -> Table {
     );
     for c in cases {
         let o = c.outcome();
+        let peaks = contact_errors(c);
         let each: Vec<String> = o
             .contacts
             .iter()
             .chain(&o.unfinished_contact)
-            .map(|k| format!("{:.4} / {:.4} / {}", k.start * 1e3, k.duration * 1e3, sig(k.peak_force, 4)))
+            .enumerate()
+            .map(|(i, k)| {
+                let peak = peaks.get(i).filter(|_| i < o.contacts.len()).map_or(k.peak_force, |p| p.0);
+                format!("{:.4} / {:.4} / {}", k.start * 1e3, k.duration * 1e3, sig(peak, 4))
+            })
             .collect();
         let momentum = c.sphere_mass * c.velocity;
         t.push(vec![
@@ -147,17 +153,27 @@ pub fn contact_rows(cases: &[TransientCase]) -> Table {
             "v (m/s)",
             "contact",
             "start (s)",
+            "start error (s)",
             "duration (s)",
+            "duration error (s)",
             "peak force (N)",
+            "peak force error (N)",
             "impulse (N·s)",
+            "impulse error (N·s)",
             "velocity after (m/s)",
             "finished",
         ],
     );
     for c in cases {
+        let errors = contact_errors(c);
         let o = c.outcome();
         let all = o.contacts.iter().map(|k| (k, true)).chain(o.unfinished_contact.iter().map(|k| (k, false)));
         for (i, (k, done)) in all.enumerate() {
+            let (peak, error) = match errors.get(i) {
+                Some(&(peak, error)) if done => (peak, error),
+                _ => (k.peak_force, None),
+            };
+            let cell = |e: Option<f64>| e.map_or(Cell::Text("not estimated".into()), Cell::from);
             t.push(vec![
                 c.condition.clone().into(),
                 c.body.clone().into(),
@@ -166,15 +182,41 @@ pub fn contact_rows(cases: &[TransientCase]) -> Table {
                 c.velocity.into(),
                 Cell::Int(i as u64 + 1),
                 k.start.into(),
+                cell(error.map(|e| e.start)),
                 k.duration.into(),
-                k.peak_force.into(),
+                cell(error.map(|e| e.duration)),
+                peak.into(),
+                cell(error.map(|e| e.peak_force)),
                 k.impulse.into(),
+                cell(error.map(|e| e.impulse)),
                 k.rebound_velocity.into(),
                 done.into(),
             ]);
         }
     }
     t
+}
+
+/// Per completed contact of `c`: its peak force (interpolated) and its estimated errors. One
+/// contact that ended has the first contact's estimate (its start, the touch, is exact; its
+/// impulse m(v₀ + v_r) carries m v₀ times the restitution's error); an impact struck more than
+/// once has the estimate of the whole sequence (None for a contact whose count changes
+/// between the estimate's levels).
+fn contact_errors(c: &TransientCase) -> Vec<(f64, Option<ContactValues>)> {
+    let e = &c.estimate;
+    match &e.sequence {
+        Some(q) => q.contacts.iter().map(|k| (k.values.peak_force, k.error)).collect(),
+        None => {
+            let first = e.outcome.contacts.first();
+            let error = ContactValues {
+                start: 0.0,
+                duration: e.error.contact_time,
+                peak_force: e.error.peak_force,
+                impulse: c.sphere_mass * c.velocity * e.error.restitution,
+            };
+            first.map(|_| (e.outcome.force_max_interpolated, Some(error))).into_iter().collect()
+        }
+    }
 }
 
 /// The discretisation each case got, its error estimate and its cost.
