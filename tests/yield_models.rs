@@ -1,15 +1,25 @@
 //! The three-model yield study against independent references: the closed form on a rigid
-//! point, the root's own definition, the beam in the narrow-plate limit, and the report as a
-//! whole (it renders, and its deterministic pages do not carry the timing).
+//! point, the root's own definition, the beam in the narrow-plate limit, and the paper study's
+//! files rendered from a hand-made study (its deterministic pages do not carry the timing).
 
 mod common;
 
 use analytic::{contact_stiffness, yield_velocity, Condition, DruckerPrager, Plate};
 use coupled::plan::impact_of;
+use coupled::plan::YieldValues;
 use coupled::transient::{case::striker, simulate, TransientCase, TransientSettings};
+use coupled::validity::{Criterion, Validity};
 use coupled::{BeamModel, ComplianceModel, ModelError, PlateModel, SupportSet};
 use impact::report::paper::Paper;
-use impact::report::yield_models::{log_root, report, rigid_yield, transient_yield, ROOT_TOLERANCE};
+use impact::report::yield_models::{
+    log_root, render, rigid_yield, transient_yield, TransientYield, FINE, ROOT_TOLERANCE,
+};
+use studies::verdict::Verdict;
+use studies::yield_models::paper::{
+    ConditionCurves, CrossCheck, DiscretisationRow, Figure, Minimum, Overall, PaperYieldData, Table2Cell, Table5Row,
+    Timing,
+};
+use studies::yield_models::statements::{Evidence, Statement, Summary};
 
 /// The root finder on a function with a known root: ln δ = (4/5) ln v + c, root at 0.01.
 #[test]
@@ -123,40 +133,162 @@ fn plate_and_beam_agree_on_a_narrow_plate() {
     }
 }
 
-/// The whole study renders (every placeholder filled), writes its figures and tables, and
-/// keeps the timing out of the deterministic pages.
+// ---------------------------------------------------------------- the paper study rendered
+
+/// A Table 2 cell whose three models give `v`, with a 1e-6 bracket and a 0.1 % plate error.
+fn cell(body: &str, condition: usize, area: usize, v: f64) -> Table2Cell {
+    Table2Cell {
+        body: body.into(),
+        condition,
+        area,
+        x: 0.2292,
+        printed: v,
+        beam: v,
+        plate: v,
+        plate_error: 1e-3 * v,
+        transient: TransientYield { velocity: v, width: 1e-6 * v, runs: 7, yield_compression: 1e-5 },
+    }
+}
+
+/// One curve of each model, two points.
+fn curves(condition: &str, v: f64) -> ConditionCurves {
+    let two = vec![(0.0, 0.5 * v), (0.4584, 0.5 * v)];
+    ConditionCurves { condition: condition.into(), beam: two.clone(), plate: two.clone(), transient: two }
+}
+
+/// The prose's numbers of the tiny study: the conditions' transient spread `spread` against
+/// a pair resolution of 2e-3.
+fn summary(coal: &Table2Cell, gangue: &Table2Cell, spread: f64) -> Summary {
+    Summary {
+        coal_mid: coal.clone(),
+        gangue_mid: gangue.clone(),
+        plate_over_beam: (0.1, 0.2),
+        transient_over_beam: (-0.1, 0.1),
+        transient_over_plate: (-0.2, -0.1),
+        bracket_width: (1e-6, 1e-6),
+        plate_error: (1e-3, 1e-3),
+        table2_runs: 14,
+        between: 2,
+        above_beam_cells: 0,
+        above_beam_areas: vec![],
+        condition_spread: spread,
+        pair_resolution: 2e-3,
+        rigid_gangue1: 1e-3,
+        rigid_gangue2: 1e-3,
+        held: [1, 0, 0],
+        unresolved: [0, 1, 1],
+    }
+}
+
+/// A hand-made study of one cell per body (coal and gangue 1 at the midpoint, Con 1), one
+/// statement (the springs' rise: yes, not resolved, not resolved), the transient spread
+/// between conditions `spread` and the run times `timing`.
+fn tiny(spread: f64, timing: Timing) -> PaperYieldData {
+    let (coal, gangue) = (cell("coal", 1, 4, 1.2e-2), cell("gangue 1", 1, 4, 2.5e-3));
+    let at = |v: f64| Minimum { velocity: v, x: 0.0, z: 0.18 };
+    let overall = |body: &str, v: f64| Overall { body: body.into(), condition: "Con 1".into(), at: at(v) };
+    let quasi = YieldValues {
+        compliance: Some(7.47e-7),
+        compliance_error: Some(1e-12),
+        yield_compression: 1e-5,
+        yield_velocity: 1.2e-2,
+        yield_velocity_error: Some(1e-8),
+        validity: Validity {
+            elastic: None,
+            quasi_static: None,
+            thin_plate: Criterion::at_most("h/min(L, B)", 0.022, 0.05),
+            recontact: None,
+            regime: None,
+            finished: None,
+            discretisation: None,
+        },
+    };
+    let rise = Statement {
+        text: "Elastic supports raise v_y: v_y(Con 2) > v_y(Con 1) at Areas 1-7".into(),
+        holds: [Verdict::Holds, Verdict::NotResolved, Verdict::NotResolved],
+        evidence: [0.0, 2e-3, 4e-3].map(|resolution| Evidence::Rise { smallest: 1e-3, resolution }),
+    };
+    PaperYieldData {
+        length: 0.4584,
+        width: 0.36,
+        plate_base_mesh: 20,
+        plate_finest_mesh: 40,
+        transient: TransientSettings::default(),
+        fine: FINE,
+        root_tolerance: ROOT_TOLERANCE,
+        sweep: 2,
+        transient_sweep: 2,
+        grid: (2, 2),
+        candidates: 1,
+        table2: vec![coal.clone(), gangue.clone()],
+        discretisation: vec![DiscretisationRow {
+            body: "coal".into(),
+            condition: "Con 1".into(),
+            x: 0.2292,
+            coarse: coal.transient,
+            fine: coal.transient,
+            relative: 0.0,
+        }],
+        discretisation_error: 1e-3,
+        cross_check: CrossCheck { ours: coal.transient, dynamic_yield: quasi },
+        table5: vec![Table5Row { body: "gangue 1".into(), condition: "Con 1".into(), minima: [at(2e-3); 3] }],
+        overall: [overall("gangue 1", 2e-3), overall("gangue 1", 2e-3), overall("gangue 1", 2e-3)],
+        figures: vec![
+            Figure { number: 8, body: "coal".into(), curves: vec![curves("Con 1", 1.2e-2)] },
+            Figure { number: 9, body: "gangue 1".into(), curves: vec![curves("Con 1", 2.5e-3)] },
+        ],
+        statements: vec![rise],
+        summary: summary(&coal, &gangue, spread),
+        transient_cells: 2,
+        transient_runs: 14,
+        timing,
+    }
+}
+
+/// The study's files from its data: every file the study writes is there, every placeholder
+/// of the page is filled, and the run times reach `timing.md` only, so that two runs whose
+/// times differ write every other file byte for byte alike. The statements' table carries
+/// each model's verdict in its column, and the prose says "does not resolve" exactly where
+/// the conditions' transient spread is within the pair resolution (the rule itself, against
+/// the statement's verdict, is `studies::yield_models::statements`' unit test).
 #[test]
-fn the_study_renders() {
-    let p = Paper::new();
-    let a = report(&p.scene).unwrap();
+fn the_study_renders_its_data() {
+    let fast = Timing { quasi_static: 1.0, table2: 2.0, total: 3.0, ..Timing::default() };
+    let slow = Timing { quasi_static: 91.0, table2: 92.0, discretisation: 93.0, total: 999.0, ..fast };
+    let (a, b) = (render(&tiny(1e-3, fast)).unwrap(), render(&tiny(1e-3, slow)).unwrap());
     for f in [
         "index.md",
         "timing.md",
         "table2-three-models.csv",
         "table5-three-models.csv",
         "statements.csv",
+        "statements.svg",
         "transient-discretisation.csv",
         "fig08-yield-coal-three-models.svg",
         "fig09-yield-gangue-1-three-models.csv",
     ] {
         assert!(a.get(f).is_some(), "{f} missing");
     }
-    let index = String::from_utf8(a.get("index.md").unwrap().to_vec()).unwrap();
-    assert!(!index.contains("{{"));
-    assert!(!index.contains(" s |"));
-    // The text and the table agree: where the prose finds the supports' effect on the
-    // transient v_y within its resolution, the statement resting on it is "not resolved"
-    // under the transient model, never "no".
-    let statements = String::from_utf8(a.get("statements.csv").unwrap().to_vec()).unwrap();
-    let supports = statements.lines().find(|l| l.starts_with("Elastic supports raise v_y")).expect("the statement");
-    let transient = supports.split(',').nth(3).unwrap();
-    if index.contains("the transient model does not resolve the effect of") {
-        assert_eq!(transient, "not resolved", "{supports}");
-    } else {
-        assert_ne!(transient, "not resolved", "{supports}");
+    let text = |a: &output::Artifacts, f: &str| String::from_utf8(a.get(f).unwrap().to_vec()).unwrap();
+    for p in a.paths() {
+        let name = p.display().to_string();
+        if name == "timing.md" {
+            assert_ne!(a.get(&name), b.get(&name), "the run times are on the timing page");
+            assert!(text(&b, &name).contains("999.0"), "{}", text(&b, &name));
+        } else {
+            assert_eq!(a.get(&name), b.get(&name), "{name} carries the run time");
+        }
     }
-    println!("{index}");
-    println!("{}", String::from_utf8(a.get("timing.md").unwrap().to_vec()).unwrap());
+    let index = text(&a, "index.md");
+    assert!(!index.contains("{{") && !index.contains(" s |"), "{index}");
+    let statements = text(&a, "statements.csv");
+    let row = statements.lines().find(|l| l.starts_with("Elastic supports raise v_y")).expect("the statement");
+    let verdicts: Vec<&str> = row.split(',').skip(1).take(3).collect();
+    assert_eq!(verdicts, ["yes", "not resolved", "not resolved"], "{row}");
+    let unresolved = "the transient model does not resolve the effect of";
+    assert!(index.contains(unresolved), "{index}");
+    let decided = text(&render(&tiny(3e-3, fast)).unwrap(), "index.md");
+    assert!(!decided.contains(unresolved) && decided.contains("the transient model resolves the effect of"));
 }
 
 /// A scene of one's own that asks for yield velocities and the transient study (and not for

@@ -5,11 +5,12 @@
 
 mod common;
 
-use common::{beam_compliance, contact_force, COAL, ONE_IMPACT, PLATE};
+use common::{beam_compliance, contact_force, COAL, PLATE};
 use scene::{Scene, SceneSource};
 use studies::progress::Silent;
 use studies::settings::Settings;
 use studies::study::{Comparison, Study};
+use test_scenes::ONE_IMPACT;
 
 /// The plate's centre compliance under Con 1 (four fixed corners) by scikit-fem's Argyris
 /// triangles, Richardson-extrapolated (`reference/data/paper-con1.json`), m/N.

@@ -12,60 +12,7 @@ use std::sync::OnceLock;
 use studies::channel::ChannelInfo;
 use studies::identify::{compute_with, ensemble, run_sensors, IdentifyData, MainImpact, Ranked};
 use studies::progress::Silent;
-
-/// Twelve coal and twelve gangue spheres of spread size at low speed (elastic contacts) on
-/// Con 1, 16 modes over a 5 ms window, a named sensor at the centre, a 2 x 2 candidate grid,
-/// and size held in the variability study.
-const SCENE: &str = r#"
-name = "tiny-identify"
-restitution = 0.65
-analyses = ["identify"]
-
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-
-[[conditions]]
-name = "Con 1"
-supports = "both-fixed"
-
-[signals]
-modes = 16
-window_ms = 5.0
-sensors_mm = [[229.2, 180.0]]
-
-[ensemble]
-seed = 5
-placement = { x_count = 2, z_count = 2 }
-hold = ["size"]
-velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
-
-[[ensemble.families]]
-name = "coal"
-class = "coal"
-count = 12
-density_kg_m3 = 1380.0
-youngs_modulus_gpa = 2.26
-poisson_ratio = 0.28
-cohesion_mpa = 8.39
-friction_angle_deg = 25.0
-radius_mm = { distribution = "uniform", min = 15.0, max = 35.0 }
-
-[[ensemble.families]]
-name = "gangue"
-class = "gangue"
-count = 12
-density_kg_m3 = 2400.0
-youngs_modulus_gpa = 16.0
-poisson_ratio = 0.28
-cohesion_mpa = 37.68
-friction_angle_deg = 37.0
-radius_mm = { distribution = "uniform", min = 15.0, max = 35.0 }
-"#;
+use test_scenes::TINY_IDENTIFY;
 
 /// The AUC and every number derived from it are ratios of pair counts (halves for ties) to
 /// n₀n₁ = 144, computed here pair by pair and in the study by sorted ranks: the two agree to
@@ -121,11 +68,11 @@ impl Seen {
     }
 }
 
-/// The study on [`SCENE`], run once for both tests.
+/// The study on [`TINY_IDENTIFY`], run once for both tests.
 fn run() -> &'static (Scene, IdentifyData, Seen) {
     static RUN: OnceLock<(Scene, IdentifyData, Seen)> = OnceLock::new();
     RUN.get_or_init(|| {
-        let scene = Scene::parse(SCENE, "tiny").unwrap();
+        let scene = Scene::parse(TINY_IDENTIFY, "tiny").unwrap();
         let mut seen = Seen { records: Vec::new(), channels: Vec::new() };
         let data = compute_with(&scene, &Silent, &mut |m: &MainImpact<'_>| {
             seen.records.push(m.record.clone());

@@ -82,6 +82,12 @@ pub fn study(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Yield
     paper::files(&data, &PrintedTables::embedded()?)
 }
 
+/// The paper study's files from its data, whoever computed it: the pages, tables, figures
+/// and the run times, which only `timing.md` carries.
+pub fn render(data: &PaperYieldData) -> Result<Artifacts, Failure> {
+    Ok(paper::files(data, &PrintedTables::embedded()?)?.0)
+}
+
 /// The three-model yield study on a scene of one's own: the yield velocity of every body
 /// under every support set at the scene's transient points, by the beam (Con 1-3 only), the
 /// quasi-static plate and the transient plate, each with its error estimate, and whether the

@@ -435,33 +435,53 @@ mod tests {
         }
     }
 
-    /// Con 2 above Con 1 by 0.05 %: the exact beam says so, the plate (0.1 % error a cell)
-    /// and the transient (0.1 % discretisation error a cell) cannot tell, and neither says no.
-    #[test]
-    fn a_rise_within_the_resolution_is_not_resolved() {
-        let table2 = [cell("coal", 1, 1, 1e-2), cell("coal", 2, 1, 1.0005e-2)];
-        let printed = Printed {
+    /// What the paper prints, as far as the statements read it.
+    fn printed() -> Printed {
+        Printed {
             areas: vec![0.1],
             table2: vec![],
             min_yield_velocity: 1e-3,
             coal_min_exceeds: Quoted { value: 1e-3, text: "0.001".into() },
             coal_over_gangue_exceeds: Quoted { value: 2.0, text: "2".into() },
-        };
+        }
+    }
+
+    /// No overall minimum (the statements tested here do not read it).
+    fn overall() -> [Overall; 3] {
         let none =
             Overall { body: String::new(), condition: String::new(), at: Minimum { velocity: 0.0, x: 0.0, z: 0.0 } };
-        let overall = [none.clone(), none.clone(), none];
-        let facts = Facts {
-            table2: &table2,
-            resolution: 1e-3,
+        [none.clone(), none.clone(), none]
+    }
+
+    /// The facts of `table2` on a unit plate, with the transient discretisation error
+    /// estimate `resolution`.
+    fn facts<'a>(
+        table2: &'a [Table2Cell],
+        resolution: f64,
+        printed: &'a Printed,
+        overall: &'a [Overall; 3],
+    ) -> Facts<'a> {
+        Facts {
+            table2,
+            resolution,
             length: 1.0,
             width: 1.0,
             figures: &[],
             table5: &[],
-            overall: &overall,
+            overall,
             first_condition: "Con 1",
             bodies: ["coal", "gangue 1", "gangue 2"],
-            printed: &printed,
-        };
+            printed,
+        }
+    }
+
+    /// Con 2 above Con 1 by 0.05 %: the exact beam says so, the plate (0.1 % error a cell)
+    /// and the transient (0.1 % discretisation error a cell) cannot tell, and neither says no.
+    #[test]
+    fn a_rise_within_the_resolution_is_not_resolved() {
+        let table2 = [cell("coal", 1, 1, 1e-2), cell("coal", 2, 1, 1.0005e-2)];
+        let (printed, overall) = (printed(), overall());
+        let facts = facts(&table2, 1e-3, &printed, &overall);
         let s = facts.springs_raise().unwrap();
         assert_eq!(s.holds, [Verdict::Holds, Verdict::NotResolved, Verdict::NotResolved]);
         let Evidence::Rise { smallest, resolution } = s.evidence[2] else { panic!("{:?}", s.evidence[2]) };
@@ -470,5 +490,48 @@ mod tests {
         let table2 = [cell("coal", 1, 1, 1e-2), cell("coal", 2, 1, 1.01e-2)];
         let s = Facts { table2: &table2, ..facts }.springs_raise().unwrap();
         assert_eq!(s.holds, [Verdict::Holds; 3]);
+    }
+
+    /// The prose's rule and the statement it bears on: the page says the transient model
+    /// "does not resolve the effect of the supports on v_y" where the largest spread of the
+    /// transient v_y between conditions at one point is within the pair resolution (both
+    /// cells' brackets and discretisation error estimates), and then the statement "elastic
+    /// supports raise v_y" must read "not resolved" under the transient model, never "yes" or
+    /// "no"; beyond it, the statement is decided by the sign of the rise.
+    ///
+    /// Hand-made cells (coal and gangue 1 at Area 4, Con 1 and Con 2) with one bracket width w
+    /// and one discretisation error r, so that each pair's resolution equals the rule's
+    /// 2(w + r) and the cases sit at half and at twice the threshold, far from its edge; the
+    /// quasi-static values are left equal on both conditions, so only the transient moves.
+    #[test]
+    fn the_springs_statement_follows_the_prose_rule_on_both_sides() {
+        let (w, r) = (1e-6, 1e-3);
+        let (printed, overall) = (printed(), overall());
+        for (times, expected) in
+            [(0.5, Verdict::NotResolved), (-0.5, Verdict::NotResolved), (2.0, Verdict::Holds), (-2.0, Verdict::Fails)]
+        {
+            let rise = times * 2.0 * (w + r);
+            let mut table2 = Vec::new();
+            for (body, v) in [("coal", 1e-2), ("gangue 1", 2e-3)] {
+                table2.push(cell(body, 1, 4, v));
+                let mut up = cell(body, 2, 4, v);
+                up.transient.velocity = v * (1.0 + rise);
+                up.transient.width = w * up.transient.velocity;
+                table2.push(up);
+            }
+            let facts = facts(&table2, r, &printed, &overall);
+            let statement = facts.springs_raise().unwrap();
+            let summary = facts.summary(std::slice::from_ref(&statement), |_| 1e-4).unwrap();
+            let within = summary.condition_spread <= summary.pair_resolution;
+            assert_eq!(
+                within,
+                times.abs() < 1.0,
+                "{times}: {} vs {}",
+                summary.condition_spread,
+                summary.pair_resolution
+            );
+            assert_eq!(statement.holds[2], expected, "{times}: {:?}", statement.evidence[2]);
+            assert_eq!(within, statement.holds[2] == Verdict::NotResolved, "{times}");
+        }
     }
 }

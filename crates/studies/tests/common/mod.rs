@@ -19,40 +19,6 @@ pub const GANGUE_2: (f64, f64, f64, f64) = (2400.0, 16e9, 0.28, 0.025);
 /// The paper's coefficient of restitution.
 pub const RESTITUTION: f64 = 0.65;
 
-/// One impact of Table 1's coal on Table 1's plate at its centre under Con 1, at 0.008 m/s.
-pub const ONE_IMPACT: &str = r#"
-name = "one impact"
-restitution = 0.65
-analyses = ["responses"]
-
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-
-[[bodies]]
-name = "coal"
-density_kg_m3 = 1380.0
-youngs_modulus_gpa = 2.26
-poisson_ratio = 0.28
-cohesion_mpa = 8.39
-friction_angle_deg = 25.0
-radius_mm = 25.0
-
-[[conditions]]
-name = "Con 1"
-supports = "both-fixed"
-
-[points]
-pairs_mm = [[229.2, 180.0]]
-
-[velocities]
-m_per_s = [0.008]
-"#;
-
 /// Hertz's contact stiffness K = 4/3 √R E* of a sphere (E₁, ν₁, R) on a half-space (E₂, ν₂),
 /// 1/E* = (1 - ν₁²)/E₁ + (1 - ν₂²)/E₂, so that P = K δ^{3/2}.
 pub fn hertz_stiffness(sphere: (f64, f64, f64, f64), plate: (f64, f64)) -> f64 {

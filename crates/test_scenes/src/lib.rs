@@ -1,11 +1,13 @@
-//! The small scenes the tests compute on, each written once: a base, and each variant a test
-//! needs as the edits that make it from its base, so that what differs is in plain sight.
+//! The small scenes the tests compute on, each written once for every test crate (the command
+//! line's and the studies'): a base, and each variant a test needs as the edits that make it
+//! from its base, so that what differs is in plain sight.
 //!
 //! Three bases: [`ONE_IMPACT`] (scene text: coal on the paper's plate, one point, one
 //! velocity), [`ENSEMBLE`] (scene text: coal and gangue ensembles for `impact identify`) and
-//! [`coal_con1`] (the default scene cut down, as a [`Scene`]).
+//! [`coal_con1`] (the default scene cut down, as a [`Scene`]); and [`TINY_IDENTIFY`], the
+//! identification study's own ensemble.
 
-use impact::scene::{Analysis, Points, Scene, SceneSource};
+use scene::{Analysis, Points, Scene, SceneSource};
 
 /// `base` with the first `from` replaced by `to`. `from` must be there: an edit that no
 /// longer matches would otherwise leave the scene as it was and the test testing another.
@@ -183,6 +185,60 @@ pub fn small_ensemble() -> String {
         ],
     )
 }
+
+/// Twelve coal and twelve gangue spheres of spread size at low speed (elastic contacts) on
+/// Con 1, 16 modes over a 5 ms window, a named sensor at the centre, a 2 x 2 candidate grid,
+/// and size held in the variability study.
+pub const TINY_IDENTIFY: &str = r#"
+name = "tiny-identify"
+restitution = 0.65
+analyses = ["identify"]
+
+[plate]
+length_mm = 458.4
+width_mm = 360.0
+thickness_mm = 8.0
+youngs_modulus_gpa = 210.0
+poisson_ratio = 0.3
+density_kg_m3 = 7850.0
+
+[[conditions]]
+name = "Con 1"
+supports = "both-fixed"
+
+[signals]
+modes = 16
+window_ms = 5.0
+sensors_mm = [[229.2, 180.0]]
+
+[ensemble]
+seed = 5
+placement = { x_count = 2, z_count = 2 }
+hold = ["size"]
+velocity_m_per_s = { distribution = "uniform", min = 0.002, max = 0.008 }
+
+[[ensemble.families]]
+name = "coal"
+class = "coal"
+count = 12
+density_kg_m3 = 1380.0
+youngs_modulus_gpa = 2.26
+poisson_ratio = 0.28
+cohesion_mpa = 8.39
+friction_angle_deg = 25.0
+radius_mm = { distribution = "uniform", min = 15.0, max = 35.0 }
+
+[[ensemble.families]]
+name = "gangue"
+class = "gangue"
+count = 12
+density_kg_m3 = 2400.0
+youngs_modulus_gpa = 16.0
+poisson_ratio = 0.28
+cohesion_mpa = 37.68
+friction_angle_deg = 37.0
+radius_mm = { distribution = "uniform", min = 15.0, max = 35.0 }
+"#;
 
 // ---------------------------------------------------------------- the default scene cut down
 
