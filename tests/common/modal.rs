@@ -113,8 +113,11 @@ struct Struck<'a> {
     modes: &'a [(f64, f64)],
     mass: f64,
     k: f64,
-    /// Flores's 8(1 - e)/(5e) over the impact velocity v₀ (eqs. 1-2).
+    /// Flores's 8(1 - e)/(5e) (eqs. 1-2).
     damping: f64,
+    /// The approach velocity δ̇⁻ of the contact under way (Flores et al. scale each contact's
+    /// damping by its own): v₀ for the first, δ̇ at the located touch for a later one.
+    approach: std::cell::Cell<f64>,
 }
 
 impl Struck<'_> {
@@ -129,11 +132,11 @@ impl Struck<'_> {
         (y[0] - w, y[1] - wd)
     }
 
-    /// The Flores force P = Kδ^{3/2}(1 + 8(1-e)/(5e) δ̇/v₀), never negative, zero apart.
+    /// The Flores force P = Kδ^{3/2}(1 + 8(1-e)/(5e) δ̇/δ̇⁻), never negative, zero apart.
     fn force(&self, y: &[f64]) -> f64 {
         let (d, dd) = self.compression(y);
         if d > 0.0 {
-            (self.k * d * d.sqrt() * (1.0 + self.damping * dd)).max(0.0)
+            (self.k * d * d.sqrt() * (1.0 + self.damping * dd / self.approach.get())).max(0.0)
         } else {
             0.0
         }
@@ -180,7 +183,8 @@ pub fn impact(modes: &[(f64, f64)], ball: Ball, plate: Sheet, e: f64, v0: f64, d
         modes,
         mass: ball.0 * 4.0 / 3.0 * PI * ball.3.powi(3),
         k: super::reference::hertz_stiffness(ball, plate),
-        damping: 8.0 * (1.0 - e) / (5.0 * e) / v0,
+        damping: 8.0 * (1.0 - e) / (5.0 * e),
+        approach: std::cell::Cell::new(v0),
     };
     let mut y = vec![0.0; 2 + 2 * modes.len()];
     y[1] = v0;
@@ -206,7 +210,12 @@ pub fn impact(modes: &[(f64, f64)], ball: Ball, plate: Sheet, e: f64, v0: f64, d
         (t, y) = (t + h, next);
         let (d, _) = s.compression(&y);
         match (&mut open, d > 0.0) {
-            (None, true) => open = Some(Contact { start: t, end: t, peak_force: 0.0, compression_max: 0.0 }),
+            (None, true) => {
+                if !contacts.is_empty() {
+                    s.approach.set(s.compression(&y).1);
+                }
+                open = Some(Contact { start: t, end: t, peak_force: 0.0, compression_max: 0.0 });
+            }
             (Some(c), true) => {
                 c.peak_force = c.peak_force.max(s.force(&y));
                 c.compression_max = c.compression_max.max(d);
