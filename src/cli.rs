@@ -4,6 +4,7 @@
 use crate::written::Written;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use coupled::plan::ModelKind;
+use coupled::transient::chatter::MAIN_CONTACT_SHARE;
 use coupled::transient::{Discretisation, DEFAULT_TOLERANCE};
 use impact::present::rows::{narrow, NARROW};
 use impact::present::table::Table;
@@ -100,13 +101,20 @@ pub struct TransientArgs {
         limits::TRANSIENT_TOLERANCE
     ))]
     pub tolerance: Written,
+    #[arg(long, default_value_t = Written::from(MAIN_CONTACT_SHARE), value_name = "SHARE", help = format!(
+        "Share of the sphere's momentum m·v₀ a contact's impulse must reach to count as one of the impact's main contacts; the others are micro-contacts (chatter), counted with their total impulse (in {})",
+        limits::MAIN_CONTACT_SHARE
+    ))]
+    pub main_contact_share: Written,
 }
 
 impl TransientArgs {
-    /// The scene with this discretisation, or an error naming the flag.
+    /// The scene with this discretisation and contact split, or an error naming the flag.
     pub fn apply(&self, mut scene: Scene) -> Result<Scene, Failure> {
         let tolerance = self.tolerance.within("--tolerance", limits::TRANSIENT_TOLERANCE, "")?;
         scene.transient_discretisation = Discretisation::tolerance(tolerance);
+        scene.main_contact_share =
+            self.main_contact_share.within("--main-contact-share", limits::MAIN_CONTACT_SHARE, "")?;
         Ok(scene)
     }
 }

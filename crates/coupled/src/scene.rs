@@ -155,6 +155,10 @@ pub struct Scene {
     /// How the transient model is discretised: by default each case's mesh and step are
     /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.
     pub transient_discretisation: Discretisation,
+    /// The share of m·v₀ a contact's impulse must reach to count as one of the impact's main
+    /// contacts; the others are micro-contacts (chatter), counted with their total impulse
+    /// ([`crate::transient::chatter`]).
+    pub main_contact_share: f64,
 }
 
 impl Scene {

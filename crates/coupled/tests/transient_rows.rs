@@ -30,6 +30,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         signals: Default::default(),
         ensemble: None,
         transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
+        main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
     };
     let r = run_transient(&scene).unwrap();
     let v = r.responses[0].values().unwrap();
@@ -90,6 +91,7 @@ fn one_case(
         signals: Default::default(),
         ensemble: None,
         transient_discretisation: disc,
+        main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
     }
 }
 

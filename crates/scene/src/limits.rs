@@ -63,6 +63,9 @@ pub const POINT_COUNT: Range = Range::closed(2.0, crate::MAX_POINTS as f64);
 /// Relative error the transient model is asked for (`--tolerance`, Python's `tolerance`):
 /// below 1e-6 the ladder's budget cannot reach it, above 0.1 an estimate is no longer one.
 pub const TRANSIENT_TOLERANCE: Range = Range::closed(1e-6, 0.1);
+/// The share of m·v₀ a contact's impulse must reach to count as a main contact
+/// (`--main-contact-share`): 0 counts every contact, 1 none after a full stop.
+pub const MAIN_CONTACT_SHARE: Range = Range::closed(0.0, 1.0);
 /// Relative error at the plate centre for `impact fem-bench --tolerance`, as the mesh
 /// convergence study takes it.
 pub const FEM_BENCH_TOLERANCE: Range = Range::closed_open(1e-12, 1.0);

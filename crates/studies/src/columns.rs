@@ -239,6 +239,16 @@ fn transient_columns() -> Vec<Column<ResponseRow>> {
             _ => None,
         }),
         Column::new("contacts", "contacts", Kind::Count, |r| transient!(r, contacts).map(|n| Value::Count(n as u64))),
+        Column::new("main_contacts", "main contacts", Kind::Count, |r| {
+            transient!(r, main_contacts).map(|n| Value::Count(n as u64))
+        }),
+        Column::new("micro_contacts", "micro-contacts", Kind::Count, |r| {
+            transient!(r, micro_contacts).map(|n| Value::Count(n as u64))
+        }),
+        Column::new("micro_impulse_N_s", "micro impulse (N s)", Kind::Num, |r| opt(transient!(r, micro_impulse))),
+        Column::new("contact_count_changes", "count changes", Kind::Flag, |r| {
+            transient!(r, contact_count_changes)?.map(Value::Flag)
+        }),
         Column::new("total_impulse_N_s", "total impulse (N s)", Kind::Num, |r| opt(transient!(r, total_impulse))),
         Column::new("total_impulse_error_N_s", "total impulse error (N s)", Kind::Num, |r| {
             opt(transient!(r, total_impulse_error)?)

@@ -61,6 +61,16 @@ pub enum Evidence {
         met_tolerance: bool,
         /// Contacts until the sphere left for good (or the window ended).
         contacts: usize,
+        /// The impact's main contacts: those whose impulse is at least the scene's
+        /// `main_contact_share` of m·v₀ ([`crate::transient::chatter`]).
+        main_contacts: usize,
+        /// The others (chatter), whose number depends on the discretisation.
+        micro_contacts: usize,
+        /// Their total impulse, N·s.
+        micro_impulse: f64,
+        /// Whether the number of contacts differs between the error estimate's levels (None
+        /// without an estimate): the count is then not converged.
+        contact_count_changes: Option<bool>,
         /// The impulse of all of them, N·s.
         total_impulse: f64,
         /// Its estimated absolute error: for one contact that ended, v₀ times the

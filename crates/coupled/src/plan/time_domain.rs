@@ -52,7 +52,7 @@ pub fn transient_values(
         spring_ratio: m.springs / e0,
         sphere_kinetic_ratio: m.sphere_kinetic / e0,
         state_errors: errors.map(|e| state_errors(e, &springs, &weights, e0)),
-        evidence: transient_evidence(o, s, dt, errors),
+        evidence: transient_evidence(o, s, (dt, scene.main_contact_share), errors),
         validity: transient_validity(scene, o, s, delta, d_my, errors),
     }
 }
@@ -106,13 +106,16 @@ fn state_errors(e: &Estimated, springs: &SpringCorners, weights: &[f64; 4], e0: 
 
 /// How the transient values were found: the run's steps and contacts, its in-step maxima and
 /// the error estimates of `errors` when given.
-fn transient_evidence(o: &Outcome, s: &Striker, dt: f64, errors: Option<&Estimated>) -> Evidence {
+fn transient_evidence(o: &Outcome, s: &Striker, (dt, share): (f64, f64), errors: Option<&Estimated>) -> Evidence {
+    let all: Vec<_> = o.contacts.iter().chain(&o.unfinished_contact).copied().collect();
+    let split = crate::transient::chatter::split(&all, s.mass * s.velocity, share);
+    let sequence = errors.and_then(|e| e.sequence.as_ref());
     // One contact that ended: the rebound is the first contact's, -e v₀, so the final
     // velocity and the impulse m(v₀ - v_f) carry v₀ times the restitution's error. After
     // several contacts both come from the levels followed through every contact, where those
     // agree on the count.
     let single = o.contacts.len() == 1 && o.unfinished_contact.is_none() && o.left_at.is_some();
-    let end = errors.and_then(|e| e.sequence.as_ref()).and_then(|q| q.end_error);
+    let end = sequence.and_then(|q| q.end_error);
     let final_velocity_error = match errors {
         Some(e) if single => Some(s.velocity * e.error.restitution.abs()),
         _ => end.map(|e| e.final_velocity),
@@ -135,7 +138,11 @@ fn transient_evidence(o: &Outcome, s: &Striker, dt: f64, errors: Option<&Estimat
         relative_error: errors.map(|e| e.relative_error()),
         tolerance: errors.and_then(|e| e.tolerance),
         met_tolerance: errors.is_none_or(|e| e.met_tolerance),
-        contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
+        contacts: all.len(),
+        main_contacts: split.main,
+        micro_contacts: split.micro,
+        micro_impulse: split.micro_impulse,
+        contact_count_changes: errors.map(|_| sequence.is_some_and(|q| q.count_changes())),
         total_impulse: o.total_impulse,
         total_impulse_error,
         final_velocity: o.final_velocity,

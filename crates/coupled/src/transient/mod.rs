@@ -26,6 +26,7 @@
 //! ```
 
 pub mod case;
+pub mod chatter;
 pub mod contact;
 pub mod estimate;
 pub mod frames;

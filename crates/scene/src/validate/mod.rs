@@ -115,6 +115,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         transient_points,
         analyses,
         transient_discretisation: coupled::transient::Discretisation::default(),
+        main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
     })
 }
 
