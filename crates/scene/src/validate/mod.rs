@@ -72,6 +72,15 @@ pub(crate) fn count(field: &str, value: f64, allowed: Range) -> Result<usize, In
     Ok(v as usize)
 }
 
+/// A list entry that must be exactly two numbers (`shape` says which, "[x, z]"): serde's
+/// tuples read the first two of a longer TOML array and drop the rest without a word.
+pub(crate) fn pair(field: &str, v: &[f64], shape: &str) -> Result<(f64, f64), Invalid> {
+    match v {
+        [a, b] => Ok((*a, *b)),
+        _ => Err(other(field, format!("has {} numbers; give exactly two, {shape}", v.len()))),
+    }
+}
+
 /// Checks every field against its range, in the units of the file, then converts to SI.
 pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
