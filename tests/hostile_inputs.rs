@@ -148,3 +148,54 @@ fn nesting_deeper_than_any_scene_is_refused_not_a_crash() {
         assert!(Scene::parse(&text, "deep.toml").is_err());
     }
 }
+
+#[test]
+fn dynamic_refuses_scenes_without_cases_or_beyond_the_run_budget() {
+    let dir = tmp();
+    // No velocities: once a panic in the empty table's CSV.
+    let no_velocities = edit(ONE_IMPACT, "[velocities]\nm_per_s = [0.008]", "");
+    let no_velocities = edit(&no_velocities, "analyses = [\"responses\"]", "analyses = [\"yield-velocity\"]");
+    let scene = dir.write("no-velocities.toml", no_velocities);
+    let run = impact(["dynamic", "--scene"]).arg(&scene).arg("--out").arg(dir.join("a")).fails();
+    let err = &run.stderr;
+    assert!(err.contains("velocities.m_per_s has 0 velocities") && !err.contains("panicked"), "{err}");
+    // 5,000 points: refused like solve --model transient, before any work.
+    let many = edit(ONE_IMPACT, "[points]\npairs_mm = [[229.2, 180.0]]", "[points]\ncount = 5000");
+    let scene = dir.write("many.toml", many);
+    let run = impact(["dynamic", "--scene"]).arg(&scene).arg("--out").arg(dir.join("b")).fails();
+    let err = &run.stderr;
+    assert!(err.contains("50000 transient runs") && err.contains("[transient] pairs_mm"), "{err}");
+}
+
+#[test]
+fn loading_is_linear_in_the_number_of_names() {
+    // 8,000 support sets once took 9.7 s to load (each name compared with every earlier one).
+    let sets: String =
+        (0..8000).map(|i| format!("[[conditions]]\nname = \"set {i}\"\nsupports = \"both-fixed\"\n")).collect();
+    let text = edit(ONE_IMPACT, "[[conditions]]\nname = \"Con 1\"\nsupports = \"both-fixed\"\n", &sets);
+    let t0 = std::time::Instant::now();
+    let s = Scene::parse(&text, "many.toml").unwrap();
+    let seconds = t0.elapsed().as_secs_f64();
+    assert_eq!(s.conditions.len(), 8000);
+    assert!(seconds < 2.0, "8,000 support sets took {seconds:.2} s to load");
+    // A repeat far down the list is still found, naming both.
+    let repeated = edit(&text, "name = \"set 7999\"", "name = \"SET 12\"");
+    expect(&repeated, &["conditions[7999].name", "'SET 12' and 'set 12'"]);
+}
+
+#[test]
+fn signals_beyond_memory_are_refused_before_work() {
+    // 1e6 samples on 10 sensors is 272 MB an impact (within the scene's limit); ten
+    // velocities make 2.7 GB, refused by `impact signals` at once, naming the keys.
+    let sensors: Vec<String> = (0..10).map(|j| format!("[{}.0, 100.0]", 10 * j + 5)).collect();
+    let table = format!("window_ms = 100.0\nrate_hz = 1e7\nsensors_mm = [{}]", sensors.join(", "));
+    let velocities = "m_per_s = [0.001, 0.002, 0.003, 0.004, 0.005, 0.006, 0.007, 0.008, 0.009, 0.01]";
+    let text = edit(&signals(&table), "m_per_s = [0.008]", velocities);
+    let dir = tmp();
+    let scene = dir.write("big.toml", text);
+    let t0 = std::time::Instant::now();
+    let run = impact(["signals", "--scene"]).arg(&scene).arg("--out").arg(dir.join("out")).fails();
+    assert!(run.stderr.contains("signals.window_ms x signals.rate_hz and signals.sensors_mm"), "{}", run.stderr);
+    assert!(run.stderr.contains("10 impacts x 34 channels x 1000000 samples"), "{}", run.stderr);
+    assert!(t0.elapsed().as_secs_f64() < 30.0, "refused only after work");
+}

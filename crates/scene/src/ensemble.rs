@@ -242,10 +242,10 @@ fn families(raw: &[RawFamily]) -> Result<Vec<Family>, Invalid> {
     }
     let mut families: Vec<Family> = Vec::with_capacity(raw.len());
     let mut total = 0usize;
+    let mut names = super::validate::Names::new();
     for (i, f) in raw.iter().enumerate() {
         let key = |k: &str| format!("ensemble.families[{i}].{k}");
-        let earlier: Vec<&str> = families.iter().map(|f| f.name.as_str()).collect();
-        super::check_name(key("name"), &f.name, &earlier)?;
+        super::check_name(key("name"), &f.name, &mut names)?;
         let class = match f.class.as_str() {
             "coal" => Class::Coal,
             "gangue" => Class::Gangue,
