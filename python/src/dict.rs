@@ -66,7 +66,7 @@ fn refused(path: &str, v: &Bound<'_, PyAny>, what: &str) -> PyErr {
 
 impl<'py> Dict<'py> {
     /// `v` as TOML; `path` names it in errors.
-    pub fn to_toml(&mut self, v: &Bound<'py, PyAny>, path: &str) -> PyResult<toml::Value> {
+    pub fn convert(&mut self, v: &Bound<'py, PyAny>, path: &str) -> PyResult<toml::Value> {
         if v.is_none() {
             return Err(dict_error(path, format!("{path} is None; leave the key out to take its default"), None));
         }
@@ -135,7 +135,7 @@ impl<'py> Dict<'py> {
                     dict_error(at, format!("{at} has a key {key} that is not a str"), Some("str keys".into()))
                 })?;
                 let child = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
-                let value = self.to_toml(&item, &child)?;
+                let value = self.convert(&item, &child)?;
                 table.insert(key, value);
             }
             return Ok(toml::Value::Table(table));
@@ -148,7 +148,7 @@ impl<'py> Dict<'py> {
         if let Some(items) = items {
             let mut out = Vec::with_capacity(items.len());
             for (i, item) in items.iter().enumerate() {
-                out.push(self.to_toml(item, &format!("{path}[{i}]"))?);
+                out.push(self.convert(item, &format!("{path}[{i}]"))?);
             }
             return Ok(toml::Value::Array(out));
         }
@@ -157,16 +157,16 @@ impl<'py> Dict<'py> {
         }
         // numpy arrays (and any array-like): their Python lists, checked as everything else.
         if v.hasattr("tolist")? {
-            return self.to_toml(&v.call_method0("tolist")?, path);
+            return self.convert(&v.call_method0("tolist")?, path);
         }
         if let Ok(i) = v.call_method0("__index__") {
-            return self.to_toml(&i, path);
+            return self.convert(&i, path);
         }
         if v.is_instance_of::<pyo3::types::PyComplex>() {
             return Err(refused(path, v, "a complex number"));
         }
         if let Ok(f) = v.call_method0("__float__") {
-            return self.to_toml(&f, path);
+            return self.convert(&f, path);
         }
         Err(refused(path, v, "a value"))
     }
@@ -177,7 +177,7 @@ impl<'py> Dict<'py> {
     fn numpy_scalar(&mut self, v: &Bound<'py, PyAny>, kind: &str, path: &str) -> PyResult<toml::Value> {
         match kind {
             "b" => Ok(toml::Value::Boolean(v.is_truthy()?)),
-            "i" | "u" => self.to_toml(&v.call_method0("__index__")?, path),
+            "i" | "u" => self.convert(&v.call_method0("__index__")?, path),
             "f" => {
                 let f: f64 = v.call_method0("__float__")?.extract()?;
                 let finite_before = v.call_method0("__abs__")?.lt(f64::INFINITY)?;
@@ -187,7 +187,7 @@ impl<'py> Dict<'py> {
                 }
                 Ok(toml::Value::Float(f))
             }
-            "U" => self.to_toml(&v.str()?.into_any(), path),
+            "U" => self.convert(&v.str()?.into_any(), path),
             "c" => Err(refused(path, v, "a complex number")),
             _ => Err(refused(path, v, "a numpy value")),
         }

@@ -156,7 +156,7 @@ impl Scene {
     #[pyo3(signature = (d, origin = "<dict>".to_string()))]
     fn from_dict(d: &Bound<'_, PyDict>, origin: String) -> PyResult<Self> {
         let mut dict = Dict::default();
-        let toml::Value::Table(table) = dict.to_toml(d.as_any(), "")? else {
+        let toml::Value::Table(table) = dict.convert(d.as_any(), "")? else {
             return Err(PyTypeError::new_err("scene dict: not a dict"));
         };
         let emitted = Emitted::document(&table);
