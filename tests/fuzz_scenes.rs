@@ -90,7 +90,7 @@ const PROPS_SET: &str = "[conditions.edges]          # left x = 0, right x = L, 
 /// Hand-written hostile scenes: the refusal must contain every needle; None: accepted, and
 /// computed inside the invariants.
 fn corpus() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
-    [numbers(), names_and_keys(), points_and_analyses(), supports()].concat()
+    [numbers(), names_and_keys(), points_and_analyses(), supports(), ensembles_and_signals()].concat()
 }
 
 /// Numbers: NaN, inf, denormals, each range's ends and just past them, wrong types.
@@ -288,6 +288,80 @@ fn points_and_analyses() -> Vec<(&'static str, String, Option<Vec<&'static str>>
     ]
 }
 
+/// `[signals]` and `[ensemble]`: a pair of three numbers, sensors of one label, windows of a
+/// sample, signals beyond memory, degenerate laws; every refusal names its key.
+fn ensembles_and_signals() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
+    use common::scenes::ENSEMBLE;
+    let signals = |t: &str| format!("{DEFAULT_SCENE}\n[signals]\n{t}\n");
+    let radius = "radius_mm = { distribution = \"lognormal\", median = 25.0, sigma_log = 0.2, min = 15.0, max = 40.0 }";
+    let law = |l: &str| edit(ENSEMBLE, radius, &format!("radius_mm = {{ {l} }}"));
+    let sensors64: Vec<String> = (0..64).map(|j| format!("[{}.0, 100.0]", 2 * j + 1)).collect();
+    vec![
+        (
+            "sensor of three numbers",
+            signals("sensors_mm = [[1.0, 2.0, 3.0]]"),
+            Some(vec!["signals.sensors_mm[0]", "3 numbers"]),
+        ),
+        (
+            "sensors 0.04 mm apart",
+            signals("sensors_mm = [[229.2, 180.0], [229.24, 180.0]]"),
+            Some(vec!["signals.sensors_mm[1]", "0.1 mm"]),
+        ),
+        (
+            "one-sample window",
+            signals("window_ms = 0.1\nrate_hz = 10000.0"),
+            Some(vec!["signals.window_ms and signals.rate_hz", "at least 16"]),
+        ),
+        (
+            "window below a sample",
+            signals("window_ms = 0.1\nrate_hz = 100.0"),
+            Some(vec!["signals.window_ms and signals.rate_hz"]),
+        ),
+        (
+            "1e6 samples on 64 sensors",
+            signals(&format!("window_ms = 100.0\nrate_hz = 1e7\nsensors_mm = [{}]", sensors64.join(", "))),
+            Some(vec!["signals.window_ms, signals.rate_hz and signals.sensors_mm", "MB"]),
+        ),
+        (
+            "denormal sd",
+            law("distribution = \"normal\", mean = 25.0, sd = 5e-324, min = 15.0, max = 40.0"),
+            Some(vec!["ensemble.families[0].radius_mm.sd = 5e-324"]),
+        ),
+        (
+            "denormal lognormal median",
+            law("distribution = \"lognormal\", median = 5e-324, sigma_log = 0.3, min = 15.0, max = 40.0"),
+            Some(vec!["ensemble.families[0].radius_mm.median = 5e-324"]),
+        ),
+        (
+            "denormal Rosin-Rammler scale",
+            law("distribution = \"rosin-rammler\", scale = 5e-324, shape = 1.5, min = 15.0, max = 40.0"),
+            Some(vec!["radius_mm.scale = 5e-324"]),
+        ),
+        (
+            "NaN sd",
+            law("distribution = \"normal\", mean = 25.0, sd = nan, min = 15.0, max = 40.0"),
+            Some(vec!["radius_mm.sd = NaN"]),
+        ),
+        ("inverted bounds", law("distribution = \"uniform\", min = 40.0, max = 15.0"), Some(vec!["radius_mm.max"])),
+        (
+            "unknown law key",
+            law("distribution = \"uniform\", min = 15.0, max = 40.0, mode = 20.0"),
+            Some(vec!["radius_mm.mode"]),
+        ),
+        ("empty choice", law("distribution = \"choice\", values = []"), Some(vec!["radius_mm.values"])),
+        (
+            "region of three numbers",
+            edit(ENSEMBLE, "seed = 11", "seed = 11\nregion = { x_mm = [0.0, 1.0, 2.0], z_mm = [0.0, 1.0] }"),
+            Some(vec!["ensemble.region.x_mm", "3 numbers"]),
+        ),
+        (
+            "identify without an ensemble",
+            ENSEMBLE[..ENSEMBLE.find("[ensemble]").unwrap()].to_string(),
+            Some(vec!["ensemble"]),
+        ),
+    ]
+}
+
 /// Support sets: presets, edges, corners and props, singular ones included; text that is not TOML.
 fn supports() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
     vec![
@@ -299,6 +373,11 @@ fn supports() -> Vec<(&'static str, String, Option<Vec<&'static str>>)> {
             Some(vec!["conditions[0]"]),
         ),
         ("the clamped edge and props scene", PROPS_SCENE.to_string(), None),
+        (
+            "unknown key in a corner spring",
+            edit(PROPS_SCENE, "right_near = { spring_n_per_m = 1e6 }", "right_near = { spring_n_per_m = 1e6, damping = 1.0 }"),
+            Some(vec!["conditions[1].corners.right_near.damping"]),
+        ),
         (
             "a single fixed corner (singular)",
             edit(PROPS_SCENE, PROPS_SET, "[conditions.corners]\nleft_near = \"fixed\""),

@@ -51,7 +51,7 @@ except ImportError as e:  # the source tree's python/impact, not the installed p
         "impact's extension module impact._impact is not built here: install the package with "
         "`pip install ./python` and import it from outside the python/ directory"
     ) from e
-from ._impact import ModelError, Scene, SceneError
+from ._impact import ModelError, Scene, SceneError, SceneTypeError
 
 __all__ = [
     "Columns",
@@ -60,6 +60,7 @@ __all__ = [
     "Results",
     "Scene",
     "SceneError",
+    "SceneTypeError",
     "TRANSIENT_TOLERANCE",
     "Transient",
     "ensemble_size",

@@ -22,6 +22,10 @@ class SceneError(ValueError):
     high: float | None
     unit: str | None
 
+class SceneTypeError(SceneError, TypeError):
+    """A scene dict's value of a type no scene holds (a complex number, a numpy datetime, an
+    arbitrary object): a ``SceneError`` naming the field, and a ``TypeError``."""
+
 class ModelError(RuntimeError):
     """A model that could not answer (budget exceeded, solver not converged)."""
 

@@ -27,6 +27,42 @@ pyo3::create_exception!(
      a solver that did not converge. The message says which."
 );
 
+/// `SceneTypeError`: a scene dict's value of a type no scene holds (a complex number, a
+/// numpy datetime, an arbitrary object). Both a `SceneError`, as every other problem of a
+/// scene dict, and a `TypeError`, as Python reports a value of the wrong type; made once
+/// with `type()` because an exception class of two bases cannot be declared here.
+pub fn scene_type_error(py: Python<'_>) -> PyResult<Bound<'_, pyo3::types::PyType>> {
+    static TYPE: pyo3::sync::PyOnceLock<Py<pyo3::types::PyType>> = pyo3::sync::PyOnceLock::new();
+    TYPE.get_or_try_init(py, || {
+        let bases = (py.get_type::<SceneError>(), py.get_type::<pyo3::exceptions::PyTypeError>());
+        let namespace = pyo3::types::PyDict::new(py);
+        namespace.set_item("__module__", "impact")?;
+        namespace
+            .set_item("__doc__", "A scene dict's value of a type no scene holds: a SceneError and a TypeError.")?;
+        let made = py.get_type::<pyo3::types::PyType>().call1(("SceneTypeError", bases, namespace))?;
+        Ok::<_, PyErr>(made.cast_into::<pyo3::types::PyType>()?.unbind())
+    })
+    .map(|t| t.bind(py).clone())
+}
+
+/// A scene dict's value at `field` of a type no scene holds, as a `SceneTypeError` with
+/// `field` and `allowed` set.
+pub fn field_type_error(origin: &str, field: &str, message: String, allowed: &str) -> PyErr {
+    Python::attach(|py| {
+        let err = match scene_type_error(py) {
+            Ok(t) => PyErr::from_type(t, format!("scene {origin}: {message}")),
+            Err(e) => return e,
+        };
+        let d = Details {
+            origin: Some(origin.to_string()),
+            field: Some(field.to_string()),
+            allowed: Some(allowed.to_string()),
+            ..Details::default()
+        };
+        with_details(err, d)
+    })
+}
+
 /// Fields of a `SceneError`, each None where the error has no such thing.
 #[derive(Default)]
 struct Details {

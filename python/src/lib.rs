@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 mod columns;
+mod dict;
 mod errors;
 mod identify;
 mod scene;
@@ -194,6 +195,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add("SceneError", py.get_type::<errors::SceneError>())?;
     m.add("ModelError", py.get_type::<errors::ModelError>())?;
+    m.add("SceneTypeError", errors::scene_type_error(py)?)?;
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(transient, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;

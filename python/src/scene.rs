@@ -2,11 +2,12 @@
 //! and read by the same parser and validation as a scene file (the `scene` crate), so every
 //! rule and every error message is the command line's.
 
-use crate::errors::{field_error, overflow_error, scene_error};
+use crate::dict::{dict_error, Dict};
+use crate::errors::{overflow_error, scene_error};
 use ::scene::{Scene as Validated, SceneError as Invalid, SceneSource, DEFAULT_ORIGIN, DEFAULT_SCENE};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::PyDict;
 use std::path::PathBuf;
 
 /// A validated scene (SI units inside): the plate, the bodies, the support sets, the impact
@@ -33,96 +34,6 @@ impl Scene {
         let scene = Validated::parse(&text, &origin).map_err(|e| scene_error(&e))?;
         Ok(Self { scene, text, origin })
     }
-}
-
-/// Where a scene dict's values came from, to name the field the user wrote in an error.
-#[derive(Default)]
-struct Dict {
-    /// Integers beyond a float's range, written into the TOML as ±inf so that the range check
-    /// of their field names it: (path, the value in short form, the Python object).
-    overflowed: Vec<(String, String, Py<PyAny>)>,
-}
-
-/// A scene dict's problem, naming the field as the user wrote it (`plate.length_mm`,
-/// `bodies[1].radius_mm`).
-fn dict_error(path: &str, message: String, allowed: Option<String>) -> PyErr {
-    field_error("<dict>", path, message, allowed)
-}
-
-/// `n` (a Python int) in short scientific form: "1e400", "-1.2345e400".
-fn short_int(n: &Bound<'_, PyAny>) -> String {
-    let text = n.str().map_or_else(|_| "?".into(), |t| t.to_string());
-    let (sign, digits) = text.strip_prefix('-').map_or(("", text.as_str()), |d| ("-", d));
-    let tail = digits.get(1..6).unwrap_or("").trim_end_matches('0');
-    let dot = if tail.is_empty() { String::new() } else { format!(".{tail}") };
-    format!("{sign}{}{dot}e{}", &digits[..1.min(digits.len())], digits.len().saturating_sub(1))
-}
-
-/// A Python value as TOML; `path` names it in errors.
-fn to_toml(v: &Bound<'_, PyAny>, path: &str, dict: &mut Dict) -> PyResult<toml::Value> {
-    if v.is_none() {
-        return Err(dict_error(path, format!("{path} is None; leave the key out to take its default"), None));
-    }
-    if v.is_instance_of::<PyBool>() {
-        return Ok(toml::Value::Boolean(v.extract()?));
-    }
-    if v.is_instance_of::<PyInt>() {
-        if let Ok(i) = v.extract::<i64>() {
-            return Ok(toml::Value::Integer(i));
-        }
-        // Beyond 64 bits: as a float, so that the range check names it; beyond a float, as
-        // ±inf, and the value as written goes back into the message.
-        if let Ok(f) = v.extract::<f64>() {
-            return Ok(toml::Value::Float(f));
-        }
-        let negative = v.lt(0).unwrap_or(false);
-        dict.overflowed.push((path.to_string(), short_int(v), v.clone().unbind()));
-        return Ok(toml::Value::Float(if negative { f64::NEG_INFINITY } else { f64::INFINITY }));
-    }
-    if v.is_instance_of::<PyFloat>() {
-        return Ok(toml::Value::Float(v.extract()?));
-    }
-    if v.is_instance_of::<PyString>() {
-        return Ok(toml::Value::String(v.extract()?));
-    }
-    if let Ok(d) = v.cast::<PyDict>() {
-        let mut table = toml::Table::new();
-        for (k, item) in d.iter() {
-            let key: String = k.extract().map_err(|_| {
-                let shown = k.repr().map_or_else(|_| "?".into(), |r| r.to_string());
-                let at = if path.is_empty() { "the scene" } else { path };
-                dict_error(at, format!("{at} has a key {shown} that is not a str"), Some("str keys".into()))
-            })?;
-            let child = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
-            table.insert(key, to_toml(&item, &child, dict)?);
-        }
-        return Ok(toml::Value::Table(table));
-    }
-    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
-        let items: Vec<Bound<'_, PyAny>> = v.try_iter()?.collect::<PyResult<_>>()?;
-        return items
-            .iter()
-            .enumerate()
-            .map(|(i, item)| to_toml(item, &format!("{path}[{i}]"), dict))
-            .collect::<PyResult<Vec<_>>>()
-            .map(toml::Value::Array);
-    }
-    // numpy scalars and arrays: their Python equivalents.
-    if v.hasattr("tolist")? {
-        return to_toml(&v.call_method0("tolist")?, path, dict);
-    }
-    if let Ok(i) = v.call_method0("__index__") {
-        return to_toml(&i, path, dict);
-    }
-    if let Ok(f) = v.call_method0("__float__") {
-        return to_toml(&f, path, dict);
-    }
-    let type_name = v.get_type().name().map_or_else(|_| "?".into(), |n| n.to_string());
-    Err(dict_error(
-        path,
-        format!("{path} is of type {type_name}; a scene holds numbers, strings, booleans, lists and dicts"),
-        Some("a number, string, boolean, list or dict".into()),
-    ))
 }
 
 /// TOML text of a scene dict, and where in it each key and value the user wrote lies: one
@@ -245,7 +156,7 @@ impl Scene {
     #[pyo3(signature = (d, origin = "<dict>".to_string()))]
     fn from_dict(d: &Bound<'_, PyDict>, origin: String) -> PyResult<Self> {
         let mut dict = Dict::default();
-        let toml::Value::Table(table) = to_toml(d.as_any(), "", &mut dict)? else {
+        let toml::Value::Table(table) = dict.convert(d.as_any(), "")? else {
             return Err(PyTypeError::new_err("scene dict: not a dict"));
         };
         let emitted = Emitted::document(&table);

@@ -95,6 +95,12 @@ pub enum InvalidDistribution {
     },
 }
 
+/// Smallest spread or location (sd, median, scale) of a law, as a fraction of its bounds'
+/// magnitude max(|min|, |max|): a spread of 1e-12 of the value is still far above double
+/// precision's 2e-16, so the law draws distinct values, and it stays a normal number through
+/// any change of unit the scene makes (mm to m, GPa to Pa).
+pub const RELATIVE_FLOOR: f64 = 1e-12;
+
 /// Largest number of values of a [`Distribution::Choice`].
 pub const MAX_CHOICES: usize = 1000;
 
@@ -117,7 +123,20 @@ impl Distribution {
             }
             Ok(())
         };
-        let positive = Range::open(0.0, f64::MAX);
+        // A spread or location parameter below this fraction of the bounds' magnitude makes
+        // no law double precision can draw from: (min - mean)/sd overflows, and after a change
+        // of unit (mm to m) a denormal sd or scale becomes 0 and the quantile NaN.
+        let floor = |min: f64, max: f64| match RELATIVE_FLOOR * min.abs().max(max.abs()) {
+            f if f > 0.0 => Range::closed(f, f64::MAX),
+            _ => Range::open(0.0, f64::MAX),
+        };
+        if let Some((min, max)) = self.continuous_bounds() {
+            bounds(min, max)?;
+            // Bounds that meet leave one value: a point law, whatever the other parameters say.
+            if min == max {
+                return Ok(Distribution::Fixed { value: min });
+            }
+        }
         match &self {
             Distribution::Fixed { value } => {
                 check("value", *value, allowed, unit)?;
@@ -125,13 +144,13 @@ impl Distribution {
             Distribution::Uniform { min, max } => bounds(*min, *max)?,
             Distribution::Normal { mean, sd, min, max } => {
                 check("mean", *mean, Range::open(-f64::MAX, f64::MAX), unit)?;
-                check("sd", *sd, positive, unit)?;
                 bounds(*min, *max)?;
+                check("sd", *sd, floor(*min, *max), unit)?;
             }
             Distribution::LogNormal { median, sigma_log, min, max } => {
-                check("median", *median, positive, unit)?;
                 check("sigma_log", *sigma_log, Range::closed(1e-6, 10.0), "")?;
                 bounds(*min, *max)?;
+                check("median", *median, floor(*min, *max), unit)?;
                 if *min <= 0.0 {
                     return Err(InvalidDistribution::Inconsistent {
                         parameter: "min",
@@ -140,9 +159,9 @@ impl Distribution {
                 }
             }
             Distribution::RosinRammler { scale, shape, min, max } => {
-                check("scale", *scale, positive, unit)?;
                 check("shape", *shape, Range::closed(0.1, 100.0), "")?;
                 bounds(*min, *max)?;
+                check("scale", *scale, floor(*min, *max), unit)?;
                 if *min < 0.0 {
                     return Err(InvalidDistribution::Inconsistent {
                         parameter: "min",
@@ -171,6 +190,43 @@ impl Distribution {
             }
         }
         Ok(self)
+    }
+
+    /// The truncation bounds of the laws that have them.
+    fn continuous_bounds(&self) -> Option<(f64, f64)> {
+        match self {
+            Distribution::Normal { min, max, .. }
+            | Distribution::LogNormal { min, max, .. }
+            | Distribution::RosinRammler { min, max, .. } => Some((*min, *max)),
+            _ => None,
+        }
+    }
+
+    /// Whether every parameter is finite, every spread and location a positive normal number
+    /// and the quantile finite inside the bounds: a law checked in one unit may not survive
+    /// its conversion to SI (a denormal scale in mm is 0 in m).
+    pub fn is_drawable(&self) -> bool {
+        let normal = |v: f64| v.is_normal() && v > 0.0;
+        let params_ok = match *self {
+            Distribution::Fixed { value } => value.is_finite(),
+            Distribution::Uniform { min, max } => min.is_finite() && max.is_finite(),
+            Distribution::Normal { mean, sd, min, max } => {
+                mean.is_finite() && normal(sd) && min.is_finite() && max.is_finite()
+            }
+            Distribution::LogNormal { median, sigma_log, min, max } => {
+                normal(median) && normal(sigma_log) && normal(min) && max.is_finite()
+            }
+            Distribution::RosinRammler { scale, shape, min, max } => {
+                normal(scale) && normal(shape) && min.is_finite() && max.is_finite()
+            }
+            Distribution::Choice { ref values } => !values.is_empty() && values.iter().all(|v| v.is_finite()),
+        };
+        let Some((lo, hi)) = self.bounds() else { return params_ok };
+        params_ok
+            && [0.0, 1e-12, 0.25, 0.5, 0.75, 1.0 - 1e-12, 1.0].iter().all(|&u| {
+                let x = self.quantile_unclamped(u);
+                x.is_finite() && x >= lo && x <= hi
+            })
     }
 
     /// The same law for the variable multiplied by `factor` > 0 (a change of unit).
@@ -239,8 +295,19 @@ impl Distribution {
     /// The inverse distribution function F⁻¹(u) of the (truncated) law, u in (0, 1): the
     /// value whose probability of not being exceeded is u.
     pub fn quantile(&self, u: f64) -> f64 {
-        let u = u.clamp(0.0, 1.0);
-        let clamp = |x: f64, min: f64, max: f64| x.clamp(min, max);
+        let x = self.quantile_unclamped(u);
+        match self.bounds() {
+            // max/min rather than clamp: never a panic, whatever a law that was not checked holds.
+            Some((lo, hi)) if lo <= hi => x.max(lo).min(hi),
+            _ => x,
+        }
+    }
+
+    /// F⁻¹(u) as computed, NaN where the parameters make no law; the clamp to the bounds only
+    /// absorbs rounding.
+    fn quantile_unclamped(&self, u: f64) -> f64 {
+        let u = if u.is_nan() { 0.5 } else { u.clamp(0.0, 1.0) };
+        let clamp = |x: f64, min: f64, max: f64| if x.is_nan() { x } else { x.max(min).min(max) };
         match self {
             Distribution::Fixed { value } => *value,
             Distribution::Uniform { min, max } => min + u * (max - min),
@@ -340,11 +407,18 @@ pub fn phi_inverse(p: f64) -> f64 {
 /// Φ⁻¹ of the standard normal truncated to [a, b] at u: Φ⁻¹(Φ(a) + u(Φ(b) - Φ(a))),
 /// evaluated in the lower tail (reflected when a ≥ 0) where Φ keeps its relative precision.
 fn truncated_standard_normal(a: f64, b: f64, u: f64) -> f64 {
-    if a >= 0.0 {
+    // Strictly positive: at a = b = 0 the reflection is [-0, -0], and `-0.0 >= 0.0` would
+    // reflect it back for ever.
+    if a > 0.0 {
         return -truncated_standard_normal(-b, -a, 1.0 - u);
     }
     let (pa, pb) = (phi(a), phi(b));
-    phi_inverse(pa + u * (pb - pa)).clamp(a, b)
+    let x = phi_inverse(pa + u * (pb - pa));
+    if x.is_nan() {
+        x
+    } else {
+        x.max(a).min(b)
+    }
 }
 
 #[cfg(test)]
@@ -415,6 +489,26 @@ mod tests {
         let t = Distribution::Normal { mean: 0.0, sd: 1.0, min: 8.0, max: 9.0 };
         let q: Vec<f64> = (1..10).map(|k| t.quantile(k as f64 / 10.0)).collect();
         assert!(q.windows(2).all(|w| w[0] < w[1]) && q[0] > 8.0 && q[8] < 9.0, "{q:?}");
+    }
+
+    #[test]
+    fn degenerate_laws_never_panic_or_recurse() {
+        // Bounds at the mean: the truncated normal on [0, 0] once reflected itself for ever.
+        let n = Distribution::Normal { mean: 1.0, sd: 1.0, min: 1.0, max: 1.0 };
+        assert_eq!(n.quantile(0.3), 1.0);
+        assert_eq!(n.clone().checked(Range::closed(0.0, 2.0), "").unwrap(), Distribution::Fixed { value: 1.0 });
+        // A spread scaled to 0 (or NaN parameters): a NaN or a bound, never a panic in clamp.
+        let z = Distribution::Normal { mean: 10.0, sd: 0.0, min: 10.0, max: 60.0 };
+        assert!(!z.is_drawable());
+        let _ = z.quantile(0.5);
+        let nan = Distribution::Normal { mean: f64::NAN, sd: f64::NAN, min: f64::NAN, max: f64::NAN };
+        let _ = nan.quantile(f64::NAN);
+        assert!(!nan.is_drawable());
+        // Below the relative floor: refused naming sd.
+        let e = Distribution::Normal { mean: 25.0, sd: 5e-324, min: 15.0, max: 40.0 }
+            .checked(Range::closed(1e-3, 1e4), "mm")
+            .unwrap_err();
+        assert!(e.to_string().starts_with("sd = 5e-324 is outside the allowed range [4e-11, "), "{e}");
     }
 
     #[test]

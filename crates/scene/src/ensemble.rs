@@ -52,8 +52,8 @@ pub(super) struct RawEnsemble {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawRegion {
-    x_mm: (f64, f64),
-    z_mm: (f64, f64),
+    x_mm: Vec<f64>,
+    z_mm: Vec<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -117,7 +117,14 @@ fn distribution(
         }
         InvalidDistribution::Inconsistent { parameter, message } => other(format!("{field}.{parameter}"), message),
     })?;
-    Ok(checked.scaled(to_si))
+    let si = checked.scaled(to_si);
+    if !si.is_drawable() {
+        return Err(other(
+            field,
+            format!("{v} gives no finite draws between its bounds once converted to SI units; widen its spread or move its location toward the bounds"),
+        ));
+    }
+    Ok(si)
 }
 
 /// A `{ distribution = "...", ... }` table: a law of [`LAWS`] with exactly its parameters.
@@ -215,10 +222,12 @@ fn region(raw: Option<&RawRegion>, length_mm: f64, width_mm: f64) -> Result<Regi
     };
     let along = Range::closed(0.0, length_mm);
     let across = Range::closed(0.0, width_mm);
-    let x0 = check("ensemble.region.x_mm[0]", r.x_mm.0, along, "mm")?;
-    let x1 = check("ensemble.region.x_mm[1]", r.x_mm.1, along, "mm")?;
-    let z0 = check("ensemble.region.z_mm[0]", r.z_mm.0, across, "mm")?;
-    let z1 = check("ensemble.region.z_mm[1]", r.z_mm.1, across, "mm")?;
+    let (x0, x1) = super::pair("ensemble.region.x_mm", &r.x_mm, "[low, high]")?;
+    let (z0, z1) = super::pair("ensemble.region.z_mm", &r.z_mm, "[low, high]")?;
+    let x0 = check("ensemble.region.x_mm[0]", x0, along, "mm")?;
+    let x1 = check("ensemble.region.x_mm[1]", x1, along, "mm")?;
+    let z0 = check("ensemble.region.z_mm[0]", z0, across, "mm")?;
+    let z1 = check("ensemble.region.z_mm[1]", z1, across, "mm")?;
     if x0 > x1 || z0 > z1 {
         return Err(other("ensemble.region", "give each side as [low, high] with low ≤ high"));
     }
@@ -233,10 +242,10 @@ fn families(raw: &[RawFamily]) -> Result<Vec<Family>, Invalid> {
     }
     let mut families: Vec<Family> = Vec::with_capacity(raw.len());
     let mut total = 0usize;
+    let mut names = super::validate::Names::new();
     for (i, f) in raw.iter().enumerate() {
         let key = |k: &str| format!("ensemble.families[{i}].{k}");
-        let earlier: Vec<&str> = families.iter().map(|f| f.name.as_str()).collect();
-        super::check_name(key("name"), &f.name, &earlier)?;
+        super::check_name(key("name"), &f.name, &mut names)?;
         let class = match f.class.as_str() {
             "coal" => Class::Coal,
             "gangue" => Class::Gangue,

@@ -9,7 +9,7 @@ pub use coupled::scene::{even_points, Analysis, Points, Scene};
 pub use coupled::SupportSet;
 use raw::*;
 use std::path::Path;
-use validate::{check_name, count, other, validate, Invalid};
+use validate::{check_name, count, other, pair, validate, Invalid};
 
 mod ensemble;
 pub mod limits;
@@ -110,6 +110,27 @@ impl SceneSource for Scene {
             }
         })
     }
+}
+
+/// A length in metres as millimetres with one decimal, the trailing ".0" dropped: how a
+/// sensor's position names its channels (report rankings, CSV fields, Python columns).
+pub fn mm_label(v: f64) -> String {
+    let t = format!("{:.1}", v * 1e3);
+    t.strip_suffix(".0").map_or(t.clone(), str::to_string)
+}
+
+/// The first sensor (by index) whose label, (x, z) at [`mm_label`]'s 0.1 mm, is an earlier
+/// sensor's: `(earlier, later, label)`. Two such sensors would share every column name.
+pub fn sensor_label_clash(sensors: &[(f64, f64)]) -> Option<(usize, usize, String)> {
+    let mut seen = std::collections::HashMap::new();
+    for (j, &(x, z)) in sensors.iter().enumerate() {
+        let label = format!("({}, {}) mm", mm_label(x), mm_label(z));
+        if let Some(&i) = seen.get(&label) {
+            return Some((i, j, label));
+        }
+        seen.insert(label, j);
+    }
+    None
 }
 
 /// The file-name stem of a display name: lower-case ASCII letters and digits, every other run

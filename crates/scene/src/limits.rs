@@ -41,6 +41,14 @@ pub const SIGNAL_WINDOW_MS: Range = Range::closed(0.1, 1000.0);
 pub const SAMPLE_RATE_HZ: Range = Range::closed(100.0, 1e7);
 /// Most samples per channel of one impact (8 MB a channel).
 pub const MAX_SAMPLES: f64 = 1e6;
+/// Fewest samples per channel: the spectral features (the dominant frequency, refined on a
+/// bin and its two neighbours above DC, and the spectral centroid) need a spectrum of more
+/// than a few bins; a window of one or two samples passes every check and says nothing.
+pub const MIN_SAMPLES: f64 = 16.0;
+/// Largest memory of one impact's signals, bytes (samples x channels x 8; three channels a
+/// sensor and one a supported corner): 1e6 samples on 64 sensors would be 1.5 GB an impact,
+/// held by every worker thread at once.
+pub const MAX_IMPACT_SIGNAL_BYTES: f64 = 512.0 * 1024.0 * 1024.0;
 /// Most modes of the reduced model: the transient model's 20-element mesh has at least
 /// 1100 free DOFs on any support set of a plate of aspect ratio up to 1.3, and a mode
 /// count near the DOF count is no longer a reduced model.

@@ -42,14 +42,14 @@ pub(crate) struct RawSignals {
     pub(crate) rate_hz: Option<f64>,
     pub(crate) damping_ratio: Option<f64>,
     pub(crate) modes: Option<f64>,
-    pub(crate) sensors_mm: Option<Vec<(f64, f64)>>,
+    pub(crate) sensors_mm: Option<Vec<Vec<f64>>>,
 }
 
 /// Where the transient study strikes, if not at the scene's points.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawTransient {
-    pub(crate) pairs_mm: Vec<(f64, f64)>,
+    pub(crate) pairs_mm: Vec<Vec<f64>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -123,21 +123,17 @@ pub(crate) enum CornerKind {
     Free,
 }
 
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(untagged)]
-pub(crate) enum RawCorner {
-    Kind(CornerKind),
-    Spring { spring_n_per_m: f64 },
-}
-
-/// Corners by position: (x, z) = (0, 0), (L, 0), (0, B), (L, B).
+/// Corners by position: (x, z) = (0, 0), (L, 0), (0, B), (L, B). Each is a [`CornerKind`]
+/// word or a `{ spring_n_per_m = k }` table, read as TOML values and checked in
+/// `validate::supports`: an untagged serde enum would accept a spring table with unknown keys
+/// beside `spring_n_per_m` and name no field when neither form fits.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct RawCorners {
-    pub(crate) left_near: Option<RawCorner>,
-    pub(crate) right_near: Option<RawCorner>,
-    pub(crate) left_far: Option<RawCorner>,
-    pub(crate) right_far: Option<RawCorner>,
+    pub(crate) left_near: Option<toml::Value>,
+    pub(crate) right_near: Option<toml::Value>,
+    pub(crate) left_far: Option<toml::Value>,
+    pub(crate) right_far: Option<toml::Value>,
 }
 
 #[derive(Debug, Clone, Copy, Deserialize, Serialize)]
@@ -163,7 +159,7 @@ pub(crate) struct RawEdges {
 pub(crate) struct RawPoints {
     pub(crate) x_mm: Option<Vec<f64>>,
     pub(crate) count: Option<f64>,
-    pub(crate) pairs_mm: Option<Vec<(f64, f64)>>,
+    pub(crate) pairs_mm: Option<Vec<Vec<f64>>>,
     pub(crate) grid: Option<RawGrid>,
     pub(crate) z_mm: Option<Vec<f64>>,
 }

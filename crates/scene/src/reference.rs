@@ -302,15 +302,17 @@ fn runs() -> Vec<Section> {
         Section {
             title: "[signals]",
             about: format!(
-                "The reduced model's sensor signals. A window holds at most {} samples a channel (window_ms x rate_hz / 1000).",
-                compact(limits::MAX_SAMPLES)
+                "The reduced model's sensor signals. A window holds {} to {} samples a channel (window_ms x rate_hz / 1000), and one impact's signals at most {} MB (8 bytes a sample, 3 channels a sensor and up to 4 corners).",
+                compact(limits::MIN_SAMPLES),
+                compact(limits::MAX_SAMPLES),
+                compact((limits::MAX_IMPACT_SIGNAL_BYTES / 1e6).round())
             ),
             keys: vec![
                 num("window_ms", "ms", limits::SIGNAL_WINDOW_MS, compact(d.window * 1e3), "Length of each signal from first touch"),
                 num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, compact(d.rate_hz), "Sampling rate"),
                 num("damping_ratio", NO_UNIT, ReducedSettings::DAMPING_RATIO, compact(d.damping_ratio), "Modal damping ratio ζ"),
                 whole("modes", limits::MODES, d.modes.to_string(), "Modes the reduced model keeps (and at most the plate's free degrees of freedom)"),
-                key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate"),
+                key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}, at least 0.1 mm apart (channels are named by position to 0.1 mm)", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate"),
             ],
         },
     ]

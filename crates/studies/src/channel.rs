@@ -3,11 +3,9 @@
 
 use coupled::reduced::ChannelKind;
 
-/// A length in metres as millimetres with one decimal, the trailing ".0" dropped.
-pub fn mm(v: f64) -> String {
-    let t = format!("{:.1}", v * 1e3);
-    t.strip_suffix(".0").map_or(t.clone(), str::to_string)
-}
+/// A length in metres as millimetres with one decimal, the trailing ".0" dropped (the
+/// scene's rule, by which it refuses two sensors of one label).
+pub use scene::mm_label as mm;
 
 /// What a channel is and where, in words and as CSV fields (also the Python package's column
 /// names, so that its features and this report's rankings name a channel alike).

@@ -69,6 +69,33 @@ pub fn check_budget(scene: &Scene, models: &[ModelKind]) -> Result<(), Failure> 
     Ok(())
 }
 
+/// Transient runs a case of the transient comparison costs with its error estimate, as a
+/// response row of [`check_budget`] does.
+pub const RUNS_PER_TRANSIENT_CASE: usize = 10;
+
+/// Checks the transient comparison of `impact dynamic` (and the report) before any work:
+/// at least one case, and its runs within [`MAX_TRANSIENT_RUNS`], the budget `solve --model
+/// transient` keeps.
+pub fn check_transient_comparison(scene: &Scene) -> Result<(), Failure> {
+    let (sets, bodies) = (scene.conditions.len(), scene.bodies.len());
+    let (velocities, points) = (scene.velocities.len(), scene.transient_points.len());
+    let cases = sets * bodies * velocities * points;
+    if cases == 0 {
+        return Err(format!(
+            "the transient study needs at least one case: velocities.m_per_s has {velocities} velocities, [[bodies]] {bodies} bodies and the transient points ([transient] pairs_mm, else [points]) {points}"
+        )
+        .into());
+    }
+    let runs = RUNS_PER_TRANSIENT_CASE * cases;
+    if runs > MAX_TRANSIENT_RUNS {
+        return Err(format!(
+            "the transient study asks for about {runs} transient runs ({cases} cases: {sets} [[conditions]] x {bodies} [[bodies]] x {velocities} velocities.m_per_s x {points} transient points, [transient] pairs_mm or else [points], each with its error estimate), more than the {MAX_TRANSIENT_RUNS} one command runs; give [transient] pairs_mm a few points"
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// The scene's rows by each requested model, in the order given: the responses and yield
 /// velocities the scene's analyses ask for, each row with its error estimate and validity.
 pub fn results(scene: &Scene, models: &[ModelKind], progress: &dyn Progress) -> Result<Results, Failure> {

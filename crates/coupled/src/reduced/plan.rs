@@ -2,7 +2,7 @@
 //! velocity, with the sensor signals of `[signals]`, an estimate of the truncation error and
 //! the validity of each result.
 
-use super::{ReducedModel, ReducedOutcome, ReducedSettings};
+use super::{ReducedModel, ReducedOutcome, ReducedSettings, SignalSpec};
 use crate::error::ModelError;
 use crate::scene::Scene;
 use crate::transient::case::striker;
@@ -52,6 +52,26 @@ pub struct SceneImpact {
 /// estimate.
 pub const MAX_IMPACTS: usize = 10_000;
 
+/// Most memory the signals of one [`run`] may hold, bytes: every impact keeps its series
+/// until the run is written (1e6 samples on 64 sensors once aborted at 6 GB).
+pub const MAX_SIGNAL_BYTES: f64 = 2.0 * 1024.0 * 1024.0 * 1024.0;
+
+/// Checks, before any work, that `count` impacts' signals fit [`MAX_SIGNAL_BYTES`]: samples
+/// x channels (each sensor's quantities, up to four corners) x 8 bytes each.
+fn check_memory(count: usize, spec: &SignalSpec) -> Result<(), ModelError> {
+    let channels = spec.sensors.len() * spec.quantities.len() + 4;
+    let bytes = count as f64 * channels as f64 * spec.samples() as f64 * 8.0;
+    if bytes > MAX_SIGNAL_BYTES {
+        return Err(ModelError::Missing(format!(
+            "the signals would take {:.1} GB ({count} impacts x {channels} channels x {} samples, from signals.window_ms x signals.rate_hz and signals.sensors_mm); at most {:.1} GB: shorten signals.window_ms, lower signals.rate_hz, or use fewer sensors or impacts (support sets x bodies x transient points x velocities.m_per_s)",
+            bytes / 1e9,
+            spec.samples(),
+            MAX_SIGNAL_BYTES / 1e9
+        )));
+    }
+    Ok(())
+}
+
 /// Runs every support set x body x transient point x velocity of `scene` (built once per
 /// support set, with its half-mode companion for the error estimate).
 pub fn run(scene: &Scene) -> Result<(Vec<ModelSummary>, Vec<SceneImpact>), ModelError> {
@@ -68,6 +88,7 @@ pub fn run(scene: &Scene) -> Result<(Vec<ModelSummary>, Vec<SceneImpact>), Model
     }
     let settings = scene.signals.reduced();
     let spec = scene.signals.spec();
+    check_memory(count, &spec)?;
     let mut models = Vec::new();
     let mut impacts = Vec::with_capacity(count);
     for (ci, set) in scene.conditions.iter().enumerate() {

@@ -427,6 +427,12 @@ impl Table {
                     vec![with("x"), with("z")]
                 }
             };
+            // A table without rows shows no cell to tell a pair from a plain column: its
+            // given names say how many columns it has.
+            let shape = match (self.rows.is_empty(), names.len()) {
+                (true, 2) if shape == Shape::Plain => Shape::Pair,
+                _ => shape,
+            };
             let width = if shape == Shape::Plain { 1 } else { 2 };
             assert_eq!(names.len(), width, "column '{h}' writes {width} CSV column(s), named {names:?}");
             out.push((names.into_iter().map(&mut unique).collect(), f, shape));
@@ -455,6 +461,15 @@ impl Table {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_table_without_rows_writes_its_header() {
+        // Once a panic: no cell told the pair named by two CSV names from a plain column.
+        let t = Table::new("empty", &["point", "force"]).csv_name("point", &["x_m", "z_m"]);
+        assert_eq!(t.to_csv().lines().count(), 1);
+        assert!(t.to_csv().starts_with("x_m,z_m,"), "{}", t.to_csv());
+        let _ = t.to_markdown();
+    }
 
     #[test]
     fn significant_digits() {

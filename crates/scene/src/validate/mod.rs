@@ -37,10 +37,15 @@ pub(crate) const MM: f64 = 1e-3;
 pub(crate) const GPA: f64 = 1e9;
 pub(crate) const MPA: f64 = 1e6;
 
+/// The file-name stems of the names checked so far, each with its name: a set, so that
+/// checking n names is linear (a list compared each name with every earlier one, and 8,000
+/// support sets took seconds to load).
+pub(crate) type Names = std::collections::HashMap<String, String>;
+
 /// Checks a display name: not empty, not too long, and distinct from the names before it
-/// even after reduction to a file-name stem (reports name files after it: "A" and "a!"
-/// would write the same file).
-pub(crate) fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<(), Invalid> {
+/// (`earlier`, to which it is added) even after reduction to a file-name stem (reports name
+/// files after it: "A" and "a!" would write the same file).
+pub(crate) fn check_name(field: String, name: &str, earlier: &mut Names) -> Result<(), Invalid> {
     if name.trim().is_empty() {
         return Err(other(field, "is empty; give it a name"));
     }
@@ -52,7 +57,7 @@ pub(crate) fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<
     if stem.is_empty() {
         return Err(other(field, format!("'{name}' has no letter or digit; file names are made from it")));
     }
-    if let Some(e) = earlier.iter().find(|e| slug(e) == stem) {
+    if let Some(e) = earlier.get(&stem) {
         return Err(other(
             field,
             format!(
@@ -60,6 +65,7 @@ pub(crate) fn check_name(field: String, name: &str, earlier: &[&str]) -> Result<
             ),
         ));
     }
+    earlier.insert(stem, name.to_string());
     Ok(())
 }
 
@@ -72,11 +78,20 @@ pub(crate) fn count(field: &str, value: f64, allowed: Range) -> Result<usize, In
     Ok(v as usize)
 }
 
+/// A list entry that must be exactly two numbers (`shape` says which, "[x, z]"): serde's
+/// tuples read the first two of a longer TOML array and drop the rest without a word.
+pub(crate) fn pair(field: &str, v: &[f64], shape: &str) -> Result<(f64, f64), Invalid> {
+    match v {
+        [a, b] => Ok((*a, *b)),
+        _ => Err(other(field, format!("has {} numbers; give exactly two, {shape}", v.len()))),
+    }
+}
+
 /// Checks every field against its range, in the units of the file, then converts to SI.
 pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
     let contact_law = contact_law(raw.contact_law.as_deref())?;
-    check_name("name".into(), &raw.name, &[])?;
+    check_name("name".into(), &raw.name, &mut Names::new())?;
     let plate = validate_plate(&raw.plate)?;
     let (length_mm, width_mm) = (raw.plate.length_mm, raw.plate.width_mm);
     let analyses = validate_analyses(&raw.analyses)?;
@@ -186,6 +201,7 @@ fn validate_analyses(raw: &[Analysis]) -> Result<Vec<Analysis>, Invalid> {
 /// `[[bodies]]`: each sphere's material, strength, density, radius and a distinct name.
 fn validate_bodies(raw: &[RawBody]) -> Result<Vec<Sphere>, Invalid> {
     let mut bodies = Vec::with_capacity(raw.len());
+    let mut names = Names::new();
     for (i, b) in raw.iter().enumerate() {
         let f = |k: &str| format!("bodies[{i}].{k}");
         let material = Elastic::new(
@@ -198,8 +214,7 @@ fn validate_bodies(raw: &[RawBody]) -> Result<Vec<Sphere>, Invalid> {
         )?;
         let density = check(&f("density_kg_m3"), b.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?;
         let radius = check(&f("radius_mm"), b.radius_mm, limits::RADIUS_MM, "mm")? * MM;
-        let earlier: Vec<&str> = bodies.iter().map(|s: &Sphere| s.name.as_str()).collect();
-        check_name(f("name"), &b.name, &earlier)?;
+        check_name(f("name"), &b.name, &mut names)?;
         bodies.push(Sphere::new(b.name.clone(), density, radius, material, strength)?);
     }
     Ok(bodies)
@@ -211,10 +226,10 @@ fn validate_conditions(raw: &[RawCondition], plate: &Plate) -> Result<Vec<Suppor
         return Err(other("conditions", "at least one [[conditions]] entry is required"));
     }
     let mut conditions: Vec<SupportSet> = Vec::with_capacity(raw.len());
+    let mut names = Names::new();
     for (i, c) in raw.iter().enumerate() {
         let set = validate_condition(i, c, plate)?;
-        let earlier: Vec<&str> = conditions.iter().map(|n| n.name.as_str()).collect();
-        check_name(format!("conditions[{i}].name"), &set.name, &earlier)?;
+        check_name(format!("conditions[{i}].name"), &set.name, &mut names)?;
         conditions.push(set);
     }
     Ok(conditions)

@@ -50,7 +50,8 @@ pub(super) fn validate_points(raw: &RawPoints, plate: &Plate, l_mm: f64, b_mm: f
             return Err(other("points.pairs_mm", format!("{} pairs; at most {MAX_POINTS} are allowed", pairs.len())));
         }
         let mut out = Vec::with_capacity(pairs.len());
-        for (j, &(x, z)) in pairs.iter().enumerate() {
+        for (j, pair) in pairs.iter().enumerate() {
+            let (x, z) = super::pair(&format!("points.pairs_mm[{j}]"), pair, "[x, z]")?;
             let x = check(&format!("points.pairs_mm[{j}][0] (x)"), x, along, "mm")? * MM;
             let z = check(&format!("points.pairs_mm[{j}][1] (z)"), z, across, "mm")? * MM;
             out.push((x, z));

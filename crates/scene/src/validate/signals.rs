@@ -20,6 +20,16 @@ pub(super) fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -
         None => d.rate_hz,
     };
     let samples = window_ms * 1e-3 * rate_hz;
+    if samples < limits::MIN_SAMPLES {
+        return Err(other(
+            "signals.window_ms and signals.rate_hz",
+            format!(
+                "{window_ms} ms at {rate_hz} Hz is {} samples per channel; at least {} are needed (lengthen the window or raise the rate)",
+                analytic::params::compact(samples),
+                limits::MIN_SAMPLES
+            ),
+        ));
+    }
     if samples > limits::MAX_SAMPLES {
         return Err(other(
             "signals.window_ms and signals.rate_hz",
@@ -49,7 +59,8 @@ pub(super) fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -
             }
             let (along, across) = (Range::closed(0.0, l_mm), Range::closed(0.0, b_mm));
             let mut out = Vec::with_capacity(list.len());
-            for (j, &(x, z)) in list.iter().enumerate() {
+            for (j, pair) in list.iter().enumerate() {
+                let (x, z) = super::pair(&format!("signals.sensors_mm[{j}]"), pair, "[x, z]")?;
                 let x = check(&format!("signals.sensors_mm[{j}][0] (x)"), x, along, "mm")? * MM;
                 let z = check(&format!("signals.sensors_mm[{j}][1] (z)"), z, across, "mm")? * MM;
                 out.push((x, z));
@@ -57,5 +68,33 @@ pub(super) fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -
             out
         }
     };
+    check_sensors(&sensors, samples)?;
     Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, modes, sensors })
+}
+
+/// The sensors as a whole: distinct channel names, and one impact's signals within
+/// [`limits::MAX_IMPACT_SIGNAL_BYTES`].
+fn check_sensors(sensors: &[(f64, f64)], samples: f64) -> Result<(), Invalid> {
+    // Labels round to 0.1 mm; more digits would rename every channel of every report, and two
+    // sensors closer than that record the same signal.
+    if let Some((i, j, label)) = crate::sensor_label_clash(sensors) {
+        return Err(other(
+            format!("signals.sensors_mm[{j}]"),
+            format!("is labelled {label} like signals.sensors_mm[{i}] (channel names give positions to 0.1 mm); place the sensors at least 0.1 mm apart"),
+        ));
+    }
+    let channels = 3 * sensors.len() + 4;
+    let bytes = samples.ceil() * channels as f64 * 8.0;
+    if bytes > limits::MAX_IMPACT_SIGNAL_BYTES {
+        return Err(other(
+            "signals.window_ms, signals.rate_hz and signals.sensors_mm",
+            format!(
+                "{} samples x {channels} channels (3 a sensor, up to 4 corners) is {} MB of signals an impact; at most {} MB",
+                analytic::params::compact(samples.ceil()),
+                analytic::params::compact((bytes / 1e6).round()),
+                analytic::params::compact((limits::MAX_IMPACT_SIGNAL_BYTES / 1e6).round()),
+            ),
+        ));
+    }
+    Ok(())
 }

@@ -44,18 +44,7 @@ pub(super) fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> R
                 return Err(other(&key, "applies only to the presets; give each spring its own spring_n_per_m in [conditions.corners]"));
             }
             let corners = c.corners.as_ref();
-            let corner = |name: &str, v: Option<RawCorner>| -> Result<CornerSupport, Invalid> {
-                Ok(match v {
-                    None | Some(RawCorner::Kind(CornerKind::Free)) => CornerSupport::Free,
-                    Some(RawCorner::Kind(CornerKind::Fixed)) => CornerSupport::Fixed,
-                    Some(RawCorner::Spring { spring_n_per_m }) => CornerSupport::Spring(check(
-                        &format!("conditions[{i}].corners.{name}.spring_n_per_m"),
-                        spring_n_per_m,
-                        limits::SPRING_N_PER_M,
-                        "N/m",
-                    )?),
-                })
-            };
+            let key = |name: &str| format!("conditions[{i}].corners.{name}");
             let edges = c.edges.as_ref();
             let edge = |v: Option<RawEdge>| match v {
                 None | Some(RawEdge::Free) => EdgeSupport::Free,
@@ -64,10 +53,10 @@ pub(super) fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> R
             };
             let s = Supports {
                 corners: [
-                    corner("left_near", corners.and_then(|c| c.left_near))?,
-                    corner("right_near", corners.and_then(|c| c.right_near))?,
-                    corner("left_far", corners.and_then(|c| c.left_far))?,
-                    corner("right_far", corners.and_then(|c| c.right_far))?,
+                    corner(&key("left_near"), corners.and_then(|c| c.left_near.as_ref()))?,
+                    corner(&key("right_near"), corners.and_then(|c| c.right_near.as_ref()))?,
+                    corner(&key("left_far"), corners.and_then(|c| c.left_far.as_ref()))?,
+                    corner(&key("right_far"), corners.and_then(|c| c.right_far.as_ref()))?,
                 ],
                 edges: [
                     edge(edges.and_then(|e| e.left)),
@@ -88,4 +77,35 @@ pub(super) fn validate_condition(i: usize, c: &RawCondition, plate: &Plate) -> R
         None => default_set_name(i + 1),
     };
     Ok(SupportSet::new(c.name.clone().unwrap_or(default_name), supports))
+}
+
+/// One corner of `[conditions.corners]` at `field`: "fixed", "free" (also when absent) or a
+/// table with exactly the key `spring_n_per_m`, in its range.
+fn corner(field: &str, v: Option<&toml::Value>) -> Result<CornerSupport, Invalid> {
+    const FORMS: &str = "allowed: \"fixed\", \"free\" or { spring_n_per_m = k }";
+    match v {
+        None => Ok(CornerSupport::Free),
+        Some(toml::Value::String(s)) => match s.as_str() {
+            "free" => Ok(CornerSupport::Free),
+            "fixed" => Ok(CornerSupport::Fixed),
+            _ => Err(other(field, format!("'{s}' is not a corner support; {FORMS}"))),
+        },
+        Some(toml::Value::Table(t)) => {
+            if let Some(k) = t.keys().find(|k| *k != "spring_n_per_m") {
+                return Err(other(
+                    format!("{field}.{k}"),
+                    "is not a key of a corner spring; it takes spring_n_per_m only",
+                ));
+            }
+            let key = format!("{field}.spring_n_per_m");
+            let k = match t.get("spring_n_per_m") {
+                Some(toml::Value::Float(f)) => *f,
+                Some(toml::Value::Integer(n)) => *n as f64,
+                Some(v) => return Err(other(&key, format!("{v} is not a number"))),
+                None => return Err(other(&key, format!("is required in a corner spring table; {FORMS}"))),
+            };
+            Ok(CornerSupport::Spring(check(&key, k, limits::SPRING_N_PER_M, "N/m")?))
+        }
+        Some(v) => Err(other(field, format!("{v} is not a corner support; {FORMS}"))),
+    }
 }

@@ -46,6 +46,7 @@ pub struct TransientData {
 
 /// Runs the transient study of `scene`.
 pub fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> Result<TransientData, Failure> {
+    crate::run::check_transient_comparison(scene)?;
     let verification = if scene.wants(Analysis::Verification) { Some(verification::verify(scene)?) } else { None };
     let t0 = Instant::now();
     let cases = comparison(scene, settings, &scene.transient_points, progress)?;
