@@ -12,10 +12,14 @@ mod commands;
 mod commit;
 mod field;
 mod progress;
+#[cfg(unix)]
+mod signals;
 mod written;
 
 fn main() -> ExitCode {
     let cli = cli::Cli::parse();
+    #[cfg(unix)]
+    signals::remove_unfinished_output_on_stop();
     match commands::run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -36,10 +40,13 @@ pub(crate) fn note(text: &str) {
     let _ = writeln!(std::io::stderr().lock(), "{text}");
 }
 
-/// Writes to standard output; a closed pipe ends the program quietly (see `main`).
+/// Writes to standard output; a closed pipe ends the program quietly (see `main`), any other
+/// error (a full disk behind `> file`) is reported as a failure to write standard output.
 pub(crate) fn out(text: &str) -> Result<(), impact::report::Failure> {
     let mut o = std::io::stdout().lock();
-    o.write_all(text.as_bytes())?;
-    o.flush()?;
+    o.write_all(text.as_bytes()).and_then(|()| o.flush()).map_err(|e| {
+        // The kind is kept: `main` tells a closed pipe by it.
+        std::io::Error::new(e.kind(), format!("writing to standard output: {e}"))
+    })?;
     Ok(())
 }

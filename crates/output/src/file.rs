@@ -15,6 +15,8 @@ use super::*;
 pub struct OutputFile {
     target: Option<PathBuf>,
     parent: PathBuf,
+    /// The lock that keeps other runs from judging the temporary file dead.
+    owner: Option<Owner>,
     tmp: Option<(PathBuf, File)>,
 }
 
@@ -25,7 +27,7 @@ impl OutputFile {
     pub fn prepare(target: impl AsRef<Path>) -> Result<OutputFile, OutputError> {
         let target = target.as_ref();
         if target == Path::new("-") {
-            return Ok(OutputFile { target: None, parent: PathBuf::new(), tmp: None });
+            return Ok(OutputFile { target: None, parent: PathBuf::new(), owner: None, tmp: None });
         }
         let name = match target.components().next_back() {
             Some(Component::Normal(n)) => n.to_owned(),
@@ -36,17 +38,8 @@ impl OutputFile {
         fs::create_dir_all(&parent).map_err(io_err(&parent, "creating the parent directory of the output"))?;
         check_replaceable_file(target)?;
         clean_stale(&parent);
-        let (tmp, file) = create_sibling(&parent, &name, TMP_TAG, |p| {
-            let mut o = OpenOptions::new();
-            o.write(true).create_new(true);
-            #[cfg(unix)]
-            {
-                use std::os::unix::fs::OpenOptionsExt;
-                o.mode(0o644);
-            }
-            o.open(p)
-        })?;
-        Ok(OutputFile { target: Some(target.to_path_buf()), parent, tmp: Some((tmp, file)) })
+        let (owner, tmp, file) = claim(&parent, &name, target, TMP_TAG, |p| staged_options().open(p))?;
+        Ok(OutputFile { target: Some(target.to_path_buf()), parent, owner: Some(owner), tmp: Some((tmp, file)) })
     }
 
     /// Whether this output is standard output.
@@ -72,21 +65,26 @@ impl OutputFile {
             file.write_all(bytes).map_err(io_err(&tmp, "writing the output file"))?;
             file.sync_all().map_err(io_err(&tmp, "syncing the output file"))?;
             drop(file);
+            let live = live();
+            live.check(&target)?;
             check_replaceable_file(&target)?;
-            fs::rename(&tmp, &target).map_err(io_err(&target, "moving the output file in"))?;
-            sync_dir(&self.parent).map_err(io_err(&self.parent, "syncing the output's directory"))
+            fs::rename(&tmp, &target).map_err(io_err(&target, "moving the output file in"))
         })();
-        if result.is_err() {
-            remove_entry(&tmp);
+        // After the rename the temporary name holds nothing, and removing it is a no-op.
+        if let Some(owner) = self.owner.take() {
+            release(owner, Some(&tmp));
         }
-        result.map(|()| Some(target))
+        result?;
+        sync_dir(&self.parent).map_err(io_err(&self.parent, "syncing the output's directory"))?;
+        Ok(Some(target))
     }
 }
 
 impl Drop for OutputFile {
     fn drop(&mut self) {
-        if let Some((tmp, _)) = self.tmp.take() {
-            remove_entry(&tmp);
+        let tmp = self.tmp.take().map(|(p, _)| p);
+        if let Some(owner) = self.owner.take() {
+            release(owner, tmp.as_deref());
         }
     }
 }

@@ -20,9 +20,17 @@
 //! followed, so `/dev/null`, FIFOs and links to `/proc/self/fd/1` are refused rather than
 //! turned into regular files.
 //!
-//! Staging names carry the owning process's pid and start time. Every run first removes
-//! stale staging entries in the target's parent whose owner is no longer alive, and never
-//! touches those of a live concurrent run.
+//! Before the swap, every file the manifest lists is read back from the stage and checked
+//! against its size and SHA-256: a file removed or altered during the run fails the commit,
+//! naming it, instead of being reported as written.
+//!
+//! A run owns its entries beside the target through an advisory lock (`flock`) on a lock file
+//! `.<name>.impact-lock-<token>`, held for the run's whole life and released by the kernel (on
+//! NFS by its lock manager) however the run ends. Every run first removes the entries of runs
+//! whose lock it can take, which are provably dead, and keeps every other: those of a live run
+//! on this machine, in another PID namespace or container, or on another host sharing the file
+//! system, and those without a lock file. A program stopped by a signal removes its own entries
+//! with [`abandon_all`] before it exits.
 
 //! ```
 //! use output::{verify_set, Artifacts, OutputDir};
@@ -47,15 +55,19 @@ mod checks;
 mod dir;
 mod file;
 mod hash;
+mod live;
 mod manifest;
 mod stage;
 #[cfg(test)]
 mod tests;
 
 use checks::*;
+use dir::*;
 pub use dir::{OutputDir, StreamedFile};
 pub use file::OutputFile;
 pub use hash::{sha256_hex, Sha256};
+pub use live::abandon_all;
+use live::*;
 use manifest::*;
 pub use manifest::{listed_files, verify_set};
 pub use stage::clean_stale;
@@ -123,6 +135,15 @@ pub enum OutputError {
     Unnamed { path: PathBuf },
     #[error("artifact path {} is unsafe: {why}", path.display())]
     UnsafePath { path: PathBuf, why: &'static str },
+    #[error(
+        "{}: not committed, because the staged file {file} {why} ({}); {} is as it was",
+        target.display(),
+        staged.display(),
+        target.display()
+    )]
+    Unverified { target: PathBuf, file: String, staged: PathBuf, why: String },
+    #[error("{}: not written, because the run is being stopped by a signal", path.display())]
+    Stopped { path: PathBuf },
 }
 
 pub(crate) fn io_err<'a>(path: &'a Path, what: &'static str) -> impl FnOnce(io::Error) -> OutputError + 'a {

@@ -157,3 +157,55 @@ pub(crate) fn describe(ft: fs::FileType) -> &'static str {
         "not a regular file"
     }
 }
+
+/// Size and SHA-256 of the file at `path`, read in pieces (a streamed file may be large).
+fn hash_file(path: &Path) -> io::Result<(u64, String)> {
+    let mut f = File::open(path)?;
+    let (mut h, mut size, mut buf) = (Sha256::new(), 0u64, vec![0u8; 1 << 16]);
+    loop {
+        match io::Read::read(&mut f, &mut buf) {
+            Ok(0) => return Ok((size, h.hex())),
+            Ok(n) => {
+                h.update(&buf[..n]);
+                size += n as u64;
+            }
+            Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+}
+
+/// Checks the stage on disk against the manifest `m` (whose text is `json`) before it is
+/// swapped in for `target`: every listed file present with its size and SHA-256, the
+/// manifest as written, nothing else. The error names the first file that differs.
+pub(crate) fn verify_stage(stage: &Path, target: &Path, m: &Manifest, json: &[u8]) -> Result<(), OutputError> {
+    let fail = |file: &str, why: String| OutputError::Unverified {
+        target: target.to_path_buf(),
+        file: file.to_string(),
+        staged: stage.join(file),
+        why,
+    };
+    for f in &m.files {
+        let (size, sha) = hash_file(&stage.join(&f.path)).map_err(|e| match e.kind() {
+            io::ErrorKind::NotFound => fail(&f.path, "is missing: something removed it during the run".into()),
+            _ => fail(&f.path, format!("cannot be read back ({e})")),
+        })?;
+        if size != f.size {
+            return Err(fail(&f.path, format!("holds {size} bytes where {} were written", f.size)));
+        }
+        if sha != f.sha256 {
+            return Err(fail(&f.path, format!("differs from what was written (SHA-256 {sha}, not {})", f.sha256)));
+        }
+    }
+    match fs::read(stage.join(MANIFEST)) {
+        Ok(b) if b == json => {}
+        Ok(_) => return Err(fail(MANIFEST, "differs from what was written".into())),
+        Err(e) => return Err(fail(MANIFEST, format!("cannot be read back ({e})"))),
+    }
+    check_only_listed(stage, m).map_err(|e| match e {
+        OutputError::ForeignEntry { entry, .. } => {
+            fail(&entry.to_string_lossy(), "was not written by this run (found in its stage)".into())
+        }
+        other => other,
+    })
+}

@@ -1,7 +1,27 @@
 //! The writer's own checks: whole sets, refusals, stale stages, streamed files.
 
 use super::*;
-use dir::swap_aside;
+use std::cell::Cell;
+
+thread_local! {
+    /// What a test does to the stage between its writing and its verification.
+    static BEFORE_VERIFY: Cell<Option<fn(&Path)>> = const { Cell::new(None) };
+}
+
+/// Called by [`OutputDir::commit`] once the stage is written and synced.
+pub(crate) fn before_verify(stage: &Path) {
+    if let Some(f) = BEFORE_VERIFY.get() {
+        f(stage)
+    }
+}
+
+/// A staging entry of kind `tag` for target `out` in `dir`, owned by a dead run: its token
+/// names a pid that has exited, and its lock file exists and is free.
+fn dead_entry(dir: &Path, out: &str, tag: &str, n: u64) -> PathBuf {
+    let token = format!("{}-0-{n:016x}", dead_pid());
+    fs::write(dir.join(entry_name(OsStr::new(out), LOCK_TAG, &token)), "").unwrap();
+    dir.join(entry_name(OsStr::new(out), tag, &token))
+}
 
 /// Entries beside a target that a run creates and must not leave behind.
 fn staging_leftovers(dir: &Path) -> Vec<String> {
@@ -141,9 +161,17 @@ fn refuses_targets_inside_an_output_set_and_unnamed_targets() {
     assert!(matches!(e, OutputError::InsideOutputSet { .. }), "{e}");
     assert!(matches!(OutputFile::prepare(out.join("x.json")).unwrap_err(), OutputError::InsideOutputSet { .. }));
     assert_eq!(verify_set(&out).unwrap(), 1);
-    for p in [Path::new("/"), Path::new("."), Path::new("..")] {
-        assert!(matches!(OutputDir::prepare(p).unwrap_err(), OutputError::Unnamed { .. }), "{}", p.display());
+    assert!(matches!(OutputDir::prepare("/").unwrap_err(), OutputError::Unnamed { .. }));
+    // A path ending in '.' or '..' names the directory it resolves to (`--out .` in an empty
+    // directory), staged beside it under its own name.
+    let empty = dir.path().join("empty");
+    fs::create_dir(&empty).unwrap();
+    for p in [empty.join("."), empty.join("./")] {
+        let prepared = OutputDir::prepare(&p).unwrap();
+        prepared.commit(&a).unwrap();
+        assert_eq!(verify_set(&empty).unwrap(), 1);
     }
+    assert!(staging_leftovers(dir.path()).is_empty());
 }
 
 /// A commit that fails part-way through staging (a real I/O error, even for root: a name
@@ -173,12 +201,13 @@ fn failed_commit_leaves_earlier_output() {
 fn dropping_a_prepared_output_removes_its_stage() {
     let dir = tempfile::tempdir().unwrap();
     let p = OutputDir::prepare(dir.path().join("out")).unwrap();
-    assert_eq!(staging_leftovers(dir.path()).len(), 1);
+    // The stage and its lock file.
+    assert_eq!(staging_leftovers(dir.path()).len(), 2);
     drop(p);
     assert!(staging_leftovers(dir.path()).is_empty());
     assert!(!dir.path().join("out").exists());
     let f = OutputFile::prepare(dir.path().join("f.json")).unwrap();
-    assert_eq!(staging_leftovers(dir.path()).len(), 1);
+    assert_eq!(staging_leftovers(dir.path()).len(), 2);
     drop(f);
     assert!(staging_leftovers(dir.path()).is_empty());
     assert!(!dir.path().join("f.json").exists());
@@ -187,12 +216,13 @@ fn dropping_a_prepared_output_removes_its_stage() {
 #[test]
 fn stale_entries_of_dead_runs_are_removed_and_live_ones_kept() {
     let dir = tempfile::tempdir().unwrap();
-    let dead = dead_pid();
-    let stale_stage = dir.path().join(format!(".out{STAGE_TAG}{dead}-0-{:016x}", 1));
+    let stale_stage = dead_entry(dir.path(), "out", STAGE_TAG, 1);
     fs::create_dir(&stale_stage).unwrap();
     fs::write(stale_stage.join("half.csv"), "1,").unwrap();
-    let stale_tmp = dir.path().join(format!(".f.json{TMP_TAG}{dead}-0-{:016x}", 2));
+    let stale_tmp = dead_entry(dir.path(), "f.json", TMP_TAG, 2);
     fs::write(&stale_tmp, "partial").unwrap();
+    // A lock file whose run died before it made anything.
+    let orphan_lock = dead_entry(dir.path(), "g", LOCK_TAG, 3);
     // A live run (this process) preparing another target in the same directory.
     let live = OutputDir::prepare(dir.path().join("other")).unwrap();
     // A name that only looks similar is not ours to delete.
@@ -201,12 +231,27 @@ fn stale_entries_of_dead_runs_are_removed_and_live_ones_kept() {
     let mut a = Artifacts::new();
     a.add("a.txt", "a");
     a.write_all(&dir.path().join("out")).unwrap();
-    assert!(!stale_stage.exists() && !stale_tmp.exists());
+    assert!(!stale_stage.exists() && !stale_tmp.exists() && !orphan_lock.exists());
     assert!(live.stage.as_ref().unwrap().exists());
     assert!(lookalike.exists());
     live.commit(&a).unwrap();
     fs::remove_file(&lookalike).unwrap();
     assert!(staging_leftovers(dir.path()).is_empty());
+}
+
+/// A stage whose owner cannot be proven dead is kept: without a lock file (an older version's,
+/// or one removed by hand) nothing shows that its run has ended, whatever its pid says.
+#[test]
+fn stage_without_a_lock_file_is_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let token = format!("{}-0-{:016x}", dead_pid(), 4);
+    let stage = dir.path().join(entry_name(OsStr::new("out"), STAGE_TAG, &token));
+    fs::create_dir(&stage).unwrap();
+    fs::write(stage.join("a.csv"), "1\n").unwrap();
+    let mut a = Artifacts::new();
+    a.add("a.txt", "a");
+    a.write_all(&dir.path().join("out")).unwrap();
+    assert_eq!(fs::read_to_string(stage.join("a.csv")).unwrap(), "1\n");
 }
 
 /// The fallback swap, and its recovery rule: an old set moved aside by a run that died
@@ -221,31 +266,117 @@ fn fallback_swap_and_recovery() {
     let stage = dir.path().join("stage");
     fs::create_dir(&stage).unwrap();
     fs::write(stage.join("b.txt"), "new").unwrap();
-    swap_aside(dir.path(), &stage, &out).unwrap();
+    let aside = dir.path().join("aside");
+    swap_aside(&stage, &out, &aside).unwrap();
     assert_eq!(fs::read_to_string(out.join("b.txt")).unwrap(), "new");
-    assert!(!stage.exists() && staging_leftovers(dir.path()).is_empty());
+    assert!(!stage.exists() && !aside.exists() && staging_leftovers(dir.path()).is_empty());
 
     // A crash between the two renames: no target, the old set aside under a dead owner.
-    let aside = dir.path().join(format!(".out{OLD_TAG}{}-0-{:016x}", dead_pid(), 3));
+    let aside = dead_entry(dir.path(), "out", OLD_TAG, 3);
     fs::rename(&out, &aside).unwrap();
     clean_stale(dir.path());
     assert_eq!(fs::read_to_string(out.join("b.txt")).unwrap(), "new");
     assert!(staging_leftovers(dir.path()).is_empty());
     // With the target in place, a dead run's aside copy is just removed.
+    let aside = dead_entry(dir.path(), "out", OLD_TAG, 4);
     fs::create_dir(&aside).unwrap();
     clean_stale(dir.path());
     assert!(!aside.exists() && out.join("b.txt").exists());
+    assert!(staging_leftovers(dir.path()).is_empty());
 }
 
 #[test]
 fn staging_names_parse() {
-    let n = sibling_name(OsStr::new("my-out.d"), STAGE_TAG);
-    let (tag, target, pid, _) = parse_sibling(n.to_str().unwrap()).unwrap();
-    assert_eq!((tag, target, pid), (STAGE_TAG, "my-out.d", std::process::id()));
-    assert!(owner_alive(pid, start_time(pid).unwrap()));
-    assert!(!owner_alive(dead_pid(), 0));
+    let dir = tempfile::tempdir().unwrap();
+    let owner = Owner::acquire(dir.path(), OsStr::new("my-out.d")).unwrap();
+    let n = owner.entry(STAGE_TAG);
+    let (tag, target, token) = parse_sibling(n.file_name().unwrap().to_str().unwrap()).unwrap();
+    assert_eq!((tag, target), (STAGE_TAG, "my-out.d"));
+    assert!(token.starts_with(&format!("{}-", std::process::id())));
+    let lock = owner.lock_path().file_name().unwrap().to_str().unwrap().to_owned();
+    assert_eq!(parse_sibling(&lock), Some((LOCK_TAG, "my-out.d", token)));
+    // Held by this run: another open file cannot take it.
+    assert_eq!(try_lock(&File::options().read(true).write(true).open(owner.lock_path()).unwrap()), Lock::Busy);
+    drop(owner);
+    assert!(staging_leftovers(dir.path()).is_empty());
     assert!(parse_sibling(".x.impact-stage-12-0-zz").is_none());
+    assert!(parse_sibling(".x.impact-stage-a-0-0123456789abcdef").is_none());
     assert!(parse_sibling("x.impact-tmp-12-0-0123456789abcdef").is_none());
+}
+
+/// A staged file removed, altered or added between its writing and the swap fails the commit,
+/// naming it, and leaves the earlier output as it was.
+#[test]
+fn commit_verifies_the_stage() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let mut a = Artifacts::new();
+    a.add("a.csv", "old\n");
+    a.write_all(&out).unwrap();
+    let mut b = Artifacts::new();
+    b.add("a.csv", "new\n");
+    b.add("sub/b.csv", "2\n");
+    type Tamper = fn(&Path);
+    let cases: [(Tamper, &str, &str); 4] = [
+        (|s| fs::remove_file(s.join("sub/b.csv")).unwrap(), "sub/b.csv", "is missing"),
+        (|s| fs::write(s.join("a.csv"), "NEW\n").unwrap(), "a.csv", "differs from what was written"),
+        (|s| fs::write(s.join("a.csv"), "longer\n").unwrap(), "a.csv", "holds 7 bytes where 4 were written"),
+        (|s| fs::write(s.join("extra.csv"), "x").unwrap(), "extra.csv", "was not written by this run"),
+    ];
+    for (tamper, file, why) in cases {
+        BEFORE_VERIFY.set(Some(tamper));
+        let e = OutputDir::prepare(&out).unwrap().commit(&b).unwrap_err();
+        BEFORE_VERIFY.set(None);
+        let msg = e.to_string();
+        assert!(matches!(&e, OutputError::Unverified { file: f, .. } if f == file), "{msg}");
+        assert!(msg.contains(why) && msg.contains("not committed"), "{msg}");
+        assert_eq!(fs::read_to_string(out.join("a.csv")).unwrap(), "old\n");
+        assert_eq!(verify_set(&out).unwrap(), 1);
+        assert!(staging_leftovers(dir.path()).is_empty());
+    }
+}
+
+/// Every write error, a full disk among them, names the file being written.
+#[test]
+fn write_errors_name_the_file() {
+    let full = Path::new("/dev/full");
+    let Ok(f) = File::options().write(true).open(full) else {
+        eprintln!("skipped: /dev/full cannot be opened here");
+        return;
+    };
+    let e = write_synced(f, full, &[0u8; 1 << 16], true).unwrap_err();
+    let msg = e.to_string();
+    assert!(msg.starts_with("/dev/full: writing a staged file"), "{msg}");
+    assert!(matches!(&e, OutputError::Io { source, .. } if source.raw_os_error() == Some(28)), "{msg}");
+}
+
+/// After [`abandon_all`] (a signal), this process's stages and locks are gone and nothing more
+/// is staged or swapped in. Run alone in a child: it stops the whole process's output.
+#[test]
+fn abandon_all_removes_the_stages() {
+    if std::env::var_os("OUTPUT_ABANDON_CHILD").is_none() {
+        let exe = std::env::current_exe().unwrap();
+        let o = std::process::Command::new(exe)
+            .args(["--exact", "tests::abandon_all_removes_the_stages", "--test-threads=1"])
+            .env("OUTPUT_ABANDON_CHILD", "1")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mut d = OutputDir::prepare(dir.path().join("out")).unwrap();
+    let mut s = d.stream("rows/a.csv").unwrap();
+    writeln!(s, "1").unwrap();
+    let f = OutputFile::prepare(dir.path().join("f.json")).unwrap();
+    assert_eq!(staging_leftovers(dir.path()).len(), 4);
+    assert_eq!(abandon_all(), 2);
+    assert!(staging_leftovers(dir.path()).is_empty());
+    // Whatever step of the run meets the removed stage first fails it.
+    assert!(d.finish_stream(s).and_then(|()| d.commit(&Artifacts::new())).is_err());
+    assert!(matches!(f.commit(b"x").unwrap_err(), OutputError::Stopped { .. }));
+    assert!(matches!(OutputDir::prepare(dir.path().join("o2")).unwrap_err(), OutputError::Stopped { .. }));
+    assert!(staging_leftovers(dir.path()).is_empty() && !dir.path().join("out").exists());
 }
 
 #[test]
