@@ -19,6 +19,9 @@ pub enum RowOutcome<T> {
 }
 
 /// How a response was found.
+// One per result row, and rows are few (cases, not steps): the transient variant's size costs
+// nothing worth a box and the indirection in every pattern that reads it.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Evidence {

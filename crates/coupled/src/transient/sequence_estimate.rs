@@ -1,6 +1,6 @@
 //! Error estimates for the whole impact: every contact's start, duration, peak force and
 //! impulse, the final velocity and the total impulse, from the same five levels as the first
-//! contact's estimate ([`super::estimate`]: (n, N), (n, 2N), (n, N/2), (2n, N) and (n/2, N)),
+//! contact's estimate ([`mod@super::estimate`]: (n, N), (n, 2N), (n, N/2), (2n, N) and (n/2, N)),
 //! each run followed through every contact.
 //!
 //! Contact k of one level is compared with contact k of the others. Where a level has a
