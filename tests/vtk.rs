@@ -222,6 +222,26 @@ fn the_largest_load_on_the_weakest_plate_stays_finite() {
     assert!(field_data(&bytes).values().all(|v| v.is_finite()));
 }
 
+/// The `impact solve --model plate --json` row of the default scene for `body` on `condition`
+/// at `v` (m/s) at the plate's centre.
+fn solved_centre_row(body: &str, condition: &str, v: f64) -> serde_json::Value {
+    let solved = impact(["solve", "--model", "plate", "--json"]).run();
+    let doc: serde_json::Value = serde_json::from_slice(&solved.stdout).unwrap();
+    doc["results"]["responses"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| {
+            r["body"] == body
+                && r["condition"] == condition
+                && r["velocity_m_per_s"] == v
+                && (r["x_m"].as_f64().unwrap() - 0.2292).abs() < 1e-12
+                && (r["z_m"].as_f64().unwrap() - 0.18).abs() < 1e-12
+        })
+        .cloned()
+        .expect("the default scene has the body at the centre at that velocity")
+}
+
 /// `--force-of-impact` scales by the quasi-static plate model's P_max of the case, the one
 /// `impact solve --model plate` gives for it, and says so with the case's validity.
 #[test]
@@ -260,21 +280,7 @@ fn scaled_to_the_impacts_quasi_static_p_max() {
     assert!(doc["quasi_static_p_max"]["text"].as_str().unwrap().contains("quasi-static plate model"));
 
     // The same case through `impact solve --model plate`: its P_max and error, bit for bit.
-    let solved = impact(["solve", "--model", "plate", "--json"]).run();
-    let doc: serde_json::Value = serde_json::from_slice(&solved.stdout).unwrap();
-    let row = doc["results"]["responses"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|r| {
-            r["body"] == "gangue 1"
-                && r["condition"] == "Con 1"
-                && r["velocity_m_per_s"] == 0.008
-                && (r["x_m"].as_f64().unwrap() - 0.2292).abs() < 1e-12
-                && (r["z_m"].as_f64().unwrap() - 0.18).abs() < 1e-12
-        })
-        .expect("the default scene has gangue 1 at the centre at 0.008 m/s");
-    let v = row;
+    let v = solved_centre_row("gangue 1", "Con 1", 0.008);
     assert_eq!(v["applicable"], true);
     // The field computes the case alone and `solve` with the scene's other points in one
     // block of solves, so the two differ by the solves' round-off (about 1e-15 here), far
