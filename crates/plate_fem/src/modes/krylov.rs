@@ -41,6 +41,20 @@ impl Basis {
         Self { q: Mat::zeros(n, capacity), mq: Mat::zeros(n, capacity), kq: Mat::zeros(n, capacity), len: 0 }
     }
 
+    /// The same basis with room for `capacity` vectors.
+    fn grown(self, capacity: usize) -> Self {
+        let mut bigger = Basis::new(self.q.nrows(), capacity);
+        for c in 0..self.len {
+            for i in 0..self.q.nrows() {
+                bigger.q[(i, c)] = self.q[(i, c)];
+                bigger.mq[(i, c)] = self.mq[(i, c)];
+                bigger.kq[(i, c)] = self.kq[(i, c)];
+            }
+        }
+        bigger.len = self.len;
+        bigger
+    }
+
     /// Removes the components along the basis from `w` (M inner product), twice.
     fn orthogonalize(&self, w: &mut Mat<f64>) {
         if self.len == 0 {
@@ -106,6 +120,13 @@ impl Basis {
     }
 }
 
+/// The error of a search that reached its basis limit with a residual `worst` left.
+fn not_converged(count: usize, limit: usize, worst: f64) -> FemError {
+    FemError::Modes(format!(
+        "the lowest {count} modes did not converge within a Krylov basis of {limit} vectors (residual {worst:e} above {RESIDUAL_TOLERANCE:e}): the supports leave modes of nearly zero frequency (corner springs far softer than the plate?), which the shift-invert search cannot separate; stiffen the supports or ask for fewer modes"
+    ))
+}
+
 impl Modes {
     /// The lowest `count` modes by shift-invert block Krylov on the factorization `fact`
     /// of K (see the module).
@@ -117,7 +138,11 @@ impl Modes {
         let free = pencil.free();
         Self::check_count(count, free)?;
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let capacity = free.min((3 * count + 8 * BLOCK).max(count + 16 * BLOCK));
+        // The basis never grows past `limit`: where the lowest modes need more (supports that
+        // leave modes of nearly zero frequency), the search ends with an error, not after
+        // the whole space.
+        let limit = free.min((20 * count).max(400));
+        let capacity = limit.min((3 * count + 8 * BLOCK).max(count + 16 * BLOCK));
         let mut basis = Basis::new(n, capacity);
         // Start: K⁻¹M applied once to a random block, which damps the highest modes.
         let b = BLOCK.min(free);
@@ -133,7 +158,7 @@ impl Modes {
         let mut block = basis.append(&pencil, x, &mut seed);
         let mut next_check = (3 * count / 2 + 2 * BLOCK).min(free);
         loop {
-            if basis.len >= next_check || basis.len == capacity {
+            if basis.len >= next_check || basis.len == basis.q.ncols() {
                 if let Some(modes) = rayleigh_ritz(&basis, count, &pencil)? {
                     let (omega, shapes, residuals, orthogonality) = modes;
                     let worst = residuals.iter().copied().fold(0.0, f64::max);
@@ -153,20 +178,16 @@ impl Modes {
                             method: EigenMethod::Krylov { basis: basis.len },
                         });
                     }
-                    if basis.len == capacity {
-                        // Grow the basis: keep what was built.
-                        let grown = free.min(capacity + count.max(8 * BLOCK));
-                        let mut bigger = Basis::new(n, grown);
-                        for c in 0..basis.len {
-                            for i in 0..n {
-                                bigger.q[(i, c)] = basis.q[(i, c)];
-                                bigger.mq[(i, c)] = basis.mq[(i, c)];
-                                bigger.kq[(i, c)] = basis.kq[(i, c)];
-                            }
-                        }
-                        bigger.len = basis.len;
-                        basis = bigger;
+                    if basis.len >= limit {
+                        return Err(not_converged(count, limit, worst));
                     }
+                } else if basis.len >= limit {
+                    return Err(not_converged(count, limit, f64::INFINITY));
+                }
+                if basis.len == basis.q.ncols() {
+                    // Grow the basis: keep what was built.
+                    let capacity = basis.q.ncols();
+                    basis = basis.grown(limit.min(capacity + count.max(8 * BLOCK)));
                 }
                 next_check = (basis.len + (count / 4).max(2 * BLOCK)).min(free);
             }
