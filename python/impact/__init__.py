@@ -142,7 +142,13 @@ def _results(raw: Mapping[str, Any]) -> Results:
     )
 
 
-def solve(scene: SceneLike, model: Model = "beam", *, tolerance: float | None = None) -> Results:
+def solve(
+    scene: SceneLike,
+    model: Model = "beam",
+    *,
+    tolerance: float | None = None,
+    main_contact_share: float | None = None,
+) -> Results:
     """Responses and yield velocities at the scene's points (``impact solve``).
 
     Args:
@@ -154,11 +160,17 @@ def solve(scene: SceneLike, model: Model = "beam", *, tolerance: float | None = 
             time, for which each case's mesh and step are chosen (within
             :data:`TRANSIENT_TOLERANCE`; default :data:`DEFAULT_TOLERANCE`, ``impact solve
             --tolerance``).
+        main_contact_share: the share of m·v₀ a contact's impulse must reach to count among
+            the transient impact's ``main_contacts``; the others are ``micro_contacts``
+            (chatter), counted with their total impulse (in [0, 1]; default 0.05, ``impact
+            solve --main-contact-share``).
 
     The scene's ``analyses`` decide what is computed ("responses", "yield-velocity").
     The numbers are those of ``impact solve --json`` for the same scene, bit for bit.
     """
-    return _results(_impact.run(load_scene(scene), model, tolerance=tolerance))
+    return _results(
+        _impact.run(load_scene(scene), model, tolerance=tolerance, main_contact_share=main_contact_share)
+    )
 
 
 def sweep(scene: SceneLike, count: int = 101, model: Model = "beam", *, tolerance: float | None = None) -> Results:

@@ -67,6 +67,7 @@ def run(
     sweep: float | None = None,
     yield_only: bool = False,
     tolerance: float | None = None,
+    main_contact_share: float | None = None,
 ) -> dict[str, Any]: ...
 def transient(
     scene: Scene,

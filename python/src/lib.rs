@@ -31,10 +31,11 @@ use scene::Scene;
 /// exactly as `impact solve` does (`studies::run::results`): on the scene's points, or on
 /// `sweep` evenly spaced centreline points (`impact sweep --count`), and only the yield
 /// velocities when `yield_only` (`impact yield`); the transient model chooses each case's mesh
-/// and step for the relative `tolerance` (`--tolerance`, default 1e-4). Returns the columns of
-/// [`columns::results`].
+/// and step for the relative `tolerance` (`--tolerance`, default 1e-4) and counts as main
+/// contacts those carrying `main_contact_share` of m·v₀ (`--main-contact-share`, default 0.05).
+/// Returns the columns of [`columns::results`].
 #[pyfunction]
-#[pyo3(signature = (scene, model = "beam", sweep = None, yield_only = false, tolerance = None))]
+#[pyo3(signature = (scene, model = "beam", sweep = None, yield_only = false, tolerance = None, main_contact_share = None))]
 fn run<'py>(
     py: Python<'py>,
     scene: &Scene,
@@ -42,6 +43,7 @@ fn run<'py>(
     sweep: Option<f64>,
     yield_only: bool,
     tolerance: Option<f64>,
+    main_contact_share: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let models = studies::run::model_kinds(model).ok_or_else(|| {
         argument_message(
@@ -67,6 +69,10 @@ fn run<'py>(
     }
     if let Some(t) = tolerance {
         s.transient_discretisation = Discretisation::tolerance(transient_tolerance(t)?);
+    }
+    if let Some(share) = main_contact_share {
+        s.main_contact_share =
+            check("main_contact_share", share, limits::MAIN_CONTACT_SHARE, "").map_err(|e| argument_error(&e))?;
     }
     let results = py
         .detach(|| studies::run::results(&s, &models, &studies::progress::Silent).map_err(|e| e.to_string()))

@@ -93,9 +93,12 @@ def test_transient_identical_from_a_dict_scene(tmp_path, paper_dict):
     path = tmp_path / "scene.toml"
     path.write_text(scene.to_toml_str())
     # A loose tolerance keeps the test fast and checks that it reaches the model alike.
-    doc = cli(path, "transient", "--tolerance", "0.01")
-    r = impact.solve(scene, model="transient", tolerance=0.01)
+    # A share of 0 counts every contact as a main one, on both sides alike.
+    doc = cli(path, "transient", "--tolerance", "0.01", "--main-contact-share", "0")
+    r = impact.solve(scene, model="transient", tolerance=0.01, main_contact_share=0.0)
     assert (r.responses["tolerance"] == 0.01).all()
+    assert (r.responses["main_contacts"] == r.responses["contacts"]).all()
+    assert (r.responses["micro_contacts"] == 0).all()
     assert r.status == doc["status"]
     assert compare(doc["results"]["responses"], r.responses) >= 25
 

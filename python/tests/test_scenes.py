@@ -55,6 +55,9 @@ def test_bad_arguments_are_value_errors_not_scene_errors():
     assert e.value.field == "x_mm" and e.value.high == pytest.approx(458.4)
     with pytest.raises(ValueError, match="'slate' is not in the scene"):
         impact.transient(scene, "slate", "Con 1", 100.0, 180.0, 0.008)
+    with pytest.raises(ValueError) as e:
+        impact.solve(scene, model="transient", main_contact_share=1.5)
+    assert e.value.field == "main_contact_share" and e.value.allowed == "[0, 1]"
 
 
 def test_dict_and_file_give_the_same_numbers(paper_dict):
