@@ -173,16 +173,31 @@ def solve(
     )
 
 
-def sweep(scene: SceneLike, count: int = 101, model: Model = "beam", *, tolerance: float | None = None) -> Results:
+def sweep(
+    scene: SceneLike,
+    count: int = 101,
+    model: Model = "beam",
+    *,
+    tolerance: float | None = None,
+    main_contact_share: float | None = None,
+) -> Results:
     """:func:`solve` on ``count`` evenly spaced points of the centreline z = B/2, from x = 0
     to L (``impact sweep --count``; the paper uses 101)."""
-    return _results(_impact.run(load_scene(scene), model, sweep=float(count), tolerance=tolerance))
+    run = _impact.run(
+        load_scene(scene), model, sweep=float(count), tolerance=tolerance, main_contact_share=main_contact_share
+    )
+    return _results(run)
 
 
-def yield_velocity(scene: SceneLike, model: Model = "beam", *, tolerance: float | None = None) -> Results:
+def yield_velocity(
+    scene: SceneLike, model: Model = "beam", *, tolerance: float | None = None, main_contact_share: float | None = None
+) -> Results:
     """Yield velocities only (eqs. 51-54; ``impact yield``); for the transient model, the
     velocity at which the transient delta_max reaches the paper's delta_my."""
-    return _results(_impact.run(load_scene(scene), model, yield_only=True, tolerance=tolerance))
+    run = _impact.run(
+        load_scene(scene), model, yield_only=True, tolerance=tolerance, main_contact_share=main_contact_share
+    )
+    return _results(run)
 
 
 @dataclass(frozen=True)
