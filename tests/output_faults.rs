@@ -2,6 +2,9 @@
 //! were, and a writer killed at random points leaves the complete old set or the complete new
 //! set, never a mixture, with nothing stale left after the next run.
 
+mod common;
+
+use common::leftovers;
 use std::collections::HashSet;
 use std::fs;
 use std::os::unix::fs::FileTypeExt;
@@ -15,16 +18,6 @@ use impact::output::{sha256_hex, verify_set, Artifacts, OutputDir, OutputError, 
 /// commits into until it is killed.
 const WRITER_ENV: &str = "IMPACT_OUTPUT_FAULTS_WRITER_TARGET";
 const FILES: usize = 300;
-
-/// Entries a run creates beside its target and must not leave behind.
-fn leftovers(dir: &Path) -> Vec<String> {
-    fs::read_dir(dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains(".impact-"))
-        .collect()
-}
 
 fn mkfifo(p: &Path) {
     assert!(Command::new("mkfifo").arg(p).status().unwrap().success());

@@ -9,18 +9,8 @@ use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{impact, tmp, BIN};
+use common::{impact, leftovers, tmp, BIN};
 use impact::output::verify_set;
-
-/// Entries a run creates beside its target and must not leave behind.
-fn leftovers(dir: &Path) -> Vec<String> {
-    fs::read_dir(dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains(".impact-"))
-        .collect()
-}
 
 /// Waits until `dir` holds a stage of a run; false if `child` ended first.
 fn stage_appears(dir: &Path, child: &mut Child) -> bool {

@@ -15,4 +15,4 @@ pub mod tmp;
 pub use run::{impact, Impact, Run, BIN};
 /// The small scenes, shared with the studies' tests.
 pub use test_scenes as scenes;
-pub use tmp::{tmp, Tmp};
+pub use tmp::{leftovers, tmp, Tmp};

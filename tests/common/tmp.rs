@@ -27,3 +27,14 @@ impl Tmp {
         path
     }
 }
+
+/// The entries a run creates beside its target (stages, lock files) and must not leave
+/// behind: every name in `dir` that holds ".impact-".
+pub fn leftovers(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".impact-"))
+        .collect()
+}
