@@ -319,6 +319,27 @@ pub fn estimate_on(
     Ok(e)
 }
 
+/// The estimate of the whole sequence of `o`, an impact on `levels` (base, fine, coarse) at
+/// `steps` per Hertz time, from the four levels each followed through every contact; None for
+/// one contact that ended, whose numbers are the first contact's.
+fn whole_impact(
+    o: &Outcome,
+    (base, fine, coarse): (&TransientCase, &TransientCase, Option<&TransientCase>),
+    set: &SupportSet,
+    s: &Striker,
+    (x, z): (f64, f64),
+    steps: f64,
+) -> Result<Option<SequenceEstimate>, ModelError> {
+    if o.contacts.len() == 1 && o.unfinished_contact.is_none() && o.left_at.is_some() {
+        return Ok(None);
+    }
+    let o_dt = base.run_steps(set, s, x, z, 2.0 * steps)?;
+    let o_2dt = base.run_steps(set, s, x, z, 0.5 * steps)?;
+    let o_h = fine.run_steps(set, s, x, z, steps)?;
+    let o_2h = coarse.map(|c| c.run_steps(set, s, x, z, steps)).transpose()?;
+    Ok(Some(sequence_estimate(o, (&o_dt, &o_2dt), (&o_h, o_2h.as_ref()))))
+}
+
 /// The estimate for one case on `elements` and `steps_per_contact` (builds the meshes).
 pub fn estimate(
     plate: &Plate,
@@ -495,6 +516,7 @@ pub fn choose_on(
         let mut e = combine(q, (q_2dt, q_dt), (q_2h, q_h), (base_elements << level, steps), o);
         e.tolerance = Some(tolerance);
         if e.relative_error() <= tolerance {
+            e.sequence = whole_impact(&e.outcome, (base, fine, coarse), set, s, (x, z), steps)?;
             return Ok(e);
         }
         let refine_t =
@@ -503,6 +525,7 @@ pub fn choose_on(
             && (base_elements << (level + 1)) <= budget.max_elements;
         if !refine_t && !refine_h {
             e.met_tolerance = false;
+            e.sequence = whole_impact(&e.outcome, (base, fine, coarse), set, s, (x, z), steps)?;
             return Ok(e);
         }
         if refine_t {
