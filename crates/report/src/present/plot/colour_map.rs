@@ -2,7 +2,7 @@
 //! colour bar's bands (runs of one band merged into few paths), marks, and the colour bar
 //! labelled in the quantity itself.
 
-use super::svg::{axis_label, esc, svg_open, text_width, usable, wrap, Map, CHAR_EM};
+use super::svg::{axis_label, esc, svg_open, text_width, usable, wrap, x_tick_marks, Map, CHAR_EM};
 use super::ticks::{linear_ticks, log_ticks, Ticks};
 use super::{Axis, Scale};
 use std::fmt::Write as _;
@@ -284,17 +284,7 @@ impl ColourMap {
             out,
             r#"<rect x="{left:.2}" y="{top:.2}" width="{pw:.2}" height="{ph:.2}" fill="none" stroke="black"/>"#
         );
-        for (v, label) in &l.xt.major {
-            let px = l.x.at(*v);
-            let b = top + ph;
-            let _ = write!(
-                out,
-                r#"<line x1="{px:.2}" y1="{b:.2}" x2="{px:.2}" y2="{:.2}" stroke="black"/><text x="{px:.2}" y="{:.2}" text-anchor="middle" font-size="12">{}</text>"#,
-                b + 5.0,
-                b + 19.0,
-                esc(label)
-            );
-        }
+        x_tick_marks(out, &l.x, &l.xt, top + ph);
         for (v, label) in &l.yt.major {
             let py = l.y.at(*v);
             let _ = write!(

@@ -170,6 +170,20 @@ pub(super) fn coincides_with(series: &[Series], i: usize, x: &Map, y: &Map) -> O
     })
 }
 
+/// The major ticks of `xt` on the x axis `x` below the baseline `b`, with their labels.
+pub(super) fn x_tick_marks(out: &mut String, x: &Map, xt: &Ticks, b: f64) {
+    for (v, label) in &xt.major {
+        let px = x.at(*v);
+        let _ = write!(
+            out,
+            r#"<line x1="{px:.2}" y1="{b:.2}" x2="{px:.2}" y2="{:.2}" stroke="black"/><text x="{px:.2}" y="{:.2}" text-anchor="middle" font-size="12">{}</text>"#,
+            b + 5.0,
+            b + 19.0,
+            esc(label)
+        );
+    }
+}
+
 /// Draws the axes frame, ticks, labels and grid of a plot area.
 pub(super) fn axes(out: &mut String, x: &Map, y: &Map, xt: &Ticks, yt: &Ticks) {
     let (l, r, t, b) = (x.p0, x.p1, y.p1, y.p0);
@@ -188,16 +202,7 @@ pub(super) fn axes(out: &mut String, x: &Map, y: &Map, xt: &Ticks, yt: &Ticks) {
         r - l,
         b - t
     );
-    for (v, label) in &xt.major {
-        let px = x.at(*v);
-        let _ = write!(
-            out,
-            r#"<line x1="{px:.2}" y1="{b:.2}" x2="{px:.2}" y2="{:.2}" stroke="black"/><text x="{px:.2}" y="{:.2}" text-anchor="middle" font-size="12">{}</text>"#,
-            b + 5.0,
-            b + 19.0,
-            esc(label)
-        );
-    }
+    x_tick_marks(out, x, xt, b);
     for v in &xt.minor {
         let px = x.at(*v);
         let _ = write!(out, r#"<line x1="{px:.2}" y1="{b:.2}" x2="{px:.2}" y2="{:.2}" stroke="black"/>"#, b + 3.0);
