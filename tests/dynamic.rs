@@ -17,7 +17,14 @@ use plate_fem::{Mesh, Model, PlateProperties, Supports};
 fn coal(v: f64, e: f64) -> Striker {
     let scene = Scene::default_scene();
     let imp = impact_of(&scene, &scene.bodies[0], v);
-    Striker { k: imp.contact_stiffness, restitution: e, mass: imp.mass, velocity: v, law: ContactLaw::Flores(Flores) }
+    Striker {
+        k: imp.contact_stiffness,
+        restitution: e,
+        mass: imp.mass,
+        velocity: v,
+        law: ContactLaw::Flores(Flores),
+        gravity: 0.0,
+    }
 }
 
 /// Rigid target, e = 1: Hertz. Newmark's rule is second order, so the force error falls 4x

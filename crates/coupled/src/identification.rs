@@ -17,6 +17,7 @@
 
 use crate::error::ModelError;
 use crate::reduced::{ChannelKind, ReducedModel, SignalSpec};
+use crate::scene::Scene;
 use crate::transient::{LawKind, Striker};
 use analytic::{contact_stiffness, DruckerPrager, Plate};
 use identify::ensemble::for_each_ordered;
@@ -107,21 +108,17 @@ pub struct Instrument<'a> {
     plate: Plate,
     restitution: f64,
     law: LawKind,
+    gravity: f64,
 }
 
 impl<'a> Instrument<'a> {
-    /// Prepares `spec` on `model` for impacts on `plate` with the Flores restitution and the
-    /// contact law of the scene.
-    pub fn new(
-        model: &'a ReducedModel,
-        plate: &Plate,
-        spec: &SignalSpec,
-        restitution: f64,
-        law: LawKind,
-    ) -> Result<Self, ModelError> {
+    /// Prepares `spec` on `model` for impacts on `plate` with the Flores restitution, the
+    /// contact law and the gravity of `scene`.
+    pub fn new(model: &'a ReducedModel, plate: &Plate, spec: &SignalSpec, scene: &Scene) -> Result<Self, ModelError> {
         let probes = model.probes(spec)?;
         let extractor = Extractor::new(spec.samples(), spec.rate_hz);
-        Ok(Self { model, probes, extractor, plate: *plate, restitution, law })
+        let (restitution, law, gravity) = (scene.restitution, scene.contact_law, scene.gravity);
+        Ok(Self { model, probes, extractor, plate: *plate, restitution, law, gravity })
     }
 
     /// The channels each impact records.
@@ -145,6 +142,7 @@ impl<'a> Instrument<'a> {
             mass: sphere.mass(),
             velocity: draw.velocity,
             law: self.law.law_for(&sphere),
+            gravity: self.gravity,
         };
         let hit = self.model.impact(&striker, draw.x, draw.z, &self.probes)?;
         let o = &hit.outcome;

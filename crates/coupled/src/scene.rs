@@ -133,6 +133,13 @@ pub struct Scene {
     pub restitution: f64,
     /// The transient model's contact law (the quasi-static model is the paper's Flores law).
     pub contact_law: LawKind,
+    /// Gravity on the sphere toward the plate, m/s², in the transient and reduced models
+    /// ([`crate::transient::Striker::gravity`]); 0 in the paper's impact.
+    pub gravity: f64,
+    /// The plate's Rayleigh damping, the same in the transient (C = αM + βK) and the reduced
+    /// model (ζᵢ = α/(2ωᵢ) + βωᵢ/2 on each mode); None: the transient plate is undamped (the
+    /// paper's) and the reduced model keeps `[signals]`'s modal damping ratio.
+    pub plate_damping: Option<plate_fem::dynamics::Rayleigh>,
     /// Support sets, names unique.
     pub conditions: Vec<SupportSet>,
     /// Impact points.
@@ -162,6 +169,12 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Where the transient model's discretisation starts ([`Discretisation::start`]), with the
+    /// scene's plate damping.
+    pub fn transient_start(&self) -> crate::transient::TransientSettings {
+        crate::transient::TransientSettings { damping: self.plate_damping, ..self.transient_discretisation.start() }
+    }
+
     /// Whether the scene asks for `analysis`.
     pub fn wants(&self, analysis: Analysis) -> bool {
         self.analyses.contains(&analysis)

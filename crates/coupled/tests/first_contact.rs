@@ -32,7 +32,8 @@ fn a_large_plate_matches_zeners_infinite_plate() {
     let tz = tz.unwrap();
     let mesh = Mesh::uniform(1.0, 1.0, 24, 24).unwrap();
     let case = TransientCase::on_mesh(&thin, mesh, TransientSettings::default()).unwrap();
-    let o = first_contact_on(case.model(), Supports::all_edges_simple(), &s, (0.5, 0.5), tz / 200.0, 5.0 * tz).unwrap();
+    let o = first_contact_on(case.model(), (Supports::all_edges_simple(), None), &s, (0.5, 0.5), tz / 200.0, 5.0 * tz)
+        .unwrap();
     let tc = o.contact_time.unwrap();
     assert!((o.force_max / fz - 1.0).abs() < 0.01, "P_max {} against Zener's {fz}", o.force_max);
     assert!((tc / tz - 1.0).abs() < 0.01, "t_c {tc} against Zener's {tz}");
@@ -48,7 +49,8 @@ fn first_contact_on_the_cases_model_is_the_cases_first_contact() {
     let s = striker(&p, &coal(), 0.65, 0.008);
     let (x, z) = (p.length() / 2.0, p.width() / 2.0);
     let dt = s.hertz_time() / 200.0;
-    let direct = first_contact_on(case.model(), set.supports, &s, (x, z), dt, WINDOW_HERTZ_TIMES * s.hertz_time());
+    let direct =
+        first_contact_on(case.model(), (set.supports, None), &s, (x, z), dt, WINDOW_HERTZ_TIMES * s.hertz_time());
     assert_eq!(direct.unwrap(), case.first_contact(&set, &s, x, z, 200.0).unwrap());
 }
 

@@ -31,6 +31,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         ensemble: None,
         transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
+        gravity: 0.0,
     };
     let r = run_transient(&scene).unwrap();
     let v = r.responses[0].values().unwrap();
@@ -92,6 +93,7 @@ fn one_case(
         ensemble: None,
         transient_discretisation: disc,
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
+        gravity: 0.0,
     }
 }
 

@@ -71,6 +71,17 @@ pub const POINT_COUNT: Range = Range::closed(2.0, crate::MAX_POINTS as f64);
 /// Relative error the transient model is asked for (`--tolerance`, Python's `tolerance`):
 /// below 1e-6 the ladder's budget cannot reach it, above 0.1 an estimate is no longer one.
 pub const TRANSIENT_TOLERANCE: Range = Range::closed(1e-6, 0.1);
+/// Gravity on the sphere toward the plate (`gravity_m_per_s2`), m/s²: from none (the paper)
+/// to ten times Earth's, which covers any inclination of the plate and a drop test on a
+/// centrifuge's scale without admitting a typo in the wrong unit (9,806.65 mm/s²).
+pub const GRAVITY_M_PER_S2: Range = Range::closed(0.0, 100.0);
+/// The plate's damping ratio at the two frequencies of `[plate_damping]`: above zero (no
+/// damping is the table left out) and at most half of critical, as the reduced model's
+/// modal ratio; between the two frequencies the ratio is lower, outside them higher.
+pub const PLATE_DAMPING_RATIO: Range = Range::open_closed(0.0, 0.5);
+/// The two frequencies of `[plate_damping]`, Hz: from a slow sway of a large structure to
+/// beyond any mode a plate FE mesh resolves.
+pub const DAMPING_FREQUENCY_HZ: Range = Range::closed(1e-3, 1e7);
 /// The share of m·v₀ a contact's impulse must reach to count as a main contact
 /// (`--main-contact-share`): 0 counts every contact, 1 none after a full stop.
 pub const MAIN_CONTACT_SHARE: Range = Range::closed(0.0, 1.0);

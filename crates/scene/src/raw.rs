@@ -14,6 +14,8 @@ pub(crate) struct RawScene {
     pub(crate) restitution: f64,
     #[serde(default)]
     pub(crate) contact_law: Option<String>,
+    #[serde(default)]
+    pub(crate) gravity_m_per_s2: Option<f64>,
     pub(crate) plate: RawPlate,
     #[serde(default)]
     pub(crate) bodies: Vec<RawBody>,
@@ -32,6 +34,16 @@ pub(crate) struct RawScene {
     pub(crate) ensemble: Option<crate::ensemble::RawEnsemble>,
     #[serde(default)]
     pub(crate) signals: Option<RawSignals>,
+    #[serde(default)]
+    pub(crate) plate_damping: Option<RawPlateDamping>,
+}
+
+/// The plate's Rayleigh damping: a ratio reached at two frequencies.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawPlateDamping {
+    pub(crate) ratio: f64,
+    pub(crate) frequencies_hz: Vec<f64>,
 }
 
 /// The reduced model's sensor signals.

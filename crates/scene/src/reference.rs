@@ -116,6 +116,13 @@ fn top_level() -> Section {
             word(coupled::transient::LawKind::default().key()),
             "The transient and reduced models' contact law (the quasi-static models use the paper's Flores law)",
         ),
+        num(
+            "gravity_m_per_s2",
+            "m/s²",
+            limits::GRAVITY_M_PER_S2,
+            "9.80665 with [ensemble] (a caving stream), else 0",
+            "Gravity on the sphere toward the plate in the transient and reduced models: the free lump flies on a parabola and falls back (the paper's impact has none)",
+        ),
         key(
             "analyses",
             "list of strings",
@@ -149,6 +156,13 @@ fn top_level() -> Section {
             "[signals]",
             "its keys' defaults",
             "The reduced model's sensor signals (`impact signals`, \"identify\")",
+        ),
+        table(
+            "plate_damping",
+            TABLE,
+            "[plate_damping]",
+            "none: the transient plate undamped, the reduced model's modes at `[signals]`'s ratio",
+            "The plate's Rayleigh damping, the same in the transient and the reduced model",
         ),
         table(
             "ensemble",
@@ -310,9 +324,17 @@ fn runs() -> Vec<Section> {
             keys: vec![
                 num("window_ms", "ms", limits::SIGNAL_WINDOW_MS, compact(d.window * 1e3), "Length of each signal from first touch"),
                 num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, compact(d.rate_hz), "Sampling rate"),
-                num("damping_ratio", NO_UNIT, ReducedSettings::DAMPING_RATIO, compact(d.damping_ratio), "Modal damping ratio ζ"),
+                num("damping_ratio", NO_UNIT, ReducedSettings::DAMPING_RATIO, compact(d.damping_ratio), "Modal damping ratio ζ of every mode (not with [plate_damping], which replaces it)"),
                 whole("modes", limits::MODES, d.modes.to_string(), "Modes the reduced model keeps (and at most the plate's free degrees of freedom)"),
                 key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}, at least 0.1 mm apart (channels are named by position to 0.1 mm)", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate"),
+            ],
+        },
+        Section {
+            title: "[plate_damping]",
+            about: "Rayleigh damping C = αM + βK of the plate, given as the ratio ζ it has at two frequencies (α = 2ζω_aω_b/(ω_a + ω_b), β = 2ζ/(ω_a + ω_b)); a mode of frequency f then has ζ(f) = α/(4πf) + πβf, below ζ between the two and above it outside. The transient model damps its FE plate with C, the reduced model each mode with ζ(f), so both answer the same question.".into(),
+            keys: vec![
+                num("ratio", NO_UNIT, limits::PLATE_DAMPING_RATIO, REQUIRED, "Damping ratio ζ at both frequencies"),
+                key("frequencies_hz", "[f_a, f_b]", "Hz", format!("each in {}, f_a ≤ f_b", limits::DAMPING_FREQUENCY_HZ), REQUIRED, "The two frequencies with ratio ζ (e.g. the fundamental and the highest mode that matters)"),
             ],
         },
     ]

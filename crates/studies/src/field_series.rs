@@ -80,7 +80,10 @@ pub fn contact_series(
     (x, z): (f64, f64),
     elements: usize,
 ) -> Result<FieldSeries, Failure> {
-    let case = TransientCase::new(&scene.plate, TransientSettings { elements, ..TransientSettings::default() })?;
+    let case = TransientCase::new(
+        &scene.plate,
+        TransientSettings { elements, damping: scene.plate_damping, ..TransientSettings::default() },
+    )?;
     let mesh = case.model().mesh();
     let s = scene_striker(scene, body, velocity);
     let dt = s.hertz_time() / STEPS_PER_CONTACT;

@@ -97,6 +97,7 @@ fn regime_rule(scene: &Scene, set: &SupportSet, imp: &Impact, c: f64) -> validit
         mass: imp.mass,
         velocity: imp.velocity,
         law: crate::transient::ContactLaw::Flores(crate::transient::law::Flores),
+        gravity: 0.0,
     };
     crate::regimes::rule(crate::regimes::RuleInputs::of(&s, &scene.plate, set, c))
 }

@@ -189,7 +189,11 @@ pub fn scene_striker(scene: &Scene, body: &Sphere, velocity: f64) -> Striker {
 /// the contact law `law` in place of the scene's: the same sphere under Hertz, Flores or
 /// Thornton, for comparing the laws on one impact.
 pub fn law_striker(scene: &Scene, body: &Sphere, velocity: f64, law: LawKind) -> Striker {
-    Striker { law: law.law_for(body), ..striker(&scene.plate, body, scene.restitution, velocity) }
+    Striker {
+        law: law.law_for(body),
+        gravity: scene.gravity,
+        ..striker(&scene.plate, body, scene.restitution, velocity)
+    }
 }
 
 /// One transient response row's values with their error estimate, and the estimate itself
@@ -235,7 +239,7 @@ pub fn transient_case_count(scene: &Scene) -> usize {
 /// caller's progress display).
 pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<Results, ModelError> {
     let disc = scene.transient_discretisation;
-    let mut ladder = Ladder::new(&scene.plate, disc.start())?;
+    let mut ladder = Ladder::new(&scene.plate, scene.transient_start())?;
     let points = scene.point_pairs();
     let mut responses = Vec::new();
     let mut yields = Vec::new();
@@ -264,10 +268,7 @@ pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<R
                     let k = contact_stiffness(body, scene.plate.material());
                     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
                     let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
-                    let s = Striker {
-                        law: scene.contact_law.law_for(body),
-                        ..striker(&scene.plate, body, scene.restitution, v_rigid)
-                    };
+                    let s = scene_striker(scene, body, v_rigid);
                     let e = disc.estimate(&mut ladder, set, &s, (x, z))?;
                     let level = (e.elements / disc.start().elements).max(1).trailing_zeros() as usize;
                     let case = ladder.levels(level)?.0;

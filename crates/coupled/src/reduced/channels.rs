@@ -4,7 +4,7 @@
 
 use super::corners::CornerData;
 use super::signals::{ChannelKind, ChannelRows, Probes, Quantity, SignalSpec};
-use super::ReducedModel;
+use super::{ModalDamping, ReducedModel};
 use crate::error::ModelError;
 use analytic::params::{check, Range};
 use plate_fem::CornerSupport;
@@ -17,7 +17,7 @@ impl ReducedModel {
         check("signals.window", spec.window, Range::open_closed(0.0, 10.0), "s")?;
         check("signals.rate_hz", spec.rate_hz, Range::closed(10.0, 1e7), "Hz")?;
         check("signals.samples", spec.window * spec.rate_hz, Range::closed(1.0, 1e7), "")?;
-        let zeta = self.settings.damping_ratio;
+        let zeta = self.settings.damping();
         let fact = self.model.factorize(&self.set.supports)?;
         let mut rows = Vec::new();
         let mut fields = Vec::new();
@@ -41,7 +41,7 @@ impl ReducedModel {
 /// Quantity `q` at sensor `s`, whose modal values are `phi_s` and whose residual field is
 /// `fields[f]`: displacement Σφᵢqᵢ, velocity Σφᵢq̇ᵢ, acceleration Σφᵢq̈ᵢ with the modal
 /// equation q̈ᵢ = φᵢ(p)P - ωᵢ²qᵢ - 2ζωᵢq̇ᵢ.
-fn sensor_channel(q: &Quantity, s: usize, phi_s: &[f64], f: usize, omega: &[f64], zeta: f64) -> ChannelRows {
+fn sensor_channel(q: &Quantity, s: usize, phi_s: &[f64], f: usize, omega: &[f64], zeta: ModalDamping) -> ChannelRows {
     let n = omega.len();
     let w2 = |i: usize| omega[i] * omega[i];
     match q {
@@ -66,7 +66,7 @@ fn sensor_channel(q: &Quantity, s: usize, phi_s: &[f64], f: usize, omega: &[f64]
         Quantity::Acceleration => ChannelRows {
             kind: ChannelKind::Acceleration { sensor: s },
             a: (0..n).map(|i| -w2(i) * phi_s[i]).collect(),
-            b: (0..n).map(|i| -2.0 * zeta * omega[i] * phi_s[i]).collect(),
+            b: (0..n).map(|i| -2.0 * zeta.at(omega[i]) * omega[i] * phi_s[i]).collect(),
             c: Some(phi_s.to_vec()),
             direct: None,
             res: [None, None, Some((f, 1.0))],

@@ -25,7 +25,7 @@ impl ReducedModel {
         every: usize,
     ) -> Result<ReducedOutcome, ModelError> {
         let pt = self.point(x, z)?;
-        let zeta = self.settings.damping_ratio;
+        let zeta = self.settings.damping();
         let static_compliance = modal_compliance(&pt.phi, &self.omega) + pt.c_res;
         let residual_mode = self.residual_mode(&pt, static_compliance);
         let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_point(&pt, f)).collect();
@@ -35,7 +35,7 @@ impl ReducedModel {
                 omega.push(w);
                 phi_p.push(pt.c_res / root_m);
                 if let Some(m) = map.as_mut() {
-                    m.push(w, zeta, dt);
+                    m.push(w, zeta.at(w), dt);
                 }
                 0.0
             }
@@ -153,7 +153,7 @@ fn channel_row(
     pt: &Point,
     field_at_p: &[f64],
     residual_mode: Option<(f64, f64)>,
-    (c_res, zeta): (f64, f64),
+    (c_res, zeta): (f64, super::ModalDamping),
     phi_p: &[f64],
 ) -> ChannelRow {
     let ell = |k: usize| r.res[k].map_or(0.0, |(f, s)| s * field_at_p[f]);
@@ -165,7 +165,7 @@ fn channel_row(
         Some((w, root_m)) => {
             let (ld, lv, la) = (ell(0) / root_m, ell(1) / root_m, ell(2) / root_m);
             a.push(ld - w * w * la);
-            b.push(if r.damped_inertia { lv } else { lv - 2.0 * zeta * w * la });
+            b.push(if r.damped_inertia { lv } else { lv - 2.0 * zeta.at(w) * w * la });
             d += la * phi_p[phi_p.len() - 1];
         }
         // The static correction: a displacement, no rate.

@@ -69,6 +69,7 @@ use crate::transient::{Outcome, Striker};
 use analytic::params::{check, Range};
 use analytic::Plate;
 use corners::{corner_data, CornerData};
+use plate_fem::dynamics::Rayleigh;
 use plate_fem::modes::shape_at;
 use plate_fem::{Mesh, Model, Modes, ResidualFlexibility};
 use serde::Serialize;
@@ -94,6 +95,10 @@ pub struct ReducedSettings {
     pub modes: usize,
     /// Modal damping ratio ζ of every mode.
     pub damping_ratio: f64,
+    /// Rayleigh damping in place of `damping_ratio`: mode i gets ζᵢ = α/(2ωᵢ) + βωᵢ/2, the
+    /// ratio the full model's C = αM + βK gives it, so that both models answer the same
+    /// question.
+    pub rayleigh: Option<Rayleigh>,
     /// Elements along the longer side of the plate (the full model's mesh rule).
     pub elements: usize,
     /// The time step in contact is at most the Hertz time over this.
@@ -119,6 +124,32 @@ impl ReducedSettings {
     pub const MODES: Range = Range::closed(1.0, 2000.0);
 }
 
+impl ReducedSettings {
+    /// The damping of the modes: Rayleigh's where given, else the one ratio.
+    pub fn damping(&self) -> ModalDamping {
+        self.rayleigh.map_or(ModalDamping::Ratio(self.damping_ratio), ModalDamping::Rayleigh)
+    }
+}
+
+/// The damping ratio of each mode.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum ModalDamping {
+    /// The same ratio ζ for every mode.
+    Ratio(f64),
+    /// Rayleigh's C = αM + βK: ζᵢ = α/(2ωᵢ) + βωᵢ/2.
+    Rayleigh(Rayleigh),
+}
+
+impl ModalDamping {
+    /// The damping ratio of the mode of circular frequency `omega` (rad/s).
+    pub fn at(&self, omega: f64) -> f64 {
+        match self {
+            ModalDamping::Ratio(z) => *z,
+            ModalDamping::Rayleigh(r) => r.ratio(omega),
+        }
+    }
+}
+
 impl Default for ReducedSettings {
     /// N = [`Self::DEFAULT_MODES`], ζ = 0.5 %, the full model's 20 elements,
     /// [`Self::DEFAULT_STEPS_PER_CONTACT`] steps per contact time, the static correction.
@@ -126,6 +157,7 @@ impl Default for ReducedSettings {
         Self {
             modes: Self::DEFAULT_MODES,
             damping_ratio: Self::DEFAULT_DAMPING_RATIO,
+            rayleigh: None,
             elements: 20,
             steps_per_contact: Self::DEFAULT_STEPS_PER_CONTACT,
             correction: Correction::default(),
@@ -142,6 +174,8 @@ pub struct SignalSettings {
     pub rate_hz: f64,
     /// Modal damping ratio ζ.
     pub damping_ratio: f64,
+    /// The scene's plate damping, which replaces `damping_ratio` when given.
+    pub rayleigh: Option<Rayleigh>,
     /// N, the modes kept.
     pub modes: usize,
     /// Sensor points (x, z), m.
@@ -155,6 +189,7 @@ impl Default for SignalSettings {
             window: SignalSpec::DEFAULT_WINDOW,
             rate_hz: SignalSpec::DEFAULT_RATE_HZ,
             damping_ratio: ReducedSettings::DEFAULT_DAMPING_RATIO,
+            rayleigh: None,
             modes: ReducedSettings::DEFAULT_MODES,
             sensors: Vec::new(),
         }
@@ -168,7 +203,12 @@ impl SignalSettings {
     }
     /// The reduced model's settings (the other fields at their defaults).
     pub fn reduced(&self) -> ReducedSettings {
-        ReducedSettings { modes: self.modes, damping_ratio: self.damping_ratio, ..ReducedSettings::default() }
+        ReducedSettings {
+            modes: self.modes,
+            damping_ratio: self.damping_ratio,
+            rayleigh: self.rayleigh,
+            ..ReducedSettings::default()
+        }
     }
 }
 
@@ -333,7 +373,7 @@ impl ReducedModel {
     ) -> Result<ReducedOutcome, ModelError> {
         check("dt", dt, Range::open(0.0, f64::INFINITY), "s")?;
         let every = (probes.spec.interval() / dt).round().max(1.0) as usize;
-        let map = (free == FreeSteps::Exact).then(|| FreeMaps::new(&self.omega, self.settings.damping_ratio, dt));
+        let map = (free == FreeSteps::Exact).then(|| FreeMaps::new(&self.omega, self.settings.damping(), dt));
         self.run(striker, x, z, probes, map, dt, every)
     }
 }

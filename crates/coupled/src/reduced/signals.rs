@@ -200,7 +200,7 @@ pub struct Probes {
     /// impact whose contact needs m steps per sample).
     pub(crate) step_maps: Vec<std::sync::OnceLock<FreeMaps>>,
     pub(crate) omega: Vec<f64>,
-    pub(crate) zeta: f64,
+    pub(crate) zeta: super::ModalDamping,
 }
 
 impl Probes {
@@ -212,7 +212,7 @@ impl Probes {
         rows: Vec<ChannelRows>,
         fields: Vec<Vec<f64>>,
         omega: &[f64],
-        zeta: f64,
+        zeta: super::ModalDamping,
     ) -> Self {
         Self {
             spec: spec.clone(),
@@ -254,14 +254,14 @@ pub(crate) struct FreeMaps {
 }
 
 impl FreeMaps {
-    /// The exact maps over τ for the modes `omega`, damping ratio ζ ([`free_map`]).
-    pub(crate) fn new(omega: &[f64], zeta: f64, tau: f64) -> Self {
-        Self::by_mode(omega.iter().map(|&w| free_map(w, zeta, tau)))
+    /// The exact maps over τ for the modes `omega`, damping `zeta` ([`free_map`]).
+    pub(crate) fn new(omega: &[f64], zeta: super::ModalDamping, tau: f64) -> Self {
+        Self::by_mode(omega.iter().map(|&w| free_map(w, zeta.at(w), tau)))
     }
 
-    /// Newmark's maps over Δt for the modes `omega`, damping ratio ζ ([`newmark_map`]).
-    pub(crate) fn newmark(omega: &[f64], zeta: f64, dt: f64) -> Self {
-        Self::by_mode(omega.iter().map(|&w| newmark_map(w, zeta, dt)))
+    /// Newmark's maps over Δt for the modes `omega`, damping `zeta` ([`newmark_map`]).
+    pub(crate) fn newmark(omega: &[f64], zeta: super::ModalDamping, dt: f64) -> Self {
+        Self::by_mode(omega.iter().map(|&w| newmark_map(w, zeta.at(w), dt)))
     }
 
     fn by_mode(maps: impl Iterator<Item = [f64; 4]>) -> Self {
@@ -326,13 +326,30 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// [q̇←q, q̇←q̇]]: with ω_d = ω√(1 - ζ²),
 /// q(τ) = e^{-ζωτ}[q₀(cos ω_dτ + ζω/ω_d sin ω_dτ) + q̇₀ sin(ω_dτ)/ω_d],
 /// q̇(τ) = e^{-ζωτ}[-q₀ ω²/ω_d sin ω_dτ + q̇₀(cos ω_dτ - ζω/ω_d sin ω_dτ)]
-/// (e.g. Craig & Kurdila 2006, §5.2).
+/// (e.g. Craig & Kurdila 2006, §5.2). A mode damped at or beyond critical (ζ ≥ 1, which
+/// Rayleigh's stiffness part gives the highest modes) takes the same formula continued to
+/// imaginary ω_d ([`overdamped_map`]).
 pub fn free_map(omega: f64, zeta: f64, tau: f64) -> [f64; 4] {
+    if zeta >= 1.0 {
+        return overdamped_map(omega, zeta, tau);
+    }
     let wd = omega * (1.0 - zeta * zeta).sqrt();
     let e = (-zeta * omega * tau).exp();
     let (s, c) = (wd * tau).sin_cos();
     let r = zeta * omega / wd;
     [e * (c + r * s), e * s / wd, -e * omega * omega / wd * s, e * (c - r * s)]
+}
+
+/// [`free_map`] for ζ ≥ 1: with ω_s = ω√(ζ² - 1) the cosine becomes cosh ω_sτ and
+/// sin(ω_dτ)/ω_d becomes sinh(ω_sτ)/ω_s (τ at ζ = 1), each multiplied by e^{-ζωτ} as the sum
+/// of the two decaying exponentials e^{-(ζω ∓ ω_s)τ}, so that nothing overflows.
+fn overdamped_map(omega: f64, zeta: f64, tau: f64) -> [f64; 4] {
+    let ws = omega * (zeta * zeta - 1.0).sqrt();
+    let (slow, fast) = ((-(zeta * omega - ws) * tau).exp(), (-(zeta * omega + ws) * tau).exp());
+    let c = 0.5 * (slow + fast);
+    let s1 = if ws > 0.0 { (slow - fast) / (2.0 * ws) } else { tau * (-omega * tau).exp() };
+    let r = zeta * omega;
+    [c + r * s1, s1, -omega * omega * s1, c - r * s1]
 }
 
 /// Newmark's average-acceleration step of q̈ + 2ζωq̇ + ω²q = 0 over Δt as a map of (q, q̇),
@@ -352,6 +369,26 @@ pub fn newmark_map(omega: f64, zeta: f64, dt: f64) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Beyond critical damping the map still solves q̈ + 2ζωq̇ + ω²q = 0: against the
+    /// closed form of the overdamped oscillator released from q₀ = 1 at rest,
+    /// q = (r₁e^{r₂t} - r₂e^{r₁t})/(r₁ - r₂) with r₁,₂ = -ζω ± ω√(ζ² - 1), and at ζ = 1
+    /// against (1 + ωt)e^{-ωt}; and it is finite where e^{-ζωτ} cosh(ω_sτ) would overflow.
+    #[test]
+    fn free_map_beyond_critical_damping() {
+        let (w, t) = (2.0 * std::f64::consts::PI * 300.0, 1.7e-3);
+        for z in [1.0 + 1e-4, 1.5, 40.0] {
+            let ws = w * ((z * z) - 1.0_f64).sqrt();
+            let (r1, r2) = (-z * w + ws, -z * w - ws);
+            let exact = (r1 * (r2 * t).exp() - r2 * (r1 * t).exp()) / (r1 - r2);
+            let m = free_map(w, z, t);
+            assert!((m[0] - exact).abs() <= 1e-6 * exact.abs().max(1e-300), "ζ = {z}: {} vs {exact}", m[0]);
+        }
+        let m = free_map(w, 1.0, t);
+        let exact = (1.0 + w * t) * (-w * t).exp();
+        assert!((m[0] / exact - 1.0).abs() < 1e-12, "{} vs {exact}", m[0]);
+        assert!(free_map(1e7, 50.0, 1.0).iter().all(|x| x.is_finite()));
+    }
 
     /// The damped free vibration against its defining properties: maps compose
     /// (Φ(τ₁)Φ(τ₂) = Φ(τ₁ + τ₂)); after one damped period 2π/ω_d a displacement returns

@@ -120,7 +120,7 @@ impl ModalTarget {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn new(
         omega: Vec<f64>,
-        zeta: f64,
+        zeta: super::ModalDamping,
         phi_p: Vec<f64>,
         c_res: f64,
         dt: f64,
@@ -138,8 +138,11 @@ impl ModalTarget {
             x
         };
         let c1 = 2.0 / dt;
-        let gamma: Vec<f64> =
-            pad(omega.iter().zip(&phi_p).map(|(&w, f)| f / (w * w + 4.0 * zeta * w / dt + 4.0 / (dt * dt))).collect());
+        let gamma: Vec<f64> = pad(omega
+            .iter()
+            .zip(&phi_p)
+            .map(|(&w, f)| f / (w * w + 4.0 * zeta.at(w) * w / dt + 4.0 / (dt * dt)))
+            .collect());
         let g_modes = gamma.iter().zip(&phi_p).map(|(c, f)| c * f).sum::<f64>();
         let gamma_rate = gamma.iter().map(|c| c1 * c).collect();
         let omega2: Vec<f64> = pad(omega.iter().map(|w| w * w).collect());

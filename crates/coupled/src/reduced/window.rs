@@ -29,14 +29,14 @@ pub(crate) struct BlockMaps {
 }
 
 impl BlockMaps {
-    /// The maps for the modes `omega`, damping ratio ζ, sample interval `ts`.
-    pub(crate) fn new(omega: &[f64], zeta: f64, ts: f64) -> Self {
+    /// The maps for the modes `omega`, damping `zeta`, sample interval `ts`.
+    pub(crate) fn new(omega: &[f64], zeta: super::ModalDamping, ts: f64) -> Self {
         let modes = omega
             .iter()
             .map(|&w| {
                 let mut m = [Block([0.0; BLOCK]); 4];
                 for j in 0..BLOCK {
-                    let phi = free_map(w, zeta, (j + 1) as f64 * ts);
+                    let phi = free_map(w, zeta.at(w), (j + 1) as f64 * ts);
                     for k in 0..4 {
                         m[k].0[j] = phi[k];
                     }
@@ -158,7 +158,7 @@ mod tests {
         let rows =
             [ChannelRow { a: Some(a.clone()), b: None, d: 0.0 }, ChannelRow { a: None, b: Some(b.clone()), d: 0.0 }];
         let count = 2 * BLOCK + BLOCK / 2;
-        let maps = BlockMaps::new(&omega, zeta, ts);
+        let maps = BlockMaps::new(&omega, super::super::ModalDamping::Ratio(zeta), ts);
         let mut out = vec![Vec::new(), Vec::new()];
         free_window(pulp::Arch::new(), &[maps.modes()], &q, &v, &rows, &mut out, count);
         let exact = |k: usize| -> (f64, f64) {

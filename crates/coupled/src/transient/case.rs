@@ -6,7 +6,7 @@ use crate::discretisation::{mesh_for, plate_properties};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
 use analytic::{contact_stiffness, Plate, Sphere};
-use plate_fem::dynamics::{fundamental_frequency, Newmark};
+use plate_fem::dynamics::{fundamental_frequency, Newmark, Rayleigh};
 use plate_fem::{CornerSupport, Mesh, Model, Supports};
 use serde::Serialize;
 
@@ -21,6 +21,9 @@ pub struct TransientSettings {
     /// The run stops after this many Hertz contact times if the sphere has not left
     /// ([`WINDOW_HERTZ_TIMES`] by default).
     pub window_contacts: f64,
+    /// The plate's Rayleigh damping C = αM + βK; None (the default, the paper's plate) for
+    /// none.
+    pub damping: Option<Rayleigh>,
 }
 
 /// The window of a run, in Hertz contact times: the stopping rule ends most runs long
@@ -35,7 +38,7 @@ pub const WINDOW_HERTZ_TIMES: f64 = 200.0;
 
 impl Default for TransientSettings {
     fn default() -> Self {
-        Self { elements: 20, steps_per_contact: 200.0, window_contacts: WINDOW_HERTZ_TIMES }
+        Self { elements: 20, steps_per_contact: 200.0, window_contacts: WINDOW_HERTZ_TIMES, damping: None }
     }
 }
 
@@ -48,6 +51,7 @@ pub fn striker(plate: &Plate, body: &Sphere, restitution: f64, velocity: f64) ->
         mass: body.mass(),
         velocity,
         law: ContactLaw::Flores(Flores),
+        gravity: 0.0,
     }
 }
 
@@ -153,7 +157,8 @@ impl TransientCase {
         steps_per_contact: f64,
     ) -> Result<Outcome, ModelError> {
         let dt = s.hertz_time() / steps_per_contact;
-        first_contact_on(&self.model, set.supports, s, (x, z), dt, self.settings.window_contacts * s.hertz_time())
+        let t_max = self.settings.window_contacts * s.hertz_time();
+        first_contact_on(&self.model, (set.supports, self.settings.damping), s, (x, z), dt, t_max)
     }
 
     /// One impact with `steps_per_contact` steps per Hertz time instead of the settings'.
@@ -166,13 +171,14 @@ impl TransientCase {
         steps_per_contact: f64,
     ) -> Result<Outcome, ModelError> {
         let dt = s.hertz_time() / steps_per_contact;
-        let mut nm = Newmark::new(&self.model, set.supports, dt, x, z)?;
+        let mut nm = Newmark::damped(&self.model, set.supports, dt, (x, z), self.settings.damping)?;
         let facts = self.facts(&set.supports, x, z);
         Ok(simulate_with(s, Some(&mut nm), facts, dt, self.settings.window_contacts * s.hertz_time()))
     }
 }
 
-/// The first contact of `s` at (x, z) on `model` held by `supports`, with the time step `dt`
+/// The first contact of `s` at (x, z) on `model` held by `supports` with the plate
+/// `damping` (None: undamped), with the time step `dt`
 /// and the window `t_max` (both in seconds) given directly: for runs timed by another
 /// contact time than Hertz's (Zener's on a large plate) and for plate models built outside a
 /// [`TransientCase`]. The run stops at the first separation: without the static compliance
@@ -181,13 +187,13 @@ impl TransientCase {
 /// the spring energy at maximum compression is exact rather than interpolated.
 pub fn first_contact_on(
     model: &Model,
-    supports: Supports,
+    (supports, damping): (Supports, Option<Rayleigh>),
     s: &Striker,
     (x, z): (f64, f64),
     dt: f64,
     t_max: f64,
 ) -> Result<Outcome, ModelError> {
-    let mut nm = Newmark::new(model, supports, dt, x, z)?;
+    let mut nm = Newmark::damped(model, supports, dt, (x, z), damping)?;
     let facts = PlateFacts { corner_springs: Some(corner_springs(&supports)), ..PlateFacts::default() };
     Ok(simulate_with(s, Some(&mut nm), facts, dt, t_max))
 }

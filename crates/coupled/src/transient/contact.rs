@@ -36,6 +36,10 @@ pub struct Striker {
     pub velocity: f64,
     /// The contact law (Flores by default).
     pub law: ContactLaw,
+    /// The body force on the sphere per unit mass toward the plate, m/s²: gravity's
+    /// component normal to the plate for a lump falling onto it, 0 for the paper's impact
+    /// (which has none). With it the free sphere flies on a parabola and comes back.
+    pub gravity: f64,
 }
 
 impl Striker {

@@ -93,6 +93,9 @@ impl Target for Recorder<'_, '_> {
     fn corner_displacements(&self) -> [f64; 4] {
         self.plate.corner_displacements()
     }
+    fn damping_loss(&self) -> f64 {
+        self.plate.damping_loss()
+    }
 }
 
 /// One impact of `s` at (x, z) on the plate of `case` held by `supports`, followed through
@@ -112,7 +115,7 @@ pub fn impact_frames(
     ringing: Ringing,
 ) -> Result<Recorded, ModelError> {
     let model = case.model();
-    let mut nm = Newmark::new(model, supports, dt, x, z)?;
+    let mut nm = Newmark::damped(model, supports, dt, (x, z), case.settings().damping)?;
     if nm.field().len() != 4 * model.mesh().nodes() {
         return Err(ModelError::Missing("the plate's field does not have four DOFs per node".into()));
     }

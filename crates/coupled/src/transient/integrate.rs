@@ -51,13 +51,20 @@ pub fn simulate_with<T: Target + ?Sized>(
 ) -> Outcome {
     let e0 = 0.5 * s.mass * s.velocity * s.velocity;
     let g = plate.as_ref().map_or(0.0, |p| p.point_flexibility());
-    let mut sphere = SphereState { u: 0.0, v: s.velocity, a: 0.0, dmax: 0.0, approach: s.velocity };
+    // At the touch no force acts yet: the sphere accelerates at g alone.
+    let mut sphere = SphereState { u: 0.0, v: s.velocity, a: s.gravity, dmax: 0.0, approach: s.velocity };
     // Room for the steps of about two rigid-target contact times, so that the histories of
     // a first contact seldom grow by copying.
     let expected = (2.0 * s.hertz_time() / dt).clamp(16.0, 4096.0) as usize;
     let mut first = FirstContact::new(s, expected);
-    let mut later = Later { history: Vec::with_capacity(expected), max_energy_error: 0.0, left_at: None, steps: 0 };
-    let mut sequence = Sequence::default();
+    let mut later = Later {
+        history: Vec::with_capacity(expected),
+        max_energy_error: 0.0,
+        left_at: None,
+        returns_at: None,
+        steps: 0,
+    };
+    let mut sequence = Sequence { gravity: s.gravity, ..Sequence::default() };
     let mut prev = first.ends[0];
     let mut t = 0.0;
     let conserves = s.conserves();
@@ -78,9 +85,10 @@ pub fn simulate_with<T: Target + ?Sized>(
         }
         prev = end;
         if first.done && sequence.current.is_none() {
-            match stopping_rule(plate.as_deref(), &facts, &end, sphere.u) {
-                Verdict::Left => {
+            match stopping_rule(plate.as_deref(), &facts, &end, sphere.u, (s.gravity, t_max - t)) {
+                Verdict::Left(returns) => {
                     later.left_at = Some(t);
+                    later.returns_at = returns.map(|tau| t + tau);
                     break;
                 }
                 Verdict::Stop => break,
@@ -123,8 +131,13 @@ fn step<T: Target + ?Sized>(
     let m = s.mass;
     let (wp, vp) = plate.as_mut().map_or((0.0, 0.0), |p| p.predict());
     let SphereState { u, v, a, dmax, .. } = *sphere;
-    let u_hat = u + dt * v + 0.25 * dt * dt * a;
-    let v_hat = v + 0.5 * dt * a;
+    let (mut u_hat, mut v_hat) = (u + dt * v + 0.25 * dt * dt * a, v + 0.5 * dt * a);
+    // The end-of-step acceleration is g - P/m: its known part g enters the force-free
+    // prediction (skipped at g = 0, so that the paper's impact is unchanged to the bit).
+    if s.gravity != 0.0 {
+        u_hat += 0.25 * dt * dt * s.gravity;
+        v_hat += 0.5 * dt * s.gravity;
+    }
     let (d0, d1) = (u_hat - wp, 0.25 * dt * dt / m + g);
     let (r0, r1) = (v_hat - vp, 0.5 * dt / m + 2.0 * g / dt);
     if prev.force == 0.0 {
@@ -132,17 +145,18 @@ fn step<T: Target + ?Sized>(
     }
     let approach = sphere.approach;
     let p = contact_force_after(s, &s.state_in(dmax, approach), d0, d1, r0, r1);
-    let a_new = -p / m;
-    sphere.u = u_hat + 0.25 * dt * dt * a_new;
-    sphere.v = v_hat + 0.5 * dt * a_new;
-    sphere.a = a_new;
+    // The contact's part of the step-end acceleration; gravity's is in the prediction.
+    let a_contact = -p / m;
+    sphere.u = u_hat + 0.25 * dt * dt * a_contact;
+    sphere.v = v_hat + 0.5 * dt * a_contact;
+    sphere.a = if s.gravity != 0.0 { s.gravity + a_contact } else { a_contact };
     if let Some(pl) = plate.as_mut() {
         pl.commit(p);
     }
     let delta = d0 - d1 * p;
     let rate = r0 - r1 * p;
     sphere.dmax = dmax.max(delta);
-    let (sample, stored) = energies(s, plate.as_deref(), t, p, (delta, sphere.dmax), sphere.v);
+    let (sample, stored) = energies(s, plate.as_deref(), t, p, (delta, sphere.dmax), (sphere.u, sphere.v));
     let (wp_now, vp_now) = plate.as_ref().map_or((0.0, 0.0), |p| p.point_state());
     let corners = plate.as_ref().map_or([0.0; 4], |p| p.corner_displacements());
     // Trapezoidal rule: c_{n+1} - c_n = Δt/2 (ċ_n + ċ_{n+1}) gives the corner rates exactly.
@@ -182,15 +196,18 @@ fn approach_velocity(set: f64, prev: &StepEnd, d0: f64, r0: f64) -> Option<f64> 
 }
 
 /// The energy bookkeeping of one step: every store of the sphere, the contact and the
-/// plate, and E₀ minus their sum (the Flores damping and numerical loss). Returns the
-/// sample and the sum of the stores.
+/// plate, and the energy put in (E₀, plus gravity's work m·g·u on the sphere at `u` from
+/// the first touch) minus their sum (the Flores damping, the plate's damping and numerical
+/// loss). Returns the sample and the sum of the stores and the plate damping's count of its
+/// loss, less gravity's work: what the caller compares with E₀, where only numerical loss
+/// and the contact law's own remain.
 fn energies<T: Target + ?Sized>(
     s: &Striker,
     plate: Option<&T>,
     t: f64,
     p: f64,
     (delta, dmax): (f64, f64),
-    v: f64,
+    (u, v): (f64, f64),
 ) -> (Sample, f64) {
     let m = s.mass;
     let e0 = 0.5 * m * s.velocity * s.velocity;
@@ -198,7 +215,11 @@ fn energies<T: Target + ?Sized>(
     let (pk, ps, sp) = en.map_or((0.0, 0.0, 0.0), |e| (e.kinetic, e.strain, e.springs));
     let contact = s.stored_energy(delta, dmax);
     let kin = 0.5 * m * v * v;
-    let stored = kin + contact + pk + ps + sp;
+    let mut stored = kin + contact + pk + ps + sp;
+    if s.gravity != 0.0 {
+        stored -= m * s.gravity * u;
+    }
+    let counted = stored + plate.map_or(0.0, |p| p.damping_loss());
     let sample = Sample {
         t,
         force: p,
@@ -212,7 +233,7 @@ fn energies<T: Target + ?Sized>(
         springs: sp,
         dissipated: e0 - stored,
     };
-    (sample, stored)
+    (sample, counted)
 }
 
 /// The contact sequence: the completed contacts and the one going on, each from and to
@@ -221,6 +242,9 @@ fn energies<T: Target + ?Sized>(
 struct Sequence {
     contacts: Vec<Contact>,
     current: Option<Contact>,
+    /// Gravity on the sphere, m/s²: after the crossing only it acts, so the velocity at the
+    /// contact's end is the step end's less g times the rest of the step.
+    gravity: f64,
 }
 
 impl Sequence {
@@ -248,8 +272,9 @@ impl Sequence {
                 c.impulse += 0.5 * dt * (prev.force + p);
                 c.steps += 1;
                 if separated(true, p, end.delta - set, prev.delta - set).is_some() {
-                    c.duration = interpolate::crossing(&shifted(prev), &shifted(end), dt) - c.start;
-                    c.rebound_velocity = end.v;
+                    let off = interpolate::crossing(&shifted(prev), &shifted(end), dt);
+                    c.duration = off - c.start;
+                    c.rebound_velocity = if self.gravity != 0.0 { end.v - self.gravity * (end.t - off) } else { end.v };
                     self.contacts.extend(self.current.take());
                 }
             }
@@ -273,6 +298,8 @@ struct FirstContact {
     prev_delta: f64,
     best_delta: f64,
     corners_at_max: [f64; 4],
+    /// Gravity on the sphere (for the velocity at the separation, as in [`Sequence`]).
+    gravity: f64,
 }
 
 impl FirstContact {
@@ -307,6 +334,7 @@ impl FirstContact {
             prev_delta: 0.0,
             best_delta: f64::NEG_INFINITY,
             corners_at_max: [0.0; 4],
+            gravity: s.gravity,
         }
     }
 
@@ -328,8 +356,9 @@ impl FirstContact {
             self.started = true;
         }
         if let Some(frac) = separated(self.started, end.force, end.delta - set, self.prev_delta - set) {
-            self.contact_time = Some(end.t - dt + frac * dt);
-            self.rebound = Some(end.v);
+            let off = end.t - dt + frac * dt;
+            self.contact_time = Some(off);
+            self.rebound = Some(if self.gravity != 0.0 { end.v - self.gravity * (end.t - off) } else { end.v });
             self.plate_velocity = Some(end.vp);
             self.done = true;
             self.steps = steps;
@@ -344,13 +373,16 @@ struct Later {
     history: Vec<Sample>,
     max_energy_error: f64,
     left_at: Option<f64>,
+    returns_at: Option<f64>,
     steps: usize,
 }
 
 /// What the stopping rule decides after a step with no contact going on.
 enum Verdict {
-    /// The sphere has provably left: no further contact can occur.
-    Left,
+    /// The sphere has provably left: no further contact can occur (without gravity), or
+    /// none within the window, the sphere falling back no sooner than the given time from
+    /// now (with gravity).
+    Left(Option<f64>),
     /// Nothing bounds the plate's later motion and the run is not to follow it.
     Stop,
     /// A later contact is still possible.
@@ -360,7 +392,18 @@ enum Verdict {
 /// The stopping rule of [`simulate_with`]: the sphere at `u`, moving at `end.v`, is beyond
 /// the reach W of the free plate and moving away. W is the energy bound √(2E_p C_p) or the
 /// target's own bound on its free motion, whichever is smaller (0 for a rigid target).
-fn stopping_rule<T: Target + ?Sized>(plate: Option<&T>, facts: &PlateFacts, end: &StepEnd, u: f64) -> Verdict {
+///
+/// Under gravity g toward the plate the free sphere moves on u(τ) = u + vτ + gτ²/2 and
+/// always comes back; the plate's point stays within ±W, so no contact can occur before
+/// u(τ) = -W, at τ* = (-v + √(v² - 2g(u + W)))/g ([`return_time`]). The run stops when τ*
+/// lies beyond the `remaining` window, and says when the sphere can be back.
+fn stopping_rule<T: Target + ?Sized>(
+    plate: Option<&T>,
+    facts: &PlateFacts,
+    end: &StepEnd,
+    u: f64,
+    (gravity, remaining): (f64, f64),
+) -> Verdict {
     let v = end.v;
     let energy = facts.static_compliance.map(|c| (2.0 * end.plate_energy().max(0.0) * c).sqrt());
     // The target's own bound may cost it a pass over its state, so with the energy bound at
@@ -378,9 +421,25 @@ fn stopping_rule<T: Target + ?Sized>(plate: Option<&T>, facts: &PlateFacts, end:
         },
     };
     match reach {
-        Some(w) if v <= 0.0 && u < -w => Verdict::Left,
+        Some(w) if gravity > 0.0 && u < -w => match return_time(u + w, v, gravity) {
+            tau if tau >= remaining => Verdict::Left(Some(tau)),
+            _ => Verdict::Continue,
+        },
+        Some(w) if gravity == 0.0 && v <= 0.0 && u < -w => Verdict::Left(None),
         None if !facts.follow_unbounded => Verdict::Stop,
         _ => Verdict::Continue,
+    }
+}
+
+/// The time τ* > 0 at which a free sphere `gap` < 0 short of the plate's reach, moving at `v`
+/// toward it under gravity `g` > 0, closes the gap: gτ²/2 + vτ + gap = 0, the positive root
+/// (written as 2|gap|/(v + √(v² - 2g·gap)) where v > 0, free of cancellation).
+fn return_time(gap: f64, v: f64, g: f64) -> f64 {
+    let root = (v * v - 2.0 * g * gap).sqrt();
+    if v > 0.0 {
+        -2.0 * gap / (v + root)
+    } else {
+        (root - v) / g
     }
 }
 
@@ -412,7 +471,7 @@ fn outcome(
         dissipated: 0.0,
     });
     let interpolated = interpolate::first_contact(s, &first.ends, corner_springs, dt);
-    let Sequence { contacts, current } = sequence;
+    let Sequence { contacts, current, .. } = sequence;
     let total_impulse = contacts.iter().map(|c| c.impulse).sum::<f64>() + current.as_ref().map_or(0.0, |c| c.impulse);
     Outcome {
         force_max: history.iter().map(|h| h.force).fold(0.0, f64::max),
@@ -437,6 +496,7 @@ fn outcome(
         total_impulse,
         final_velocity: v,
         left_at: later.left_at,
+        returns_at: later.returns_at,
         steps_total: later.steps,
         max_energy_error_total: later.max_energy_error,
         later_history: later.history,

@@ -15,7 +15,7 @@
 //! ```
 //! use coupled::transient::{law::Flores, simulate, ContactLaw, Striker};
 //! // A coal sphere (Table 1) on a rigid target with e = 1 is Hertz's impact.
-//! let s = Striker { k: 5.11545e8, restitution: 1.0, mass: 0.0903, velocity: 0.008, law: ContactLaw::Flores(Flores) };
+//! let s = Striker { k: 5.11545e8, restitution: 1.0, mass: 0.0903, velocity: 0.008, law: ContactLaw::Flores(Flores), gravity: 0.0 };
 //! let tc = s.hertz_time();
 //! let o = simulate(&s, None, tc / 200.0, 3.0 * tc);
 //! assert!((o.force_max / s.hertz_force() - 1.0).abs() < 1e-4);
@@ -131,6 +131,10 @@ pub struct Outcome {
     /// When the stopping rule of [`simulate_with`] proved that no further contact can
     /// occur, s; None if the run reached the end of its window first.
     pub left_at: Option<f64>,
+    /// Under gravity the sphere always falls back: the earliest instant it could touch the
+    /// plate again, beyond the window (`left_at` then says no contact can occur within the
+    /// window, not that none ever will), s. None without gravity.
+    pub returns_at: Option<f64>,
     /// Time steps taken over the whole run.
     pub steps_total: usize,
     /// As `max_energy_error`, over the whole run.

@@ -20,6 +20,11 @@ pub trait Target {
     fn energy(&self) -> PlateEnergy;
     /// Corner deflections now (zeros where the target has no corners).
     fn corner_displacements(&self) -> [f64; 4];
+    /// The energy the target's own damping has taken so far, where it keeps count (J); 0
+    /// for an undamped target and for one that does not count it.
+    fn damping_loss(&self) -> f64 {
+        0.0
+    }
     /// An upper bound on |w_p| over all later motion free of force, if the target knows one
     /// (the transient loop's stopping rule then uses it when it is below the energy bound).
     fn free_reach(&self) -> Option<f64> {
@@ -45,6 +50,9 @@ impl Target for Newmark<'_> {
     }
     fn corner_displacements(&self) -> [f64; 4] {
         Newmark::corner_displacements(self)
+    }
+    fn damping_loss(&self) -> f64 {
+        Newmark::damping_loss(self)
     }
 }
 

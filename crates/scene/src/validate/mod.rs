@@ -9,6 +9,7 @@ use coupled::scene::{Analysis, Points, Scene};
 use coupled::transient::LawKind;
 use coupled::SupportSet;
 
+mod damping;
 mod points;
 mod signals;
 mod supports;
@@ -110,13 +111,20 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         }
         None => Points::Pairs { pairs: vec![] },
     };
+    // A caving stream's lumps fall onto the plate, so gravity acts on them by default there.
+    let gravity = match raw.gravity_m_per_s2 {
+        Some(g) => check("gravity_m_per_s2", g, limits::GRAVITY_M_PER_S2, "m/s²")?,
+        None if raw.ensemble.is_some() => identify::ensemble::GRAVITY,
+        None => 0.0,
+    };
+    let plate_damping = raw.plate_damping.as_ref().map(damping::validate_plate_damping).transpose()?;
     let transient_points = match &raw.transient {
         None => points.pairs(),
         Some(t) => transient_points(t, &plate, length_mm, width_mm)?,
     };
     Ok(Scene {
         velocities: validate_velocities(raw.velocities.as_ref(), &analyses)?,
-        signals: validate_signals(raw.signals.as_ref(), length_mm, width_mm)?,
+        signals: validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?,
         solver: validate_solver(&raw.solver)?,
         ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
         name: raw.name,
@@ -125,6 +133,8 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         bodies,
         restitution,
         contact_law,
+        gravity,
+        plate_damping,
         conditions,
         points,
         transient_points,

@@ -7,10 +7,22 @@ use analytic::params::{check, Range};
 use coupled::reduced::SignalSettings;
 
 /// `[signals]`: each key in its range (the file's units), converted to SI; absent keys take
-/// the defaults of [`SignalSettings`].
-pub(super) fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -> Result<SignalSettings, Invalid> {
-    let d = SignalSettings::default();
+/// the defaults of [`SignalSettings`]. The scene's plate damping `rayleigh` replaces the
+/// modal ratio, so a scene may not give both.
+pub(super) fn validate_signals(
+    raw: Option<&RawSignals>,
+    l_mm: f64,
+    b_mm: f64,
+    rayleigh: Option<plate_fem::dynamics::Rayleigh>,
+) -> Result<SignalSettings, Invalid> {
+    let d = SignalSettings { rayleigh, ..SignalSettings::default() };
     let Some(raw) = raw else { return Ok(d) };
+    if let (Some(z), Some(_)) = (raw.damping_ratio, rayleigh) {
+        return Err(other(
+            "signals.damping_ratio",
+            format!("{z} is a second definition of the plate's damping beside [plate_damping]; give one (the [plate_damping] table damps the transient and the reduced model alike)"),
+        ));
+    }
     let window_ms = match raw.window_ms {
         Some(w) => check("signals.window_ms", w, limits::SIGNAL_WINDOW_MS, "ms")?,
         None => d.window * 1e3,
@@ -69,7 +81,7 @@ pub(super) fn validate_signals(raw: Option<&RawSignals>, l_mm: f64, b_mm: f64) -
         }
     };
     check_sensors(&sensors, samples)?;
-    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, modes, sensors })
+    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, rayleigh, modes, sensors })
 }
 
 /// The sensors as a whole: distinct channel names, and one impact's signals within

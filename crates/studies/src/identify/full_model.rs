@@ -28,6 +28,7 @@ pub fn check(
         mass: sphere.mass(),
         velocity: draw.velocity,
         law: scene.contact_law.law_for(&sphere),
+        gravity: scene.gravity,
     };
     let reduced = instrument.impact(draw.clone(), name)?;
     let t = Instant::now();

@@ -34,8 +34,7 @@ pub(super) fn run_set(
     // The main run: named sensors, then the candidate grid (less its points at named
     // sensors), every quantity, the corners.
     let (sensors, grid) = run_sensors(&settings.sensors, study, plate);
-    let instrument =
-        Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene.restitution, scene.contact_law)?;
+    let instrument = Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     if infos.is_empty() {
         return Err(no_channels(&set.name));

@@ -118,7 +118,7 @@ pub fn comparison(
     let mut runner = Runner {
         scene,
         settings,
-        ladder: Ladder::new(&scene.plate, scene.transient_discretisation.start())?,
+        ladder: Ladder::new(&scene.plate, scene.transient_start())?,
         quasi_static: PlateModel::compute(
             &scene.plate,
             &scene.conditions,

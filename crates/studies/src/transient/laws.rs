@@ -46,7 +46,7 @@ pub fn laws(scene: &Scene, progress: &dyn Progress) -> Result<Vec<LawCase>, Fail
     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
     let v_y = analytic::yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
     let disc = scene.transient_discretisation;
-    let mut ladder = coupled::transient::Ladder::new(&scene.plate, disc.start())?;
+    let mut ladder = coupled::transient::Ladder::new(&scene.plate, scene.transient_start())?;
     let mut out = Vec::new();
     progress.start(LawKind::ALL.len() * LAW_RATIOS.len(), "contact-law runs");
     for &law in LawKind::ALL {

@@ -86,5 +86,5 @@ pub fn first_contact(
     steps: f64,
 ) -> Result<Outcome, Failure> {
     let dt = s.hertz_time() / steps;
-    Ok(first_contact_on(model, supports, s, (x, z), dt, WINDOW_HERTZ_TIMES * s.hertz_time())?)
+    Ok(first_contact_on(model, (supports, None), s, (x, z), dt, WINDOW_HERTZ_TIMES * s.hertz_time())?)
 }

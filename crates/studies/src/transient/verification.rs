@@ -278,7 +278,7 @@ fn large_plate(scene: &Scene, coal: &Sphere) -> Result<Zener, Failure> {
         let centre = (thin.length() / 2.0, thin.width() / 2.0);
         // Timed by Zener's contact time, the shorter one on this plate.
         let dt = time / STEPS_PER_CONTACT;
-        let o = first_contact_on(case.model(), Supports::all_edges_simple(), &fast, centre, dt, 5.0 * time)?;
+        let o = first_contact_on(case.model(), (Supports::all_edges_simple(), None), &fast, centre, dt, 5.0 * time)?;
         rows.push(ZenerRow {
             elements: n,
             force_max: o.force_max,

@@ -31,6 +31,7 @@ pub const FINE: TransientSettings = TransientSettings {
     elements: 40,
     steps_per_contact: 400.0,
     window_contacts: coupled::transient::case::WINDOW_HERTZ_TIMES,
+    damping: None,
 };
 /// Points of the beam and plate curves (L in 100 parts, as section IV-A).
 pub const SWEEP: usize = 101;
