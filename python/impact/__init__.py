@@ -215,13 +215,16 @@ class Transient:
         contacts: one row per completed contact: ``start_s``, ``duration_s``,
             ``peak_force_N``, ``impulse_N_s``, ``rebound_velocity_m_per_s``, ``steps``.
         left_for_good: whether the run proved that the sphere cannot strike again (else the
-            window ended first).
+            window ended first, or gravity brings it back after the window).
+        returns_at_s: under gravity (the scene's ``gravity_m_per_s2``), the earliest instant
+            the sphere can touch the plate again, after the window; None otherwise.
     """
 
     response: Columns
     history: Columns
     contacts: Columns
     left_for_good: bool
+    returns_at_s: float | None = None
 
 
 def transient(
@@ -265,6 +268,7 @@ def transient(
         history=_columns(raw["history"]),
         contacts=_columns(raw["contacts"]),
         left_for_good=bool(raw["left_for_good"]),
+        returns_at_s=None if raw["returns_at_s"] is None else float(raw["returns_at_s"]),
     )
 
 

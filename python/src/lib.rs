@@ -121,7 +121,8 @@ fn transient_tolerance(t: f64) -> PyResult<f64> {
 /// One transient impact: `body` on the support set `condition` at (`x_mm`, `z_mm`) with
 /// `velocity_m_per_s`, with the scene's contact law and restitution. Returns
 /// `{"response": one-row response columns, "history": time series, "contacts": one row per
-/// contact, "left_for_good": bool}`. With `error_estimate` the case's mesh and step are
+/// contact, "left_for_good": bool, "returns_at_s": under gravity the earliest instant the
+/// sphere can be back after the window, else None}`. With `error_estimate` the case's mesh and step are
 /// chosen for the relative `tolerance` and every response carries its error, exactly as
 /// `impact solve --model transient` computes a row; without, one run on the starting mesh
 /// (20 elements, 200 steps per Hertz time).
@@ -190,7 +191,8 @@ fn transient<'py>(
     d.set_item("response", row.into_py(py)?)?;
     d.set_item("history", history(py, &outcome.history, &outcome.later_history)?)?;
     d.set_item("contacts", contacts.into_py(py)?)?;
-    d.set_item("left_for_good", outcome.left_at.is_some())?;
+    d.set_item("left_for_good", outcome.left_at.is_some() && outcome.returns_at.is_none())?;
+    d.set_item("returns_at_s", outcome.returns_at)?;
     Ok(d)
 }
 

@@ -258,6 +258,7 @@ fn transient_columns() -> Vec<Column<ResponseRow>> {
             opt(transient!(r, final_velocity_error)?)
         }),
         Column::new("left_for_good", "left for good", Kind::Flag, |r| transient!(r, left_for_good).map(Value::Flag)),
+        Column::new("returns_at_s", "falls back at (s)", Kind::Num, |r| opt(transient!(r, returns_at)?)),
     ]
 }
 

@@ -84,8 +84,12 @@ pub enum Evidence {
         final_velocity: f64,
         /// Its estimated absolute error, m/s (as `total_impulse_error`).
         final_velocity_error: Option<f64>,
-        /// Whether the run proved that no further contact can occur (else the window ended).
+        /// Whether the run proved that no further contact can occur (else the window ended,
+        /// or, under gravity, the sphere falls back after it).
         left_for_good: bool,
+        /// Under gravity: the earliest instant the sphere can touch the plate again, after
+        /// the window, s (None without gravity or where the window ended first).
+        returns_at: Option<f64>,
     },
 }
 

@@ -147,7 +147,8 @@ fn transient_evidence(o: &Outcome, s: &Striker, (dt, share): (f64, f64), errors:
         total_impulse_error,
         final_velocity: o.final_velocity,
         final_velocity_error,
-        left_for_good: o.left_at.is_some(),
+        left_for_good: o.left_at.is_some() && o.returns_at.is_none(),
+        returns_at: o.returns_at,
     }
 }
 
