@@ -329,3 +329,42 @@ fn signals_table() {
     bad("sensors_mm = [[10.0, -1.0]]", &["signals.sensors_mm[0][1] (z) = -1"]);
     bad("sensor_mm = [[10.0, 1.0]]", &["sensor_mm", "unknown field"]);
 }
+
+/// Gravity and the plate's damping: off in the paper's scene, gravity on by default in a
+/// caving stream (a scene with `[ensemble]`), Rayleigh's α and β from the ratio at the two
+/// frequencies (Chopra eq. 11.4.9, written out here), the same damping handed to the reduced
+/// model, and every bad value or second definition named before anything is computed.
+#[test]
+fn gravity_and_plate_damping() {
+    use std::f64::consts::PI;
+    let paper = Scene::default_scene();
+    assert_eq!((paper.gravity, paper.plate_damping, paper.signals.rayleigh), (0.0, None, None));
+    let caving = Scene::parse(&std::fs::read_to_string("scenes/caving-stream.toml").unwrap(), "t").unwrap();
+    assert_eq!(caving.gravity, 9.80665);
+    let s = Scene::parse(&format!("gravity_m_per_s2 = 0.0\n{DEFAULT_SCENE}"), "t").unwrap();
+    assert_eq!(s.gravity, 0.0);
+    let text = format!(
+        "gravity_m_per_s2 = 9.81\n{DEFAULT_SCENE}\n[plate_damping]\nratio = 0.02\nfrequencies_hz = [100.0, 3000.0]\n"
+    );
+    let s = Scene::parse(&text, "t").unwrap();
+    assert_eq!(s.gravity, 9.81);
+    let r = s.plate_damping.expect("given");
+    let (wa, wb) = (2.0 * PI * 100.0, 2.0 * PI * 3000.0);
+    assert!((r.alpha - 2.0 * 0.02 * wa * wb / (wa + wb)).abs() < 1e-12 * r.alpha);
+    assert!((r.beta - 2.0 * 0.02 / (wa + wb)).abs() < 1e-12 * r.beta);
+    assert_eq!(s.signals.rayleigh, Some(r));
+    assert_eq!(s.transient_start().damping, Some(r));
+    expect(&format!("gravity_m_per_s2 = -1.0\n{DEFAULT_SCENE}"), &["gravity_m_per_s2 = -1", "[0, 100] m/s²"]);
+    expect(&format!("gravity_m_per_s2 = 9806.65\n{DEFAULT_SCENE}"), &["gravity_m_per_s2 = 9806.65"]);
+    let bad = |table: &str, needles: &[&str]| expect(&format!("{DEFAULT_SCENE}\n[plate_damping]\n{table}\n"), needles);
+    bad("ratio = 0.0\nfrequencies_hz = [1.0, 2.0]", &["plate_damping.ratio = 0", "(0, 0.5]"]);
+    bad("ratio = 0.01\nfrequencies_hz = [2.0, 1.0]", &["plate_damping.frequencies_hz", "increasing order"]);
+    bad("ratio = 0.01\nfrequencies_hz = [1.0, 2.0, 3.0]", &["plate_damping.frequencies_hz", "exactly two"]);
+    bad("ratio = 0.01\nfrequencies_hz = [0.0, 2.0]", &["plate_damping.frequencies_hz[0] = 0", "Hz"]);
+    bad("ratio = 0.01", &["frequencies_hz"]);
+    bad("ratio = 0.01\nfrequencies_hz = [1.0, 2.0]\nalpha = 3.0", &["alpha", "unknown field"]);
+    expect(
+        &format!("{DEFAULT_SCENE}\n[plate_damping]\nratio = 0.01\nfrequencies_hz = [1.0, 2.0]\n[signals]\ndamping_ratio = 0.01\n"),
+        &["signals.damping_ratio", "[plate_damping]"],
+    );
+}
