@@ -39,6 +39,7 @@ fn impacts(scene: &Scene, count: usize) -> Vec<(Striker, f64, f64)> {
                 mass: body.mass(),
                 velocity: 1.0 + 3.0 * next(),
                 law: ContactLaw::Flores(Flores),
+                gravity: scene.gravity,
             };
             (s, l * next(), b * next())
         })

@@ -32,6 +32,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         gravity: 0.0,
+        plate_damping: None,
     };
     let r = run_transient(&scene).unwrap();
     let v = r.responses[0].values().unwrap();
@@ -94,6 +95,7 @@ fn one_case(
         transient_discretisation: disc,
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         gravity: 0.0,
+        plate_damping: None,
     }
 }
 
