@@ -328,7 +328,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// q̇(τ) = e^{-ζωτ}[-q₀ ω²/ω_d sin ω_dτ + q̇₀(cos ω_dτ - ζω/ω_d sin ω_dτ)]
 /// (e.g. Craig & Kurdila 2006, §5.2). A mode damped at or beyond critical (ζ ≥ 1, which
 /// Rayleigh's stiffness part gives the highest modes) takes the same formula continued to
-/// imaginary ω_d ([`overdamped_map`]).
+/// imaginary ω_d (`overdamped_map`).
 pub fn free_map(omega: f64, zeta: f64, tau: f64) -> [f64; 4] {
     if zeta >= 1.0 {
         return overdamped_map(omega, zeta, tau);
