@@ -496,8 +496,8 @@ pub fn markdown() -> String {
 mod tests {
     use super::super::ensemble::{RawEnsemble, RawFamily, RawPlacement, RawRegion};
     use super::super::{
-        RawBody, RawCondition, RawCorners, RawEdges, RawGrid, RawPlate, RawPoints, RawScene, RawSignals, RawSolver,
-        RawTransient, RawVelocities,
+        RawBody, RawCondition, RawCorners, RawEdges, RawGrid, RawPlate, RawPlateDamping, RawPoints, RawScene,
+        RawSignals, RawSolver, RawTransient, RawVelocities,
     };
     use super::*;
     use serde::de::{self, Visitor};
@@ -549,6 +549,7 @@ mod tests {
             ("[solver]", fields::<RawSolver>()),
             ("[transient]", fields::<RawTransient>()),
             ("[signals]", fields::<RawSignals>()),
+            ("[plate_damping]", fields::<RawPlateDamping>()),
             ("[ensemble]", fields::<RawEnsemble>()),
             ("[ensemble.region]", fields::<RawRegion>()),
             ("[ensemble.placement]", fields::<RawPlacement>()),
