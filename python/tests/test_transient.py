@@ -85,3 +85,44 @@ def test_history_conserves_energy_at_e_equal_1(run):
     assert h["force_N"].max() == pytest.approx(force, rel=1e-4)
     assert np.all(np.diff(h["t_s"]) > 0)
     assert len(run.contacts["duration_s"]) == 1
+
+
+def test_gravity_brings_the_sphere_back_after_the_window(run):
+    """Under a weak gravity g = 0.05 m/s² (the scene's ``gravity_m_per_s2``) the nearly rigid
+    plate throws the sphere back at about V, and it falls back after 2|v_r|/g ≈ 0.4 s, beyond
+    the window of 200 Hertz times (≈ 0.3 s): the run stops at the separation, is not "left
+    for good", and gives the earliest return, which the parabola of free flight bounds from
+    above (t_c + 2|v_r|/g, the plate's own reach only brings it earlier, by its deflection
+    over |v_r|: microns over 0.01 m/s, 1e-3 of it at most)."""
+    import tomllib
+    from conftest import REPO
+
+    d = tomllib.loads((REPO / "scenes" / "paper-table-1.toml").read_text())
+    del d["transient"]
+    d.update(restitution=1.0, contact_law="hertz", analyses=["responses"], gravity_m_per_s2=0.05)
+    d["bodies"] = [
+        {
+            "name": "soft",
+            "density_kg_m3": RHO,
+            "youngs_modulus_gpa": E / 1e9,
+            "poisson_ratio": NU,
+            "cohesion_mpa": 1000.0,
+            "friction_angle_deg": 30.0,
+            "radius_mm": R * 1e3,
+        }
+    ]
+    d["conditions"] = [{"name": "clamped", "edges": dict.fromkeys(["left", "right", "near", "far"], "clamped")}]
+    d["points"] = {"pairs_mm": [[229.2, 180.0]]}
+    d["velocities"] = {"m_per_s": [V]}
+    fall = impact.transient(d, "soft", "clamped", 229.2, 180.0, V, error_estimate=False)
+    assert not fall.left_for_good and fall.returns_at_s is not None
+    t_c = float(fall.contacts["duration_s"][0])
+    v_r = abs(float(fall.contacts["rebound_velocity_m_per_s"][0]))
+    parabola = t_c + 2.0 * v_r / 0.05
+    window = 200 * hertz()[2]
+    assert window < fall.returns_at_s <= parabola * (1 + 1e-12)
+    assert fall.returns_at_s > (1 - 1e-3) * parabola
+    assert run.returns_at_s is None
+    d["gravity_m_per_s2"] = -1.0
+    with pytest.raises(impact.SceneError, match=r"gravity_m_per_s2 = -1"):
+        impact.transient(d, "soft", "clamped", 229.2, 180.0, V, error_estimate=False)
