@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::scenes::{edit, expect_refused as expect, small_ensemble, ENSEMBLE, ONE_IMPACT};
+use common::scenes::{edit, expect_refused as expect, small_ensemble, CON_1, CON_2, ENSEMBLE, ONE_IMPACT};
 use common::{impact, tmp};
 use impact::scene::{Scene, SceneSource, DEFAULT_SCENE};
 
@@ -198,4 +198,36 @@ fn signals_beyond_memory_are_refused_before_work() {
     assert!(run.stderr.contains("signals.window_ms x signals.rate_hz and signals.sensors_mm"), "{}", run.stderr);
     assert!(run.stderr.contains("10 impacts x 34 channels x 1000000 samples"), "{}", run.stderr);
     assert!(t0.elapsed().as_secs_f64() < 30.0, "refused only after work");
+}
+
+/// The modes the reduced model's mesh of the plate resolves: 4 degrees of freedom at each of
+/// the (nx + 1)(nz + 1) nodes of its mesh, 20 elements along the longer side, an eighth of them.
+fn most_modes(nx: usize, nz: usize) -> usize {
+    4 * (nx + 1) * (nz + 1) / 8
+}
+
+#[test]
+fn modes_beyond_what_the_plates_mesh_resolves_are_refused_before_work() {
+    // The paper's plate, 1 mm thick: its mesh is 20 x 16 elements.
+    let thin = |modes: &str| edit(&signals(&format!("modes = {modes}")), "thickness_mm = 8.0", "thickness_mm = 1.0");
+    let most = most_modes(20, 16);
+    expect(&thin("1000"), &["signals.modes", "1000", &format!("[1, {most}]"), "458.4 x 360 mm"]);
+    expect(&thin(&(most + 1).to_string()), &["signals.modes", &format!("[1, {most}]")]);
+    assert_eq!(Scene::parse(&thin(&most.to_string()), "t").unwrap().signals.modes, most);
+    // 200 modes on Con 2's springs once searched the whole space of 1,428 vectors for 41 s
+    // before an error; `impact signals` now refuses them at once.
+    let dir = tmp();
+    let scene = dir.write("thin.toml", edit(&thin("200"), CON_1, CON_2));
+    let run = impact(["signals", "--scene"]).arg(&scene).arg("--out").arg(dir.join("out")).within(20).fails();
+    assert!(run.stderr.contains("signals.modes") && run.stderr.contains(&format!("[1, {most}]")), "{}", run.stderr);
+    // A square plate: 20 x 20 elements.
+    let square = edit(&thin("1000"), "width_mm = 360.0", "width_mm = 458.4");
+    expect(&square, &[&format!("[1, {}]", most_modes(20, 20))]);
+    // A strip 458.4 x 60 mm: 20 x 2 elements (20 x 60/458.4 rounded to an even count, at
+    // least 2). Asked for, 80 modes are refused; by default the modes are the plate's most.
+    let strip = edit(&signals("modes = 80"), "width_mm = 360.0", "width_mm = 60.0");
+    let strip = edit(&strip, "pairs_mm = [[229.2, 180.0]]", "pairs_mm = [[229.2, 30.0]]");
+    expect(&strip, &["signals.modes", &format!("[1, {}]", most_modes(20, 2))]);
+    let s = Scene::parse(&edit(&strip, "modes = 80", "rate_hz = 20000.0"), "t").unwrap();
+    assert_eq!(s.signals.modes, most_modes(20, 2));
 }

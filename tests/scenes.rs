@@ -324,7 +324,7 @@ fn signals_table() {
     bad("damping_ratio = -0.1", &["signals.damping_ratio = -0.1", "[0, 0.5]"]);
     bad("damping_ratio = nan", &["signals.damping_ratio = NaN"]);
     bad("modes = 2.5", &["signals.modes", "not a whole number"]);
-    bad("modes = 0", &["signals.modes = 0", "[1, 1000]"]);
+    bad("modes = 0", &["signals.modes = 0", "[1, 220]"]);
     bad("sensors_mm = [[500.0, 10.0]]", &["signals.sensors_mm[0][0] (x) = 500", "[0, 458.4] mm"]);
     bad("sensors_mm = [[10.0, -1.0]]", &["signals.sensors_mm[0][1] (z) = -1"]);
     bad("sensor_mm = [[10.0, 1.0]]", &["sensor_mm", "unknown field"]);

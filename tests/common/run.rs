@@ -3,19 +3,23 @@
 //! `impact(args)` sets up one run; `.arg`, `.env`, `.current_dir` and `.stdin` add to it; it
 //! starts with `.run()` (any exit), `.success()`, `.fails()` or `.fails_with(code)`, the last
 //! three panicking with the command line and its standard error when the exit is not the
-//! one expected.
+//! one expected. `.within(seconds)` kills a run that outlives its time and fails the test, so
+//! that a test of a bounded run cannot hang CI.
 
 use std::ffi::OsStr;
 use std::io::Write as _;
 use std::path::Path;
 use std::process::{Command, ExitStatus, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 /// The binary under test, built by Cargo for the integration tests.
 pub const BIN: &str = env!("CARGO_BIN_EXE_impact");
 
 /// `impact` with `args`; see the module's description.
 pub fn impact<S: AsRef<OsStr>>(args: impl IntoIterator<Item = S>) -> Impact {
-    Impact { command: Command::new(BIN), shown: vec!["impact".into()], dir: None, stdin: None }.args(args)
+    Impact { command: Command::new(BIN), shown: vec!["impact".into()], dir: None, stdin: None, limit: None }.args(args)
 }
 
 /// One run of `impact`, not yet started.
@@ -26,6 +30,8 @@ pub struct Impact {
     /// The working directory, if not the test's.
     dir: Option<String>,
     stdin: Option<Vec<u8>>,
+    /// The longest the run may take before it is killed and the test fails.
+    limit: Option<Duration>,
 }
 
 /// What a run of `impact` did.
@@ -67,6 +73,12 @@ impl Impact {
         self
     }
 
+    /// Kills the run, failing the test, if it has not ended after `seconds`.
+    pub fn within(mut self, seconds: u64) -> Self {
+        self.limit = Some(Duration::from_secs(seconds));
+        self
+    }
+
     /// Runs to the end, whatever the exit.
     pub fn run(mut self) -> Run {
         let mut command = self.shown.join(" ");
@@ -88,7 +100,16 @@ impl Impact {
                 let _ = pipe.write_all(&bytes);
             })
         });
+        let started = Instant::now();
+        let ended = Arc::new(AtomicBool::new(false));
+        if let Some(limit) = self.limit {
+            watchdog(child.id(), limit, ended.clone());
+        }
         let output = child.wait_with_output().unwrap_or_else(|e| panic!("`{command}`: {e}"));
+        ended.store(true, Ordering::SeqCst);
+        if let Some(limit) = self.limit.filter(|l| started.elapsed() >= *l) {
+            panic!("`{command}` did not end within {} s and was killed", limit.as_secs());
+        }
         if let Some(w) = writer {
             w.join().expect("the standard input writer");
         }
@@ -124,6 +145,22 @@ impl Impact {
         }
         r
     }
+}
+
+/// Kills process `pid` with SIGKILL once `limit` has passed, unless `ended` is set first.
+fn watchdog(pid: u32, limit: Duration, ended: Arc<AtomicBool>) {
+    std::thread::spawn(move || {
+        let started = Instant::now();
+        while started.elapsed() < limit {
+            if ended.load(Ordering::SeqCst) {
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        if !ended.load(Ordering::SeqCst) {
+            let _ = Command::new("kill").args(["-KILL", &pid.to_string()]).status();
+        }
+    });
 }
 
 impl Run {

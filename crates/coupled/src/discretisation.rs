@@ -23,11 +23,19 @@ pub fn plate_properties(plate: &Plate) -> PlateProperties {
 /// A uniform mesh with `n` elements along the longer side and near-square elements; both
 /// counts are even, so the centre lines are node lines and halving h keeps every node.
 pub fn mesh_for(props: &PlateProperties, n: usize) -> Result<Mesh, FemError> {
-    let (l, b) = (props.length, props.width);
+    let (nx, nz) = divisions(props.length, props.width, n);
+    Mesh::uniform(props.length, props.width, nx, nz)
+}
+
+/// The element counts (along the length, across the width) of [`mesh_for`] on a plate of
+/// sides `l` x `b` (any one unit) with `n` elements along the longer side.
+pub fn divisions(l: f64, b: f64, n: usize) -> (usize, usize) {
     let even = |v: f64| (2.0 * (v / 2.0).round()).max(2.0) as usize;
-    let (nx, nz) =
-        if l >= b { (even(n as f64), even(n as f64 * b / l)) } else { (even(n as f64 * l / b), even(n as f64)) };
-    Mesh::uniform(l, b, nx, nz)
+    if l >= b {
+        (even(n as f64), even(n as f64 * b / l))
+    } else {
+        (even(n as f64 * l / b), even(n as f64))
+    }
 }
 
 /// Meshes `base`, 2·`base`, 4·`base`, ... (`levels` of them): each halves h exactly.

@@ -49,12 +49,31 @@ pub const MIN_SAMPLES: f64 = 16.0;
 /// sensor and one a supported corner): 1e6 samples on 64 sensors would be 1.5 GB an impact,
 /// held by every worker thread at once.
 pub const MAX_IMPACT_SIGNAL_BYTES: f64 = 512.0 * 1024.0 * 1024.0;
-/// Most modes of the reduced model: the transient model's 20-element mesh has at least
-/// 1100 free DOFs on any support set of a plate of aspect ratio up to 1.3, and a mode
-/// count near the DOF count is no longer a reduced model.
-pub const MAX_MODES: usize = 1000;
-/// Modes of the reduced model, `[signals] modes`.
+/// Most modes of the reduced model on any plate: [`max_modes`] of a square plate, the plate
+/// whose mesh has the most nodes (20 x 20 elements, 1764 degrees of freedom).
+pub const MAX_MODES: usize = 220;
+/// Modes of the reduced model, `[signals] modes` (and at most [`max_modes`] of the plate).
 pub const MODES: Range = Range::closed(1.0, MAX_MODES as f64);
+/// Share of its mesh's degrees of freedom the reduced model may keep as modes: 1/8.
+pub const MODES_PER_DOF: usize = 8;
+
+/// Most modes the reduced model keeps on a plate of sides `length` x `width` (any one unit):
+/// an eighth of the degrees of freedom of its mesh (the transient model's 20 elements along
+/// the longer side, four a node), 178 on the paper's plate (20 x 16 elements, 1428 DOFs).
+///
+/// A mesh resolves only the low end of its spectrum: on the paper's plate the 100th frequency
+/// is 0.5 % and the 180th 1.6 % above that of a mesh twice as fine, and the error grows with
+/// the square of the mode's number beyond. The shift-invert search for N modes converges on a
+/// basis of about 2N + 30 vectors, a quarter of the space at an eighth; asked for more it may
+/// need the whole space before it converges or fails: 200 modes of a 1 mm plate on Con 2's
+/// springs searched all 1428 vectors for 41 s before an error (180 converged in 0.4 s), and
+/// 1000 modes were accepted and failed the same way. Checked when the scene is read, before
+/// any mesh is built.
+pub fn max_modes(length: f64, width: f64) -> usize {
+    let elements = coupled::reduced::ReducedSettings::default().elements;
+    let (nx, nz) = coupled::discretisation::divisions(length, width, elements);
+    4 * (nx + 1) * (nz + 1) / MODES_PER_DOF
+}
 /// Most sensors.
 pub const MAX_SENSORS: usize = 64;
 /// Relative tolerance of the energy balance: below 1e-14 double precision cannot

@@ -56,10 +56,7 @@ pub(super) fn validate_signals(
         Some(z) => check("signals.damping_ratio", z, coupled::reduced::ReducedSettings::DAMPING_RATIO, "")?,
         None => d.damping_ratio,
     };
-    let modes = match raw.modes {
-        Some(n) => count("signals.modes", n, limits::MODES)?,
-        None => d.modes,
-    };
+    let modes = modes(raw.modes, l_mm, b_mm)?;
     let sensors = match &raw.sensors_mm {
         None => Vec::new(),
         Some(list) => {
@@ -82,6 +79,25 @@ pub(super) fn validate_signals(
     };
     check_sensors(&sensors, samples)?;
     Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, rayleigh, modes, sensors })
+}
+
+/// `signals.modes`: a whole number within [`limits::MODES`] and the plate's
+/// [`limits::max_modes`]; absent, the default or the plate's most, whichever is fewer.
+fn modes(raw: Option<f64>, l_mm: f64, b_mm: f64) -> Result<usize, Invalid> {
+    let most = limits::max_modes(l_mm, b_mm);
+    let Some(n) = raw else { return Ok(SignalSettings::default().modes.min(most)) };
+    if n > most as f64 {
+        return Err(other(
+            "signals.modes",
+            format!(
+                "{} is outside [1, {most}] for this {} x {} mm plate: the reduced model's mesh of it resolves at most {most} modes (an eighth of its degrees of freedom); ask for fewer",
+                analytic::params::compact(n),
+                analytic::params::compact(l_mm),
+                analytic::params::compact(b_mm)
+            ),
+        ));
+    }
+    count("signals.modes", n, limits::MODES)
 }
 
 /// The sensors as a whole: distinct channel names, and one impact's signals within
