@@ -170,9 +170,12 @@ fn dynamic_refuses_scenes_without_cases_or_beyond_the_run_budget() {
 #[test]
 fn loading_is_linear_in_the_number_of_names() {
     // 8,000 support sets once took 9.7 s to load (each name compared with every earlier one).
+    // The transient comparison alone: the quasi-static rows of 8,000 sets are beyond their
+    // budget (`quasi_static_work_beyond_the_budget_is_refused_when_the_scene_is_read`).
     let sets: String =
         (0..8000).map(|i| format!("[[conditions]]\nname = \"set {i}\"\nsupports = \"both-fixed\"\n")).collect();
-    let text = edit(ONE_IMPACT, "[[conditions]]\nname = \"Con 1\"\nsupports = \"both-fixed\"\n", &sets);
+    let transient = edit(ONE_IMPACT, "analyses = [\"responses\"]", "analyses = [\"transient\"]");
+    let text = edit(&transient, "[[conditions]]\nname = \"Con 1\"\nsupports = \"both-fixed\"\n", &sets);
     let t0 = std::time::Instant::now();
     let s = Scene::parse(&text, "many.toml").unwrap();
     let seconds = t0.elapsed().as_secs_f64();
@@ -230,4 +233,42 @@ fn modes_beyond_what_the_plates_mesh_resolves_are_refused_before_work() {
     expect(&strip, &["signals.modes", &format!("[1, {}]", most_modes(20, 2))]);
     let s = Scene::parse(&edit(&strip, "modes = 80", "rate_hz = 20000.0"), "t").unwrap();
     assert_eq!(s.signals.modes, most_modes(20, 2));
+}
+
+/// `n` support sets on springs, in place of Con 1.
+fn sets(text: &str, n: usize) -> String {
+    let sets: String = (0..n)
+        .map(|i| {
+            format!(
+                "[[conditions]]\nname = \"set {i}\"\nsupports = \"both-springs\"\nspring_stiffness_n_per_m = {}e6\n",
+                i + 1
+            )
+        })
+        .collect();
+    edit(text, CON_1, &sets)
+}
+
+#[test]
+fn quasi_static_work_beyond_the_budget_is_refused_when_the_scene_is_read() {
+    // 8,000 support sets at one point: each set's fundamental period (a factorization and an
+    // eigensolution of the plate) took 20-35 ms, so `impact solve` ran for minutes.
+    let many = sets(ONE_IMPACT, 8000);
+    expect(&many, &["[[conditions]]", "8000", "budget"]);
+    let dir = tmp();
+    let scene = dir.write("many.toml", &many);
+    let run = impact(["solve", "--scene"]).arg(&scene).within(20).fails();
+    assert!(run.stderr.contains("8000 [[conditions]]") && run.stderr.contains("budget"), "{}", run.stderr);
+    // 40 sets, 100 points and 1,000 velocities: four million result rows at about 0.04 ms each.
+    let grid = edit(&sets(ONE_IMPACT, 40), "pairs_mm = [[229.2, 180.0]]", "count = 100");
+    let velocities: Vec<String> = (1..=1000).map(|i| format!("{i}e-5")).collect();
+    let grid = edit(&grid, "m_per_s = [0.008]", &format!("m_per_s = [{}]", velocities.join(", ")));
+    expect(&grid, &["40 [[conditions]]", "100 points", "1000 velocities.m_per_s", "budget"]);
+    // A sweep's points are counted too: 100 sets of 10,000 points each.
+    let scene = dir.write("sets.toml", sets(ONE_IMPACT, 100));
+    let run = impact(["sweep", "--count", "10000", "--scene"]).arg(&scene).within(20).fails();
+    assert!(run.stderr.contains("10000 points") && run.stderr.contains("budget"), "{}", run.stderr);
+    // Within the budget: a 316 x 316 grid of one case each, and 1,000 support sets.
+    let big = edit(ONE_IMPACT, "pairs_mm = [[229.2, 180.0]]", "[points.grid]\nx_count = 316\nz_count = 316\n#");
+    assert!(Scene::parse(&big, "t").is_ok());
+    assert!(Scene::parse(&sets(ONE_IMPACT, 1000), "t").is_ok());
 }

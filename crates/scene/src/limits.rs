@@ -85,6 +85,53 @@ pub const SOLVER_ITERATIONS: Range = Range::closed(1.0, 10_000.0);
 /// --count`): two to reach both ends, at most [`MAX_POINTS`](crate::MAX_POINTS).
 pub const POINT_COUNT: Range = Range::closed(2.0, crate::MAX_POINTS as f64);
 
+/// Seconds of quasi-static work (the beam and plate models' responses and yield velocities)
+/// one scene may ask for: three minutes, estimated with the costs below before any work.
+pub const QUASI_STATIC_BUDGET_S: f64 = 180.0;
+/// Cost of a support set, s: its fundamental period for the quasi-static validity criterion
+/// (a factorization and an eigensolution of the plate) and the plate model's factorizations;
+/// measured 21 ms a set on 1,000 sets at one point (`impact solve`, beam or plate model, 21
+/// and 23 s on this 2-core machine under load), 34 ms on 3,000 sets of the default scene.
+pub const SECONDS_PER_SUPPORT_SET: f64 = 0.025;
+/// Cost of an impact point on a support set, s: the plate model's compliance there on its
+/// mesh ladder; measured 0.30 ms (a 316 x 316 grid of one case: 36 s with the plate model, 7 s
+/// with the beam).
+pub const SECONDS_PER_POINT: f64 = 3e-4;
+/// Cost of a result row, s: its energy balance, validity and row; measured 0.042 ms (50,000
+/// velocities at one point: 2.1 s).
+pub const SECONDS_PER_ROW: f64 = 5e-5;
+
+/// The quasi-static work of `sets` support sets x `points` points x `bodies` bodies, each
+/// case giving `rows` rows (its velocities and its yield velocity), s; none without rows.
+pub fn quasi_static_seconds(sets: usize, points: usize, bodies: usize, rows: usize) -> f64 {
+    if bodies * rows * points == 0 {
+        return 0.0;
+    }
+    let per_point = SECONDS_PER_POINT + (bodies * rows) as f64 * SECONDS_PER_ROW;
+    sets as f64 * (SECONDS_PER_SUPPORT_SET + points as f64 * per_point)
+}
+
+/// Why `sets` x `points` x `bodies` cases of `velocities` velocities (and a yield velocity when
+/// `yields`) are beyond [`QUASI_STATIC_BUDGET_S`], naming the scene's fields; None within it.
+pub fn quasi_static_excess(
+    sets: usize,
+    points: usize,
+    bodies: usize,
+    velocities: usize,
+    yields: bool,
+) -> Option<String> {
+    let seconds = quasi_static_seconds(sets, points, bodies, velocities + usize::from(yields));
+    (seconds > QUASI_STATIC_BUDGET_S).then(|| {
+        format!(
+            "{sets} [[conditions]] x {points} points x {bodies} [[bodies]] x ({velocities} velocities.m_per_s{}) ask for about {seconds:.0} s of quasi-static work ({:.0} ms a support set, {:.2} ms a point on each, {:.2} ms a result row); the budget is {QUASI_STATIC_BUDGET_S:.0} s: use fewer support sets, points, bodies or velocities",
+            if yields { " + a yield velocity" } else { "" },
+            SECONDS_PER_SUPPORT_SET * 1e3,
+            SECONDS_PER_POINT * 1e3,
+            SECONDS_PER_ROW * 1e3,
+        )
+    })
+}
+
 // ------------------------------------------------------------ the command line and Python
 
 /// Relative error the transient model is asked for (`--tolerance`, Python's `tolerance`):

@@ -279,7 +279,13 @@ fn points() -> Vec<Section> {
     vec![
         Section {
             title: "[points]",
-            about: format!("Where the bodies strike: exactly one of `x_mm`, `count`, `pairs_mm` or `[points.grid]`; at most {MAX_POINTS} points."),
+            about: format!(
+                "Where the bodies strike: exactly one of `x_mm`, `count`, `pairs_mm` or `[points.grid]`; at most {MAX_POINTS} points, and support sets x points x bodies x velocities within the quasi-static budget of {:.0} s ({:.0} ms a support set, {:.2} ms a point on each, {:.2} ms a result row, estimated when the scene is read).",
+                limits::QUASI_STATIC_BUDGET_S,
+                limits::SECONDS_PER_SUPPORT_SET * 1e3,
+                limits::SECONDS_PER_POINT * 1e3,
+                limits::SECONDS_PER_ROW * 1e3
+            ),
             keys: points,
         },
         Section {

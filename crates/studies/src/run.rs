@@ -54,6 +54,13 @@ pub fn check_budget(scene: &Scene, models: &[ModelKind]) -> Result<(), Failure> 
         )
         .into());
     }
+    // Read scenes were checked when read; a sweep's points (`--count`) are checked here.
+    let responses = if scene.wants(Analysis::Responses) { scene.velocities.len() } else { 0 };
+    let (sets, bodies, points) = (scene.conditions.len(), scene.bodies.len(), scene.points.len());
+    let yields = scene.wants(Analysis::YieldVelocity);
+    if let Some(why) = scene::limits::quasi_static_excess(sets, points, bodies, responses, yields) {
+        return Err(why.into());
+    }
     if models.contains(&ModelKind::Transient) {
         let cases = scene.bodies.len() * scene.conditions.len() * scene.points.len();
         let responses = if scene.wants(Analysis::Responses) { 10 * cases * scene.velocities.len() } else { 0 };

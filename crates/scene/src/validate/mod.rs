@@ -122,8 +122,14 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         None => points.pairs(),
         Some(t) => transient_points(t, &plate, length_mm, width_mm)?,
     };
+    let velocities = validate_velocities(raw.velocities.as_ref(), &analyses)?;
+    let responses = if analyses.contains(&Analysis::Responses) { velocities.len() } else { 0 };
+    let yields = analyses.contains(&Analysis::YieldVelocity);
+    if let Some(why) = limits::quasi_static_excess(conditions.len(), points.len(), bodies.len(), responses, yields) {
+        return Err(other("conditions, points, bodies and velocities", why));
+    }
     Ok(Scene {
-        velocities: validate_velocities(raw.velocities.as_ref(), &analyses)?,
+        velocities,
         signals: validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?,
         solver: validate_solver(&raw.solver)?,
         ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
