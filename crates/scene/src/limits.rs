@@ -86,12 +86,15 @@ pub const SOLVER_ITERATIONS: Range = Range::closed(1.0, 10_000.0);
 pub const POINT_COUNT: Range = Range::closed(2.0, crate::MAX_POINTS as f64);
 
 /// Seconds of quasi-static work (the beam and plate models' responses and yield velocities)
-/// one scene may ask for: three minutes, estimated with the costs below before any work.
+/// one scene may ask for: three minutes, estimated with the costs below before any work. The
+/// costs are about twice those measured on a quiet machine: a scene at the budget, 7,000
+/// support sets at one point (estimated 177 s), ran `impact solve` in 112 s on this 2-core
+/// machine beside another engineer's runs, and in 424 s while a release build ran beside it.
 pub const QUASI_STATIC_BUDGET_S: f64 = 180.0;
 /// Cost of a support set, s: its fundamental period for the quasi-static validity criterion
-/// (a factorization and an eigensolution of the plate) and the plate model's factorizations;
-/// measured 21 ms a set on 1,000 sets at one point (`impact solve`, beam or plate model, 21
-/// and 23 s on this 2-core machine under load), 34 ms on 3,000 sets of the default scene.
+/// (a factorization and up to 200 steps of inverse iteration) and the plate model's
+/// factorizations; measured 13-16 ms a set at one point (`impact solve` on 500 to 7,000 sets,
+/// beam or plate model), 34 ms on 3,000 sets of the default scene (nine points, three bodies).
 pub const SECONDS_PER_SUPPORT_SET: f64 = 0.025;
 /// Cost of an impact point on a support set, s: the plate model's compliance there on its
 /// mesh ladder; measured 0.30 ms (a 316 x 316 grid of one case: 36 s with the plate model, 7 s
