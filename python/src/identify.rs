@@ -104,11 +104,13 @@ fn shard_range(n: usize, start: f64, stop: f64) -> PyResult<std::ops::Range<usiz
 }
 
 /// The sensors of a shard: the scene's named ones, or `sensors_mm` ((x, z) in mm) checked to
-/// lie on the plate, in m.
+/// lie on the plate and to carry distinct channel labels (as the scene reader checks
+/// `[signals] sensors_mm`), in m.
 fn sensors(s: &coupled::Scene, sensors_mm: Option<Vec<(f64, f64)>>) -> PyResult<Vec<(f64, f64)>> {
     let Some(list) = sensors_mm else { return Ok(s.signals.sensors.clone()) };
     let (l_mm, b_mm) = (s.plate.length() * 1e3, s.plate.width() * 1e3);
-    list.iter()
+    let sensors = list
+        .iter()
         .enumerate()
         .map(|(j, &(x, z))| {
             let x = check(&format!("sensors_mm[{j}][0] (x)"), x, Range::closed(0.0, l_mm), "mm");
@@ -118,7 +120,11 @@ fn sensors(s: &coupled::Scene, sensors_mm: Option<Vec<(f64, f64)>>) -> PyResult<
                 (Err(err), _) | (_, Err(err)) => Err(argument_error(&err)),
             }
         })
-        .collect()
+        .collect::<PyResult<Vec<_>>>()?;
+    if let Some((field, message)) = ::scene::sensor_label_refusal("sensors_mm", &sensors) {
+        return Err(argument_message(&field, message));
+    }
+    Ok(sensors)
 }
 
 /// The shard as columns: [`SCHEMA`], then every channel's features named as the identify

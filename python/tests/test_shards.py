@@ -93,3 +93,22 @@ def test_bad_requests_are_refused(scene):
         impact.identify(scene, "Con 9", start=0, stop=1)
     with pytest.raises(ValueError, match=r"no \[ensemble\] table"):
         impact.identify(impact.Scene.default(), "Con 1", start=0, stop=1)
+
+
+def test_sensors_of_one_channel_label_are_refused(scene):
+    # 0.04 mm apart: both labelled (229.2, 180) mm, so every feature column of the second
+    # would have the first's name (the scene reader refuses them in [signals] sensors_mm).
+    with pytest.raises(ValueError) as e:
+        impact.identify(scene, "Con 2", 0, 1, sensors_mm=[(229.2, 180.0), (100.0, 90.0), (229.24, 180.0)])
+    assert e.value.field == "sensors_mm[2]"
+    message = str(e.value)
+    assert "(229.2, 180) mm" in message and "sensors_mm[0]" in message and "0.1 mm apart" in message
+    # The same sensors as a scene's are refused with the same words.
+    with pytest.raises(impact.SceneError) as s:
+        d = tomllib.loads((REPO / "scenes" / "paper-velocities-ensemble.toml").read_text())
+        d["signals"]["sensors_mm"] = [[229.2, 180.0], [100.0, 90.0], [229.24, 180.0]]
+        impact.Scene.from_dict(d)
+    assert message in str(s.value).replace("signals.", "")
+    # 0.1 mm apart is two channels.
+    rows = impact.identify(scene, "Con 2", 0, 1, sensors_mm=[(229.2, 180.0), (229.3, 180.0)])
+    assert any("(229.3, 180) mm" in k for k in rows)

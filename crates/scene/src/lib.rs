@@ -133,6 +133,18 @@ pub fn sensor_label_clash(sensors: &[(f64, f64)]) -> Option<(usize, usize, Strin
     None
 }
 
+/// [`sensor_label_clash`] as both readers of sensors refuse it (the scene's
+/// `signals.sensors_mm`, Python's `sensors_mm` argument): the later sensor's field in `list`
+/// and the message.
+pub fn sensor_label_refusal(list: &str, sensors: &[(f64, f64)]) -> Option<(String, String)> {
+    sensor_label_clash(sensors).map(|(i, j, label)| {
+        (
+            format!("{list}[{j}]"),
+            format!("is labelled {label} like {list}[{i}] (channel names give positions to 0.1 mm); place the sensors at least 0.1 mm apart"),
+        )
+    })
+}
+
 /// The file-name stem of a display name: lower-case ASCII letters and digits, every other run
 /// of characters one `-`, no `-` at either end. Two names are distinct only if their stems are.
 pub fn slug(name: &str) -> String {

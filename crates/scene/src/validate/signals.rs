@@ -105,11 +105,8 @@ fn modes(raw: Option<f64>, l_mm: f64, b_mm: f64) -> Result<usize, Invalid> {
 fn check_sensors(sensors: &[(f64, f64)], samples: f64) -> Result<(), Invalid> {
     // Labels round to 0.1 mm; more digits would rename every channel of every report, and two
     // sensors closer than that record the same signal.
-    if let Some((i, j, label)) = crate::sensor_label_clash(sensors) {
-        return Err(other(
-            format!("signals.sensors_mm[{j}]"),
-            format!("is labelled {label} like signals.sensors_mm[{i}] (channel names give positions to 0.1 mm); place the sensors at least 0.1 mm apart"),
-        ));
+    if let Some((field, message)) = crate::sensor_label_refusal("signals.sensors_mm", sensors) {
+        return Err(other(field, message));
     }
     let channels = 3 * sensors.len() + 4;
     let bytes = samples.ceil() * channels as f64 * 8.0;
