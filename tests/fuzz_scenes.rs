@@ -1,5 +1,7 @@
 //! Fuzzing scenes: hostile-but-realistic mutations of the default scene through the scene
-//! reader, the beam model and (on a bounded subset) the plate model.
+//! reader, the beam model and (on a bounded subset) the plate model; and of the small
+//! `[signals]`, `[ensemble]` and identification scenes through the scene reader and the
+//! reduced model.
 //!
 //! Every generated scene must either be refused with a message that names the field it
 //! came from (and shows NaN or inf only if the input had them), or be accepted and computed
@@ -69,6 +71,40 @@ fn mutated_default_scenes_are_refused_clearly_or_computed_cleanly() {
     let unknown: Vec<&&str> = stats.failures.keys().filter(|k| !KNOWN.contains(k)).collect();
     assert!(unknown.is_empty(), "invariant failures: {unknown:?} (see the report above)");
     assert!(stats.parsed > CASES / 5 && stats.rejected > CASES / 5, "the generator exercises both sides");
+}
+
+const REDUCED_CASES: usize = 64;
+const REDUCED_SEED: [u8; 32] = *b"impact fuzz reduced scenes seed!";
+
+/// The same property on the `[signals]`, `[ensemble]` and identification scenes: one mutation
+/// each (a hostile number, a removed key, a table of the wrong type), refused naming its field
+/// or computed by the reduced model (two impacts of an ensemble) without a panic and with
+/// finite numbers.
+#[test]
+fn mutated_signals_and_ensemble_scenes_are_refused_clearly_or_computed_cleanly() {
+    let started = std::time::Instant::now();
+    let config = Config { cases: REDUCED_CASES as u32, failure_persistence: None, ..Config::default() };
+    let mut runner = TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &REDUCED_SEED));
+    let bases = bases();
+    let strategy = (0..bases.len(), 0..64usize, any::<prop::sample::Index>(), any::<u8>());
+    let mut stats = Stats::default();
+    for case in 0..REDUCED_CASES {
+        let (b, field, pick, kind) = strategy.new_tree(&mut runner).expect("the strategy generates").current();
+        let op = base_op(&bases[b], field, pick, kind);
+        let mut root = bases[b].root.clone();
+        apply(&mut root, &op.edit);
+        let text = toml::to_string(&root).expect("a TOML table serialises");
+        check_reduced_scene(&mut stats, &format!("case {case}: {}", op.label), &text, &op.hints, 2);
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    stats.report(&format!("fuzz_scenes reduced: {REDUCED_CASES} mutated scenes in {seconds:.1} s"));
+    let unknown: Vec<&&str> = stats.failures.keys().filter(|k| !KNOWN.contains(k)).collect();
+    assert!(unknown.is_empty(), "invariant failures: {unknown:?} (see the report above)");
+    assert!(
+        stats.parsed > REDUCED_CASES / 5 && stats.rejected > REDUCED_CASES / 5,
+        "the generator exercises both sides"
+    );
+    assert!(stats.plate_runs > REDUCED_CASES / 10, "the reduced model ran on too few accepted scenes");
 }
 
 // ---------------------------------------------------------------- the seed corpus

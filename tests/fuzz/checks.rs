@@ -409,19 +409,8 @@ pub fn check_scene(
     };
     match parsed {
         Err(e) => {
-            stats.rejected += 1;
             let msg = e.to_string();
-            if expect == Expect::Accept {
-                stats.fail("valid scene refused", || format!("{label} | {msg}"));
-            }
-            if !hints.iter().any(|h| msg.contains(h.as_str())) {
-                stats.fail("refusal does not name the field", || {
-                    format!("message: {msg}\n      expected one of {hints:?}\n      input: {label}")
-                });
-            }
-            if has_nan_or_inf(&msg) && !has_nan_or_inf(text) {
-                stats.fail("refusal shows NaN or inf the input did not have", || format!("{label} | {msg}"));
-            }
+            check_refusal(stats, label, text, hints, expect, &msg);
             Some(msg)
         }
         Ok(scene) => {
@@ -432,5 +421,21 @@ pub fn check_scene(
             compute_and_check(stats, label, &scene, budget);
             None
         }
+    }
+}
+
+/// A refusal: it names one of `hints` and shows NaN or inf only if the input had them.
+pub fn check_refusal(stats: &mut Stats, label: &str, text: &str, hints: &[String], expect: Expect, msg: &str) {
+    stats.rejected += 1;
+    if expect == Expect::Accept {
+        stats.fail("valid scene refused", || format!("{label} | {msg}"));
+    }
+    if !hints.iter().any(|h| msg.contains(h.as_str())) {
+        stats.fail("refusal does not name the field", || {
+            format!("message: {msg}\n      expected one of {hints:?}\n      input: {label}")
+        });
+    }
+    if has_nan_or_inf(msg) && !has_nan_or_inf(text) {
+        stats.fail("refusal shows NaN or inf the input did not have", || format!("{label} | {msg}"));
     }
 }

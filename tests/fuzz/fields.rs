@@ -9,6 +9,7 @@ use super::*;
 
 /// A number in the scene, its allowed range and any constraint it meets in the default
 /// scene beside the range (the points lie inside the plate, the thickness under the sides).
+#[derive(Clone)]
 pub struct Field {
     pub path: &'static str,
     pub range: Range,

@@ -4,11 +4,13 @@
 #![allow(dead_code)]
 
 pub mod checks;
+pub mod ensembles;
 pub mod fields;
 pub mod geometry;
 pub mod mutations;
 
 pub use checks::*;
+pub use ensembles::*;
 pub use fields::*;
 pub use geometry::*;
 pub use mutations::*;
