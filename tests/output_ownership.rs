@@ -95,20 +95,42 @@ fn out_onto_an_empty_directory() {
 /// stage while `impact solve` prepares and commits beside it, and its output is whole.
 #[test]
 fn a_run_in_another_pid_namespace_keeps_its_stage() {
-    if !unshare_works(&["-p", "-f", "--mount-proc"]) {
+    live_stage_is_kept_across(&["-p", "-f", "--mount-proc"]);
+}
+
+/// The same from another user and PID namespace (`unshare --user --pid --fork`, which needs no
+/// privilege where unprivileged user namespaces are allowed): the run's pid and its user id
+/// both mean nothing here. Skipped, saying why, where `unshare` is not allowed.
+#[test]
+fn a_run_in_another_user_and_pid_namespace_keeps_its_stage() {
+    live_stage_is_kept_across(&["--user", "--pid", "--fork"]);
+}
+
+/// Runs `impact signals` under `unshare <namespaces>` and `impact solve` beside it once its
+/// stage exists: the stage is still there after the second run has prepared and committed
+/// (while the first still runs), and the first run's output is whole.
+fn live_stage_is_kept_across(namespaces: &[&str]) {
+    if !unshare_works(namespaces) {
         return;
     }
     let dir = tmp();
     let first = dir.join("first");
     let mut child = Command::new("unshare")
-        .args(["-p", "-f", "--mount-proc", BIN, "signals", "--out"])
+        .args(namespaces)
+        .args([BIN, "signals", "--out"])
         .arg(&first)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     assert!(stage_appears(dir.path(), &mut child), "impact signals ended before its stage was seen");
-    impact(["solve", "--out"]).arg(dir.join("second")).success();
+    let stage: Vec<String> = leftovers(dir.path()).into_iter().filter(|n| n.contains(".impact-stage-")).collect();
+    impact(["solve", "--out"]).arg(dir.join("second")).within(120).success();
+    if child.try_wait().unwrap().is_none() {
+        for s in &stage {
+            assert!(dir.join(s).exists(), "the live run's stage {s} was removed by the run beside it");
+        }
+    }
     let o = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "the run in the other namespace failed: {stderr}");
