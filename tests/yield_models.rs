@@ -9,6 +9,7 @@ use coupled::plan::impact_of;
 use coupled::plan::YieldValues;
 use coupled::transient::{case::striker, simulate, TransientCase, TransientSettings};
 use coupled::validity::{Criterion, Validity};
+use coupled::yield_root::{transient_yield_from_rigid, YieldSearch};
 use coupled::{BeamModel, ComplianceModel, ModelError, PlateModel, SupportSet};
 use impact::report::paper::Paper;
 use impact::report::yield_models::{
@@ -110,6 +111,46 @@ fn transient_yield_reaches_the_yield_compression() {
     }
 }
 
+/// The search bracketed by the reduced model finds the root of the search from the
+/// rigid-target value, in fewer runs of the full model: six cells of the paper's scene (coal,
+/// gangue 1 and gangue 2 under Con 1-3 at the centre, Area 1, the middle of an end, of a free
+/// edge and of the spring end) on a 10-element mesh.
+///
+/// Both searches evaluate the same f (each run at its own Δt) and end on brackets that hold
+/// its root and are at most w = ln(1 + tol) wide, so their midpoints lie within w of each
+/// other. Every root must come from the reduced model's bracket (no fall-back) and take fewer
+/// full runs than the search from scratch.
+#[test]
+fn the_reduced_bracket_finds_the_same_root_in_fewer_runs() {
+    let p = Paper::new();
+    let sc = &p.scene;
+    let case =
+        TransientCase::new(&sc.plate, TransientSettings { elements: 10, ..TransientSettings::default() }).unwrap();
+    let steps = case.settings().steps_per_contact;
+    let (l, b) = (sc.plate.length(), sc.plate.width());
+    let mut search = YieldSearch::new();
+    let w = ROOT_TOLERANCE.ln_1p();
+    let cells = [
+        (&p.coal, 1, (l / 2.0, b / 2.0)),
+        // Area 1 of Table 2, x = 13.752 mm as printed.
+        (&p.gangue1, 1, (0.013752, b / 2.0)),
+        (&p.coal, 2, (0.0, b / 2.0)),
+        (&p.gangue2, 2, (l / 2.0, 0.0)),
+        (&p.coal, 3, (l, b / 2.0)),
+        (&p.gangue1, 3, (l / 2.0, b / 2.0)),
+    ];
+    for (body, n, (x, z)) in cells {
+        let set = &sc.conditions[n - 1];
+        let cell = format!("{} on {} at ({x}, {z})", body.name, set.name);
+        let old = transient_yield_from_rigid(sc, &case, steps, set, body, x, z).unwrap();
+        let new = search.root(sc, &case, steps, set, body, x, z).unwrap();
+        assert!(new.width / new.velocity <= ROOT_TOLERANCE * 1.0001, "{cell}: width {}", new.width);
+        let d = (new.velocity / old.velocity).ln().abs();
+        assert!(d <= w, "{cell}: {} against {} m/s, {d:e} > {w:e}", new.velocity, old.velocity);
+        assert!(new.reduced_runs > 0 && new.runs < old.runs, "{cell}: {} runs against {}", new.runs, old.runs);
+    }
+}
+
 /// (c) A narrow plate (B/L = 0.1) is a beam: the quasi-static plate v_y at the centre
 /// agrees with the beam's within 1 %.
 #[test]
@@ -146,7 +187,7 @@ fn cell(body: &str, condition: usize, area: usize, v: f64) -> Table2Cell {
         beam: v,
         plate: v,
         plate_error: 1e-3 * v,
-        transient: TransientYield { velocity: v, width: 1e-6 * v, runs: 7, yield_compression: 1e-5 },
+        transient: TransientYield { velocity: v, width: 1e-6 * v, runs: 7, reduced_runs: 5, yield_compression: 1e-5 },
     }
 }
 
@@ -241,6 +282,7 @@ fn tiny(spread: f64, timing: Timing) -> PaperYieldData {
         summary: summary(&coal, &gangue, spread),
         transient_cells: 2,
         transient_runs: 14,
+        reduced_runs: 10,
         timing,
     }
 }

@@ -2,18 +2,64 @@
 //! first contact's largest compression δ_max reaches δ_my of eq. 51, on a plate that is
 //! integrated in time rather than reduced to one quasi-static compliance.
 //!
-//! ln(δ_max/δ_my) increases with ln v (δ_max ∝ v^{4/5} on a rigid target, steeper where the
-//! plate gives way), so [`log_root`] brackets it from the rigid-target value of the balance
-//! (eq. 14 with C = 0, the smallest v that reaches δ_my) with the Hertz slope and closes the
-//! bracket by Illinois false position, in about 6-8 transient runs.
+//! f(ln v) = ln(δ_max/δ_my) increases with ln v (δ_max ∝ v^{4/5} on a rigid target, steeper
+//! where the plate gives way). [`YieldSearch`] finds its root in two stages:
+//!
+//! 1. **Reduced.** The reduced modal model of the same plate ([`crate::reduced`]: the lowest
+//!    80 modes and the static correction of the rest, the full model's damping, the same Δt
+//!    rule, the same striker, gravity included) finds its own root v_r by [`log_root`] from
+//!    the rigid-target value, in about five modal runs of a millisecond each, and its slope
+//!    d f/d ln v there.
+//! 2. **Full.** The full model ([`TransientCase::first_contact`]) is run at v_r and one Newton
+//!    step away with the reduced slope, lengthened past the root ([`log_root_near`]); the two
+//!    runs straddle the root and Illinois false position closes the bracket to the same
+//!    relative width [`YIELD_ROOT_TOLERANCE`] as before, usually with one more run.
+//!
+//! Only the full model decides the root: the reduced one places the bracket. Over the
+//! paper's plate (Con 1-3, the three spheres, nine points: the corners (0, 0) and (L, 0), the
+//! midpoints of the ends, of a free edge and of the plate, and Areas 1, 2 and 6) the full
+//! root lay within 9.2e-5 of v_r (relative) and the reduced slope at v_r within 5.1e-4 of the
+//! full one's (a central difference at the full root), so the search stays within
+//! [`REDUCED_REACH`] (3e-4) of v_r and its Newton step misses the root by under 5e-8 in
+//! ln v, a twentieth of the final width: 2-3 full runs a root.
+//!
+//! Every full run keeps its own Δt = t_H(v)/N (N steps per Hertz time t_H ∝ v^{-1/5}) and its
+//! own factorization of K + 4M/Δt², as in the search from scratch, so both searches find the
+//! root of the same f. Holding one Δt over the bracket, to factorize once per root, was
+//! measured and left out: the factorization is 5-10 % of a first-contact run on the
+//! 20-element mesh (4 % on 40), so it saved about 4 % of the three-model yield study, but
+//! the held Δt moves the instants at which δ is sampled against its peak, and with them the
+//! sampled δ_max (by up to ½(πΔt/t_c)² ≈ 1e-4 per step of shift): the roots moved by up to
+//! 8.3e-7 (29 of Table 2's 42 cells by more than their bracket width) where with each run at
+//! its own Δt they stay within 3.9e-7 of the search from scratch.
+//!
+//! Where the reduced model cannot be built or its root does not bracket the full one within
+//! the reach, the search falls back to [`transient_yield_from_rigid`]: the bracket from the
+//! rigid-target value (eq. 14 with C = 0, the smallest v that reaches δ_my) with the Hertz
+//! slope, closed by Illinois false position, each run at its own Δt (3-5 runs, 4.9 on
+//! average over the paper's 138 cells).
 
 use crate::error::ModelError;
-use crate::plan::{impact_of, log_root, scene_striker, YIELD_ROOT_TOLERANCE};
+use crate::plan::{impact_of, log_root, log_root_near, scene_striker, Guess, YIELD_ROOT_TOLERANCE};
+use crate::reduced::{ReducedModel, ReducedSettings};
 use crate::scene::Scene;
 use crate::supports::SupportSet;
 use crate::transient::TransientCase;
-use analytic::{contact_stiffness, yield_velocity, DruckerPrager, Sphere};
+use analytic::{contact_stiffness, yield_velocity, DruckerPrager, Plate, Sphere};
+use plate_fem::Supports;
 use serde::Serialize;
+
+/// How far, in ln v, the full model's root may lie from the reduced model's: about three
+/// times the largest distance measured on the paper's plate (9.2e-5 with N = 80, see the
+/// module documentation). The full search never leaves it, and falls back beyond it.
+pub const REDUCED_REACH: f64 = 3e-4;
+
+/// The relative disagreement allowed between the reduced and the full slope d ln δ_max/d ln v
+/// at the root: about four times the largest measured on the paper's plate (5.1e-4, see the
+/// module documentation). With it the Newton step from v_r passes the root by less than
+/// 0.45 of the final width, so that one more run closes the bracket
+/// ([`log_root_near`]).
+pub const REDUCED_SLOPE_SPREAD: f64 = 2e-3;
 
 /// A transient yield velocity and how it was found.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -22,8 +68,10 @@ pub struct TransientYield {
     pub velocity: f64,
     /// Width of the final bracket hi - lo, m/s: f(lo) < 0 ≤ f(hi).
     pub width: f64,
-    /// Transient runs it took.
+    /// Runs of the full transient model it took.
     pub runs: usize,
+    /// Runs of the reduced model that placed the bracket (0 without it).
+    pub reduced_runs: usize,
     /// δ_my of eq. 51, m.
     pub yield_compression: f64,
 }
@@ -37,14 +85,15 @@ fn yield_compression(scene: &Scene, body: &Sphere) -> f64 {
 
 /// The quasi-static yield velocity (eqs. 51-54) of rigid contact, C = 0 (eq. 14 with C = 0).
 /// On any plate that gives way the transient root lies above it: this is where the search
-/// starts.
+/// from scratch starts.
 pub fn rigid_yield(scene: &Scene, body: &Sphere) -> f64 {
     yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, yield_compression(scene, body))
 }
 
 /// The transient yield velocity of `body` at (x, z) on the plate held by `set`, with the
 /// scene's contact law: the v at which the transient δ_max reaches δ_my of eq. 51, to a
-/// relative width [`YIELD_ROOT_TOLERANCE`].
+/// relative width [`YIELD_ROOT_TOLERANCE`] ([`YieldSearch`], whose reduced model is built
+/// for this one root: a caller with many roots keeps one [`YieldSearch`]).
 pub fn transient_yield(
     scene: &Scene,
     case: &TransientCase,
@@ -53,11 +102,13 @@ pub fn transient_yield(
     x: f64,
     z: f64,
 ) -> Result<TransientYield, ModelError> {
-    transient_yield_with(scene, case, case.settings().steps_per_contact, set, body, x, z)
+    YieldSearch::new().root(scene, case, case.settings().steps_per_contact, set, body, x, z)
 }
 
-/// [`transient_yield`] with `steps_per_contact` steps per Hertz time on `case`'s mesh.
-pub fn transient_yield_with(
+/// The same root searched from scratch with `steps_per_contact` steps per Hertz time on
+/// `case`'s mesh: bracketed from the rigid-target value [`rigid_yield`] with the Hertz slope
+/// and closed by Illinois false position ([`log_root`]), each run at its own Δt.
+pub fn transient_yield_from_rigid(
     scene: &Scene,
     case: &TransientCase,
     steps_per_contact: f64,
@@ -67,7 +118,6 @@ pub fn transient_yield_with(
     z: f64,
 ) -> Result<TransientYield, ModelError> {
     let d_my = yield_compression(scene, body);
-    let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
     let mut runs = 0;
     let (lo, hi) = {
         let mut reach = |lv: f64| -> Result<f64, ModelError> {
@@ -76,7 +126,157 @@ pub fn transient_yield_with(
             // δ_max is the first contact's: the run need not follow the later ones.
             Ok((case.first_contact(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
         };
-        log_root(&mut reach, v_rigid.ln(), YIELD_ROOT_TOLERANCE)?
+        log_root(&mut reach, rigid_yield(scene, body).ln(), YIELD_ROOT_TOLERANCE)?
     };
-    Ok(TransientYield { velocity: (0.5 * (lo + hi)).exp(), width: hi.exp() - lo.exp(), runs, yield_compression: d_my })
+    Ok(found((lo, hi), runs, 0, d_my))
+}
+
+/// The root from its final bracket (ln lo, ln hi).
+fn found((lo, hi): (f64, f64), runs: usize, reduced_runs: usize, yield_compression: f64) -> TransientYield {
+    TransientYield {
+        velocity: (0.5 * (lo + hi)).exp(),
+        width: hi.exp() - lo.exp(),
+        runs,
+        reduced_runs,
+        yield_compression,
+    }
+}
+
+/// A reduced model of one plate and support set with the settings it was built with (None
+/// if it could not be built: the roots on it are then searched from scratch).
+struct Modal {
+    plate: Plate,
+    supports: Supports,
+    settings: ReducedSettings,
+    model: Option<ReducedModel>,
+}
+
+/// Transient yield roots bracketed by the reduced model (see the module): it keeps the
+/// reduced models it builds, one per plate, support set and mesh, for the roots that follow.
+#[derive(Default)]
+pub struct YieldSearch {
+    modal: Vec<Modal>,
+}
+
+impl YieldSearch {
+    /// No reduced model built yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The reduced model's settings for `case`: N = 80 and the static correction as the
+    /// signals have them, the full model's damping (none, ζ = 0, on the paper's plate; its
+    /// Rayleigh damping mode by mode where the scene gives one), its mesh no finer than the
+    /// signals' 20 elements (the full model's own where coarser: a finer one would cost more
+    /// to build than the runs it saves).
+    fn settings(case: &TransientCase) -> ReducedSettings {
+        let signals = ReducedSettings::default();
+        let full = case.settings();
+        ReducedSettings {
+            damping_ratio: 0.0,
+            rayleigh: full.damping,
+            elements: full.elements.min(signals.elements),
+            ..signals
+        }
+    }
+
+    /// The reduced model of `case`'s plate on `set`, built at the first root that asks.
+    fn model(&mut self, case: &TransientCase, set: &SupportSet) -> Option<&ReducedModel> {
+        let (plate, supports, settings) = (*case.plate(), set.supports, Self::settings(case));
+        let same = |m: &Modal| m.plate == plate && m.supports == supports && m.settings == settings;
+        let i = match self.modal.iter().position(same) {
+            Some(i) => i,
+            None => {
+                let model = ReducedModel::new(&plate, set, settings).ok();
+                self.modal.push(Modal { plate, supports, settings, model });
+                self.modal.len() - 1
+            }
+        };
+        self.modal[i].model.as_ref()
+    }
+
+    /// The transient yield velocity of `body` at (x, z) on the plate held by `set`, with
+    /// `steps_per_contact` steps per Hertz time on `case`'s mesh and the scene's contact law,
+    /// to a relative width [`YIELD_ROOT_TOLERANCE`] (see the module).
+    #[allow(clippy::too_many_arguments)]
+    pub fn root(
+        &mut self,
+        scene: &Scene,
+        case: &TransientCase,
+        steps_per_contact: f64,
+        set: &SupportSet,
+        body: &Sphere,
+        x: f64,
+        z: f64,
+    ) -> Result<TransientYield, ModelError> {
+        let d_my = yield_compression(scene, body);
+        let window = case.settings().window_contacts;
+        let mut reduced_runs = 0;
+        let guess = self.model(case, set).and_then(|m| {
+            let cell = Cell { scene, body, x, z, d_my, steps_per_contact };
+            reduced_guess(m, &cell, window, &mut reduced_runs).ok()
+        });
+        let mut runs = 0;
+        if let Some(g) = guess {
+            let cell = Cell { scene, body, x, z, d_my, steps_per_contact };
+            if let Some(bracket) = full_near(case, set, &cell, g, &mut runs)? {
+                return Ok(found(bracket, runs, reduced_runs, d_my));
+            }
+        }
+        let t = transient_yield_from_rigid(scene, case, steps_per_contact, set, body, x, z)?;
+        Ok(TransientYield { runs: t.runs + runs, reduced_runs, ..t })
+    }
+}
+
+/// One cell of a root search: the sphere at (x, z), its δ_my and the steps per Hertz time.
+struct Cell<'a> {
+    scene: &'a Scene,
+    body: &'a Sphere,
+    x: f64,
+    z: f64,
+    d_my: f64,
+    steps_per_contact: f64,
+}
+
+/// The reduced model's root of `cell` from the rigid-target value, each run at its own
+/// Δt = t_H/N as the full search's, and the reduced slope d f/d ln v over its final bracket:
+/// the guess the full search starts from.
+fn reduced_guess(model: &ReducedModel, cell: &Cell, window: f64, runs: &mut usize) -> Result<Guess, ModelError> {
+    let mut seen: Vec<(f64, f64)> = Vec::new();
+    let (lo, hi) = {
+        let mut f = |lv: f64| -> Result<f64, ModelError> {
+            *runs += 1;
+            let s = scene_striker(cell.scene, cell.body, lv.exp());
+            let th = s.hertz_time();
+            let o = model.first_contact(&s, cell.x, cell.z, th / cell.steps_per_contact, window * th)?;
+            let y = (o.compression_max / cell.d_my).ln();
+            seen.push((lv, y));
+            Ok(y)
+        };
+        log_root(&mut f, rigid_yield(cell.scene, cell.body).ln(), YIELD_ROOT_TOLERANCE)?
+    };
+    let at = |p: f64| seen.iter().find(|s| s.0 == p).map(|s| s.1);
+    let slope = match (at(lo), at(hi)) {
+        (Some(a), Some(b)) => (b - a) / (hi - lo),
+        _ => f64::NAN,
+    };
+    Ok(Guess { at: 0.5 * (lo + hi), slope, reach: REDUCED_REACH, slope_spread: REDUCED_SLOPE_SPREAD })
+}
+
+/// The full model's bracket from the reduced `guess` ([`log_root_near`]), each run at its own
+/// Δt = t_H(v)/N; None if the guess does not bracket the root.
+fn full_near(
+    case: &TransientCase,
+    set: &SupportSet,
+    cell: &Cell,
+    guess: Guess,
+    runs: &mut usize,
+) -> Result<Option<(f64, f64)>, ModelError> {
+    let mut f = |lv: f64| -> Result<f64, ModelError> {
+        *runs += 1;
+        let s = scene_striker(cell.scene, cell.body, lv.exp());
+        let o = case.first_contact(set, &s, cell.x, cell.z, cell.steps_per_contact)?;
+        Ok((o.compression_max / cell.d_my).ln())
+    };
+    log_root_near(&mut f, guess, YIELD_ROOT_TOLERANCE)
 }

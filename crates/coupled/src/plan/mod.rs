@@ -36,7 +36,8 @@ pub use time_domain::{
     transient_values,
 };
 pub use yield_velocity::{
-    both_solvers, dynamic_yield, dynamic_yield_with, log_root, HERTZ_SLOPE, YIELD_ROOT_TOLERANCE,
+    both_solvers, close, dynamic_yield, dynamic_yield_with, log_root, log_root_near, Guess, HERTZ_SLOPE,
+    YIELD_ROOT_TOLERANCE,
 };
 
 /// Which model answers.

@@ -12,6 +12,7 @@ use crate::supports::SupportSet;
 use crate::transient::estimate::{Discretisation, Estimated, Ladder};
 use crate::transient::{case::striker, LawKind, Outcome, Striker};
 use crate::validity::{self, Validity};
+use crate::yield_root::YieldSearch;
 use analytic::{contact_stiffness, yield_velocity, DruckerPrager, Sphere};
 use plate_fem::Corner;
 
@@ -241,6 +242,7 @@ pub fn transient_case_count(scene: &Scene) -> usize {
 pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<Results, ModelError> {
     let disc = scene.transient_discretisation;
     let mut ladder = Ladder::new(&scene.plate, scene.transient_start())?;
+    let mut search = YieldSearch::new();
     let points = scene.point_pairs();
     let mut responses = Vec::new();
     let mut yields = Vec::new();
@@ -273,7 +275,7 @@ pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<R
                     let e = disc.estimate(&mut ladder, set, &s, (x, z))?;
                     let level = (e.elements / disc.start().elements).max(1).trailing_zeros() as usize;
                     let case = ladder.levels(level)?.0;
-                    let mut y = dynamic_yield_with(scene, case, e.steps_per_contact, set, body, x, z)?;
+                    let mut y = dynamic_yield_with(scene, case, e.steps_per_contact, &mut search, set, body, (x, z))?;
                     let relative = e.error.compression / e.values.compression;
                     if let Some(w) = y.yield_velocity_error.as_mut() {
                         *w += y.yield_velocity * relative / HERTZ_SLOPE;

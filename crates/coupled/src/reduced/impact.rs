@@ -7,7 +7,8 @@ use super::target::{ChannelRow, CornerPoint, ModalTarget, Recording};
 use super::window::{free_window, BlockMaps};
 use super::{modal_compliance, Correction, Point, ReducedModel, ReducedOutcome};
 use crate::error::ModelError;
-use crate::transient::{simulate_with, PlateFacts, Striker};
+use crate::transient::{simulate_with, Outcome, PlateFacts, Striker};
+use analytic::params::{check, Range};
 use plate_fem::CornerSupport;
 
 impl ReducedModel {
@@ -26,22 +27,11 @@ impl ReducedModel {
     ) -> Result<ReducedOutcome, ModelError> {
         let pt = self.point(x, z)?;
         let zeta = self.settings.damping();
-        let static_compliance = modal_compliance(&pt.phi, &self.omega) + pt.c_res;
-        let residual_mode = self.residual_mode(&pt, static_compliance);
+        let Extended { omega, phi_p, c_res, residual_mode, static_compliance } = self.extended(&pt);
+        if let (Some((w, _)), Some(m)) = (residual_mode, map.as_mut()) {
+            m.push(w, zeta.at(w), dt);
+        }
         let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_point(&pt, f)).collect();
-        let (mut omega, mut phi_p) = (self.omega.clone(), pt.phi.clone());
-        let c_res = match residual_mode {
-            Some((w, root_m)) => {
-                omega.push(w);
-                phi_p.push(pt.c_res / root_m);
-                if let Some(m) = map.as_mut() {
-                    m.push(w, zeta.at(w), dt);
-                }
-                0.0
-            }
-            None if self.settings.correction == Correction::Static => pt.c_res,
-            None => 0.0,
-        };
         let rows = probes
             .rows
             .iter()
@@ -51,10 +41,7 @@ impl ReducedModel {
         let corner_points = self.corner_points(&pt, residual_mode, c_res);
         let facts = PlateFacts {
             static_compliance: Some(static_compliance),
-            corner_springs: Some(self.set.supports.corners.map(|c| match c {
-                CornerSupport::Spring(k) => k,
-                _ => 0.0,
-            })),
+            corner_springs: Some(self.corner_springs()),
             follow_unbounded: true,
         };
         let extra_maps = residual_mode.map(|(w, _)| BlockMaps::new(&[w], zeta, probes.spec.interval()));
@@ -70,6 +57,56 @@ impl ReducedModel {
             static_compliance,
             residual_compliance: pt.c_res,
             residual_mode_hz: residual_mode.map(|(w, _)| w / (2.0 * std::f64::consts::PI)),
+        })
+    }
+
+    /// The first contact alone of `striker` at (x, z) with the time step `dt`, to `t_max` at
+    /// most: the reduced counterpart of [`crate::transient::TransientCase::first_contact`],
+    /// for the first contact's quantities without signals (its largest compression δ_max
+    /// brackets the transient yield velocity, [`crate::yield_root`]). The loop is
+    /// [`simulate_with`] on the modal plate of [`Self::impact`] (the same modes, correction
+    /// and damping; free steps exact) without the static compliance, so it stops at the first
+    /// separation as the full model's first-contact run does; with the full model's Δt both
+    /// sample δ at the same instants and differ only by the modal truncation. Nothing is
+    /// recorded and the model is not changed.
+    pub fn first_contact(&self, striker: &Striker, x: f64, z: f64, dt: f64, t_max: f64) -> Result<Outcome, ModelError> {
+        check("dt", dt, Range::open(0.0, f64::INFINITY), "s")?;
+        let pt = self.point(x, z)?;
+        let zeta = self.settings.damping();
+        let Extended { omega, phi_p, c_res, residual_mode, .. } = self.extended(&pt);
+        let map = FreeMaps::new(&omega, zeta, dt);
+        let corner_points = self.corner_points(&pt, residual_mode, c_res);
+        let facts = PlateFacts { corner_springs: Some(self.corner_springs()), ..PlateFacts::default() };
+        let mut target = ModalTarget::new(omega, zeta, phi_p, c_res, dt, Some(map), corner_points, None, self.simd);
+        Ok(simulate_with(striker, Some(&mut target), facts, dt, t_max))
+    }
+
+    /// The modes the struck point `pt` is followed on: the kept ones, extended by the residual
+    /// mode where the settings ask for it, with φᵢ(p), the static correction left at p
+    /// (C_res(p) with the static correction, 0 when the residual mode or nothing carries it)
+    /// and the FE static compliance Σφᵢ(p)²/ωᵢ² + C_res(p).
+    fn extended(&self, pt: &Point) -> Extended {
+        let static_compliance = modal_compliance(&pt.phi, &self.omega) + pt.c_res;
+        let residual_mode = self.residual_mode(pt, static_compliance);
+        let (mut omega, mut phi_p) = (self.omega.clone(), pt.phi.clone());
+        let c_res = match residual_mode {
+            Some((w, root_m)) => {
+                omega.push(w);
+                phi_p.push(pt.c_res / root_m);
+                0.0
+            }
+            None if self.settings.correction == Correction::Static => pt.c_res,
+            None => 0.0,
+        };
+        Extended { omega, phi_p, c_res, residual_mode, static_compliance }
+    }
+
+    /// The corner spring stiffnesses in [`plate_fem::Corner::ALL`] order, N/m (0 where a
+    /// corner is free or held).
+    fn corner_springs(&self) -> [f64; 4] {
+        self.set.supports.corners.map(|c| match c {
+            CornerSupport::Spring(k) => k,
+            _ => 0.0,
         })
     }
 
@@ -138,6 +175,20 @@ impl ReducedModel {
         }
         out
     }
+}
+
+/// The modes one impact is followed on ([`ReducedModel::extended`]).
+struct Extended {
+    /// ωᵢ, the residual mode's last where there is one.
+    omega: Vec<f64>,
+    /// φᵢ(p) on the same modes.
+    phi_p: Vec<f64>,
+    /// The static correction at p, m/N (0 when the residual mode carries it).
+    c_res: f64,
+    /// The residual mode (ω_ψ, √m_ψ), if any.
+    residual_mode: Option<(f64, f64)>,
+    /// The FE static compliance at p, m/N.
+    static_compliance: f64,
 }
 
 /// A field's value at the struck point, Σ N_k(p) f_k over the struck element.

@@ -20,7 +20,7 @@ use ::scene::Scene;
 pub use coupled::plan::log_root;
 use coupled::plan::{YieldRow, YieldValues};
 use coupled::transient::{TransientCase, TransientSettings};
-pub use coupled::yield_root::{rigid_yield, transient_yield, TransientYield};
+pub use coupled::yield_root::{rigid_yield, transient_yield, TransientYield, YieldSearch};
 use coupled::SupportSet;
 use std::collections::HashMap;
 
@@ -35,7 +35,7 @@ pub const FINE: TransientSettings = TransientSettings {
 };
 /// Points of the beam and plate curves (L in 100 parts, as section IV-A).
 pub const SWEEP: usize = 101;
-/// Points of the transient curves (each a root of ~7 time integrations).
+/// Points of the transient curves (each a root of about 3 time integrations).
 pub const TRANSIENT_SWEEP: usize = 13;
 /// The quasi-static plate's search grid for Table 5: x and z points, edges included.
 pub const GRID: (usize, usize) = (11, 5);
@@ -69,10 +69,12 @@ impl QuasiStatic {
     }
 }
 
-/// Transient roots, each computed once: Table 2, Table 5 and the figures share cells.
+/// Transient roots, each computed once: Table 2, Table 5 and the figures share cells, and
+/// every root its support set's reduced model ([`YieldSearch`]).
 struct Transients<'a> {
     scene: &'a Scene,
     case: TransientCase,
+    search: YieldSearch,
     cells: HashMap<(String, String, i64, i64), TransientYield>,
 }
 
@@ -82,11 +84,12 @@ impl Transients<'_> {
         if let Some(t) = self.cells.get(&k) {
             return Ok(*t);
         }
-        let t = transient_yield(self.scene, &self.case, set, body, x, z)?;
+        let t = self.search.root(self.scene, &self.case, self.case.settings().steps_per_contact, set, body, x, z)?;
         self.cells.insert(k, t);
         Ok(t)
     }
-    fn runs(&self) -> usize {
-        self.cells.values().map(|t| t.runs).sum()
+    /// Runs of the full and of the reduced model over every root.
+    fn runs(&self) -> (usize, usize) {
+        self.cells.values().fold((0, 0), |(f, r), t| (f + t.runs, r + t.reduced_runs))
     }
 }

@@ -13,7 +13,7 @@ use analytic::Sphere;
 use coupled::plan::{self, ModelKind, YieldValues};
 use coupled::scene::even_points;
 use coupled::transient::{TransientCase, TransientSettings};
-use coupled::yield_root::{transient_yield, TransientYield};
+use coupled::yield_root::{TransientYield, YieldSearch};
 use coupled::{Analysis, BeamModel, PlateModel, Points, SupportSet};
 use scene::{Scene, SceneSource};
 use serde::Serialize;
@@ -238,8 +238,10 @@ pub struct PaperYieldData {
     pub summary: Summary,
     /// Transient roots computed.
     pub transient_cells: usize,
-    /// Transient runs they took.
+    /// Runs of the full transient model they took.
     pub transient_runs: usize,
+    /// Runs of the reduced model that bracketed them.
+    pub reduced_runs: usize,
     /// Run times.
     pub timing: Timing,
 }
@@ -367,7 +369,7 @@ fn discretisation(setup: &Setup, tr: &mut Transients) -> Result<(Vec<Discretisat
     for (body, n, x) in [(coal, 1, l / 2.0), (gangue1, 1, l / 2.0), (gangue1, 2, area1)] {
         let set = setup.cond(n)?;
         let coarse = tr.get(body, set, x, zc)?;
-        let fine = transient_yield(&setup.scene, &fine_case, set, body, x, zc)?;
+        let fine = tr.search.root(&setup.scene, &fine_case, FINE.steps_per_contact, set, body, x, zc)?;
         let relative = fine.velocity / coarse.velocity - 1.0;
         largest = largest.max(relative.abs());
         rows.push(DiscretisationRow {
@@ -454,7 +456,7 @@ fn figures(
 /// The same root by `coupled::plan::dynamic_yield` at one cell: coal, Con 1, the midpoint.
 fn cross_check(setup: &Setup, tr: &mut Transients) -> Result<CrossCheck, Failure> {
     let (coal, mid, set) = (&setup.bodies[0], setup.length / 2.0, setup.cond(1)?);
-    let dy = plan::dynamic_yield(&setup.scene, &tr.case, set, coal, mid, setup.zc)?;
+    let dy = plan::dynamic_yield(&setup.scene, &tr.case, &mut tr.search, set, coal, (mid, setup.zc))?;
     Ok(CrossCheck { ours: tr.get(coal, set, mid, setup.zc)?, dynamic_yield: dy })
 }
 
@@ -507,7 +509,7 @@ pub fn compute(printed: &Printed, settings: &Settings, progress: &dyn Progress) 
     let (beam, plate) = timed(&mut timing.quasi_static, || quasi_static(&setup, settings))?;
     progress.advance(1);
     let case = TransientCase::new(&setup.scene.plate, TransientSettings::default())?;
-    let mut tr = Transients { scene: &setup.scene, case, cells: HashMap::new() };
+    let mut tr = Transients { scene: &setup.scene, case, search: YieldSearch::new(), cells: HashMap::new() };
     let table2 = timed(&mut timing.table2, || table2(&setup, printed, &beam, &plate, &mut tr))?;
     progress.advance(1);
     let (discretisation, disc_rel) = timed(&mut timing.discretisation, || discretisation(&setup, &mut tr))?;
@@ -521,7 +523,7 @@ pub fn compute(printed: &Printed, settings: &Settings, progress: &dyn Progress) 
     progress.advance(1);
     progress.finish();
     let transient = tr.case.settings();
-    let (transient_cells, transient_runs) = (tr.cells.len(), tr.runs());
+    let (transient_cells, (transient_runs, reduced_runs)) = (tr.cells.len(), tr.runs());
     timing.total = t_start.elapsed().as_secs_f64();
     Ok(PaperYieldData {
         length: setup.length,
@@ -546,6 +548,7 @@ pub fn compute(printed: &Printed, settings: &Settings, progress: &dyn Progress) 
         summary,
         transient_cells,
         transient_runs,
+        reduced_runs,
         timing,
     })
 }

@@ -431,7 +431,13 @@ mod tests {
             beam: v,
             plate: v,
             plate_error: 1e-3 * v,
-            transient: TransientYield { velocity: v, width: 1e-6 * v, runs: 7, yield_compression: 1e-5 },
+            transient: TransientYield {
+                velocity: v,
+                width: 1e-6 * v,
+                runs: 7,
+                reduced_runs: 5,
+                yield_compression: 1e-5,
+            },
         }
     }
 
