@@ -73,7 +73,7 @@ fn mutated_default_scenes_are_refused_clearly_or_computed_cleanly() {
     assert!(stats.parsed > CASES / 5 && stats.rejected > CASES / 5, "the generator exercises both sides");
 }
 
-const REDUCED_CASES: usize = 64;
+const REDUCED_CASES: usize = 40;
 const REDUCED_SEED: [u8; 32] = *b"impact fuzz reduced scenes seed!";
 
 /// The same property on the `[signals]`, `[ensemble]` and identification scenes: one mutation
