@@ -341,6 +341,10 @@ fn gravity_and_plate_damping() {
     assert_eq!((paper.gravity, paper.plate_damping, paper.signals.rayleigh), (0.0, None, None));
     let caving = Scene::parse(&std::fs::read_to_string("scenes/caving-stream.toml").unwrap(), "t").unwrap();
     assert_eq!(caving.gravity, 9.80665);
+    // An ensemble of given velocities is the paper's impact, without gravity.
+    let paper_ensemble =
+        Scene::parse(&std::fs::read_to_string("scenes/paper-velocities-ensemble.toml").unwrap(), "t").unwrap();
+    assert_eq!(paper_ensemble.gravity, 0.0);
     let s = Scene::parse(&format!("gravity_m_per_s2 = 0.0\n{DEFAULT_SCENE}"), "t").unwrap();
     assert_eq!(s.gravity, 0.0);
     let text = format!(

@@ -41,7 +41,7 @@ pub(super) struct RawEnsemble {
     #[serde(default)]
     region: Option<RawRegion>,
     #[serde(default)]
-    fall_height_m: Option<toml::Value>,
+    pub(crate) fall_height_m: Option<toml::Value>,
     #[serde(default)]
     velocity_m_per_s: Option<toml::Value>,
     #[serde(default)]

@@ -120,7 +120,7 @@ fn top_level() -> Section {
             "gravity_m_per_s2",
             "m/s²",
             limits::GRAVITY_M_PER_S2,
-            "9.80665 with [ensemble] (a caving stream), else 0",
+            "9.80665 with an [ensemble] of fall heights (a caving stream), else 0",
             "Gravity on the sphere toward the plate in the transient and reduced models: the free lump flies on a parabola and falls back (the paper's impact has none)",
         ),
         key(

@@ -111,10 +111,11 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         }
         None => Points::Pairs { pairs: vec![] },
     };
-    // A caving stream's lumps fall onto the plate, so gravity acts on them by default there.
+    // A caving stream's lumps fall onto the plate (its speeds are fall heights), so gravity
+    // acts on them by default there; an ensemble of given velocities is the paper's impact.
     let gravity = match raw.gravity_m_per_s2 {
         Some(g) => check("gravity_m_per_s2", g, limits::GRAVITY_M_PER_S2, "m/s²")?,
-        None if raw.ensemble.is_some() => identify::ensemble::GRAVITY,
+        None if raw.ensemble.as_ref().is_some_and(|e| e.fall_height_m.is_some()) => identify::ensemble::GRAVITY,
         None => 0.0,
     };
     let plate_damping = raw.plate_damping.as_ref().map(damping::validate_plate_damping).transpose()?;
