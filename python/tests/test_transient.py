@@ -25,14 +25,15 @@ R, E, NU, RHO, V = 2e-3, 1e6, 0.45, 1000.0, 0.01
 PLATE_E, PLATE_NU = 210e9, 0.3
 
 
-@pytest.fixture(scope="module")
-def run():
+def soft_sphere_scene(**top_level):
+    """The paper's plate with its edges clamped, struck at its centre by the soft sphere at V
+    under Hertz's law with e = 1, as a scene dict; `top_level` adds or replaces top-level keys."""
     import tomllib
     from conftest import REPO
 
     d = tomllib.loads((REPO / "scenes" / "paper-table-1.toml").read_text())
     del d["transient"]
-    d.update(restitution=1.0, contact_law="hertz", analyses=["responses"])
+    d.update(restitution=1.0, contact_law="hertz", analyses=["responses"], **top_level)
     d["bodies"] = [
         {
             "name": "soft",
@@ -47,6 +48,12 @@ def run():
     d["conditions"] = [{"name": "clamped", "edges": dict.fromkeys(["left", "right", "near", "far"], "clamped")}]
     d["points"] = {"pairs_mm": [[229.2, 180.0]]}
     d["velocities"] = {"m_per_s": [V]}
+    return d
+
+
+@pytest.fixture(scope="module")
+def run():
+    d = soft_sphere_scene()
     return impact.transient(d, "soft", "clamped", 229.2, 180.0, V, error_estimate=False)
 
 
@@ -94,26 +101,7 @@ def test_gravity_brings_the_sphere_back_after_the_window(run):
     for good", and gives the earliest return, which the parabola of free flight bounds from
     above (t_c + 2|v_r|/g, the plate's own reach only brings it earlier, by its deflection
     over |v_r|: microns over 0.01 m/s, 1e-3 of it at most)."""
-    import tomllib
-    from conftest import REPO
-
-    d = tomllib.loads((REPO / "scenes" / "paper-table-1.toml").read_text())
-    del d["transient"]
-    d.update(restitution=1.0, contact_law="hertz", analyses=["responses"], gravity_m_per_s2=0.05)
-    d["bodies"] = [
-        {
-            "name": "soft",
-            "density_kg_m3": RHO,
-            "youngs_modulus_gpa": E / 1e9,
-            "poisson_ratio": NU,
-            "cohesion_mpa": 1000.0,
-            "friction_angle_deg": 30.0,
-            "radius_mm": R * 1e3,
-        }
-    ]
-    d["conditions"] = [{"name": "clamped", "edges": dict.fromkeys(["left", "right", "near", "far"], "clamped")}]
-    d["points"] = {"pairs_mm": [[229.2, 180.0]]}
-    d["velocities"] = {"m_per_s": [V]}
+    d = soft_sphere_scene(gravity_m_per_s2=0.05)
     fall = impact.transient(d, "soft", "clamped", 229.2, 180.0, V, error_estimate=False)
     assert not fall.left_for_good and fall.returns_at_s is not None
     t_c = float(fall.contacts["duration_s"][0])

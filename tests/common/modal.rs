@@ -98,6 +98,30 @@ pub fn centre_modes(plate: Sheet, n: usize) -> Vec<(f64, f64)> {
     (0..m).map(|k| (eig.eigenvalues[k].sqrt(), x.column(k).dot(&centre))).collect()
 }
 
+/// The state's rate for the sphere of `mass` and the `modes` under the contact force `f`:
+/// (u̇, -f/m, q̇ₖ, -ωₖ²qₖ + Φₖf).
+fn rate(modes: &[(f64, f64)], mass: f64, f: f64, y: &[f64]) -> Vec<f64> {
+    let n = modes.len();
+    let mut r = vec![0.0; y.len()];
+    r[0] = y[1];
+    r[1] = -f / mass;
+    for (i, &(w, phi)) in modes.iter().enumerate() {
+        r[2 + i] = y[2 + n + i];
+        r[2 + n + i] = -w * w * y[2 + i] + phi * f;
+    }
+    r
+}
+
+/// One classical Runge-Kutta step of `dt` from `y` for ẏ = `rate`(y).
+fn rk4(rate: impl Fn(&[f64]) -> Vec<f64>, y: &[f64], dt: f64) -> Vec<f64> {
+    let add = |a: &[f64], b: &[f64], s: f64| a.iter().zip(b).map(|(x, r)| x + s * r).collect::<Vec<_>>();
+    let k1 = rate(y);
+    let k2 = rate(&add(y, &k1, dt / 2.0));
+    let k3 = rate(&add(y, &k2, dt / 2.0));
+    let k4 = rate(&add(y, &k3, dt));
+    (0..y.len()).map(|i| y[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])).collect()
+}
+
 /// One contact of the modal model: start and end (s), peak force (N), largest compression (m).
 #[derive(Debug, Clone, Copy)]
 pub struct Contact {
@@ -143,26 +167,12 @@ impl Struck<'_> {
     }
 
     fn rate(&self, y: &[f64]) -> Vec<f64> {
-        let n = self.modes.len();
-        let f = self.force(y);
-        let mut r = vec![0.0; y.len()];
-        r[0] = y[1];
-        r[1] = -f / self.mass;
-        for (i, &(w, phi)) in self.modes.iter().enumerate() {
-            r[2 + i] = y[2 + n + i];
-            r[2 + n + i] = -w * w * y[2 + i] + phi * f;
-        }
-        r
+        rate(self.modes, self.mass, self.force(y), y)
     }
 
     /// One classical Runge-Kutta step of `dt` from `y`.
     fn step(&self, y: &[f64], dt: f64) -> Vec<f64> {
-        let add = |a: &[f64], b: &[f64], s: f64| a.iter().zip(b).map(|(x, r)| x + s * r).collect::<Vec<_>>();
-        let k1 = self.rate(y);
-        let k2 = self.rate(&add(y, &k1, dt / 2.0));
-        let k3 = self.rate(&add(y, &k2, dt / 2.0));
-        let k4 = self.rate(&add(y, &k3, dt));
-        (0..y.len()).map(|i| y[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])).collect()
+        rk4(|z| self.rate(z), y, dt)
     }
 
     /// The largest plate displacement at the centre its free vibration can reach:
@@ -284,25 +294,11 @@ impl Corrected<'_> {
     }
 
     fn rate(&self, y: &[f64]) -> Vec<f64> {
-        let n = self.modes.len();
-        let f = self.force(y);
-        let mut r = vec![0.0; y.len()];
-        r[0] = y[1];
-        r[1] = -f / self.mass;
-        for (i, &(w, phi)) in self.modes.iter().enumerate() {
-            r[2 + i] = y[2 + n + i];
-            r[2 + n + i] = -w * w * y[2 + i] + phi * f;
-        }
-        r
+        rate(self.modes, self.mass, self.force(y), y)
     }
 
     fn step(&self, y: &[f64], dt: f64) -> Vec<f64> {
-        let add = |a: &[f64], b: &[f64], s: f64| a.iter().zip(b).map(|(x, r)| x + s * r).collect::<Vec<_>>();
-        let k1 = self.rate(y);
-        let k2 = self.rate(&add(y, &k1, dt / 2.0));
-        let k3 = self.rate(&add(y, &k2, dt / 2.0));
-        let k4 = self.rate(&add(y, &k3, dt));
-        (0..y.len()).map(|i| y[i] + dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])).collect()
+        rk4(|z| self.rate(z), y, dt)
     }
 }
 
