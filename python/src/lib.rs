@@ -156,8 +156,8 @@ fn transient<'py>(
     let computed = py
         .detach(|| -> Result<_, coupled::ModelError> {
             if error_estimate {
-                let mut ladder = Ladder::new(&s.plate, disc.start())?;
-                let (values, e) = transient_response(s, disc, &mut ladder, set, b, (x, z), v)?;
+                let ladder = Ladder::new(&s.plate, disc.start())?;
+                let (values, e) = transient_response(s, disc, &ladder, set, b, (x, z), v)?;
                 Ok((values, e.outcome))
             } else {
                 let start = disc.start();

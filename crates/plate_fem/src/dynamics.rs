@@ -13,7 +13,10 @@
 //! a nonlinear force law (contact) solves one scalar equation per step and commits F.
 //! The module knows nothing of what produces F.
 
-use crate::model::{symmetric_upper_apply, Factorization, Model};
+use crate::model::{
+    mass_stiffness_pass, symmetric_upper_apply, symmetric_upper_apply_into, symmetric_upper_quadratic, Factorization,
+    Model,
+};
 use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
 use crate::FemError;
 use faer::{sparse::SparseColMat, Mat};
@@ -60,14 +63,26 @@ pub struct Newmark<'m> {
     stiffness: SparseColMat<usize, f64>,
     mass: SparseColMat<usize, f64>,
     dt: f64,
-    /// N(p), the load vector of a unit force at p.
-    load: Vec<f64>,
+    /// N(p), the load vector of a unit force at p, as its nonzero entries (index, value) in
+    /// index order: the shape functions of one element, so a point value costs 16 products.
+    load: Vec<(usize, f64)>,
     /// (K + 4M/Δt²)⁻¹ N.
     unit_response: Vec<f64>,
     w: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
     w_hat: Vec<f64>,
+    /// The step's right-hand side, then its predictor (one column, reused every step).
+    rhs: Mat<f64>,
+    /// Scratch for the predictor's combination y = c₀w + c₁v + a (reused every step).
+    combination: Vec<f64>,
+    /// M y for the next step's predictor, computed with the energies at the end of each
+    /// undamped step (the damped predictor forms its own right-hand side).
+    next_rhs: Vec<f64>,
+    /// (ẇᵀMẇ, wᵀKw) of the present state.
+    quadratic: (f64, f64),
+    /// Whether M and K share their pattern, so one pass gives M y and both energies.
+    shared_pattern: bool,
     /// The damping and the energy it has taken so far, J.
     damping: Option<(Rayleigh, f64)>,
 }
@@ -122,6 +137,9 @@ impl<'m> Newmark<'m> {
         let mut g = Mat::from_fn(n, 1, |i, _| load[i]);
         effective.solve_in_place(&mut g);
         let unit_response = (0..n).map(|i| g[(i, 0)] / scale).collect();
+        let shared_pattern = mass.symbolic().col_ptr() == stiffness.symbolic().col_ptr()
+            && mass.symbolic().row_idx() == stiffness.symbolic().row_idx();
+        let load = load.iter().enumerate().filter(|(_, v)| **v != 0.0).map(|(i, v)| (i, *v)).collect();
         Ok(Self {
             model,
             supports,
@@ -135,6 +153,11 @@ impl<'m> Newmark<'m> {
             v: vec![0.0; n],
             a: vec![0.0; n],
             w_hat: vec![0.0; n],
+            rhs: Mat::zeros(n, 1),
+            combination: vec![0.0; n],
+            next_rhs: vec![0.0; n],
+            quadratic: (0.0, 0.0),
+            shared_pattern,
             damping: damping.map(|r| (r, 0.0)),
         })
     }
@@ -146,12 +169,12 @@ impl<'m> Newmark<'m> {
 
     /// g = Nᵀ (K + 4M/Δt²)⁻¹ N: the point's displacement at the end of a step per unit force.
     pub fn point_flexibility(&self) -> f64 {
-        dot(&self.load, &self.unit_response)
+        self.at_load(&self.unit_response)
     }
 
     /// Point displacement and velocity now.
     pub fn point_state(&self) -> (f64, f64) {
-        (dot(&self.load, &self.w), dot(&self.load, &self.v))
+        (self.at_load(&self.w), self.at_load(&self.v))
     }
 
     /// The predictor for the next step: (w_hat(p), v_hat(p)), the point's displacement and
@@ -159,24 +182,33 @@ impl<'m> Newmark<'m> {
     /// (2/Δt) g F with the force.
     pub fn predict(&mut self) -> (f64, f64) {
         let (c0, c1) = (4.0 / (self.dt * self.dt), 4.0 / self.dt);
-        let n = self.w.len();
-        let rhs = match self.damping {
-            None => {
-                let y: Vec<f64> = (0..n).map(|i| c0 * self.w[i] + c1 * self.v[i] + self.a[i]).collect();
-                symmetric_upper_apply(&self.mass, &y)
+        match self.damping {
+            None => self.rhs.col_as_slice_mut(0).copy_from_slice(&self.next_rhs),
+            Some((r, _)) => {
+                let rhs = self.damped_rhs(r);
+                self.rhs.col_as_slice_mut(0).copy_from_slice(&rhs);
             }
-            Some((r, _)) => self.damped_rhs(r),
-        };
-        let mut m = Mat::from_fn(n, 1, |i, _| rhs[i]);
-        self.effective.solve_in_place(&mut m);
+        }
+        // K + 4M/Δt² is mass-dominated: one solve is accurate without refinement or a
+        // residual (see `damped`).
+        self.effective.solve_unchecked(&mut self.rhs);
         let scale = self.damping.map_or(1.0, |(r, _)| 1.0 + 2.0 * r.beta / self.dt);
-        self.w_hat = (0..n).map(|i| m[(i, 0)] / scale).collect();
-        let wp = dot(&self.load, &self.w_hat);
+        for (w, m) in self.w_hat.iter_mut().zip(self.rhs.col_as_slice(0)) {
+            *w = m / scale;
+        }
+        let wp = self.at_load(&self.w_hat);
         // v_{n+1} = v_n + Δt/2 (a_n + a_{n+1}), a_{n+1} = c0 (w_{n+1} - w_n) - c1 v_n - a_n.
-        let vp = (0..n)
-            .map(|i| self.load[i] * (self.v[i] + 0.5 * self.dt * (c0 * (self.w_hat[i] - self.w[i]) - c1 * self.v[i])))
+        let vp = self
+            .load
+            .iter()
+            .map(|&(i, l)| l * (self.v[i] + 0.5 * self.dt * (c0 * (self.w_hat[i] - self.w[i]) - c1 * self.v[i])))
             .sum();
         (wp, vp)
+    }
+
+    /// Nᵀx: the value of the field `x` at the load point.
+    fn at_load(&self, x: &[f64]) -> f64 {
+        self.load.iter().map(|&(i, l)| l * x[i]).sum()
     }
 
     /// The right-hand side of a damped step: M(c₀w + c₁v + a) + C((2/Δt)w + v) with
@@ -216,6 +248,32 @@ impl<'m> Newmark<'m> {
             self.a[i] = a_new;
             self.w[i] = w_new;
         }
+        self.refresh();
+    }
+
+    /// After a step: the energies' quadratic forms of the new state and, undamped, the next
+    /// predictor's right-hand side M(c₀w + c₁v + a), in one pass where the patterns allow.
+    fn refresh(&mut self) {
+        if self.damping.is_some() {
+            self.quadratic =
+                (symmetric_upper_quadratic(&self.mass, &self.v), symmetric_upper_quadratic(&self.stiffness, &self.w));
+            return;
+        }
+        let (c0, c1) = (4.0 / (self.dt * self.dt), 4.0 / self.dt);
+        for i in 0..self.w.len() {
+            self.combination[i] = c0 * self.w[i] + c1 * self.v[i] + self.a[i];
+        }
+        if self.shared_pattern {
+            self.quadratic = mass_stiffness_pass(
+                (&self.mass, &self.stiffness),
+                (&self.combination, &self.v, &self.w),
+                &mut self.next_rhs,
+            );
+        } else {
+            symmetric_upper_apply_into(&self.mass, &self.combination, &mut self.next_rhs);
+            self.quadratic =
+                (symmetric_upper_quadratic(&self.mass, &self.v), symmetric_upper_quadratic(&self.stiffness, &self.w));
+        }
     }
 
     /// The energy the plate's damping has taken since rest, J (0 undamped).
@@ -225,8 +283,7 @@ impl<'m> Newmark<'m> {
 
     /// Kinetic, strain and spring energy of the plate now.
     pub fn energy(&self) -> PlateEnergy {
-        let kinetic = 0.5 * dot(&self.v, &symmetric_upper_apply(&self.mass, &self.v));
-        let total = 0.5 * dot(&self.w, &symmetric_upper_apply(&self.stiffness, &self.w));
+        let (kinetic, total) = (0.5 * self.quadratic.0, 0.5 * self.quadratic.1);
         let mesh = self.model.mesh();
         let mut springs: f64 = Corner::ALL
             .iter()

@@ -206,7 +206,7 @@ pub fn law_striker(scene: &Scene, body: &Sphere, velocity: f64, law: LawKind) ->
 pub fn transient_response(
     scene: &Scene,
     disc: Discretisation,
-    ladder: &mut Ladder,
+    ladder: &Ladder,
     set: &SupportSet,
     body: &Sphere,
     (x, z): (f64, f64),
@@ -241,7 +241,7 @@ pub fn transient_case_count(scene: &Scene) -> usize {
 /// caller's progress display).
 pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<Results, ModelError> {
     let disc = scene.transient_discretisation;
-    let mut ladder = Ladder::new(&scene.plate, scene.transient_start())?;
+    let ladder = Ladder::new(&scene.plate, scene.transient_start())?;
     let mut search = YieldSearch::new();
     let points = scene.point_pairs();
     let mut responses = Vec::new();
@@ -251,7 +251,7 @@ pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<R
             for &(x, z) in &points {
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
-                        let (values, _) = transient_response(scene, disc, &mut ladder, set, body, (x, z), v)?;
+                        let (values, _) = transient_response(scene, disc, &ladder, set, body, (x, z), v)?;
                         responses.push(ResponseRow {
                             model: ModelKind::Transient,
                             body: body.name.clone(),
@@ -272,7 +272,7 @@ pub fn run_transient_observed(scene: &Scene, done: &mut dyn FnMut()) -> Result<R
                     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
                     let v_rigid = yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
                     let s = scene_striker(scene, body, v_rigid);
-                    let e = disc.estimate(&mut ladder, set, &s, (x, z))?;
+                    let e = disc.estimate(&ladder, set, &s, (x, z))?;
                     let level = (e.elements / disc.start().elements).max(1).trailing_zeros() as usize;
                     let case = ladder.levels(level)?.0;
                     let mut y = dynamic_yield_with(scene, case, e.steps_per_contact, &mut search, set, body, (x, z))?;

@@ -30,6 +30,7 @@ use crate::supports::SupportSet;
 use analytic::Plate;
 use serde::Serialize;
 use std::collections::HashMap;
+use std::sync::{Mutex, OnceLock};
 
 /// The safety factor on the Richardson estimates (see the module documentation).
 pub const SAFETY: f64 = 2.0;
@@ -417,7 +418,7 @@ impl Discretisation {
     /// the fixed settings' estimate, or [`choose_on`].
     pub fn estimate(
         &self,
-        ladder: &mut Ladder,
+        ladder: &Ladder,
         set: &SupportSet,
         s: &Striker,
         point: (f64, f64),
@@ -432,14 +433,21 @@ impl Discretisation {
     }
 }
 
+/// The deepest ladder a [`Ladder`] holds: h halved 15 times from the start (a 20-element
+/// start would reach 655,360 elements; the memory limits refuse meshes long before).
+const LADDER_SLOTS: usize = 16;
+
 /// One plate's meshes for the estimates: the starting mesh, the one with h doubled (where
 /// the starting counts allow it) and the ones with h halved, built when first needed and
-/// shared by every case on the plate.
+/// shared by every case on the plate, also across threads (each level is built once, by
+/// the first case that needs it).
 pub struct Ladder {
     plate: Plate,
     coarse: Option<TransientCase>,
     /// levels[0] is the starting mesh, levels[k] has h halved k times.
-    levels: Vec<TransientCase>,
+    levels: Vec<OnceLock<TransientCase>>,
+    /// Held while a level is built, so that no level is built twice.
+    building: Mutex<()>,
 }
 
 impl Ladder {
@@ -447,18 +455,39 @@ impl Ladder {
     pub fn new(plate: &Plate, settings: TransientSettings) -> Result<Self, ModelError> {
         let base = TransientCase::new(plate, settings)?;
         let coarse = base.coarsened(plate).transpose()?;
-        Ok(Self { plate: *plate, coarse, levels: vec![base] })
+        let levels: Vec<OnceLock<TransientCase>> = (0..LADDER_SLOTS).map(|_| OnceLock::new()).collect();
+        levels[0].get_or_init(|| base);
+        Ok(Self { plate: *plate, coarse, levels, building: Mutex::new(()) })
     }
 
     /// The meshes at level `k` (h halved k times from the start), at 2k... i.e. (n, 2n,
     /// n/2) for the estimate at level k, building any that are missing.
-    pub fn levels(&mut self, k: usize) -> Result<(&TransientCase, &TransientCase, Option<&TransientCase>), ModelError> {
-        while self.levels.len() < k + 2 {
-            let finer = self.levels[self.levels.len() - 1].refined(&self.plate)?;
-            self.levels.push(finer);
+    pub fn levels(&self, k: usize) -> Result<(&TransientCase, &TransientCase, Option<&TransientCase>), ModelError> {
+        if k + 2 > LADDER_SLOTS {
+            return Err(ModelError::Missing(format!(
+                "the mesh ladder would need h halved {} times; at most {} are held",
+                k + 1,
+                LADDER_SLOTS - 1
+            )));
         }
-        let coarse = if k == 0 { self.coarse.as_ref() } else { self.levels.get(k - 1) };
-        Ok((&self.levels[k], &self.levels[k + 1], coarse))
+        for i in 1..=k + 1 {
+            if self.levels[i].get().is_none() {
+                // A poisoned lock only means another thread's build failed; building again
+                // here is still correct.
+                let _held = self.building.lock().unwrap_or_else(|e| e.into_inner());
+                if self.levels[i].get().is_none() {
+                    let finer = self.level(i - 1).refined(&self.plate)?;
+                    self.levels[i].get_or_init(|| finer);
+                }
+            }
+        }
+        let coarse = if k == 0 { self.coarse.as_ref() } else { Some(self.level(k - 1)) };
+        Ok((self.level(k), self.level(k + 1), coarse))
+    }
+
+    /// A level already built (every level up to the deepest one asked for is).
+    fn level(&self, k: usize) -> &TransientCase {
+        self.levels[k].get().expect("levels are built in order, coarse to fine")
     }
 }
 
@@ -475,8 +504,8 @@ pub fn choose(
     tolerance: f64,
     budget: Budget,
 ) -> Result<Estimated, ModelError> {
-    let mut ladder = Ladder::new(plate, TransientSettings::default())?;
-    choose_on(&mut ladder, set, s, point, tolerance, budget)
+    let ladder = Ladder::new(plate, TransientSettings::default())?;
+    choose_on(&ladder, set, s, point, tolerance, budget)
 }
 
 /// [`choose`] on a shared [`Ladder`]. Each level's runs are kept, so a run that one level
@@ -484,7 +513,7 @@ pub fn choose(
 /// after both double, the (2n, N) run its (n, N/2)) is not repeated; only the values' run
 /// follows every contact.
 pub fn choose_on(
-    ladder: &mut Ladder,
+    ladder: &Ladder,
     set: &SupportSet,
     s: &Striker,
     (x, z): (f64, f64),

@@ -23,7 +23,10 @@ use std::collections::HashMap;
 
 mod factorization;
 
-pub use factorization::{symmetric_upper_apply, CornerResponse, Factorization, PointResponse};
+pub use factorization::{
+    mass_stiffness_pass, symmetric_upper_apply, symmetric_upper_apply_into, symmetric_upper_quadratic, CornerResponse,
+    Factorization, PointResponse,
+};
 
 /// The plate: geometry and an isotropic material (SI units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -10,6 +10,7 @@ use coupled::plan::{impact_of, scene_striker, transient_values};
 use coupled::regimes::{mass_ratio, RuleInputs};
 use coupled::transient::{Estimated, Ladder, Outcome};
 use coupled::{BeamModel, ComplianceModel, PlateModel, Validity};
+use rayon::prelude::*;
 use scene::{Scene, SupportSet};
 use serde::Serialize;
 use std::time::Instant;
@@ -115,7 +116,7 @@ pub fn comparison(
     points: &[(f64, f64)],
     progress: &dyn Progress,
 ) -> Result<Vec<TransientCase>, Failure> {
-    let mut runner = Runner {
+    let runner = Runner {
         scene,
         settings,
         ladder: Ladder::new(&scene.plate, scene.transient_start())?,
@@ -127,22 +128,28 @@ pub fn comparison(
             settings.levels,
         )?,
     };
-    let mut cases = Vec::new();
-    let total = scene.conditions.len() * scene.bodies.len() * scene.velocities.len() * points.len();
-    progress.start(total, "transient cases");
+    let mut jobs = Vec::new();
     for cond in &scene.conditions {
         let t1 = runner.ladder.levels(0)?.0.fundamental_period(&cond.supports)?;
         for body in &scene.bodies {
             for &v in &scene.velocities {
-                for &point in points {
-                    cases.push(runner.case((cond, t1), body, v, point)?);
-                    progress.advance(1);
-                }
+                jobs.extend(points.iter().map(|&point| ((cond, t1), body, v, point)));
             }
         }
     }
+    progress.start(jobs.len(), "transient cases");
+    // The cases are independent (each builds its own time integration on the shared,
+    // read-only meshes), so they run on every core; the order of the list is kept.
+    let cases: Result<Vec<TransientCase>, String> = jobs
+        .into_par_iter()
+        .map(|(cond, body, v, point)| {
+            let case = runner.case(cond, body, v, point).map_err(|e| e.to_string());
+            progress.advance(1);
+            case
+        })
+        .collect();
     progress.finish();
-    Ok(cases)
+    Ok(cases?)
 }
 
 /// What every case of a comparison shares: the transient model's meshes and the
@@ -158,7 +165,7 @@ impl Runner<'_> {
     /// One case: the transient run with its estimate, the quasi-static balances of the same
     /// impact, and the numbers the tables compare.
     fn case(
-        &mut self,
+        &self,
         (cond, t1): (&SupportSet, f64),
         body: &Sphere,
         v: f64,
@@ -170,7 +177,7 @@ impl Runner<'_> {
         let s = scene_striker(scene, body, v);
         let imp = impact_of(scene, body, v);
         let t0 = Instant::now();
-        let e = scene.transient_discretisation.estimate(&mut self.ladder, cond, &s, (x, z))?;
+        let e = scene.transient_discretisation.estimate(&self.ladder, cond, &s, (x, z))?;
         let seconds = t0.elapsed().as_secs_f64();
         let c = self.quasi_static.compliance(cond, x, z)?;
         let rp = respond(&imp, &c.compliance, method)?;

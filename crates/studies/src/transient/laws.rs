@@ -46,14 +46,14 @@ pub fn laws(scene: &Scene, progress: &dyn Progress) -> Result<Vec<LawCase>, Fail
     let d_my = DruckerPrager::of(body).yield_compression(body.radius(), k);
     let v_y = analytic::yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, d_my);
     let disc = scene.transient_discretisation;
-    let mut ladder = coupled::transient::Ladder::new(&scene.plate, scene.transient_start())?;
+    let ladder = coupled::transient::Ladder::new(&scene.plate, scene.transient_start())?;
     let mut out = Vec::new();
     progress.start(LawKind::ALL.len() * LAW_RATIOS.len(), "contact-law runs");
     for &law in LawKind::ALL {
         for ratio in LAW_RATIOS {
             let v = ratio * v_y;
             let s = law_striker(scene, body, v, law);
-            let e = disc.estimate(&mut ladder, cond, &s, (x, z))?;
+            let e = disc.estimate(&ladder, cond, &s, (x, z))?;
             let deepest =
                 e.outcome.history.iter().chain(&e.outcome.later_history).map(|h| h.compression).fold(0.0, f64::max);
             out.push(LawCase {
