@@ -180,19 +180,24 @@ impl YieldSearch {
         }
     }
 
-    /// The reduced model of `case`'s plate on `set`, built at the first root that asks.
-    fn model(&mut self, case: &TransientCase, set: &SupportSet) -> Option<&ReducedModel> {
+    /// Builds the reduced model of `case`'s plate on `set` unless it is built already: what
+    /// [`Self::root_prepared`] needs, so that roots on several threads share one model.
+    pub fn prepare(&mut self, case: &TransientCase, set: &SupportSet) {
+        if self.position(case, set).is_none() {
+            let (plate, supports, settings) = (*case.plate(), set.supports, Self::settings(case));
+            let model = ReducedModel::new(&plate, set, settings).ok();
+            self.modal.push(Modal { plate, supports, settings, model });
+        }
+    }
+
+    fn position(&self, case: &TransientCase, set: &SupportSet) -> Option<usize> {
         let (plate, supports, settings) = (*case.plate(), set.supports, Self::settings(case));
-        let same = |m: &Modal| m.plate == plate && m.supports == supports && m.settings == settings;
-        let i = match self.modal.iter().position(same) {
-            Some(i) => i,
-            None => {
-                let model = ReducedModel::new(&plate, set, settings).ok();
-                self.modal.push(Modal { plate, supports, settings, model });
-                self.modal.len() - 1
-            }
-        };
-        self.modal[i].model.as_ref()
+        self.modal.iter().position(|m| m.plate == plate && m.supports == supports && m.settings == settings)
+    }
+
+    /// The reduced model [`Self::prepare`] built, if it did and the model could be built.
+    fn built(&self, case: &TransientCase, set: &SupportSet) -> Option<&ReducedModel> {
+        self.position(case, set).and_then(|i| self.modal[i].model.as_ref())
     }
 
     /// The transient yield velocity of `body` at (x, z) on the plate held by `set`, with
@@ -209,10 +214,28 @@ impl YieldSearch {
         x: f64,
         z: f64,
     ) -> Result<TransientYield, ModelError> {
+        self.prepare(case, set);
+        self.root_prepared(scene, case, steps_per_contact, set, body, x, z)
+    }
+
+    /// [`Self::root`] without building: the reduced model [`Self::prepare`] built for `case`
+    /// and `set` brackets the root; without one the search starts from the rigid-target
+    /// value, as where the model cannot be built. Takes `&self`, so roots run in parallel.
+    #[allow(clippy::too_many_arguments)]
+    pub fn root_prepared(
+        &self,
+        scene: &Scene,
+        case: &TransientCase,
+        steps_per_contact: f64,
+        set: &SupportSet,
+        body: &Sphere,
+        x: f64,
+        z: f64,
+    ) -> Result<TransientYield, ModelError> {
         let d_my = yield_compression(scene, body);
         let window = case.settings().window_contacts;
         let mut reduced_runs = 0;
-        let guess = self.model(case, set).and_then(|m| {
+        let guess = self.built(case, set).and_then(|m| {
             let cell = Cell { scene, body, x, z, d_my, steps_per_contact };
             reduced_guess(m, &cell, window, &mut reduced_runs).ok()
         });

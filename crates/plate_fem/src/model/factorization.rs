@@ -1,14 +1,13 @@
 //! The numeric factorization of one support set: solves with iterative refinement, and
 //! point probes by reciprocity, C(p) = N(p)ᵀ K⁻¹ N(p), with the energy each support stores.
 
+use super::cholesky::Cholesky;
 use super::Model;
 use crate::element::Vec16;
 use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
 use crate::FemError;
-use faer::linalg::solvers::SolveCore;
-use faer::sparse::linalg::solvers::Llt;
 use faer::sparse::SparseColMat;
-use faer::{Conj, Mat};
+use faer::Mat;
 use serde::Serialize;
 
 /// y = A x for a symmetric matrix stored as its upper triangle.
@@ -162,7 +161,7 @@ impl PointResponse {
 pub struct Factorization<'m> {
     model: &'m Model,
     supports: Supports,
-    llt: Llt<usize, f64>,
+    llt: Cholesky,
     held: Vec<usize>,
     /// The supported stiffness (upper triangle), for residuals and refinement.
     stiffness: SparseColMat<usize, f64>,
@@ -176,7 +175,7 @@ impl<'m> Factorization<'m> {
     pub(super) fn new(
         model: &'m Model,
         supports: Supports,
-        llt: Llt<usize, f64>,
+        llt: Cholesky,
         held: Vec<usize>,
         stiffness: SparseColMat<usize, f64>,
     ) -> Self {
@@ -209,7 +208,7 @@ impl<'m> Factorization<'m> {
                 rhs[(d, j)] = 0.0;
             }
         }
-        self.llt.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+        self.llt.solve_in_place(rhs.as_mut());
     }
 
     /// Sets the number of iterative-refinement steps after each solve (default 1).
@@ -251,7 +250,7 @@ impl<'m> Factorization<'m> {
             }
         }
         let f = rhs.clone();
-        self.llt.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+        self.llt.solve_in_place(rhs.as_mut());
         let residual = |w: &Mat<f64>| {
             let mut r = self.apply(w.as_ref());
             for j in 0..r.ncols() {
@@ -264,7 +263,7 @@ impl<'m> Factorization<'m> {
         let mut r = residual(rhs);
         for _ in 0..self.refinement {
             let mut dw = r.clone();
-            self.llt.solve_in_place_with_conj(Conj::No, dw.as_mut());
+            self.llt.solve_in_place(dw.as_mut());
             *rhs += &dw;
             r = residual(rhs);
         }

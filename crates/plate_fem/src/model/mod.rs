@@ -15,12 +15,11 @@ use crate::element::{self, Mat16, Vec16};
 use crate::mesh::Mesh;
 use crate::supports::{Edge, Supports};
 use crate::FemError;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
-use faer::Side;
 use serde::Serialize;
 use std::collections::HashMap;
 
+mod cholesky;
 mod factorization;
 
 pub use factorization::{
@@ -86,7 +85,7 @@ pub struct Model {
     diagonal: Vec<f64>,
     pattern: SymbolicSparseColMat<usize>,
     argsort: Argsort<usize>,
-    symbolic: SymbolicLlt<usize>,
+    symbolic: cholesky::Symbolic,
 }
 
 fn size_key(a: f64, b: f64) -> (u64, u64) {
@@ -156,8 +155,7 @@ impl Model {
         let pairs: Vec<Pair<usize, usize>> = entries.iter().map(|&(r, c)| Pair::new(r, c)).collect();
         let (pattern, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
             .map_err(|e| FemError::sparse("sparsity pattern", n, e))?;
-        let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Upper)
-            .map_err(|e| FemError::sparse("symbolic Cholesky analysis", n, e))?;
+        let symbolic = cholesky::Symbolic::new(pattern.as_ref(), n)?;
         Ok(Self { props, mesh, entries, element_values, mass_values, diagonal, pattern, argsort, symbolic })
     }
 
@@ -251,8 +249,7 @@ impl Model {
         supports: &Supports,
         k: SparseColMat<usize, f64>,
     ) -> Result<Factorization<'_>, FemError> {
-        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), k.as_ref(), Side::Upper)
-            .map_err(|e| FemError::sparse("numeric Cholesky factorization", self.dofs(), e))?;
+        let llt = cholesky::Cholesky::new(&self.symbolic, k.as_ref())?;
         let held = supports.constrained_dofs(&self.mesh);
         Ok(Factorization::new(self, *supports, llt, held, k))
     }

@@ -22,6 +22,7 @@ use coupled::plan::{YieldRow, YieldValues};
 use coupled::transient::{TransientCase, TransientSettings};
 pub use coupled::yield_root::{rigid_yield, transient_yield, TransientYield, YieldSearch};
 use coupled::SupportSet;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// Relative width of the bracket that closes each transient root: hi/lo - 1.
@@ -88,6 +89,35 @@ impl Transients<'_> {
         self.cells.insert(k, t);
         Ok(t)
     }
+    /// Computes the roots of `cells` (body, support set, x, z) not computed yet, on every
+    /// core: the roots are independent, and each support set's reduced model is built once
+    /// before them. The loops that follow find every cell here.
+    fn prefetch(&mut self, cells: &[(&analytic::Sphere, &SupportSet, f64, f64)]) -> Result<(), Failure> {
+        let mut missing: Vec<(&analytic::Sphere, &SupportSet, f64, f64)> = Vec::new();
+        for &(body, set, x, z) in cells {
+            let k = (body.name.clone(), set.name.clone(), key(x), key(z));
+            let seen = missing.iter().any(|m| (m.0.name.clone(), m.1.name.clone(), key(m.2), key(m.3)) == k);
+            if !seen && !self.cells.contains_key(&k) {
+                missing.push((body, set, x, z));
+            }
+        }
+        for &(_, set, _, _) in &missing {
+            self.search.prepare(&self.case, set);
+        }
+        let (scene, case, search) = (self.scene, &self.case, &self.search);
+        let steps = case.settings().steps_per_contact;
+        let roots: Vec<Result<TransientYield, String>> = missing
+            .par_iter()
+            .map(|&(body, set, x, z)| {
+                search.root_prepared(scene, case, steps, set, body, x, z).map_err(|e| e.to_string())
+            })
+            .collect();
+        for (&(body, set, x, z), root) in missing.iter().zip(roots) {
+            self.cells.insert((body.name.clone(), set.name.clone(), key(x), key(z)), root?);
+        }
+        Ok(())
+    }
+
     /// Runs of the full and of the reduced model over every root.
     fn runs(&self) -> (usize, usize) {
         self.cells.values().fold((0, 0), |(f, r), t| (f + t.runs, r + t.reduced_runs))

@@ -15,6 +15,7 @@ use coupled::scene::even_points;
 use coupled::transient::{TransientCase, TransientSettings};
 use coupled::yield_root::{TransientYield, YieldSearch};
 use coupled::{Analysis, BeamModel, PlateModel, Points, SupportSet};
+use rayon::prelude::*;
 use scene::{Scene, SceneSource};
 use serde::Serialize;
 use std::collections::HashMap;
@@ -335,6 +336,12 @@ fn table2(
     tr: &mut Transients,
 ) -> Result<Vec<Table2Cell>, Failure> {
     let zc = setup.zc;
+    let mut cells = Vec::new();
+    for row in &printed.table2 {
+        let (body, set) = (setup.body(&row.body)?, setup.cond(row.condition)?);
+        cells.extend(setup.areas.iter().map(|&x| (body, set, x, zc)));
+    }
+    tr.prefetch(&cells)?;
     let mut t2 = Vec::new();
     for row in &printed.table2 {
         let body = setup.body(&row.body)?;
@@ -364,12 +371,25 @@ fn discretisation(setup: &Setup, tr: &mut Transients) -> Result<(Vec<Discretisat
     let fine_case = TransientCase::new(&setup.scene.plate, FINE)?;
     let area1 = setup.areas.first().copied().ok_or("the paper prints no Area 1")?;
     let [coal, gangue1, _] = &setup.bodies;
+    let cells = [(coal, 1, l / 2.0), (gangue1, 1, l / 2.0), (gangue1, 2, area1)]
+        .into_iter()
+        .map(|(body, n, x)| Ok((body, setup.cond(n)?, x, zc)))
+        .collect::<Result<Vec<_>, Failure>>()?;
+    tr.prefetch(&cells)?;
+    for &(_, set, _, _) in &cells {
+        tr.search.prepare(&fine_case, set);
+    }
+    let (scene, search) = (&setup.scene, &tr.search);
+    let fine: Vec<Result<TransientYield, String>> = cells
+        .par_iter()
+        .map(|&(body, set, x, z)| {
+            search.root_prepared(scene, &fine_case, FINE.steps_per_contact, set, body, x, z).map_err(|e| e.to_string())
+        })
+        .collect();
     let mut rows = Vec::new();
     let mut largest: f64 = 0.0;
-    for (body, n, x) in [(coal, 1, l / 2.0), (gangue1, 1, l / 2.0), (gangue1, 2, area1)] {
-        let set = setup.cond(n)?;
-        let coarse = tr.get(body, set, x, zc)?;
-        let fine = tr.search.root(&setup.scene, &fine_case, FINE.steps_per_contact, set, body, x, zc)?;
+    for (&(body, set, x, _), fine) in cells.iter().zip(fine) {
+        let (coarse, fine) = (tr.get(body, set, x, zc)?, fine?);
         let relative = fine.velocity / coarse.velocity - 1.0;
         largest = largest.max(relative.abs());
         rows.push(DiscretisationRow {
@@ -397,6 +417,14 @@ fn table5(
     let none = Minimum { velocity: f64::INFINITY, x: 0.0, z: 0.0 };
     let mut overall: [Overall; 3] =
         std::array::from_fn(|_| Overall { body: String::new(), condition: String::new(), at: none });
+    let cells: Vec<_> = setup
+        .bodies
+        .iter()
+        .flat_map(|body| {
+            setup.conds.iter().flat_map(move |set| setup.candidates.iter().map(move |&(x, z)| (body, set, x, z)))
+        })
+        .collect();
+    tr.prefetch(&cells)?;
     let mut rows = Vec::new();
     for body in &setup.bodies {
         for set in &setup.conds {
@@ -434,6 +462,11 @@ fn figures(
     tr: &mut Transients,
 ) -> Result<Vec<Figure>, Failure> {
     let zc = setup.zc;
+    let cells: Vec<_> = [&setup.bodies[0], &setup.bodies[1]]
+        .into_iter()
+        .flat_map(|body| setup.conds.iter().flat_map(move |set| setup.tsweep.iter().map(move |&x| (body, set, x, zc))))
+        .collect();
+    tr.prefetch(&cells)?;
     let mut out = Vec::new();
     for (number, body) in [(8, &setup.bodies[0]), (9, &setup.bodies[1])] {
         let mut curves = Vec::new();
