@@ -86,6 +86,7 @@ pub(super) fn discretisation_section(data: &TransientData, a: &mut Artifacts) ->
         &[
             ("cases", cases.len().to_string()),
             ("seconds", sig(data.comparison_seconds, 3)),
+            ("threads", data.threads.to_string()),
             ("median", sig(f.numbers.median_seconds_per_case.unwrap_or(0.0), 3)),
             ("slowest", sig(f.slowest_seconds, 3)),
             ("worst_estimate", sig(f.numbers.largest_relative_error_estimate, 2)),

@@ -340,7 +340,8 @@ fn summary(d: &PaperYieldData, values: &[(&str, String)], figure_links: String) 
 fn timing(d: &PaperYieldData) -> String {
     let t = &d.timing;
     format!(
-        "# Run time of the three-model yield study\n\nWall-clock on this machine; the only page of the study that changes between runs.\n\n| part | s |\n|---|---|\n| quasi-static beam and plate (every point) | {:.1} |\n| Table 2, transient roots | {:.1} |\n| discretisation check ({} cells at {} elements, {} steps) | {:.1} |\n| `dynamic_yield` cross-check (one cell) | {:.1} |\n| Table 5, transient candidates | {:.1} |\n| Figs. 8-9, transient curves | {:.1} |\n| **total** | **{:.1}** |\n\n{} transient roots, {} transient runs at the default discretisation; {} runs of the reduced model placed their brackets (its modal models, one per support set, are built by the first roots, in Table 2's time).\n",
+        "# Run time of the three-model yield study\n\nWall-clock on this machine, the transient roots of each part on {} threads; the only page of the study that changes between runs.\n\n| part | s |\n|---|---|\n| quasi-static beam and plate (every point) | {:.1} |\n| Table 2, transient roots | {:.1} |\n| discretisation check ({} cells at {} elements, {} steps) | {:.1} |\n| `dynamic_yield` cross-check (one cell) | {:.1} |\n| Table 5, transient candidates | {:.1} |\n| Figs. 8-9, transient curves | {:.1} |\n| **total** | **{:.1}** |\n\n{} transient roots, {} transient runs at the default discretisation; {} runs of the reduced model placed their brackets (its modal models, one per support set, are built by the first roots, in Table 2's time).\n",
+        t.threads,
         t.quasi_static,
         t.table2,
         d.discretisation.len(),

@@ -31,6 +31,8 @@ pub struct TransientData {
     pub cases: Vec<TransientCase>,
     /// Wall-clock time of all the cases, s.
     pub comparison_seconds: f64,
+    /// The threads the cases ran on.
+    pub threads: usize,
     /// The first case's sphere on a rigid target with e = 1 (Hertz's impact, the stiff limit
     /// of its force history); empty without cases.
     pub rigid_hertz: Vec<Sample>,
@@ -58,6 +60,7 @@ pub fn compute(scene: &Scene, settings: &Settings, progress: &dyn Progress) -> R
         findings: findings::findings(scene, &cases),
         cases,
         comparison_seconds,
+        threads: rayon::current_num_threads(),
         laws,
         size_map,
         verification,

@@ -192,6 +192,8 @@ pub struct Timing {
     pub figures: f64,
     /// The whole study.
     pub total: f64,
+    /// The threads the transient roots ran on.
+    pub threads: usize,
 }
 
 /// What the paper's three-model yield study computed.
@@ -537,7 +539,7 @@ fn timed<T>(secs: &mut f64, part: impl FnOnce() -> Result<T, Failure>) -> Result
 pub fn compute(printed: &Printed, settings: &Settings, progress: &dyn Progress) -> Result<PaperYieldData, Failure> {
     let t_start = Instant::now();
     let setup = Setup::new(printed)?;
-    let mut timing = Timing::default();
+    let mut timing = Timing { threads: rayon::current_num_threads(), ..Timing::default() };
     progress.start(6, "parts of the three-model yield study");
     let (beam, plate) = timed(&mut timing.quasi_static, || quasi_static(&setup, settings))?;
     progress.advance(1);
