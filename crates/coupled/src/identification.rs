@@ -35,6 +35,8 @@ pub const CHUNK: usize = 256;
 pub struct ImpactRecord {
     /// The draw (SI units).
     pub draw: Draw,
+    /// The lump's mass, kg (from the drawn radius and density).
+    pub mass: f64,
     /// Largest contact force of the first contact, N.
     pub force_max: f64,
     /// Duration of the first contact, s (None if it had not ended within the window).
@@ -90,6 +92,8 @@ pub struct ConditionRun {
     pub channels: Vec<ChannelKind>,
     /// The features of every impact and channel.
     pub table: FeatureTable,
+    /// The lump mass of every impact, kg.
+    pub mass: Vec<f64>,
     /// P_max of every impact, N.
     pub force_max: Vec<f64>,
     /// The first contact's duration of every impact, s (0 if unfinished).
@@ -152,6 +156,7 @@ impl<'a> Instrument<'a> {
             self.extractor.push_features(FEATURES, &c.samples, &mut features);
         }
         Ok(ImpactRecord {
+            mass: sphere.mass(),
             force_max: o.force_max_interpolated.max(o.force_max),
             contact_time: o.contact_time,
             contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
@@ -192,6 +197,7 @@ pub fn run_condition<E>(
     let mut run = ConditionRun {
         channels: channels.clone(),
         table: FeatureTable::new(channels.len()),
+        mass: Vec::with_capacity(e.len()),
         force_max: Vec::with_capacity(e.len()),
         contact_time: Vec::with_capacity(e.len()),
         validity: EnsembleValidity::default(),
@@ -209,6 +215,7 @@ pub fn run_condition<E>(
             let record = record.map_err(|(index, source)| RunError::Model { index, source })?;
             sink(&record).map_err(RunError::Sink)?;
             run.table.push(record.draw.class, &record.features);
+            run.mass.push(record.mass);
             run.force_max.push(record.force_max);
             run.contact_time.push(record.contact_time.unwrap_or(0.0));
             run.validity.add(&record);

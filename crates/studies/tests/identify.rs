@@ -145,6 +145,45 @@ fn aucs_are_the_pair_counts_of_the_impacts() {
     }
     // The variability study: size held, then position, size and speed.
     assert_eq!(c.held.iter().map(|h| h.held.as_str()).collect::<Vec<_>>(), ["size", "position, size and speed"]);
+    baselines_are_the_pair_counts(c, seen);
+}
+
+/// The headline's baselines: t_c and P_max as scored above, the mass as the pair count with
+/// masses within 1 % counted as ties, each mass (4/3)πr³ρ of its draw; the verdict by the
+/// rule of `studies::identify::baselines` applied to those numbers.
+fn baselines_are_the_pair_counts(c: &studies::identify::ConditionResult, seen: &Seen) {
+    let h = &c.headline;
+    let names: Vec<&str> = h.baselines.iter().map(|b| b.quantity).collect();
+    assert_eq!(names, ["contact time t_c", "contact force P_max", "lump mass m"]);
+    assert_eq!(h.baselines[0].auc.auc, c.contact_time.auc.auc);
+    assert_eq!(h.baselines[1].auc.auc, c.force_max.auc.auc);
+    let (mc, mg) = seen.split(|r| 4.0 / 3.0 * std::f64::consts::PI * r.draw.radius.powi(3) * r.draw.density);
+    let mut u = 0.0;
+    for a in &mc {
+        for b in &mg {
+            u += if b > &(a * 1.01) {
+                1.0
+            } else if a > &(b * 1.01) {
+                0.0
+            } else {
+                0.5
+            };
+        }
+    }
+    let mass_auc = u / (mc.len() * mg.len()) as f64;
+    assert!((h.baselines[2].auc.auc - mass_auc).abs() < EXACT, "{} against {mass_auc}", h.baselines[2].auc.auc);
+
+    let sep = |a: f64| a.max(1.0 - a);
+    let best = (0..3).max_by(|&i, &j| sep(h.baselines[i].auc.auc).total_cmp(&sep(h.baselines[j].auc.auc))).unwrap();
+    assert_eq!(h.best_baseline, best);
+    let gain = sep(c.ranking[0].auc.auc) - sep(h.baselines[best].auc.auc);
+    assert!((h.gain - gain).abs() < EXACT);
+    use studies::identify::baselines::Verdict;
+    if sep(h.baselines[best].auc.auc) >= 0.99 {
+        assert_eq!(h.verdict, Verdict::BaselineSeparates);
+    } else {
+        assert_ne!(h.verdict, Verdict::BaselineSeparates);
+    }
 }
 
 /// What Python's shards compute (any range of the ensemble on a kept reduced model) is, bit

@@ -73,6 +73,11 @@ pub fn report(scene: &Scene, data: &IdentifyData, files: RowFiles) -> Result<Art
     Ok(artifacts)
 }
 
+/// The baselines' separations max(AUC, 1 - AUC), "0.998 / 0.771 / 0.512".
+fn baselines_cell(h: &studies::identify::baselines::Headline) -> String {
+    h.baselines.iter().map(|b| sig(b.separation().0, 3)).collect::<Vec<_>>().join(" / ")
+}
+
 /// The summary as tables for the terminal.
 pub fn summary_tables(s: &Summary) -> Vec<Table> {
     let mut t = Table::new(
@@ -87,7 +92,8 @@ pub fn summary_tables(s: &Summary) -> Vec<Table> {
             "N/2 to N",
             "best feature resolved in N",
             "AUC",
-            "P_max AUC",
+            "separation by t_c / P_max / m",
+            "best feature against the best baseline",
             "best accuracy",
             "beyond elastic",
             "impacts/s",
@@ -105,7 +111,8 @@ pub fn summary_tables(s: &Summary) -> Vec<Table> {
             top.and_then(|r| r.resolution).map_or(Cell::Empty, |d| Cell::Text(sig(d, 2))),
             c.best_converged.as_ref().map_or(Cell::Empty, name),
             c.best_converged.as_ref().map_or(Cell::Empty, auc),
-            auc(&c.force_max),
+            Cell::Text(baselines_cell(&c.headline)),
+            Cell::Text(section::verdict_words(&c.headline)),
             if acc.is_finite() { Cell::Text(sig(acc, 3)) } else { Cell::Empty },
             percent(c.validity.beyond_elastic, c.validity.impacts).into(),
             Cell::Text(sig(c.impacts_per_second, 3)),

@@ -6,14 +6,44 @@ use crate::template::render;
 use crate::Failure;
 use coupled::transient::LawKind;
 use identify::roc::Auc;
+use studies::identify::baselines::{oriented, Headline, Verdict, SEPARATES};
 use studies::identify::{ConditionResult, Held1, Ranked, AUC_RESOLUTION};
 
 const FINDING: &str = include_str!("../templates/identify/finding.md");
 const FINDING_HELD: &str = include_str!("../templates/identify/finding-held.md");
 const FINDING_RESOLUTION: &str = include_str!("../templates/identify/finding-resolution.md");
+const VERDICT_SEPARATES: &str = include_str!("../templates/identify/verdict-baseline-separates.md");
+const VERDICT_ADDS: &str = include_str!("../templates/identify/verdict-feature-adds.md");
+const VERDICT_NO_GAIN: &str = include_str!("../templates/identify/verdict-no-resolved-gain.md");
+const VERDICT_BETTER: &str = include_str!("../templates/identify/verdict-baseline-better.md");
 const CONDITION: &str = include_str!("../templates/identify/condition.md");
 const LAW_ELASTIC: &str = include_str!("../templates/identify/law-elastic.md");
 const LAW_PLASTIC: &str = include_str!("../templates/identify/law-plastic.md");
+
+/// What the best feature adds over the best baseline, in a few words for a table cell.
+pub(super) fn verdict_words(h: &Headline) -> String {
+    let Some(b) = h.baselines.get(h.best_baseline) else { return String::new() };
+    let name = b.quantity;
+    match h.verdict {
+        Verdict::BaselineSeparates => format!("{name} alone separates ({})", sig(b.separation().0, 3)),
+        Verdict::FeatureAdds => format!("{:+.3} over {name}", h.gain),
+        Verdict::NoResolvedGain => format!("no resolved gain over {name} ({:+.3})", h.gain),
+        Verdict::BaselineBetter => format!("{name} is better ({:+.3})", h.gain),
+    }
+}
+
+/// The baselines with their intervals, as separations: "contact time t_c 0.998 (0.996-1),
+/// ...".
+fn baselines_sentence(h: &Headline) -> String {
+    h.baselines
+        .iter()
+        .map(|b| {
+            let (s, (lo, hi)) = b.separation();
+            format!("{} {} ({}-{})", b.quantity, sig(s, 3), sig(lo, 3), sig(hi, 3))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
 
 /// The bootstrap interval, "0.612-0.701".
 pub(super) fn ci(r: &Ranked) -> String {
@@ -204,12 +234,30 @@ pub(super) fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failu
             ("best_auc", top.map_or_else(dash, |t| sig(t.auc.auc, 3))),
             ("best_ci", top.map_or_else(dash, ci)),
             ("resolution", resolution.trim_end().to_string()),
-            ("force_auc", sig(r.force_max.auc.auc, 3)),
-            ("force_ci", ci(&r.force_max)),
+            ("best_separation", top.map_or_else(dash, |t| sig(oriented(t.auc.auc, t.interval).0, 3))),
+            ("baselines", baselines_sentence(&r.headline)),
+            ("verdict", verdict_sentence(&r.headline)?),
             ("classifier", best_classifier.map_or_else(dash, |a| a.features.clone())),
             ("accuracy", best_classifier.map_or_else(dash, |a| sig(a.result.accuracy, 3))),
             ("accuracy_se", best_classifier.map_or_else(dash, |a| sig(a.result.standard_error, 2))),
             ("held", held_finding(r)?.trim_end().to_string()),
         ],
     )?)
+}
+
+/// The headline's verdict as a sentence of the finding.
+fn verdict_sentence(h: &Headline) -> Result<String, Failure> {
+    let Some(b) = h.baselines.get(h.best_baseline) else { return Ok(String::new()) };
+    let (name, template) = match h.verdict {
+        Verdict::BaselineSeparates => ("identify/verdict-baseline-separates.md", VERDICT_SEPARATES),
+        Verdict::FeatureAdds => ("identify/verdict-feature-adds.md", VERDICT_ADDS),
+        Verdict::NoResolvedGain => ("identify/verdict-no-resolved-gain.md", VERDICT_NO_GAIN),
+        Verdict::BaselineBetter => ("identify/verdict-baseline-better.md", VERDICT_BETTER),
+    };
+    let mut values = vec![("baseline", b.quantity.to_string()), ("gain", format!("{:+.3}", h.gain))];
+    if h.verdict == Verdict::BaselineSeparates {
+        values.extend([("separation", sig(b.separation().0, 3)), ("separates", sig(SEPARATES, 2))]);
+    }
+    let text = render(name, template, &values)?;
+    Ok(text.trim_end().to_string())
 }

@@ -15,6 +15,7 @@
 //! run's impacts reach a caller's sink in impact order ([`compute_with`]), so the rows can be
 //! streamed to disk while no more than one chunk of records is held.
 
+pub mod baselines;
 pub mod classifiers;
 pub mod ensemble;
 pub mod full_model;
@@ -125,6 +126,8 @@ pub struct ConditionResult {
     pub force_max: Ranked,
     /// The contact time.
     pub contact_time: Ranked,
+    /// The best feature against the trivial baselines (contact time, P_max, mass).
+    pub headline: baselines::Headline,
     /// Classifiers.
     pub classifiers: Vec<Accuracy>,
     /// The reference feature of the variability study (the most separating one the modal

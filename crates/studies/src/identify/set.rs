@@ -5,7 +5,8 @@ use super::ensemble::{half_modes, run};
 use super::sensors::{channel_infos, no_channels, run_sensors, spec};
 use super::separability::{contact_quantities, split, Separation};
 use super::{
-    classifiers, full_model, placement, variability, ClassValues, ConditionDetail, ConditionResult, MainImpact, Sink,
+    baselines, classifiers, full_model, placement, variability, ClassValues, ConditionDetail, ConditionResult,
+    MainImpact, Sink,
 };
 use crate::progress::Progress;
 use crate::Failure;
@@ -64,15 +65,23 @@ pub(super) fn run_set(
         force_max: ClassValues { label: "P_max (N)".into(), coal: fc, gangue: fg, scale: true },
         reference,
     };
+    let ranking = sep.ranking();
+    let baselines = vec![
+        baselines::of_ranked("contact time t_c", &contact_time),
+        baselines::of_ranked("contact force P_max", &force_max),
+        baselines::mass(&main, seed ^ 300),
+    ];
+    let headline = baselines::headline(baselines, ranking.first());
     let result = ConditionResult {
         condition: set.name.clone(),
         fundamental_hz: main.fundamental_hz,
         validity: main.validity,
-        ranking: sep.ranking(),
+        ranking,
         best_sensor: sep.best_sensor_ranked(),
         best_converged: sep.converged_ranked(),
         force_max,
         contact_time,
+        headline,
         classifiers,
         reference: sep.reference_ranked(),
         held,
