@@ -176,7 +176,11 @@ fn baselines_are_the_pair_counts(c: &studies::identify::ConditionResult, seen: &
     let sep = |a: f64| a.max(1.0 - a);
     let best = (0..3).max_by(|&i, &j| sep(h.baselines[i].auc.auc).total_cmp(&sep(h.baselines[j].auc.auc))).unwrap();
     assert_eq!(h.best_baseline, best);
-    let gain = sep(c.ranking[0].auc.auc) - sep(h.baselines[best].auc.auc);
+    // The feature compared is the best one if the model resolves it, else the best resolved.
+    let compared =
+        if c.ranking[0].converged() { &c.ranking[0] } else { c.best_converged.as_ref().unwrap_or(&c.ranking[0]) };
+    assert_eq!(h.feature, format!("{} {}", compared.feature.name(), compared.channel));
+    let gain = sep(compared.auc.auc) - sep(h.baselines[best].auc.auc);
     assert!((h.gain - gain).abs() < EXACT);
     use studies::identify::baselines::Verdict;
     if sep(h.baselines[best].auc.auc) >= 0.99 {

@@ -93,7 +93,7 @@ pub fn summary_tables(s: &Summary) -> Vec<Table> {
             "best feature resolved in N",
             "AUC",
             "separation by t_c / P_max / m",
-            "best feature against the best baseline",
+            "resolved best feature against the best baseline",
             "best accuracy",
             "beyond elastic",
             "impacts/s",

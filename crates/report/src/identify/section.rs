@@ -26,9 +26,18 @@ pub(super) fn verdict_words(h: &Headline) -> String {
     let name = b.quantity;
     match h.verdict {
         Verdict::BaselineSeparates => format!("{name} alone separates ({})", sig(b.separation().0, 3)),
-        Verdict::FeatureAdds => format!("{:+.3} over {name}", h.gain),
-        Verdict::NoResolvedGain => format!("no resolved gain over {name} ({:+.3})", h.gain),
-        Verdict::BaselineBetter => format!("{name} is better ({:+.3})", h.gain),
+        Verdict::FeatureAdds => format!("{:+.3} over {name}{}", h.gain, unresolved(h)),
+        Verdict::NoResolvedGain => format!("no resolved gain over {name} ({:+.3}){}", h.gain, unresolved(h)),
+        Verdict::BaselineBetter => format!("{name} is better ({:+.3}){}", h.gain, unresolved(h)),
+    }
+}
+
+/// A mark for a compared feature the model does not resolve (no resolved one exists).
+fn unresolved(h: &Headline) -> &'static str {
+    if h.resolved {
+        ""
+    } else {
+        " (feature not resolved)"
     }
 }
 
@@ -255,6 +264,14 @@ fn verdict_sentence(h: &Headline) -> Result<String, Failure> {
         Verdict::BaselineBetter => ("identify/verdict-baseline-better.md", VERDICT_BETTER),
     };
     let mut values = vec![("baseline", b.quantity.to_string()), ("gain", format!("{:+.3}", h.gain))];
+    if h.verdict != Verdict::BaselineSeparates {
+        let which = if h.resolved {
+            format!("best resolved feature ({})", h.feature)
+        } else {
+            format!("best feature ({}, which the model does not resolve)", h.feature)
+        };
+        values.push(("feature", which));
+    }
     if h.verdict == Verdict::BaselineSeparates {
         values.extend([("separation", sig(b.separation().0, 3)), ("separates", sig(SEPARATES, 2))]);
     }

@@ -69,6 +69,12 @@ pub enum Verdict {
 pub struct Headline {
     /// Contact time, P_max and mass, in that order.
     pub baselines: Vec<Baseline>,
+    /// The feature compared, "feature channel": the most separating one whose AUC the modal
+    /// truncation does not move (a number the model resolves), else the most separating one.
+    pub feature: String,
+    /// Whether that feature is resolved by the model (its AUC moves between N/2 and N modes
+    /// by less than its sampling error).
+    pub resolved: bool,
     /// The index of the most separating baseline.
     pub best_baseline: usize,
     /// The best feature's separation minus the best baseline's.
@@ -104,8 +110,14 @@ pub fn of_ranked(quantity: &'static str, r: &Ranked) -> Baseline {
     Baseline { quantity, auc: r.auc, interval: r.interval }
 }
 
-/// The headline of a set: `best` the most separating signal feature (None without one).
-pub fn headline(baselines: Vec<Baseline>, best: Option<&Ranked>) -> Headline {
+/// The headline of a set: `best` the most separating signal feature, `converged` the most
+/// separating one the model resolves (None without one). A feature the modal truncation
+/// moves cannot carry a claim, so the resolved one is compared where the best is not.
+pub fn headline(baselines: Vec<Baseline>, best: Option<&Ranked>, converged: Option<&Ranked>) -> Headline {
+    let best = match best {
+        Some(b) if b.converged() => Some(b),
+        _ => converged.or(best),
+    };
     let best_baseline = (0..baselines.len())
         .max_by(|&a, &b| baselines[a].separation().0.total_cmp(&baselines[b].separation().0))
         .unwrap_or(0);
@@ -120,7 +132,14 @@ pub fn headline(baselines: Vec<Baseline>, best: Option<&Ranked>) -> Headline {
     } else {
         Verdict::NoResolvedGain
     };
-    Headline { baselines, best_baseline, gain: feature - base, verdict }
+    Headline {
+        baselines,
+        feature: best.map_or_else(String::new, |r| format!("{} {}", r.feature.name(), r.channel)),
+        resolved: best.is_some_and(Ranked::converged),
+        best_baseline,
+        gain: feature - base,
+        verdict,
+    }
 }
 
 #[cfg(test)]
@@ -141,7 +160,7 @@ mod tests {
     /// and so shorter in contact) separates perfectly.
     #[test]
     fn a_reversed_perfect_baseline_separates() {
-        let h = headline(vec![baseline(0.7, (0.65, 0.75)), baseline(0.0, (0.0, 0.0))], None);
+        let h = headline(vec![baseline(0.7, (0.65, 0.75)), baseline(0.0, (0.0, 0.0))], None, None);
         assert_eq!((h.best_baseline, h.verdict), (1, Verdict::BaselineSeparates));
     }
 
@@ -161,13 +180,13 @@ mod tests {
             r
         };
         let base = || vec![baseline(0.3, (0.25, 0.35)), baseline(0.6, (0.55, 0.65))];
-        let adds = headline(base(), Some(&feature(0.9, (0.85, 0.95))));
+        let adds = headline(base(), Some(&feature(0.9, (0.85, 0.95))), None);
         assert_eq!((adds.best_baseline, adds.verdict), (0, Verdict::FeatureAdds));
         assert!((adds.gain - 0.2).abs() < 1e-12);
         // A feature with AUC 0.2 separates as 0.8: against a baseline of 0.7, within reach.
-        let near = headline(base(), Some(&feature(0.27, (0.22, 0.32))));
+        let near = headline(base(), Some(&feature(0.27, (0.22, 0.32))), None);
         assert_eq!(near.verdict, Verdict::NoResolvedGain);
-        let worse = headline(base(), Some(&feature(0.55, (0.5, 0.6))));
+        let worse = headline(base(), Some(&feature(0.55, (0.5, 0.6))), None);
         assert_eq!(worse.verdict, Verdict::BaselineBetter);
     }
 }

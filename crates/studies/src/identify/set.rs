@@ -71,14 +71,15 @@ pub(super) fn run_set(
         baselines::of_ranked("contact force P_max", &force_max),
         baselines::mass(&main, seed ^ 300),
     ];
-    let headline = baselines::headline(baselines, ranking.first());
+    let converged = sep.converged_ranked();
+    let headline = baselines::headline(baselines, ranking.first(), converged.as_ref());
     let result = ConditionResult {
         condition: set.name.clone(),
         fundamental_hz: main.fundamental_hz,
         validity: main.validity,
         ranking,
         best_sensor: sep.best_sensor_ranked(),
-        best_converged: sep.converged_ranked(),
+        best_converged: converged,
         force_max,
         contact_time,
         headline,
