@@ -9,7 +9,7 @@ use coupled::plan::impact_of;
 use coupled::plan::YieldValues;
 use coupled::transient::{case::striker, simulate, TransientCase, TransientSettings};
 use coupled::validity::{Criterion, Validity};
-use coupled::yield_root::{transient_yield_from_rigid, YieldSearch};
+use coupled::yield_root::{transient_yield_from_rigid, Root, YieldSearch};
 use coupled::{BeamModel, ComplianceModel, ModelError, PlateModel, SupportSet};
 use impact::report::paper::Paper;
 use impact::report::yield_models::{
@@ -142,8 +142,9 @@ fn the_reduced_bracket_finds_the_same_root_in_fewer_runs() {
     for (body, n, (x, z)) in cells {
         let set = &sc.conditions[n - 1];
         let cell = format!("{} on {} at ({x}, {z})", body.name, set.name);
-        let old = transient_yield_from_rigid(sc, &case, steps, set, body, x, z).unwrap();
-        let new = search.root(sc, &case, steps, set, body, x, z).unwrap();
+        let root = Root { scene: sc, case: &case, steps_per_contact: steps, set, body, at: (x, z) };
+        let old = transient_yield_from_rigid(&root).unwrap();
+        let new = search.root(&root).unwrap();
         assert!(new.width / new.velocity <= ROOT_TOLERANCE * 1.0001, "{cell}: width {}", new.width);
         let d = (new.velocity / old.velocity).ln().abs();
         assert!(d <= w, "{cell}: {} against {} m/s, {d:e} > {w:e}", new.velocity, old.velocity);

@@ -90,6 +90,39 @@ pub fn rigid_yield(scene: &Scene, body: &Sphere) -> f64 {
     yield_velocity(body, &impact_of(scene, body, 1.0), 0.0, yield_compression(scene, body))
 }
 
+/// One root to find: `body` at `at` = (x, z) on the plate of `case`'s mesh held by `set`,
+/// with the scene's contact law and `steps_per_contact` steps per Hertz time.
+#[derive(Clone, Copy)]
+pub struct Root<'a> {
+    /// The scene (plate, contact law, restitution, gravity).
+    pub scene: &'a Scene,
+    /// The full model's mesh.
+    pub case: &'a TransientCase,
+    /// Steps per Hertz time of every run, each at its own Δt = t_H(v)/N.
+    pub steps_per_contact: f64,
+    /// The supports.
+    pub set: &'a SupportSet,
+    /// The sphere.
+    pub body: &'a Sphere,
+    /// The impact point (x, z), m.
+    pub at: (f64, f64),
+}
+
+impl Root<'_> {
+    /// δ_my of eq. 51 for this root's sphere.
+    fn yield_compression(&self) -> f64 {
+        yield_compression(self.scene, self.body)
+    }
+
+    /// ln(δ_max/δ_my) of the full model's first contact at velocity e^`lv`.
+    fn full(&self, lv: f64, d_my: f64) -> Result<f64, ModelError> {
+        let s = scene_striker(self.scene, self.body, lv.exp());
+        let (x, z) = self.at;
+        // δ_max is the first contact's: the run need not follow the later ones.
+        Ok((self.case.first_contact(self.set, &s, x, z, self.steps_per_contact)?.compression_max / d_my).ln())
+    }
+}
+
 /// The transient yield velocity of `body` at (x, z) on the plate held by `set`, with the
 /// scene's contact law: the v at which the transient δ_max reaches δ_my of eq. 51, to a
 /// relative width [`YIELD_ROOT_TOLERANCE`] ([`YieldSearch`], whose reduced model is built
@@ -102,31 +135,22 @@ pub fn transient_yield(
     x: f64,
     z: f64,
 ) -> Result<TransientYield, ModelError> {
-    YieldSearch::new().root(scene, case, case.settings().steps_per_contact, set, body, x, z)
+    let steps_per_contact = case.settings().steps_per_contact;
+    YieldSearch::new().root(&Root { scene, case, steps_per_contact, set, body, at: (x, z) })
 }
 
 /// The same root searched from scratch with `steps_per_contact` steps per Hertz time on
 /// `case`'s mesh: bracketed from the rigid-target value [`rigid_yield`] with the Hertz slope
 /// and closed by Illinois false position ([`log_root`]), each run at its own Δt.
-pub fn transient_yield_from_rigid(
-    scene: &Scene,
-    case: &TransientCase,
-    steps_per_contact: f64,
-    set: &SupportSet,
-    body: &Sphere,
-    x: f64,
-    z: f64,
-) -> Result<TransientYield, ModelError> {
-    let d_my = yield_compression(scene, body);
+pub fn transient_yield_from_rigid(root: &Root) -> Result<TransientYield, ModelError> {
+    let d_my = root.yield_compression();
     let mut runs = 0;
     let (lo, hi) = {
         let mut reach = |lv: f64| -> Result<f64, ModelError> {
             runs += 1;
-            let s = scene_striker(scene, body, lv.exp());
-            // δ_max is the first contact's: the run need not follow the later ones.
-            Ok((case.first_contact(set, &s, x, z, steps_per_contact)?.compression_max / d_my).ln())
+            root.full(lv, d_my)
         };
-        log_root(&mut reach, rigid_yield(scene, body).ln(), YIELD_ROOT_TOLERANCE)?
+        log_root(&mut reach, rigid_yield(root.scene, root.body).ln(), YIELD_ROOT_TOLERANCE)?
     };
     Ok(found((lo, hi), runs, 0, d_my))
 }
@@ -200,83 +224,61 @@ impl YieldSearch {
         self.position(case, set).and_then(|i| self.modal[i].model.as_ref())
     }
 
-    /// The transient yield velocity of `body` at (x, z) on the plate held by `set`, with
-    /// `steps_per_contact` steps per Hertz time on `case`'s mesh and the scene's contact law,
-    /// to a relative width [`YIELD_ROOT_TOLERANCE`] (see the module).
-    #[allow(clippy::too_many_arguments)]
-    pub fn root(
-        &mut self,
-        scene: &Scene,
-        case: &TransientCase,
-        steps_per_contact: f64,
-        set: &SupportSet,
-        body: &Sphere,
-        x: f64,
-        z: f64,
-    ) -> Result<TransientYield, ModelError> {
-        self.prepare(case, set);
-        self.root_prepared(scene, case, steps_per_contact, set, body, x, z)
+    /// The transient yield velocity of `root` to a relative width [`YIELD_ROOT_TOLERANCE`]
+    /// (see the module), building its reduced model first if this search has none yet.
+    pub fn root(&mut self, root: &Root) -> Result<TransientYield, ModelError> {
+        self.prepare(root.case, root.set);
+        self.root_prepared(root)
     }
 
-    /// [`Self::root`] without building: the reduced model [`Self::prepare`] built for `case`
-    /// and `set` brackets the root; without one the search starts from the rigid-target
-    /// value, as where the model cannot be built. Takes `&self`, so roots run in parallel.
-    #[allow(clippy::too_many_arguments)]
-    pub fn root_prepared(
-        &self,
-        scene: &Scene,
-        case: &TransientCase,
-        steps_per_contact: f64,
-        set: &SupportSet,
-        body: &Sphere,
-        x: f64,
-        z: f64,
-    ) -> Result<TransientYield, ModelError> {
-        let d_my = yield_compression(scene, body);
-        let window = case.settings().window_contacts;
+    /// [`Self::root`] without building: the reduced model [`Self::prepare`] built for the
+    /// root's mesh and supports brackets the root; without one the search starts from the
+    /// rigid-target value, as where the model cannot be built. Takes `&self`, so roots run in
+    /// parallel.
+    pub fn root_prepared(&self, root: &Root) -> Result<TransientYield, ModelError> {
+        let d_my = root.yield_compression();
+        let window = root.case.settings().window_contacts;
         let mut reduced_runs = 0;
-        let guess = self.built(case, set).and_then(|m| {
-            let cell = Cell { scene, body, x, z, d_my, steps_per_contact };
-            reduced_guess(m, &cell, window, &mut reduced_runs).ok()
-        });
+        let guess =
+            self.built(root.case, root.set).and_then(|m| reduced_guess(m, root, d_my, window, &mut reduced_runs).ok());
         let mut runs = 0;
         if let Some(g) = guess {
-            let cell = Cell { scene, body, x, z, d_my, steps_per_contact };
-            if let Some(bracket) = full_near(case, set, &cell, g, &mut runs)? {
+            let mut f = |lv: f64| -> Result<f64, ModelError> {
+                runs += 1;
+                root.full(lv, d_my)
+            };
+            if let Some(bracket) = log_root_near(&mut f, g, YIELD_ROOT_TOLERANCE)? {
                 return Ok(found(bracket, runs, reduced_runs, d_my));
             }
         }
-        let t = transient_yield_from_rigid(scene, case, steps_per_contact, set, body, x, z)?;
+        let t = transient_yield_from_rigid(root)?;
         Ok(TransientYield { runs: t.runs + runs, reduced_runs, ..t })
     }
 }
 
-/// One cell of a root search: the sphere at (x, z), its δ_my and the steps per Hertz time.
-struct Cell<'a> {
-    scene: &'a Scene,
-    body: &'a Sphere,
-    x: f64,
-    z: f64,
+/// The reduced model's root of `root` (δ_my `d_my`) from the rigid-target value, each run at
+/// its own Δt = t_H/N as the full search's, and the reduced slope d f/d ln v over its final
+/// bracket: the guess the full search starts from.
+fn reduced_guess(
+    model: &ReducedModel,
+    root: &Root,
     d_my: f64,
-    steps_per_contact: f64,
-}
-
-/// The reduced model's root of `cell` from the rigid-target value, each run at its own
-/// Δt = t_H/N as the full search's, and the reduced slope d f/d ln v over its final bracket:
-/// the guess the full search starts from.
-fn reduced_guess(model: &ReducedModel, cell: &Cell, window: f64, runs: &mut usize) -> Result<Guess, ModelError> {
+    window: f64,
+    runs: &mut usize,
+) -> Result<Guess, ModelError> {
     let mut seen: Vec<(f64, f64)> = Vec::new();
     let (lo, hi) = {
         let mut f = |lv: f64| -> Result<f64, ModelError> {
             *runs += 1;
-            let s = scene_striker(cell.scene, cell.body, lv.exp());
+            let s = scene_striker(root.scene, root.body, lv.exp());
             let th = s.hertz_time();
-            let o = model.first_contact(&s, cell.x, cell.z, th / cell.steps_per_contact, window * th)?;
-            let y = (o.compression_max / cell.d_my).ln();
+            let (x, z) = root.at;
+            let o = model.first_contact(&s, x, z, th / root.steps_per_contact, window * th)?;
+            let y = (o.compression_max / d_my).ln();
             seen.push((lv, y));
             Ok(y)
         };
-        log_root(&mut f, rigid_yield(cell.scene, cell.body).ln(), YIELD_ROOT_TOLERANCE)?
+        log_root(&mut f, rigid_yield(root.scene, root.body).ln(), YIELD_ROOT_TOLERANCE)?
     };
     let at = |p: f64| seen.iter().find(|s| s.0 == p).map(|s| s.1);
     let slope = match (at(lo), at(hi)) {
@@ -284,22 +286,4 @@ fn reduced_guess(model: &ReducedModel, cell: &Cell, window: f64, runs: &mut usiz
         _ => f64::NAN,
     };
     Ok(Guess { at: 0.5 * (lo + hi), slope, reach: REDUCED_REACH, slope_spread: REDUCED_SLOPE_SPREAD })
-}
-
-/// The full model's bracket from the reduced `guess` ([`log_root_near`]), each run at its own
-/// Δt = t_H(v)/N; None if the guess does not bracket the root.
-fn full_near(
-    case: &TransientCase,
-    set: &SupportSet,
-    cell: &Cell,
-    guess: Guess,
-    runs: &mut usize,
-) -> Result<Option<(f64, f64)>, ModelError> {
-    let mut f = |lv: f64| -> Result<f64, ModelError> {
-        *runs += 1;
-        let s = scene_striker(cell.scene, cell.body, lv.exp());
-        let o = case.first_contact(set, &s, cell.x, cell.z, cell.steps_per_contact)?;
-        Ok((o.compression_max / cell.d_my).ln())
-    };
-    log_root_near(&mut f, guess, YIELD_ROOT_TOLERANCE)
 }

@@ -8,7 +8,7 @@ use crate::scene::Scene;
 use crate::supports::SupportSet;
 use crate::transient::TransientCase;
 use crate::validity::Validity;
-use crate::yield_root::YieldSearch;
+use crate::yield_root::{Root, YieldSearch};
 use analytic::{Impact, Method, Sphere};
 
 /// Relative width to which the transient yield velocity is found.
@@ -186,7 +186,7 @@ pub fn dynamic_yield_with(
     body: &Sphere,
     (x, z): (f64, f64),
 ) -> Result<YieldValues, ModelError> {
-    let root = search.root(scene, case, steps_per_contact, set, body, x, z)?;
+    let root = search.root(&Root { scene, case, steps_per_contact, set, body, at: (x, z) })?;
     Ok(YieldValues {
         compliance: None,
         compliance_error: None,

@@ -20,7 +20,7 @@ use ::scene::Scene;
 pub use coupled::plan::log_root;
 use coupled::plan::{YieldRow, YieldValues};
 use coupled::transient::{TransientCase, TransientSettings};
-pub use coupled::yield_root::{rigid_yield, transient_yield, TransientYield, YieldSearch};
+pub use coupled::yield_root::{rigid_yield, transient_yield, Root, TransientYield, YieldSearch};
 use coupled::SupportSet;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -85,7 +85,15 @@ impl Transients<'_> {
         if let Some(t) = self.cells.get(&k) {
             return Ok(*t);
         }
-        let t = self.search.root(self.scene, &self.case, self.case.settings().steps_per_contact, set, body, x, z)?;
+        let steps_per_contact = self.case.settings().steps_per_contact;
+        let t = self.search.root(&Root {
+            scene: self.scene,
+            case: &self.case,
+            steps_per_contact,
+            set,
+            body,
+            at: (x, z),
+        })?;
         self.cells.insert(k, t);
         Ok(t)
     }
@@ -109,7 +117,8 @@ impl Transients<'_> {
         let roots: Vec<Result<TransientYield, String>> = missing
             .par_iter()
             .map(|&(body, set, x, z)| {
-                search.root_prepared(scene, case, steps, set, body, x, z).map_err(|e| e.to_string())
+                let root = Root { scene, case, steps_per_contact: steps, set, body, at: (x, z) };
+                search.root_prepared(&root).map_err(|e| e.to_string())
             })
             .collect();
         for (&(body, set, x, z), root) in missing.iter().zip(roots) {

@@ -13,7 +13,7 @@ use analytic::Sphere;
 use coupled::plan::{self, ModelKind, YieldValues};
 use coupled::scene::even_points;
 use coupled::transient::{TransientCase, TransientSettings};
-use coupled::yield_root::{TransientYield, YieldSearch};
+use coupled::yield_root::{Root, TransientYield, YieldSearch};
 use coupled::{Analysis, BeamModel, PlateModel, Points, SupportSet};
 use rayon::prelude::*;
 use scene::{Scene, SceneSource};
@@ -385,7 +385,9 @@ fn discretisation(setup: &Setup, tr: &mut Transients) -> Result<(Vec<Discretisat
     let fine: Vec<Result<TransientYield, String>> = cells
         .par_iter()
         .map(|&(body, set, x, z)| {
-            search.root_prepared(scene, &fine_case, FINE.steps_per_contact, set, body, x, z).map_err(|e| e.to_string())
+            let root =
+                Root { scene, case: &fine_case, steps_per_contact: FINE.steps_per_contact, set, body, at: (x, z) };
+            search.root_prepared(&root).map_err(|e| e.to_string())
         })
         .collect();
     let mut rows = Vec::new();
