@@ -153,6 +153,12 @@ pub fn bootstrap_interval(coal: &[f64], gangue: &[f64], resamples: usize, level:
         }
         aucs.push(weighted_auc(&sorted, |j| weights[j]));
     }
+    percentile_interval(aucs, level)
+}
+
+/// The percentile interval at confidence `level` of resampled AUCs: the values at the
+/// (1 - level)/2 and (1 + level)/2 quantiles, nearest rank.
+fn percentile_interval(mut aucs: Vec<f64>, level: f64) -> (f64, f64) {
     aucs.sort_by(f64::total_cmp);
     let q = |p: f64| {
         let idx = (p * (aucs.len() - 1) as f64).round() as usize;
@@ -201,10 +207,7 @@ pub fn bootstrap_interval_within(
         }
         aucs.push(within_weighted(coal, &wc, &g, &running_sum(&wg), tolerance));
     }
-    aucs.sort_by(f64::total_cmp);
-    let q = |p: f64| aucs[((p * (aucs.len() - 1) as f64).round() as usize).min(aucs.len() - 1)];
-    let tail = 0.5 * (1.0 - level);
-    (q(tail), q(1.0 - tail))
+    percentile_interval(aucs, level)
 }
 
 /// prefix[k] = Σ_{i<k} w[i].

@@ -67,9 +67,8 @@ impl Cholesky {
 
     /// Overwrites the columns of `rhs` with the solutions of LLᵀx = rhs.
     pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
-        let s = &self.symbolic.0;
-        let mut scratch =
-            MemBuffer::new(LltRef::new(s, &self.values).solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq));
-        LltRef::new(s, &self.values).solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut scratch));
+        let llt = LltRef::new(&self.symbolic.0, &self.values);
+        let mut scratch = MemBuffer::new(llt.solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq));
+        llt.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut scratch));
     }
 }
