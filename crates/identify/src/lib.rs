@@ -19,6 +19,9 @@
 //! - [`roc`]: the AUC (Mann-Whitney), DeLong's standard error and a bootstrap interval;
 //! - [`classify`]: a ridge logistic regression fitted by Newton/IRLS and its stratified
 //!   cross-validated accuracy;
+//! - [`measurement`]: the measurement chain between the plate and a feature (the sensor's
+//!   band, the anti-aliasing filter, the sampler, a seeded background of a PSD and tonal
+//!   lines, the ADC), and Welch's PSD estimate;
 //! - [`placement`]: the features of an ensemble as columns, the AUC of every channel and
 //!   feature, the best sensor, and placement maps.
 //!
@@ -71,6 +74,7 @@ pub mod classify;
 pub mod distribution;
 pub mod ensemble;
 pub mod features;
+pub mod measurement;
 pub mod placement;
 pub mod roc;
 
