@@ -195,7 +195,7 @@ impl Chain {
             return Err(ChainError::Rate { adc: spec.rate_hz, model: model_rate_hz });
         }
         let mut sections = Vec::new();
-        let mut frequency = |field: &'static str, value: f64| {
+        let frequency = |field: &'static str, value: f64| {
             if value >= 0.45 * model_rate_hz {
                 return Err(ChainError::Frequency { field, value, model: model_rate_hz });
             }
