@@ -39,6 +39,9 @@ pub enum ModelError {
     /// A parameter is outside its range.
     #[error(transparent)]
     Parameter(#[from] analytic::InvalidParameter),
+    /// The measurement chain cannot run on the model's samples.
+    #[error(transparent)]
+    Chain(#[from] identify::measurement::ChainError),
 }
 
 impl From<analytic::BeamError> for ModelError {

@@ -21,6 +21,7 @@ use crate::scene::Scene;
 use crate::transient::{LawKind, Striker};
 use analytic::{contact_stiffness, DruckerPrager, Plate};
 use identify::ensemble::for_each_ordered;
+use identify::measurement::{Chain, Measurand};
 use identify::placement::FeatureTable;
 use identify::{Draw, Extractor, Held, Study, FEATURES};
 use serde::Serialize;
@@ -50,6 +51,11 @@ pub struct ImpactRecord {
     /// The [`FEATURES`] of each channel of the run, channel after channel in the order of
     /// [`ConditionRun::channels`] ([`ImpactRecord::channel_features`] splits them).
     pub features: Vec<f64>,
+    /// Under a measurement chain, each channel's peak after the chain without its background
+    /// (the signal of the signal-to-noise ratio); empty without one.
+    pub clean_peaks: Vec<f64>,
+    /// Under a measurement chain, the samples of all channels that clipped at the ADC's range.
+    pub clipped: usize,
 }
 
 impl ImpactRecord {
@@ -102,13 +108,31 @@ pub struct ConditionRun {
     pub validity: EnsembleValidity,
     /// The supported plate's fundamental frequency, Hz.
     pub fundamental_hz: f64,
+    /// Under a measurement chain, each impact's [`ImpactRecord::clean_peaks`], impact after
+    /// impact (empty without one).
+    pub clean_peaks: Vec<f64>,
+    /// Under a measurement chain, the samples that clipped, over all impacts and channels.
+    pub clipped: usize,
 }
 
-/// A reduced model with the probes and feature extractor of one signal spec.
+impl ConditionRun {
+    /// Channel `c`'s clean peaks (module docs of `identify::measurement`), one per impact;
+    /// empty without a chain.
+    pub fn clean_peaks(&self, c: usize) -> Vec<f64> {
+        let n = self.channels.len();
+        self.clean_peaks.iter().skip(c).step_by(n.max(1)).copied().collect()
+    }
+}
+
+/// A reduced model with the probes and feature extractor of one signal spec, and the
+/// measurement chain its features read the signals through, if any.
 pub struct Instrument<'a> {
     model: &'a ReducedModel,
     probes: crate::reduced::Probes,
     extractor: Extractor,
+    chain: Option<Chain>,
+    noise_scale: f64,
+    model_samples: usize,
     plate: Plate,
     restitution: f64,
     law: LawKind,
@@ -117,12 +141,53 @@ pub struct Instrument<'a> {
 
 impl<'a> Instrument<'a> {
     /// Prepares `spec` on `model` for impacts on `plate` with the Flores restitution, the
-    /// contact law and the gravity of `scene`.
+    /// contact law, the gravity and the measurement chain of `scene` (the features then read
+    /// the chain's samples: [`measurand`] says which channel it records as what).
     pub fn new(model: &'a ReducedModel, plate: &Plate, spec: &SignalSpec, scene: &Scene) -> Result<Self, ModelError> {
         let probes = model.probes(spec)?;
-        let extractor = Extractor::new(spec.samples(), spec.rate_hz);
+        let chain = match &scene.measurement {
+            None => None,
+            Some(c) => Some(Chain::new(c.clone(), spec.rate_hz)?),
+        };
+        let extractor = match &chain {
+            None => Extractor::new(spec.samples(), spec.rate_hz),
+            Some(c) => Extractor::new(c.samples(spec.samples()), c.spec().rate_hz),
+        };
         let (restitution, law, gravity) = (scene.restitution, scene.contact_law, scene.gravity);
-        Ok(Self { model, probes, extractor, plate: *plate, restitution, law, gravity })
+        let model_samples = spec.samples();
+        Ok(Self {
+            model,
+            probes,
+            extractor,
+            chain,
+            noise_scale: 1.0,
+            model_samples,
+            plate: *plate,
+            restitution,
+            law,
+            gravity,
+        })
+    }
+
+    /// The same instrument with its chain's background scaled by `scale` (1: as the scene
+    /// states it; 0: none, the ADC's quantisation alone).
+    pub fn with_noise_scale(self, scale: f64) -> Self {
+        Self { noise_scale: scale, ..self }
+    }
+
+    /// The model's samples of one window (before the chain's sampler).
+    pub fn model_samples(&self) -> usize {
+        self.model_samples
+    }
+
+    /// The measurement chain, if any.
+    pub fn chain(&self) -> Option<&Chain> {
+        self.chain.as_ref()
+    }
+
+    /// The frequency of the highest mode the reduced model keeps, Hz.
+    pub fn highest_mode_hz(&self) -> f64 {
+        self.model.modes().omegas().last().copied().unwrap_or(0.0) / (2.0 * std::f64::consts::PI)
     }
 
     /// The channels each impact records.
@@ -152,10 +217,31 @@ impl<'a> Instrument<'a> {
         let o = &hit.outcome;
         let delta_my = DruckerPrager::of(&sphere).yield_compression(sphere.radius(), k);
         let mut features = Vec::with_capacity(hit.signals.channels.len() * FEATURES.len());
-        for c in &hit.signals.channels {
-            self.extractor.push_features(FEATURES, &c.samples, &mut features);
+        let (mut clean_peaks, mut clipped) = (Vec::new(), 0);
+        match &self.chain {
+            None => {
+                for c in &hit.signals.channels {
+                    self.extractor.push_features(FEATURES, &c.samples, &mut features);
+                }
+            }
+            Some(chain) => {
+                // One stream per impact, its channels drawn in order: the same impact has the
+                // same background on every model of the same channels.
+                let mut rng = chain.stream(draw.index);
+                for c in &hit.signals.channels {
+                    let m =
+                        chain.measure(measurand(c.kind), &c.samples, self.noise_scale, &mut rng).ok_or_else(|| {
+                            ModelError::Missing(format!("the measurement chain does not record {:?}", c.kind))
+                        })?;
+                    self.extractor.push_features(FEATURES, &m.samples, &mut features);
+                    clean_peaks.push(m.clean_peak);
+                    clipped += m.clipped;
+                }
+            }
         }
         Ok(ImpactRecord {
+            clean_peaks,
+            clipped,
             mass: sphere.mass(),
             force_max: o.force_max_interpolated.max(o.force_max),
             contact_time: o.contact_time,
@@ -165,6 +251,16 @@ impl<'a> Instrument<'a> {
             features,
             draw,
         })
+    }
+}
+
+/// What the measurement chain records channel `kind` as.
+pub fn measurand(kind: ChannelKind) -> Measurand {
+    match kind {
+        ChannelKind::Displacement { .. } => Measurand::Displacement,
+        ChannelKind::Velocity { .. } => Measurand::Velocity,
+        ChannelKind::Acceleration { .. } => Measurand::Acceleration,
+        ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => Measurand::SupportForce,
     }
 }
 
@@ -202,6 +298,8 @@ pub fn run_condition<E>(
         contact_time: Vec::with_capacity(e.len()),
         validity: EnsembleValidity::default(),
         fundamental_hz: 1.0 / instrument.fundamental_period(),
+        clean_peaks: Vec::new(),
+        clipped: 0,
     };
     for_each_ordered(
         e.len(),
@@ -219,6 +317,8 @@ pub fn run_condition<E>(
             run.force_max.push(record.force_max);
             run.contact_time.push(record.contact_time.unwrap_or(0.0));
             run.validity.add(&record);
+            run.clean_peaks.extend_from_slice(&record.clean_peaks);
+            run.clipped += record.clipped;
             Ok(())
         },
     )?;

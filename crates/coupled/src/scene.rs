@@ -159,6 +159,9 @@ pub struct Scene {
     /// The reduced model and the sensor signals of an impact (`[signals]`; defaults when
     /// the scene has none).
     pub signals: SignalSettings,
+    /// The measurement chain between the reduced model's signals and the identification's
+    /// features (`[measurement]`); None: the features read the model's signals as they are.
+    pub measurement: Option<identify::measurement::ChainSpec>,
     /// How the transient model is discretised: by default each case's mesh and step are
     /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.
     pub transient_discretisation: Discretisation,

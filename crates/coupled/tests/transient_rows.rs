@@ -31,6 +31,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         ensemble: None,
         transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
+        measurement: None,
         gravity: 0.0,
         plate_damping: None,
     };
@@ -94,6 +95,7 @@ fn one_case(
         ensemble: None,
         transient_discretisation: disc,
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
+        measurement: None,
         gravity: 0.0,
         plate_damping: None,
     }

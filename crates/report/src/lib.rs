@@ -98,8 +98,9 @@ pub fn main_report(scene: &Scene, progress: &dyn Progress) -> Result<Artifacts, 
 
 /// The identification scenes `impact report` runs beside the default scene's reports (shipped
 /// in `scenes/`, embedded like the default scene): file name and text.
-pub const IDENTIFY_SCENES: [(&str, &str); 2] = [
+pub const IDENTIFY_SCENES: [(&str, &str); 3] = [
     ("caving-stream.toml", include_str!("../../../scenes/caving-stream.toml")),
+    ("caving-stream-measured.toml", include_str!("../../../scenes/caving-stream-measured.toml")),
     ("paper-velocities-ensemble.toml", include_str!("../../../scenes/paper-velocities-ensemble.toml")),
 ];
 

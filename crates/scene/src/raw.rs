@@ -36,6 +36,8 @@ pub(crate) struct RawScene {
     pub(crate) signals: Option<RawSignals>,
     #[serde(default)]
     pub(crate) plate_damping: Option<RawPlateDamping>,
+    #[serde(default)]
+    pub(crate) measurement: Option<crate::validate::measurement::RawMeasurement>,
 }
 
 /// The plate's Rayleigh damping: a ratio reached at two frequencies.

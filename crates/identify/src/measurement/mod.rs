@@ -306,6 +306,24 @@ mod tests {
         }
     }
 
+    /// The chain's gain is the product of its sections' analog gains, and the largest gain
+    /// above a frequency past the resonance is the gain there (both fall monotonically):
+    /// abs(H) = 1/abs(1 - (f/f_r)² + 2jζf/f_r) · (f/f_h)/√(1 + (f/f_h)²) · 1/√(1 + (f/f_c)^16).
+    #[test]
+    fn the_gain_is_the_closed_form() {
+        let chain = Chain::new(spec(10_000.0), 40_000.0).unwrap();
+        let exact = |f: f64| {
+            let r = f / 12_000.0;
+            let resonance = 1.0 / ((1.0 - r * r).powi(2) + (2.0 * 0.05 * r).powi(2)).sqrt();
+            let high_pass = (f / 1.0) / (1.0 + (f / 1.0).powi(2)).sqrt();
+            resonance * high_pass / (1.0 + (f / 4_000.0).powi(16)).sqrt()
+        };
+        for f in [0.5, 1.0, 100.0, 4_000.0, 12_000.0, 30_000.0] {
+            assert!((chain.gain(f) / exact(f) - 1.0).abs() < 1e-12, "{f} Hz");
+        }
+        assert!((chain.gain_above(15_000.0) / exact(15_000.0) - 1.0).abs() < 1e-12);
+    }
+
     /// The ADC rounds to its step and clips at its codes' span.
     #[test]
     fn quantisation_rounds_and_clips() {

@@ -136,7 +136,8 @@ pub fn welch(x: &[f64], rate_hz: f64, segment: usize) -> (Vec<f64>, Vec<f64>, us
     let mut count = 0;
     let mut start = 0;
     while start + segment <= x.len() {
-        let mut buf: Vec<Complex<f64>> = x[start..start + segment].iter().zip(&w).map(|(v, w)| Complex::new(v * w, 0.0)).collect();
+        let mut buf: Vec<Complex<f64>> =
+            x[start..start + segment].iter().zip(&w).map(|(v, w)| Complex::new(v * w, 0.0)).collect();
         fft.process(&mut buf);
         for (s, b) in sum.iter_mut().zip(&buf) {
             *s += b.norm_sqr();

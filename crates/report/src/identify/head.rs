@@ -118,6 +118,8 @@ pub(super) fn head(scene: &Scene, study: &Study, summary: &Summary) -> Result<St
             ("restitution", sig(scene.restitution, 3)),
             ("sensors", sensors),
             ("candidates", candidates),
+            ("recorded", super::measurement::recorded(scene)),
+            ("measurement", super::measurement::section(scene, summary)?),
         ],
     )?)
 }

@@ -9,6 +9,7 @@
 
 mod figures;
 mod head;
+mod measurement;
 mod rows;
 mod section;
 

@@ -246,6 +246,7 @@ pub(super) fn finding(r: &ConditionResult, modes: usize) -> Result<String, Failu
             ("best_separation", top.map_or_else(dash, |t| sig(oriented(t.auc.auc, t.interval).0, 3))),
             ("baselines", baselines_sentence(&r.headline)),
             ("verdict", verdict_sentence(&r.headline)?),
+            ("noise", super::measurement::finding_noise(r)),
             ("classifier", best_classifier.map_or_else(dash, |a| a.features.clone())),
             ("accuracy", best_classifier.map_or_else(dash, |a| sig(a.result.accuracy, 3))),
             ("accuracy_se", best_classifier.map_or_else(dash, |a| sig(a.result.standard_error, 2))),

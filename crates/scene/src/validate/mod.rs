@@ -10,6 +10,7 @@ use coupled::transient::LawKind;
 use coupled::SupportSet;
 
 mod damping;
+pub(crate) mod measurement;
 mod points;
 mod signals;
 mod supports;
@@ -129,9 +130,21 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     if let Some(why) = limits::quasi_static_excess(conditions.len(), points.len(), bodies.len(), responses, yields) {
         return Err(other("conditions, points, bodies and velocities", why));
     }
+    let signals = validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?;
+    let measurement = match (&raw.measurement, analyses.contains(&Analysis::Identify)) {
+        (None, _) => None,
+        (Some(m), true) => Some(measurement::validate_measurement(m, signals.rate_hz)?),
+        (Some(_), false) => {
+            return Err(other(
+                "measurement",
+                "is read only by the \"identify\" analysis; add \"identify\" to analyses or remove the table",
+            ))
+        }
+    };
     Ok(Scene {
         velocities,
-        signals: validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?,
+        signals,
+        measurement,
         solver: validate_solver(&raw.solver)?,
         ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
         name: raw.name,

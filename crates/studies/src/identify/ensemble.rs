@@ -50,7 +50,7 @@ pub fn half_modes(
     let settings = &scene.signals;
     let half = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings.reduced() };
     let model = ReducedModel::new(&scene.plate, set, half)?;
-    let instrument = Instrument::new(&model, &scene.plate, &spec(settings, sensors.to_vec()), scene)?;
+    let instrument = Instrument::new(&model, &scene.plate, &spec(scene, sensors.to_vec()), scene)?;
     run(study, Held::NONE, &instrument, &set.name, &format!("{} modes", half.modes), progress, |_| Ok(()))
 }
 
@@ -74,7 +74,7 @@ pub fn shard(
     range: std::ops::Range<usize>,
 ) -> Result<Shard, Failure> {
     let e = &scene.ensemble.as_ref().ok_or("the scene has no [ensemble]")?.ensemble;
-    let instrument = Instrument::new(model, &scene.plate, &spec(&scene.signals, sensors.to_vec()), scene)?;
+    let instrument = Instrument::new(model, &scene.plate, &spec(scene, sensors.to_vec()), scene)?;
     let records = range
         .map(|i| {
             let draw = e.draw(i, Held::NONE).ok_or_else(|| format!("impact {i} is beyond the ensemble"))?;

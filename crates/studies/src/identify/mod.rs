@@ -19,6 +19,7 @@ pub mod baselines;
 pub mod classifiers;
 pub mod ensemble;
 pub mod full_model;
+pub mod measured;
 pub mod placement;
 pub mod sensors;
 pub mod separability;
@@ -147,6 +148,8 @@ pub struct ConditionResult {
     /// Newmark model of the same mesh and step rule: seconds, and the reduced model's P_max
     /// relative to it.
     pub full_model: FullModelCheck,
+    /// What the measurement chain did, if the scene has one.
+    pub measurement: Option<measured::ChainSummary>,
 }
 
 /// One impact on the full transient model beside the reduced one, in the same run.

@@ -4,17 +4,20 @@
 use crate::channel::ChannelInfo;
 use crate::Failure;
 use coupled::identification::Instrument;
-use coupled::reduced::{Quantity, SignalSettings, SignalSpec};
+use coupled::reduced::{Quantity, SignalSpec};
 use identify::features::FEATURES;
+use identify::measurement::Measurand;
 use identify::Study;
 use scene::{Scene, SupportSet};
 
-/// Channels an identification records per impact on `set`: three quantities at every named
-/// and candidate sensor (once where they coincide), and the held or sprung corners.
+/// Channels an identification records per impact on `set`: each recorded quantity at every
+/// named and candidate sensor (once where they coincide), and the held or sprung corners if
+/// their forces are recorded ([`spec`]).
 pub fn channels_per_impact(scene: &Scene, study: &Study, set: &SupportSet) -> usize {
     let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0.len();
+    let spec = spec(scene, Vec::new());
     let corners = set.supports.corners.iter().filter(|c| !matches!(c, plate_fem::CornerSupport::Free)).count();
-    3 * sensors + corners
+    spec.quantities.len() * sensors + if spec.corners { corners } else { 0 }
 }
 
 /// The sensors of an identification run: the named sensors, then the candidate grid's points
@@ -52,15 +55,27 @@ pub fn no_channels(set: &str) -> Failure {
     .into()
 }
 
-/// The signals of a run at `sensors`: the scene's window and rate, every quantity, the
-/// corners.
-pub fn spec(settings: &SignalSettings, sensors: Vec<(f64, f64)>) -> SignalSpec {
+/// The signals of a run at `sensors`: the scene's window and rate; every quantity and the
+/// corners, or under a measurement chain only what it records (nothing else is computed).
+pub fn spec(scene: &Scene, sensors: Vec<(f64, f64)>) -> SignalSpec {
+    let settings = &scene.signals;
+    let records =
+        |m: Measurand| scene.measurement.as_ref().is_none_or(|c| c.recordings.iter().any(|r| r.measurand == m));
     SignalSpec {
         window: settings.window,
         rate_hz: settings.rate_hz,
         sensors,
-        quantities: Quantity::ALL.to_vec(),
-        corners: true,
+        quantities: Quantity::ALL.into_iter().filter(|&q| records(measurand_of(q))).collect(),
+        corners: records(Measurand::SupportForce),
+    }
+}
+
+/// What a chain records quantity `q` as.
+fn measurand_of(q: Quantity) -> Measurand {
+    match q {
+        Quantity::Displacement => Measurand::Displacement,
+        Quantity::Velocity => Measurand::Velocity,
+        Quantity::Acceleration => Measurand::Acceleration,
     }
 }
 

@@ -5,14 +5,15 @@ use super::ensemble::{half_modes, run};
 use super::sensors::{channel_infos, no_channels, run_sensors, spec};
 use super::separability::{contact_quantities, split, Separation};
 use super::{
-    baselines, classifiers, full_model, placement, variability, ClassValues, ConditionDetail, ConditionResult,
-    MainImpact, Sink,
+    baselines, classifiers, full_model, measured, placement, variability, ClassValues, ConditionDetail,
+    ConditionResult, MainImpact, Sink,
 };
 use crate::progress::Progress;
 use crate::Failure;
 use coupled::identification::{Instrument, CHUNK};
 use coupled::reduced::ReducedModel;
 use identify::features::FEATURES;
+use identify::placement::best;
 use identify::{Held, Study};
 use scene::{Scene, SupportSet};
 use std::time::Instant;
@@ -35,7 +36,7 @@ pub(super) fn run_set(
     // The main run: named sensors, then the candidate grid (less its points at named
     // sensors), every quantity, the corners.
     let (sensors, grid) = run_sensors(&settings.sensors, study, plate);
-    let instrument = Instrument::new(&model, plate, &spec(settings, sensors.clone()), scene)?;
+    let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     if infos.is_empty() {
         return Err(no_channels(&set.name));
@@ -58,6 +59,12 @@ pub(super) fn run_set(
     let classifiers = classifiers::accuracies(&main, &half, groups, seed)?;
     let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
     let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
+    let measurement = match measured::summarise(&instrument, &main, best(&sep.all, &[]).map(|s| s.channel)) {
+        None => None,
+        Some(m) => {
+            Some(measured::ChainSummary { sweep: measured::sweep(scene, study, set, &main_run, seed, progress)?, ..m })
+        }
+    };
     let (fc, fg) = split(&main.force_max, main.table.classes());
     let detail = ConditionDetail {
         maps: placement::maps(study, &grid, &infos, &sep.all),
@@ -91,6 +98,7 @@ pub(super) fn run_set(
         impacts_per_second: e.len() as f64 / run_seconds.max(1e-9),
         feature_bytes,
         full_model,
+        measurement,
     };
     Ok((result, detail))
 }

@@ -87,7 +87,7 @@ pub fn held_runs(
 ) -> Result<(Vec<Held1>, Option<String>), Failure> {
     let (ref_sensors, reference) = reference_instrument(&scene.signals.sensors, main, reference);
     let plate = &scene.plate;
-    let spec = spec(&scene.signals, ref_sensors.clone());
+    let spec = spec(scene, ref_sensors.clone());
     let instrument = Instrument::new(main.model, plate, &spec, scene)?;
     let ref_infos = channel_infos(&instrument, &ref_sensors, plate);
     let all_channels: Vec<usize> = (0..ref_infos.len()).collect();

@@ -15,6 +15,8 @@ use coupled::scene::Analysis;
 use identify::{Class, Variable};
 use serde::Serialize;
 
+mod measurement;
+
 /// One key of a table.
 struct Key {
     name: &'static str,
@@ -170,6 +172,13 @@ fn top_level() -> Section {
             "[ensemble]",
             "required with \"identify\", refused without",
             "The random impacts of the identification study",
+        ),
+        table(
+            "measurement",
+            TABLE,
+            "[measurement]",
+            "none: the features read the model's exact samples",
+            "The measurement chain of the identification (\"identify\" only)",
         ),
     ];
     Section { title: "Top level", about: String::new(), keys }
@@ -455,6 +464,7 @@ fn sections() -> Vec<Section> {
         all.extend(part);
     }
     all.push(families());
+    all.extend(measurement::sections());
     all
 }
 
@@ -506,6 +516,7 @@ mod tests {
         RawSignals, RawSolver, RawTransient, RawVelocities,
     };
     use super::*;
+    use crate::validate::measurement::{RawAcceleration, RawAntiAlias, RawMeasurement, RawSensor, RawSupportForce};
     use serde::de::{self, Visitor};
     use serde::Deserialize;
     use std::collections::BTreeSet;
@@ -560,6 +571,11 @@ mod tests {
             ("[ensemble.region]", fields::<RawRegion>()),
             ("[ensemble.placement]", fields::<RawPlacement>()),
             ("[[ensemble.families]]", fields::<RawFamily>()),
+            ("[measurement]", fields::<RawMeasurement>()),
+            ("[measurement.sensor]", fields::<RawSensor>()),
+            ("[measurement.anti_alias]", fields::<RawAntiAlias>()),
+            ("[measurement.acceleration]", fields::<RawAcceleration>()),
+            ("[measurement.support_force]", fields::<RawSupportForce>()),
         ];
         let sections = sections();
         let titles: Vec<&str> = sections.iter().map(|s| s.title).collect();

@@ -1,0 +1,290 @@
+//! `[measurement]`: the chain a data acquisition puts between the plate and the features
+//! (`identify::measurement`), each key in its range in the file's units, converted to SI.
+//!
+//! ```toml
+//! [measurement]
+//! rate_hz = 10000.0                 # the ADC's rate: signals.rate_hz over a whole number
+//! seed = 7                          # the backgrounds' seed
+//! sensor = { resonance_hz = 12000.0, resonance_damping = 0.05, high_pass_hz = 1.0 }
+//! anti_alias = { order = 8, corner_hz = 4000.0 }
+//!
+//! [measurement.acceleration]        # every sensor point's acceleration
+//! adc_range_m_s2 = 2000.0
+//! adc_bits = 16
+//! noise = "pink"                    # "white", "pink" or "measured"
+//! noise_rms_m_s2 = 5.0              # white or pink: the rms over 0 to rate_hz/2
+//! pink_flat_below_hz = 10.0
+//! tones_m_s2 = [[50.0, 1.0], [150.0, 0.5]]   # [frequency Hz, rms]
+//!
+//! [measurement.support_force]      # every prop's, jack's or held corner's force
+//! adc_range_kn = 50.0
+//! adc_bits = 16
+//! noise = "measured"
+//! noise_psd_kn2_per_hz = [[0.0, 1e-6], [2000.0, 1e-6], [5000.0, 1e-8]]
+//! ```
+
+use super::{count, other, pair, Invalid};
+use crate::limits;
+use analytic::params::{check, compact, Range};
+use identify::measurement::noise::{Psd, Tone};
+use identify::measurement::{AntiAlias, Chain, ChainSpec, Measurand, Recording, SensorBand, MAX_FILTER_ORDER};
+use serde::Deserialize;
+
+/// The chain's table as TOML reads it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawMeasurement {
+    rate_hz: f64,
+    #[serde(default)]
+    seed: Option<u64>,
+    #[serde(default)]
+    band_tolerance: Option<f64>,
+    #[serde(default)]
+    sensor: Option<RawSensor>,
+    #[serde(default)]
+    anti_alias: Option<RawAntiAlias>,
+    #[serde(default)]
+    acceleration: Option<RawAcceleration>,
+    #[serde(default)]
+    support_force: Option<RawSupportForce>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSensor {
+    resonance_hz: Option<f64>,
+    resonance_damping: Option<f64>,
+    high_pass_hz: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawAntiAlias {
+    order: f64,
+    corner_hz: f64,
+}
+
+/// `[measurement.acceleration]`, in m/s².
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawAcceleration {
+    adc_range_m_s2: f64,
+    adc_bits: f64,
+    noise: Option<String>,
+    noise_rms_m_s2: Option<f64>,
+    pink_flat_below_hz: Option<f64>,
+    noise_psd_m2_s4_per_hz: Option<Vec<Vec<f64>>>,
+    tones_m_s2: Option<Vec<Vec<f64>>>,
+}
+
+/// `[measurement.support_force]`, in kN.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawSupportForce {
+    adc_range_kn: f64,
+    adc_bits: f64,
+    noise: Option<String>,
+    noise_rms_kn: Option<f64>,
+    pink_flat_below_hz: Option<f64>,
+    noise_psd_kn2_per_hz: Option<Vec<Vec<f64>>>,
+    tones_kn: Option<Vec<Vec<f64>>>,
+}
+
+/// One recording's keys, whatever their unit; `scale` converts the file's unit to SI.
+struct Keys<'a> {
+    table: &'static str,
+    /// The unit-bearing keys: the ADC's range, the rms, the measured PSD, the tones.
+    names: [&'static str; 4],
+    scale: f64,
+    range: f64,
+    bits: f64,
+    noise: Option<&'a str>,
+    rms: Option<f64>,
+    flat_below: Option<f64>,
+    psd: Option<&'a [Vec<f64>]>,
+    tones: Option<&'a [Vec<f64>]>,
+}
+
+/// ADC full scales, in the file's unit (m/s² or kN): 1e-9 to 1e9.
+pub(crate) const ADC_RANGE: Range = Range::closed(1e-9, 1e9);
+/// ADC bits: 1 to 32 (a DAQ's are 12 to 24).
+pub(crate) const ADC_BITS: Range = Range::closed(1.0, 32.0);
+/// Background and tone rms, in the file's unit: 0 (none) to 1e9.
+pub(crate) const NOISE_RMS: Range = Range::closed(0.0, 1e9);
+/// A sensor's resonance damping ratio.
+pub(crate) const RESONANCE_DAMPING: Range = Range::closed(1e-3, 1.0);
+/// The gain below which a frequency is outside the chain's band.
+pub(crate) const BAND_TOLERANCE: Range = Range::closed(1e-9, 0.5);
+/// Most points of a measured PSD and most tones.
+pub(crate) const MAX_POINTS: usize = 10_000;
+/// The default seed of the backgrounds.
+pub(crate) const DEFAULT_SEED: u64 = 1;
+/// The default band tolerance: a part of the response the chain passes at below 0.1 % is
+/// below a 16-bit ADC's step at a tenth of its range.
+pub(crate) const DEFAULT_BAND_TOLERANCE: f64 = 1e-3;
+
+/// `[measurement]` on signals sampled at `model_rate_hz` (signals.rate_hz).
+pub(crate) fn validate_measurement(raw: &RawMeasurement, model_rate_hz: f64) -> Result<ChainSpec, Invalid> {
+    let rate_hz = check("measurement.rate_hz", raw.rate_hz, limits::SAMPLE_RATE_HZ, "Hz")?;
+    let nyquist = Range::open(0.0, 0.5 * rate_hz);
+    let sensor = match &raw.sensor {
+        None => SensorBand { resonance: None, high_pass_hz: None },
+        Some(s) => SensorBand {
+            resonance: match (s.resonance_hz, s.resonance_damping) {
+                (None, None) => None,
+                (Some(f), Some(z)) => Some((
+                    check("measurement.sensor.resonance_hz", f, Range::open(0.0, 1e7), "Hz")?,
+                    check("measurement.sensor.resonance_damping", z, RESONANCE_DAMPING, "")?,
+                )),
+                _ => {
+                    return Err(other(
+                        "measurement.sensor",
+                        "gives one of resonance_hz and resonance_damping; a mounted resonance needs both",
+                    ))
+                }
+            },
+            high_pass_hz: s
+                .high_pass_hz
+                .map(|f| check("measurement.sensor.high_pass_hz", f, Range::open(0.0, 1e7), "Hz"))
+                .transpose()?,
+        },
+    };
+    let anti_alias = match &raw.anti_alias {
+        None => None,
+        Some(a) => Some(AntiAlias {
+            order: count("measurement.anti_alias.order", a.order, Range::closed(1.0, MAX_FILTER_ORDER as f64))?,
+            corner_hz: check("measurement.anti_alias.corner_hz", a.corner_hz, nyquist, "Hz")?,
+        }),
+    };
+    let mut recordings = Vec::new();
+    if let Some(a) = &raw.acceleration {
+        recordings.push(recording(
+            Measurand::Acceleration,
+            Keys {
+                table: "measurement.acceleration",
+                names: ["adc_range_m_s2", "noise_rms_m_s2", "noise_psd_m2_s4_per_hz", "tones_m_s2"],
+                scale: 1.0,
+                range: a.adc_range_m_s2,
+                bits: a.adc_bits,
+                noise: a.noise.as_deref(),
+                rms: a.noise_rms_m_s2,
+                flat_below: a.pink_flat_below_hz,
+                psd: a.noise_psd_m2_s4_per_hz.as_deref(),
+                tones: a.tones_m_s2.as_deref(),
+            },
+            rate_hz,
+        )?);
+    }
+    if let Some(f) = &raw.support_force {
+        recordings.push(recording(
+            Measurand::SupportForce,
+            Keys {
+                table: "measurement.support_force",
+                names: ["adc_range_kn", "noise_rms_kn", "noise_psd_kn2_per_hz", "tones_kn"],
+                scale: 1e3,
+                range: f.adc_range_kn,
+                bits: f.adc_bits,
+                noise: f.noise.as_deref(),
+                rms: f.noise_rms_kn,
+                flat_below: f.pink_flat_below_hz,
+                psd: f.noise_psd_kn2_per_hz.as_deref(),
+                tones: f.tones_kn.as_deref(),
+            },
+            rate_hz,
+        )?);
+    }
+    if recordings.is_empty() {
+        return Err(other(
+            "measurement",
+            "records nothing; give [measurement.acceleration] or [measurement.support_force] (or both)",
+        ));
+    }
+    let band_tolerance = match raw.band_tolerance {
+        Some(t) => check("measurement.band_tolerance", t, BAND_TOLERANCE, "")?,
+        None => DEFAULT_BAND_TOLERANCE,
+    };
+    let spec =
+        ChainSpec { sensor, anti_alias, rate_hz, recordings, seed: raw.seed.unwrap_or(DEFAULT_SEED), band_tolerance };
+    // The rates and the filters' realisability on the model's samples, before any work.
+    Chain::new(spec.clone(), model_rate_hz).map_err(|e| other("measurement", e.to_string()))?;
+    Ok(spec)
+}
+
+/// One measurand's ADC and background from its keys.
+fn recording(measurand: Measurand, k: Keys<'_>, rate_hz: f64) -> Result<Recording, Invalid> {
+    let field = |key: &str| format!("{}.{key}", k.table);
+    let [range_key, rms_key, psd_key, tones_key] = k.names;
+    let range = check(&field(range_key), k.range, ADC_RANGE, "")? * k.scale;
+    let bits = count(&field("adc_bits"), k.bits, ADC_BITS)? as u32;
+    let band = 0.5 * rate_hz;
+    let rms = |need: &str| -> Result<f64, Invalid> {
+        let key = field(rms_key);
+        let v = k.rms.ok_or_else(|| other(&key, format!("is required by noise = \"{need}\"")))?;
+        Ok(check(&key, v, NOISE_RMS, "")? * k.scale)
+    };
+    let background = match k.noise {
+        None => None,
+        Some("white") => Some(Psd::white(rms("white")?, band)),
+        Some("pink") => {
+            let key = field("pink_flat_below_hz");
+            let flat = k.flat_below.ok_or_else(|| other(&key, "is required by noise = \"pink\""))?;
+            let flat = check(&key, flat, Range::open(0.0, band), "Hz")?;
+            Some(Psd::pink(rms("pink")?, flat, band))
+        }
+        Some("measured") => Some(measured_psd(&field(psd_key), k.psd, k.scale)?),
+        Some(other_kind) => {
+            return Err(other(
+                field("noise"),
+                format!("'{other_kind}' is not a background; allowed: \"white\", \"pink\", \"measured\""),
+            ))
+        }
+    };
+    let tones = match k.tones {
+        None => Vec::new(),
+        Some(list) => {
+            if list.len() > MAX_POINTS {
+                return Err(other(field(tones_key), format!("{} tones; at most {MAX_POINTS}", list.len())));
+            }
+            let mut out = Vec::with_capacity(list.len());
+            for (j, t) in list.iter().enumerate() {
+                let f = format!("{}[{j}]", field(tones_key));
+                let (hz, r) = pair(&f, t, "[frequency Hz, rms]")?;
+                out.push(Tone {
+                    frequency_hz: check(&format!("{f}[0] (frequency)"), hz, Range::open(0.0, band), "Hz")?,
+                    rms: check(&format!("{f}[1] (rms)"), r, NOISE_RMS, "")? * k.scale,
+                });
+            }
+            out
+        }
+    };
+    Ok(Recording { measurand, range, bits, background, tones })
+}
+
+/// A measured PSD's points: 2 to [`MAX_POINTS`], frequencies rising from 0 or above, densities
+/// not negative; scaled to SI by `scale`².
+fn measured_psd(field: &str, points: Option<&[Vec<f64>]>, scale: f64) -> Result<Psd, Invalid> {
+    let points = points.ok_or_else(|| other(field, "is required by noise = \"measured\""))?;
+    if !(2..=MAX_POINTS).contains(&points.len()) {
+        return Err(other(
+            field,
+            format!("has {} points; give 2 to {MAX_POINTS} [frequency Hz, density]", points.len()),
+        ));
+    }
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.len());
+    for (j, p) in points.iter().enumerate() {
+        let f = format!("{field}[{j}]");
+        let (hz, s) = pair(&f, p, "[frequency Hz, density]")?;
+        let hz = check(&format!("{f}[0] (frequency)"), hz, Range::closed(0.0, 1e7), "Hz")?;
+        let s = check(&format!("{f}[1] (density)"), s, Range::closed(0.0, 1e18), "")?;
+        if let Some(&(before, _)) = out.last() {
+            if hz <= before {
+                return Err(other(
+                    format!("{f}[0] (frequency)"),
+                    format!("{} Hz does not rise above the point before it, {} Hz", compact(hz), compact(before)),
+                ));
+            }
+        }
+        out.push((hz, s * scale * scale));
+    }
+    Ok(Psd::Table { points: out })
+}
