@@ -225,7 +225,8 @@ pub enum Command {
     },
     /// The main job on the default scene: every report into DIR, and the coal-gangue
     /// identification of the shipped scenes (scenes/caving-stream.toml,
-    /// scenes/paper-velocities-ensemble.toml) into DIR/identify/<scene name>/.
+    /// scenes/caving-stream-measured.toml, scenes/paper-velocities-ensemble.toml) into
+    /// DIR/identify/<scene name>/.
     Report {
         /// Directory for the files, written whole or not at all (an existing one only if empty or
         /// an earlier output of impact).

@@ -161,6 +161,9 @@ pub struct Scene {
     pub signals: SignalSettings,
     /// The measurement chain between the reduced model's signals and the identification's
     /// features (`[measurement]`); None: the features read the model's signals as they are.
+    /// Left out of the serialised scene when None, so that a scene without a chain keeps the
+    /// canonical content (and provenance hash) it had before chains existed.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub measurement: Option<identify::measurement::ChainSpec>,
     /// How the transient model is discretised: by default each case's mesh and step are
     /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.

@@ -276,7 +276,13 @@ impl Ensemble {
 
     /// Impact `index` with the variables in `held` at their medians; None beyond the end.
     pub fn draw(&self, index: usize, held: Held) -> Option<Draw> {
-        let f = self.family_of(index)?;
+        Some(self.draw_of(index, self.family_of(index)?, held))
+    }
+
+    /// Impact `index` drawn from family `f` (which must exist) on the impact's own stream,
+    /// with the variables in `held` at their medians: [`Ensemble::draw`] with the family
+    /// given, for streams whose lumps choose their family by time.
+    pub fn draw_of(&self, index: usize, f: usize, held: Held) -> Draw {
         let fam = &self.families[f];
         let mut rng = impact_stream(self.seed, index);
         let mut u = [0.0; UNIFORMS];
@@ -290,7 +296,7 @@ impl Ensemble {
             Speed::FallHeight(h) => (2.0 * GRAVITY * pick(h, u[2], held.speed)).sqrt(),
             Speed::Velocity(v) => pick(v, u[2], held.speed),
         };
-        Some(Draw {
+        Draw {
             index,
             family: f,
             class: fam.class,
@@ -303,7 +309,7 @@ impl Ensemble {
             poisson_ratio: pick(&fam.poisson_ratio, u[6], held.material),
             cohesion: pick(&fam.cohesion, u[7], held.material),
             friction_angle_deg: pick(&fam.friction_angle_deg, u[8], held.material),
-        })
+        }
     }
 }
 

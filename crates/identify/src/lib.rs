@@ -16,6 +16,8 @@
 //! - [`features`]: the features of a sampled signal, one implementation each of a small
 //!   trait and one registry (peak, RMS, energy, duration, dominant frequency, spectral
 //!   centroid);
+//! - [`stream`]: a continuous caving stream: Poisson arrivals marked coal or gangue by a
+//!   time profile of the gangue share, each lump drawn as an ensemble impact;
 //! - [`roc`]: the AUC (Mann-Whitney), DeLong's standard error and a bootstrap interval;
 //! - [`classify`]: a ridge logistic regression fitted by Newton/IRLS and its stratified
 //!   cross-validated accuracy;
@@ -77,6 +79,7 @@ pub mod features;
 pub mod measurement;
 pub mod placement;
 pub mod roc;
+pub mod stream;
 
 pub use distribution::Distribution;
 pub use ensemble::{Class, Draw, Ensemble, Family, Held, Region, Speed, Study, Variable};

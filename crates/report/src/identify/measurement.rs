@@ -201,6 +201,15 @@ pub(super) fn section(scene: &Scene, summary: &Summary) -> Result<String, Failur
     )?)
 }
 
+/// The signals a support set's features read, for a table cell: "noise-free" or the SNR of
+/// the best feature's channel.
+pub(super) fn signals_cell(r: &ConditionResult) -> String {
+    match &r.measurement {
+        None => "noise-free".into(),
+        Some(m) => m.best_channel_snr_db.map_or_else(|| "measured".into(), |v| format!("measured, {} dB SNR", db(v))),
+    }
+}
+
 /// The finding's sentence on the noise a support set's features ran at.
 pub(super) fn finding_noise(r: &ConditionResult) -> String {
     match &r.measurement {

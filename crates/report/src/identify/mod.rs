@@ -88,6 +88,7 @@ pub fn summary_tables(s: &Summary) -> Vec<Table> {
         ),
         &[
             "support set",
+            "signals",
             "best feature",
             "AUC",
             "N/2 to N",
@@ -107,6 +108,7 @@ pub fn summary_tables(s: &Summary) -> Vec<Table> {
         let acc = c.classifiers.iter().map(|a| a.result.accuracy).fold(f64::NAN, f64::max);
         t.push(vec![
             c.condition.clone().into(),
+            Cell::Text(measurement::signals_cell(c)),
             top.map_or(Cell::Empty, name),
             top.map_or(Cell::Empty, auc),
             top.and_then(|r| r.resolution).map_or(Cell::Empty, |d| Cell::Text(sig(d, 2))),

@@ -260,7 +260,9 @@ pub fn checked_study(scene: &Scene) -> Result<&Study, Failure> {
         if channels == 0 {
             return Err(no_channels(&set.name));
         }
-        let bytes = feature_bytes(study.ensemble.len(), channels);
+        // Under a chain each impact and channel also keeps its clean peak.
+        let peaks = if scene.measurement.is_some() { 8 * study.ensemble.len() * channels } else { 0 };
+        let bytes = feature_bytes(study.ensemble.len(), channels) + peaks;
         if bytes as f64 > crate::run::MEMORY_BUDGET_BYTES {
             return Err(format!(
                 "the ensemble's features are {} impacts x {channels} channels x {} features, about {:.1} GB for support set '{}'; the budget is {:.0} GB: use fewer impacts or candidate points",
