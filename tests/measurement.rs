@@ -45,6 +45,11 @@ fn a_chain_is_read_in_si() {
     // kN to N, and the white background's rms over 0-5 kHz is what was written.
     assert_eq!(f.range, 2000.0);
     assert!((f.noise_rms(10_000.0) - (500f64.powi(2) + f.step().powi(2) / 12.0).sqrt()).abs() < 1e-9);
+    // Microstrain to strain.
+    let gauges = with_chain(&format!("{CHAIN}\n[measurement.strain]\nadc_range_microstrain = 500.0\nadc_bits = 24\n"));
+    let s = Scene::parse(&gauges, "chain").unwrap();
+    let g = &s.measurement.unwrap().recordings[1];
+    assert_eq!((g.measurand, g.range), (identify::measurement::Measurand::Strain, 500e-6));
 }
 
 #[test]

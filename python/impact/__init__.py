@@ -300,6 +300,11 @@ def identify(
     t_c/T1, a regime label here), and one column per channel and feature, named
     "<channel>: <feature> (<unit>)" with the channel as the identify report names it, e.g.
     "acceleration at (229.2, 180) mm: peak (m/s^2)". An empty range has no feature columns.
+
+    Under the scene's measurement chain (``[measurement]``) the features are those of the
+    recorded signals (filtered, sampled, with the seeded background, quantised), only the
+    recorded quantities have columns, and each channel adds "<channel>: clean peak (<unit>)"
+    (its peak before the background: the signal of its SNR) beside ``clipped_samples``.
     """
     s = load_scene(scene)
     n = ensemble_size(s)

@@ -167,6 +167,14 @@ fn table(shard: &Shard) -> Table {
                 t.num(&format!("{label}: {} ({})", feature.key(), feature.unit(c.unit)), row, *value);
             }
         }
+        // Under a measurement chain: each channel's peak before the background (the SNR's
+        // signal) and the samples the ADC clipped.
+        if !r.clean_peaks.is_empty() {
+            t.int("clipped_samples", row, r.clipped as i64);
+            for (c, peak) in shard.channels.iter().zip(&r.clean_peaks) {
+                t.num(&format!("{}: clean peak ({})", c.label(), c.unit), row, *peak);
+            }
+        }
     }
     t
 }

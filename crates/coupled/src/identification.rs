@@ -260,6 +260,7 @@ pub fn measurand(kind: ChannelKind) -> Measurand {
         ChannelKind::Displacement { .. } => Measurand::Displacement,
         ChannelKind::Velocity { .. } => Measurand::Velocity,
         ChannelKind::Acceleration { .. } => Measurand::Acceleration,
+        ChannelKind::Strain { .. } => Measurand::Strain,
         ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => Measurand::SupportForce,
     }
 }

@@ -27,6 +27,7 @@ impl ChannelInfo {
             ChannelKind::Displacement { sensor } => ("displacement", Some(sensor)),
             ChannelKind::Velocity { sensor } => ("velocity", Some(sensor)),
             ChannelKind::Acceleration { sensor } => ("acceleration", Some(sensor)),
+            ChannelKind::Strain { sensor } => ("strain", Some(sensor)),
             ChannelKind::SpringForce { .. } => ("spring force", None),
             ChannelKind::Reaction { .. } => ("reaction", None),
         };

@@ -21,12 +21,26 @@ impl ReducedModel {
         let fact = self.model.factorize(&self.set.supports)?;
         let mut rows = Vec::new();
         let mut fields = Vec::new();
+        let kinematic = spec.quantities.iter().any(|q| *q != Quantity::Strain);
         for (s, &(x, z)) in spec.sensors.iter().enumerate() {
-            let phi_s = self.point(x, z)?.phi;
-            let f = fields.len();
-            fields.push(self.modes.residual_field(&fact, &fact.load_vector(x, z)?));
+            // One residual field per functional a sensor reads: its deflection (for the
+            // kinematic quantities) and its strain, each solved only if asked for.
+            let deflection = if kinematic {
+                fields.push(self.modes.residual_field(&fact, &fact.load_vector(x, z)?));
+                Some((fields.len() - 1, self.point(x, z)?.phi))
+            } else {
+                None
+            };
             for q in &spec.quantities {
-                rows.push(sensor_channel(q, s, &phi_s, f, &self.omega, zeta));
+                match (q, &deflection) {
+                    (Quantity::Strain, _) => {
+                        let (dofs, values) = self.model.bending_strain(x, z)?;
+                        fields.push(self.modes.residual_field(&fact, &fact.functional_vector(&dofs, &values)));
+                        rows.push(strain_channel(s, self.functional_modes(&dofs, &values), fields.len() - 1));
+                    }
+                    (q, Some((f, phi_s))) => rows.push(sensor_channel(q, s, phi_s, *f, &self.omega, zeta)),
+                    (_, None) => unreachable!("a kinematic quantity makes `kinematic` true"),
+                }
             }
         }
         if spec.corners {
@@ -63,6 +77,7 @@ fn sensor_channel(q: &Quantity, s: usize, phi_s: &[f64], f: usize, omega: &[f64]
             res: [None, Some((f, 1.0)), None],
             damped_inertia: false,
         },
+        Quantity::Strain => unreachable!("the strain is a channel of its own (strain_channel)"),
         Quantity::Acceleration => ChannelRows {
             kind: ChannelKind::Acceleration { sensor: s },
             a: (0..n).map(|i| -w2(i) * phi_s[i]).collect(),
@@ -72,6 +87,22 @@ fn sensor_channel(q: &Quantity, s: usize, phi_s: &[f64], f: usize, omega: &[f64]
             res: [None, None, Some((f, 1.0))],
             damped_inertia: false,
         },
+    }
+}
+
+/// The strain at sensor `s`: the functional ℓ_ε of [`plate_fem::Model::bending_strain`] on
+/// the modes, ℓ_ε(φᵢ) in `modal`, and its residual field `fields[f]`; a deflection-type
+/// channel (no rate, no inertia), ε = Σ ℓ_ε(φᵢ) qᵢ + (R ℓ_ε)(p) P.
+fn strain_channel(s: usize, modal: Vec<f64>, f: usize) -> ChannelRows {
+    let n = modal.len();
+    ChannelRows {
+        kind: ChannelKind::Strain { sensor: s },
+        a: modal,
+        b: vec![0.0; n],
+        c: None,
+        direct: None,
+        res: [Some((f, 1.0)), None, None],
+        damped_inertia: false,
     }
 }
 

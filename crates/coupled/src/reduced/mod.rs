@@ -326,6 +326,19 @@ impl ReducedModel {
         Ok(Point { dofs, shape, phi, c_res, m_res })
     }
 
+    /// A point functional on the modes, ℓ(φᵢ) = Σ_k values_k φᵢ[dofs_k], for every mode.
+    fn functional_modes(&self, dofs: &[usize; 16], values: &plate_fem::element::Vec16) -> Vec<f64> {
+        let n = self.omega.len();
+        let mut out = vec![0.0; n];
+        for k in 0..16 {
+            let row = &self.phi[dofs[k] * n..(dofs[k] + 1) * n];
+            for (o, r) in out.iter_mut().zip(row) {
+                *o += values[k] * r;
+            }
+        }
+        out
+    }
+
     /// φᵢ(p) for every mode and C_res(p), at p = (x, z).
     pub fn at(&self, x: f64, z: f64) -> Result<(Vec<f64>, f64), ModelError> {
         let p = self.point(x, z)?;

@@ -71,10 +71,14 @@ pub enum Quantity {
     Velocity,
     /// ẅ, m/s².
     Acceleration,
+    /// The bending strain along x on the unstruck face, ε_x = -(h/2) ∂²w/∂x²
+    /// ([`plate_fem::Model::bending_strain`]); recorded only when asked for (a strain gauge),
+    /// not among [`Quantity::ALL`].
+    Strain,
 }
 
 impl Quantity {
-    /// All three, in this order.
+    /// The three kinematic quantities every sensor records by default, in this order.
     pub const ALL: [Quantity; 3] = [Quantity::Displacement, Quantity::Velocity, Quantity::Acceleration];
 }
 
@@ -94,6 +98,11 @@ pub enum ChannelKind {
     },
     /// Plate acceleration at a sensor, m/s².
     Acceleration {
+        /// Sensor index.
+        sensor: usize,
+    },
+    /// Bending strain along x on the unstruck face at a sensor (dimensionless).
+    Strain {
         /// Sensor index.
         sensor: usize,
     },
@@ -117,6 +126,7 @@ impl ChannelKind {
             ChannelKind::Displacement { .. } => "m",
             ChannelKind::Velocity { .. } => "m/s",
             ChannelKind::Acceleration { .. } => "m/s^2",
+            ChannelKind::Strain { .. } => "1",
             ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => "N",
         }
     }
@@ -127,6 +137,7 @@ impl ChannelKind {
             ChannelKind::Displacement { sensor } => format!("displacement s{}", sensor + 1),
             ChannelKind::Velocity { sensor } => format!("velocity s{}", sensor + 1),
             ChannelKind::Acceleration { sensor } => format!("acceleration s{}", sensor + 1),
+            ChannelKind::Strain { sensor } => format!("strain s{}", sensor + 1),
             ChannelKind::SpringForce { corner } => format!("spring force {}", corner.name()),
             ChannelKind::Reaction { corner } => format!("reaction {}", corner.name()),
         }

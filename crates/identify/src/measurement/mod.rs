@@ -46,12 +46,20 @@ pub enum Measurand {
     Displacement,
     /// A prop's or jack's force (a spring corner) or a fixed corner's reaction, N.
     SupportForce,
+    /// The bending strain along x on the unstruck face at a sensor point (a strain gauge),
+    /// dimensionless.
+    Strain,
 }
 
 impl Measurand {
     /// Every measurand.
-    pub const ALL: [Measurand; 4] =
-        [Measurand::Acceleration, Measurand::Velocity, Measurand::Displacement, Measurand::SupportForce];
+    pub const ALL: [Measurand; 5] = [
+        Measurand::Acceleration,
+        Measurand::Velocity,
+        Measurand::Displacement,
+        Measurand::SupportForce,
+        Measurand::Strain,
+    ];
 
     /// Its key in scene files and columns.
     pub fn key(self) -> &'static str {
@@ -60,6 +68,7 @@ impl Measurand {
             Measurand::Velocity => "velocity",
             Measurand::Displacement => "displacement",
             Measurand::SupportForce => "support_force",
+            Measurand::Strain => "strain",
         }
     }
 
@@ -70,6 +79,7 @@ impl Measurand {
             Measurand::Velocity => "m/s",
             Measurand::Displacement => "m",
             Measurand::SupportForce => "N",
+            Measurand::Strain => "1",
         }
     }
 }

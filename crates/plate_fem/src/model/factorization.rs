@@ -278,6 +278,12 @@ impl<'m> Factorization<'m> {
     /// The load vector of a unit point load at (x, z).
     pub fn load_vector(&self, x: f64, z: f64) -> Result<Vec<f64>, FemError> {
         let (dofs, n) = self.model.load(x, z)?;
+        Ok(self.functional_vector(&dofs, &n))
+    }
+
+    /// The vector of the point functional `n` on the element `dofs` (a load vector, a
+    /// strain gauge's [`Model::bending_strain`]), zero at the held DOFs.
+    pub fn functional_vector(&self, dofs: &[usize; 16], n: &Vec16) -> Vec<f64> {
         let mut f = vec![0.0; self.model.dofs()];
         for (d, v) in dofs.iter().zip(n.iter()) {
             f[*d] += v;
@@ -285,7 +291,7 @@ impl<'m> Factorization<'m> {
         for &d in &self.held {
             f[d] = 0.0;
         }
-        Ok(f)
+        f
     }
 
     /// The deflection field under a unit load at (x, z).

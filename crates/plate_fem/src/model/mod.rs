@@ -261,6 +261,19 @@ impl Model {
         Ok((self.mesh.element_dofs(loc.ex, loc.ez), element::shape(a, b, loc.xi, loc.eta)))
     }
 
+    /// The bending strain along x at (x, z) on the face away from the load, as a functional
+    /// of the element's DOFs: ε_x = -(h/2) ∂²w/∂x² (Kirchhoff: the strain varies linearly
+    /// through the thickness and vanishes on the mid-plane; w positive along the load, so the
+    /// far face stretches where the plate sags). What a strain gauge bonded along x on the
+    /// unstruck face reads. On an element edge x = const, w_xx of the element located
+    /// ([`crate::mesh::Mesh::locate`]) is taken: the C¹ element's curvature may jump there.
+    pub fn bending_strain(&self, x: f64, z: f64) -> Result<([usize; 16], Vec16), FemError> {
+        let loc = self.mesh.locate(x, z)?;
+        let (a, b) = self.mesh.element_size(loc.ex, loc.ez);
+        let w_xx = element::curvature(a, b, loc.xi, loc.eta).row(0).transpose();
+        Ok((self.mesh.element_dofs(loc.ex, loc.ez), w_xx * (-0.5 * self.props.thickness)))
+    }
+
     /// Deflection of a field `w` at (x, z).
     ///
     /// # Panics

@@ -5,7 +5,7 @@ use crate::present::table::{sig, Cell, Table};
 use crate::template::render;
 use crate::Failure;
 use identify::measurement::noise::Psd;
-use identify::measurement::{ChainSpec, Recording};
+use identify::measurement::{ChainSpec, Measurand, Recording};
 use scene::Scene;
 use studies::identify::baselines::oriented;
 use studies::identify::measured::SWEEP_SNR_DB;
@@ -33,7 +33,8 @@ pub(super) fn recorded(scene: &Scene) -> String {
             .recordings
             .iter()
             .map(|r| match r.measurand {
-                identify::measurement::Measurand::SupportForce => "the force at every spring or fixed corner".to_string(),
+                Measurand::SupportForce => "the force at every spring or fixed corner".to_string(),
+                Measurand::Strain => "the bending strain along x on the unstruck face at every sensor point".to_string(),
                 m => format!("the {} at every sensor point", m.key()),
             })
             .collect::<Vec<_>>()
@@ -57,9 +58,17 @@ fn sensor(c: &ChainSpec) -> String {
     }
 }
 
+/// A measurand's unit as the page writes it after a number (none for a strain).
+fn shown_unit(m: Measurand) -> &'static str {
+    match m.unit() {
+        "1" => "",
+        u => u,
+    }
+}
+
 /// One recording's ADC and background in words.
 fn recording(r: &Recording, rate_hz: f64) -> String {
-    let unit = r.measurand.unit();
+    let unit = shown_unit(r.measurand);
     let background = match &r.background {
         None => "no stationary background".to_string(),
         Some(Psd::White { .. }) => format!(
@@ -120,7 +129,11 @@ fn table(summary: &Summary) -> Table {
             t.push(vec![
                 c.condition.clone().into(),
                 q.quantity.into(),
-                Cell::Text(format!("{} {}", sig(q.noise_rms, 3), q.unit)),
+                Cell::Text(
+                    format!("{} {}", sig(q.noise_rms, 3), if q.unit == "1" { "" } else { q.unit })
+                        .trim_end()
+                        .to_string(),
+                ),
                 Cell::Text(format!("{} ({})", q.channels, q.silent)),
                 Cell::Text(format!("{} / {} / {}", db(q.snr_db.0), db(q.snr_db.1), db(q.snr_db.2))),
                 Cell::Text(best),

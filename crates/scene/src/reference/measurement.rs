@@ -74,7 +74,7 @@ pub(super) fn sections() -> Vec<Section> {
     vec![
         Section {
             title: "[measurement]",
-            about: "The measurement chain of the identification (\"identify\" only): each recorded channel of the reduced model passes the sensor's band, the anti-aliasing filter, the ADC's sampler, a seeded background and the ADC, and every feature is computed on what comes out. Velocity and deflection are not recorded under a chain. The filters act on the model's samples as their bilinear images, so every filter frequency must lie below 0.45 × `signals.rate_hz`.".into(),
+            about: "The measurement chain of the identification (\"identify\" only): each recorded channel of the reduced model passes the sensor's band, the anti-aliasing filter, the ADC's sampler, a seeded background and the ADC, and every feature is computed on what comes out. Velocity and deflection are not recorded under a chain; strain gauges are (`[measurement.strain]`). The filters act on the model's samples as their bilinear images, so every filter frequency must lie below 0.45 × `signals.rate_hz`.".into(),
             keys: vec![
                 num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, REQUIRED, "The ADC's sample rate: `signals.rate_hz` divided by a whole number"),
                 key("seed", "whole number", NO_UNIT, "0 to 2^64 - 1", DEFAULT_SEED.to_string(), "Seed of the backgrounds (each impact's window its own stream)"),
@@ -82,6 +82,7 @@ pub(super) fn sections() -> Vec<Section> {
                 key("sensor", TABLE, NO_UNIT, "see `[measurement.sensor]`", "an ideal sensor", "The sensor's own band"),
                 key("anti_alias", TABLE, NO_UNIT, "see `[measurement.anti_alias]`", "none", "The anti-aliasing filter"),
                 key("acceleration", TABLE, NO_UNIT, "see `[measurement.acceleration]`", "not recorded", "The accelerometers at every sensor point"),
+                key("strain", TABLE, NO_UNIT, "see `[measurement.strain]`", "not recorded", "The strain gauges at every sensor point"),
                 key("support_force", TABLE, NO_UNIT, "see `[measurement.support_force]`", "not recorded", "The force at every spring or held corner (the props' and jacks' transducers)"),
             ],
         },
@@ -108,6 +109,13 @@ pub(super) fn sections() -> Vec<Section> {
             ["adc_range_m_s2", "noise_rms_m_s2", "noise_psd_m2_s4_per_hz", "tones_m_s2"],
             "m/s²",
             "(m/s²)²/Hz",
+        ),
+        recording(
+            "[measurement.strain]",
+            "How the strain gauges are recorded (one at every sensor point, along x on the face away from the impact: ε_x = -(h/2) ∂²w/∂x²), in microstrain.",
+            ["adc_range_microstrain", "noise_rms_microstrain", "noise_psd_microstrain2_per_hz", "tones_microstrain"],
+            "µε",
+            "µε²/Hz",
         ),
         recording(
             "[measurement.support_force]",

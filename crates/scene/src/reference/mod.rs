@@ -516,7 +516,9 @@ mod tests {
         RawSignals, RawSolver, RawTransient, RawVelocities,
     };
     use super::*;
-    use crate::validate::measurement::{RawAcceleration, RawAntiAlias, RawMeasurement, RawSensor, RawSupportForce};
+    use crate::validate::measurement::{
+        RawAcceleration, RawAntiAlias, RawMeasurement, RawSensor, RawStrain, RawSupportForce,
+    };
     use serde::de::{self, Visitor};
     use serde::Deserialize;
     use std::collections::BTreeSet;
@@ -575,6 +577,7 @@ mod tests {
             ("[measurement.sensor]", fields::<RawSensor>()),
             ("[measurement.anti_alias]", fields::<RawAntiAlias>()),
             ("[measurement.acceleration]", fields::<RawAcceleration>()),
+            ("[measurement.strain]", fields::<RawStrain>()),
             ("[measurement.support_force]", fields::<RawSupportForce>()),
         ];
         let sections = sections();

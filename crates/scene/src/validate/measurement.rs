@@ -16,6 +16,12 @@
 //! pink_flat_below_hz = 10.0
 //! tones_m_s2 = [[50.0, 1.0], [150.0, 0.5]]   # [frequency Hz, rms]
 //!
+//! [measurement.strain]              # a gauge along x on the unstruck face at every sensor point
+//! adc_range_microstrain = 500.0
+//! adc_bits = 24
+//! noise = "white"
+//! noise_rms_microstrain = 0.5
+//!
 //! [measurement.support_force]      # every prop's, jack's or held corner's force
 //! adc_range_kn = 50.0
 //! adc_bits = 16
@@ -47,6 +53,8 @@ pub(crate) struct RawMeasurement {
     acceleration: Option<RawAcceleration>,
     #[serde(default)]
     support_force: Option<RawSupportForce>,
+    #[serde(default)]
+    strain: Option<RawStrain>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -88,6 +96,19 @@ pub(crate) struct RawSupportForce {
     pink_flat_below_hz: Option<f64>,
     noise_psd_kn2_per_hz: Option<Vec<Vec<f64>>>,
     tones_kn: Option<Vec<Vec<f64>>>,
+}
+
+/// `[measurement.strain]`, in microstrain.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawStrain {
+    adc_range_microstrain: f64,
+    adc_bits: f64,
+    noise: Option<String>,
+    noise_rms_microstrain: Option<f64>,
+    pink_flat_below_hz: Option<f64>,
+    noise_psd_microstrain2_per_hz: Option<Vec<Vec<f64>>>,
+    tones_microstrain: Option<Vec<Vec<f64>>>,
 }
 
 /// One recording's keys, whatever their unit; `scale` converts the file's unit to SI.
@@ -193,10 +214,33 @@ pub(crate) fn validate_measurement(raw: &RawMeasurement, model_rate_hz: f64) -> 
             rate_hz,
         )?);
     }
+    if let Some(s) = &raw.strain {
+        recordings.push(recording(
+            Measurand::Strain,
+            Keys {
+                table: "measurement.strain",
+                names: [
+                    "adc_range_microstrain",
+                    "noise_rms_microstrain",
+                    "noise_psd_microstrain2_per_hz",
+                    "tones_microstrain",
+                ],
+                scale: 1e-6,
+                range: s.adc_range_microstrain,
+                bits: s.adc_bits,
+                noise: s.noise.as_deref(),
+                rms: s.noise_rms_microstrain,
+                flat_below: s.pink_flat_below_hz,
+                psd: s.noise_psd_microstrain2_per_hz.as_deref(),
+                tones: s.tones_microstrain.as_deref(),
+            },
+            rate_hz,
+        )?);
+    }
     if recordings.is_empty() {
         return Err(other(
             "measurement",
-            "records nothing; give [measurement.acceleration] or [measurement.support_force] (or both)",
+            "records nothing; give [measurement.acceleration], [measurement.strain] or [measurement.support_force]",
         ));
     }
     let band_tolerance = match raw.band_tolerance {

@@ -186,7 +186,7 @@ pub struct Summary {
 /// The separability of one feature over the candidate grid: a placement map.
 #[derive(Debug, Clone, Serialize)]
 pub struct PlacementMap {
-    /// The quantity ("displacement", "velocity", "acceleration").
+    /// The quantity ("displacement", "velocity", "acceleration", "strain").
     pub quantity: &'static str,
     /// The feature whose best grid value is highest for that quantity.
     pub feature: &'static dyn Feature,

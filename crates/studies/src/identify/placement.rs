@@ -19,6 +19,7 @@ pub fn maps(study: &Study, grid: &[usize], infos: &[ChannelInfo], all: &[Separab
     let nz = study.candidates_z.len();
     Quantity::ALL
         .into_iter()
+        .chain([Quantity::Strain])
         .filter_map(|q| {
             let quantity = quantity_name(q);
             // One channel per grid point, in grid order: a point at a named sensor is its channel.

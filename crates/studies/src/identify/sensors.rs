@@ -55,19 +55,21 @@ pub fn no_channels(set: &str) -> Failure {
     .into()
 }
 
-/// The signals of a run at `sensors`: the scene's window and rate; every quantity and the
-/// corners, or under a measurement chain only what it records (nothing else is computed).
+/// The signals of a run at `sensors`: the scene's window and rate; the three kinematic
+/// quantities and the corners, or under a measurement chain only what it records (its
+/// strain gauges included; nothing else is computed).
 pub fn spec(scene: &Scene, sensors: Vec<(f64, f64)>) -> SignalSpec {
     let settings = &scene.signals;
-    let records =
-        |m: Measurand| scene.measurement.as_ref().is_none_or(|c| c.recordings.iter().any(|r| r.measurand == m));
-    SignalSpec {
-        window: settings.window,
-        rate_hz: settings.rate_hz,
-        sensors,
-        quantities: Quantity::ALL.into_iter().filter(|&q| records(measurand_of(q))).collect(),
-        corners: records(Measurand::SupportForce),
-    }
+    let quantities = match &scene.measurement {
+        None => Quantity::ALL.to_vec(),
+        Some(c) => {
+            let records = |q: Quantity| c.recordings.iter().any(|r| r.measurand == measurand_of(q));
+            Quantity::ALL.into_iter().chain([Quantity::Strain]).filter(|&q| records(q)).collect()
+        }
+    };
+    let corners =
+        scene.measurement.as_ref().is_none_or(|c| c.recordings.iter().any(|r| r.measurand == Measurand::SupportForce));
+    SignalSpec { window: settings.window, rate_hz: settings.rate_hz, sensors, quantities, corners }
 }
 
 /// What a chain records quantity `q` as.
@@ -76,6 +78,7 @@ fn measurand_of(q: Quantity) -> Measurand {
         Quantity::Displacement => Measurand::Displacement,
         Quantity::Velocity => Measurand::Velocity,
         Quantity::Acceleration => Measurand::Acceleration,
+        Quantity::Strain => Measurand::Strain,
     }
 }
 
@@ -90,5 +93,6 @@ pub fn quantity_name(q: Quantity) -> &'static str {
         Quantity::Displacement => "displacement",
         Quantity::Velocity => "velocity",
         Quantity::Acceleration => "acceleration",
+        Quantity::Strain => "strain",
     }
 }

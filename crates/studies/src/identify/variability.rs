@@ -53,6 +53,7 @@ fn reference_instrument(
                     ChannelKind::Displacement { .. } => ChannelKind::Displacement { sensor },
                     ChannelKind::Velocity { .. } => ChannelKind::Velocity { sensor },
                     ChannelKind::Acceleration { .. } => ChannelKind::Acceleration { sensor },
+                    ChannelKind::Strain { .. } => ChannelKind::Strain { sensor },
                     other => other,
                 };
                 reference = Some((moved, feature));
