@@ -3,19 +3,23 @@
 //! estimate of a PSD from samples (the inverse, to check the first).
 //!
 //! Synthesis (the spectral method; Shinozuka & Deodatis, Appl. Mech. Rev. 44 (1991) 191): on
-//! N = 2^⌈log₂ 2n⌉ points at rate f_s, the bins X_k, 0 < k < N/2, are independent complex
-//! Gaussians with E abs(X_k)² = N f_s S(kf_s/N)/2, the Nyquist bin a real Gaussian with
-//! E X² = N f_s S(f_s/2), DC zero, the rest their conjugates; x = IDFT(X) then has
-//! E x² = (f_s/N) Σ_k S(f_k) → ∫₀^{f_s/2} S df, and its periodogram is S on average. The
-//! first n of the N samples are kept: the synthesised process is periodic in N, so taking at
-//! most half of it keeps correlations shorter than n/2 samples exact.
+//! N = 2^⌈log₂ 2n⌉ points at rate f_s, bin k stands for the band of width Δf = f_s/N about
+//! f_k = kΔf, of power P_k = ∫S over it (the first band from 0, the last to f_s/2). The bins
+//! X_k, 0 < k < N/2, are independent complex Gaussians with E abs(X_k)² = N²P_k/2, DC and the
+//! Nyquist bin real Gaussians with E X² = N²P_k, the rest their conjugates; x = IDFT(X)/N
+//! then has E x² = Σ_k P_k = ∫₀^{f_s/2} S df exactly, and its periodogram is S on average
+//! where S varies little over a bin. The power below Δf/2 becomes a random offset of the
+//! window, which is what a background's slow part is within a short window. The first n of
+//! the N samples are kept: the synthesised process is periodic in N, so taking at most half
+//! of it keeps correlations shorter than n/2 samples exact.
 
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use rustfft::num_complex::Complex;
-use rustfft::FftPlanner;
+use rustfft::{Fft, FftPlanner};
 use serde::Serialize;
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 /// A one-sided power spectral density.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -71,13 +75,37 @@ impl Psd {
         }
     }
 
-    /// ∫₀^`band_hz` S df by the trapezoid rule on 4,096 intervals (exact for white and for
-    /// a table's linear pieces up to the breakpoints' positions), unit².
+    /// ∫₀^`band_hz` S df, unit².
     pub fn power(&self, band_hz: f64) -> f64 {
-        let n = 4096;
-        let h = band_hz / n as f64;
-        let inner: f64 = (1..n).map(|k| self.density(k as f64 * h)).sum();
-        h * (inner + 0.5 * (self.density(0.0) + self.density(band_hz)))
+        self.band_power(0.0, band_hz)
+    }
+
+    /// ∫_{f₀}^{f₁} S df (f₀ ≤ f₁), in closed form: white level·(f₁ - f₀); pink level/f_low
+    /// below f_low and level·ln(f₁/f₀) above; a table exactly, piece by linear piece.
+    pub fn band_power(&self, f0: f64, f1: f64) -> f64 {
+        if f1 <= f0 {
+            return 0.0;
+        }
+        match self {
+            Psd::White { level } => level * (f1 - f0),
+            Psd::Pink { level, f_low } => {
+                let flat = (f1.min(*f_low) - f0).max(0.0) * level / f_low;
+                let falling = if f1 > *f_low { level * (f1 / f0.max(*f_low)).ln() } else { 0.0 };
+                flat + falling
+            }
+            Psd::Table { points } => points
+                .windows(2)
+                .map(|w| {
+                    let ((a, sa), (b, sb)) = (w[0], w[1]);
+                    let (lo, hi) = (f0.max(a), f1.min(b));
+                    if hi <= lo {
+                        return 0.0;
+                    }
+                    let at = |f: f64| sa + (sb - sa) * (f - a) / (b - a);
+                    0.5 * (hi - lo) * (at(lo) + at(hi))
+                })
+                .sum(),
+        }
     }
 }
 
@@ -91,25 +119,73 @@ pub struct Tone {
     pub rms: f64,
 }
 
-/// The next `n` samples at `rate_hz` of Gaussian noise of PSD `psd` (module docs), drawn from
-/// `rng`.
-pub fn synthesize(psd: &Psd, n: usize, rate_hz: f64, rng: &mut ChaCha8Rng) -> Vec<f64> {
-    let size = (2 * n.max(1)).next_power_of_two();
-    let mut bins = vec![Complex::new(0.0, 0.0); size];
-    let scale = size as f64 * rate_hz;
-    for k in 1..=size / 2 {
-        let s = psd.density(k as f64 * rate_hz / size as f64);
-        let (a, b): (f64, f64) = (StandardNormal.sample(rng), StandardNormal.sample(rng));
-        if k == size / 2 {
-            bins[k] = Complex::new((scale * s).sqrt() * a, 0.0);
-        } else {
-            let amplitude = (scale * s / 4.0).sqrt();
-            bins[k] = Complex::new(amplitude * a, amplitude * b);
-            bins[size - k] = bins[k].conj();
-        }
+/// Draws windows of `n` samples of Gaussian noise of one PSD at one rate (module docs): the
+/// bins' standard deviations and the inverse FFT's plan, computed once.
+pub struct Synthesizer {
+    n: usize,
+    /// Per bin k = 0..=N/2, the standard deviation of each of X_k's parts, N√(P_k/4) (so
+    /// E abs(X_k)² = N²P_k/2), with P_k the band power of bin k; N√P_k for the real DC and
+    /// Nyquist bins.
+    deviation: Vec<f64>,
+    fft: Arc<dyn Fft<f64>>,
+}
+
+impl std::fmt::Debug for Synthesizer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Synthesizer").field("n", &self.n).field("size", &self.fft.len()).finish()
     }
-    FftPlanner::new().plan_fft_inverse(size).process(&mut bins);
-    bins[..n].iter().map(|c| c.re / size as f64).collect()
+}
+
+impl Synthesizer {
+    /// For `n` samples of `psd` at `rate_hz`.
+    pub fn new(psd: &Psd, n: usize, rate_hz: f64) -> Self {
+        let size = (2 * n.max(1)).next_power_of_two();
+        let df = rate_hz / size as f64;
+        let big_n = size as f64;
+        let deviation = (0..=size / 2)
+            .map(|k| {
+                // Bin k stands for the band [f_k - Δf/2, f_k + Δf/2] cut to [0, f_s/2]: the
+                // power below Δf/2 becomes a random offset of the window (what a slow part
+                // of the background is within it), so the variance is ∫S exactly.
+                let f = k as f64 * df;
+                let p = psd.band_power((f - 0.5 * df).max(0.0), (f + 0.5 * df).min(0.5 * rate_hz));
+                if k == 0 || k == size / 2 {
+                    big_n * p.sqrt()
+                } else {
+                    big_n * (0.25 * p).sqrt()
+                }
+            })
+            .collect();
+        Self { n, deviation, fft: FftPlanner::new().plan_fft_inverse(size) }
+    }
+
+    /// The next window, drawn from `rng`.
+    pub fn draw(&self, rng: &mut ChaCha8Rng) -> Vec<f64> {
+        let size = self.fft.len();
+        let mut bins = vec![Complex::new(0.0, 0.0); size];
+        for (k, d) in self.deviation.iter().enumerate() {
+            let (a, b): (f64, f64) = (StandardNormal.sample(rng), StandardNormal.sample(rng));
+            if k == 0 || k == size / 2 {
+                bins[k] = Complex::new(d * a, 0.0);
+            } else {
+                bins[k] = Complex::new(d * a, d * b);
+                bins[size - k] = bins[k].conj();
+            }
+        }
+        self.fft.process(&mut bins);
+        bins[..self.n].iter().map(|c| c.re / size as f64).collect()
+    }
+
+    /// The samples of a window.
+    pub fn samples(&self) -> usize {
+        self.n
+    }
+}
+
+/// The next `n` samples at `rate_hz` of Gaussian noise of PSD `psd` (module docs), drawn from
+/// `rng` ([`Synthesizer`] once).
+pub fn synthesize(psd: &Psd, n: usize, rate_hz: f64, rng: &mut ChaCha8Rng) -> Vec<f64> {
+    Synthesizer::new(psd, n, rate_hz).draw(rng)
 }
 
 /// Adds `tones` to `x` (sampled at `rate_hz`), each with a phase drawn from `rng`.
