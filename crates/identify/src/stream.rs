@@ -94,6 +94,16 @@ pub struct Lump {
 /// Why a stream cannot be drawn.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StreamError {
+    /// A rate, duration, time or share outside its range.
+    #[error("{field} = {value} is outside {allowed}")]
+    Range {
+        /// What.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// Its allowed range.
+        allowed: &'static str,
+    },
     /// The ensemble has no family of a class the profile asks for.
     #[error("the gangue share reaches {share} but the ensemble has no {class} family")]
     MissingClass {
@@ -106,6 +116,7 @@ pub enum StreamError {
 
 /// The lumps of `spec` with the families, region and speeds of `ensemble`, in arrival order.
 pub fn lumps(ensemble: &Ensemble, spec: &StreamSpec) -> Result<Vec<Lump>, StreamError> {
+    check(spec)?;
     let weights = |class: Class| -> Vec<(usize, f64)> {
         ensemble
             .families
@@ -138,6 +149,39 @@ pub fn lumps(ensemble: &Ensemble, spec: &StreamSpec) -> Result<Vec<Lump>, Stream
         out.push(Lump { time: t, draw });
     }
 }
+
+/// Every number of `spec` in its range: a positive finite rate and duration whose expected
+/// count λT is at most [`MAX_EXPECTED_LUMPS`], finite times, shares in [0, 1].
+fn check(spec: &StreamSpec) -> Result<(), StreamError> {
+    let p = spec.profile;
+    let positive = |field, value: f64| {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(StreamError::Range { field, value, allowed: "(0, ∞)" })
+        }
+    };
+    positive("rate_per_s", spec.rate_per_s)?;
+    positive("duration", spec.duration)?;
+    let count = spec.rate_per_s * spec.duration;
+    if count > MAX_EXPECTED_LUMPS {
+        return Err(StreamError::Range { field: "rate_per_s × duration", value: count, allowed: "[0, 1e7] lumps" });
+    }
+    for (field, value) in [("profile.before", p.before), ("profile.after", p.after)] {
+        if !(0.0..=1.0).contains(&value) {
+            return Err(StreamError::Range { field, value, allowed: "[0, 1]" });
+        }
+    }
+    for (field, value) in [("profile.onset", p.onset), ("profile.ramp", p.ramp)] {
+        if !value.is_finite() || value < 0.0 {
+            return Err(StreamError::Range { field, value, allowed: "[0, ∞)" });
+        }
+    }
+    Ok(())
+}
+
+/// The most lumps a stream may expect (λT): ten million, a day at over 100 a second.
+pub const MAX_EXPECTED_LUMPS: f64 = 1e7;
 
 /// The family whose cumulative weight first exceeds `u` × the total.
 fn pick(weights: &[(usize, f64)], u: f64) -> usize {
@@ -239,8 +283,17 @@ mod tests {
             assert_eq!(lump.draw, e.draw_of(lump.draw.index, lump.draw.family, Held::NONE));
             assert_eq!(lump.draw.class == Class::Gangue, lump.time >= 5.0);
         }
-        let coal_only = Ensemble { families: vec![e.families[0].clone()], ..e };
+        let coal_only = Ensemble { families: vec![e.families[0].clone()], ..e.clone() };
         assert!(matches!(lumps(&coal_only, &spec), Err(StreamError::MissingClass { class: "gangue", .. })));
+        for bad in [
+            StreamSpec { rate_per_s: 0.0, ..spec },
+            StreamSpec { duration: f64::NAN, ..spec },
+            StreamSpec { rate_per_s: 1e9, duration: 1e9, ..spec },
+            StreamSpec { profile: Profile { after: 1.5, ..spec.profile }, ..spec },
+            StreamSpec { profile: Profile { ramp: -1.0, ..spec.profile }, ..spec },
+        ] {
+            assert!(matches!(lumps(&e, &bad), Err(StreamError::Range { .. })), "{bad:?}");
+        }
     }
 
     /// The mean share of a window is the integral of p over it: 0.1 + 0.7 × (fraction of the

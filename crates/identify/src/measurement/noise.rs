@@ -203,8 +203,12 @@ pub fn add_tones(x: &mut [f64], tones: &[Tone], rate_hz: f64, rng: &mut ChaCha8R
 /// Electroacoust. 15 (1967) 70): Hann-windowed segments of `segment` samples overlapping by
 /// half, P_k = c · mean abs(X_k)²/(f_s Σw²) with c = 2 except at DC and Nyquist (c = 1).
 /// Returns (frequencies, densities) of bins 0..=segment/2 and the number of segments
-/// averaged.
+/// averaged (none for a segment of fewer than 2 samples). At DC and Nyquist, where c = 1, a
+/// smooth S is estimated as S/2 (half the Hann window's main lobe lies outside the band).
 pub fn welch(x: &[f64], rate_hz: f64, segment: usize) -> (Vec<f64>, Vec<f64>, usize) {
+    if segment < 2 {
+        return (Vec::new(), Vec::new(), 0);
+    }
     let w: Vec<f64> = (0..segment).map(|k| 0.5 - 0.5 * (2.0 * PI * k as f64 / segment as f64).cos()).collect();
     let norm = rate_hz * w.iter().map(|v| v * v).sum::<f64>();
     let fft = FftPlanner::new().plan_fft_forward(segment);

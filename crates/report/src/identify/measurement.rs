@@ -118,7 +118,9 @@ fn table(summary: &Summary) -> Table {
             "highest mode (Hz)",
             "chain's gain above it",
             "truncation outside the band",
-            "chain's gain above the model's Nyquist (what folds)",
+            "chain's gain above the model's Nyquist",
+            "chain's gain above the ADC's Nyquist (what folds at the ADC)",
+            "realised chain against the analog, largest deviation in the ADC's band",
         ],
     );
     for c in &summary.conditions {
@@ -135,13 +137,17 @@ fn table(summary: &Summary) -> Table {
                         .to_string(),
                 ),
                 Cell::Text(format!("{} ({})", q.channels, q.silent)),
-                Cell::Text(format!("{} / {} / {}", db(q.snr_db.0), db(q.snr_db.1), db(q.snr_db.2))),
+                Cell::Text(
+                    q.snr_db.map_or_else(|| "-".into(), |(a, b, c)| format!("{} / {} / {}", db(a), db(b), db(c))),
+                ),
                 Cell::Text(best),
                 Cell::Text(sig(m.clipped_share, 2)),
                 Cell::Text(sig(m.highest_mode_hz, 4)),
                 Cell::Text(sig(m.gain_above_highest_mode, 2)),
                 Cell::Text(if m.truncation_outside_band { "yes".into() } else { "no: raise signals.modes".into() }),
                 Cell::Text(sig(m.gain_above_model_nyquist, 2)),
+                Cell::Text(sig(m.gain_above_adc_nyquist, 2)),
+                Cell::Text(sig(m.realisation_error, 2)),
             ]);
         }
     }

@@ -77,7 +77,7 @@ pub(super) fn sections() -> Vec<Section> {
             about: "The measurement chain of the identification (\"identify\" only): each recorded channel of the reduced model passes the sensor's band, the anti-aliasing filter, the ADC's sampler, a seeded background and the ADC, and every feature is computed on what comes out. Velocity and deflection are not recorded under a chain; strain gauges are (`[measurement.strain]`). The filters act on the model's samples as their bilinear images, so every filter frequency must lie below 0.45 × `signals.rate_hz`.".into(),
             keys: vec![
                 num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, REQUIRED, "The ADC's sample rate: `signals.rate_hz` divided by a whole number"),
-                key("seed", "whole number", NO_UNIT, "0 to 2^64 - 1", DEFAULT_SEED.to_string(), "Seed of the backgrounds (each impact's window its own stream)"),
+                key("seed", "whole number", NO_UNIT, "0 to 2^63 - 1 (a TOML integer)", DEFAULT_SEED.to_string(), "Seed of the backgrounds (each impact's window its own stream)"),
                 num("band_tolerance", NO_UNIT, BAND_TOLERANCE, compact(DEFAULT_BAND_TOLERANCE), "The chain's gain below which a frequency is outside its band: the report checks that the modes the model leaves out lie there"),
                 key("sensor", TABLE, NO_UNIT, "see `[measurement.sensor]`", "an ideal sensor", "The sensor's own band"),
                 key("anti_alias", TABLE, NO_UNIT, "see `[measurement.anti_alias]`", "none", "The anti-aliasing filter"),

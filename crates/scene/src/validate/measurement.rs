@@ -126,7 +126,7 @@ struct Keys<'a> {
     tones: Option<&'a [Vec<f64>]>,
 }
 
-/// ADC full scales, in the file's unit (m/s² or kN): 1e-9 to 1e9.
+/// ADC full scales, in the file's unit (m/s², microstrain or kN): 1e-9 to 1e9.
 pub(crate) const ADC_RANGE: Range = Range::closed(1e-9, 1e9);
 /// ADC bits: 1 to 32 (a DAQ's are 12 to 24).
 pub(crate) const ADC_BITS: Range = Range::closed(1.0, 32.0);
@@ -144,105 +144,24 @@ pub(crate) const DEFAULT_SEED: u64 = 1;
 /// below a 16-bit ADC's step at a tenth of its range.
 pub(crate) const DEFAULT_BAND_TOLERANCE: f64 = 1e-3;
 
-/// `[measurement]` on signals sampled at `model_rate_hz` (signals.rate_hz).
-pub(crate) fn validate_measurement(raw: &RawMeasurement, model_rate_hz: f64) -> Result<ChainSpec, Invalid> {
+/// `[measurement]` on signals of `model_samples` samples a window at `model_rate_hz`
+/// (`[signals]`).
+pub(crate) fn validate_measurement(
+    raw: &RawMeasurement,
+    model_rate_hz: f64,
+    model_samples: f64,
+) -> Result<ChainSpec, Invalid> {
     let rate_hz = check("measurement.rate_hz", raw.rate_hz, limits::SAMPLE_RATE_HZ, "Hz")?;
-    let nyquist = Range::open(0.0, 0.5 * rate_hz);
-    let sensor = match &raw.sensor {
-        None => SensorBand { resonance: None, high_pass_hz: None },
-        Some(s) => SensorBand {
-            resonance: match (s.resonance_hz, s.resonance_damping) {
-                (None, None) => None,
-                (Some(f), Some(z)) => Some((
-                    check("measurement.sensor.resonance_hz", f, Range::open(0.0, 1e7), "Hz")?,
-                    check("measurement.sensor.resonance_damping", z, RESONANCE_DAMPING, "")?,
-                )),
-                _ => {
-                    return Err(other(
-                        "measurement.sensor",
-                        "gives one of resonance_hz and resonance_damping; a mounted resonance needs both",
-                    ))
-                }
-            },
-            high_pass_hz: s
-                .high_pass_hz
-                .map(|f| check("measurement.sensor.high_pass_hz", f, Range::open(0.0, 1e7), "Hz"))
-                .transpose()?,
-        },
-    };
+    let sensor =
+        raw.sensor.as_ref().map(sensor_band).transpose()?.unwrap_or(SensorBand { resonance: None, high_pass_hz: None });
     let anti_alias = match &raw.anti_alias {
         None => None,
         Some(a) => Some(AntiAlias {
             order: count("measurement.anti_alias.order", a.order, Range::closed(1.0, MAX_FILTER_ORDER as f64))?,
-            corner_hz: check("measurement.anti_alias.corner_hz", a.corner_hz, nyquist, "Hz")?,
+            corner_hz: check("measurement.anti_alias.corner_hz", a.corner_hz, Range::open(0.0, 0.5 * rate_hz), "Hz")?,
         }),
     };
-    let mut recordings = Vec::new();
-    if let Some(a) = &raw.acceleration {
-        recordings.push(recording(
-            Measurand::Acceleration,
-            Keys {
-                table: "measurement.acceleration",
-                names: ["adc_range_m_s2", "noise_rms_m_s2", "noise_psd_m2_s4_per_hz", "tones_m_s2"],
-                scale: 1.0,
-                range: a.adc_range_m_s2,
-                bits: a.adc_bits,
-                noise: a.noise.as_deref(),
-                rms: a.noise_rms_m_s2,
-                flat_below: a.pink_flat_below_hz,
-                psd: a.noise_psd_m2_s4_per_hz.as_deref(),
-                tones: a.tones_m_s2.as_deref(),
-            },
-            rate_hz,
-        )?);
-    }
-    if let Some(f) = &raw.support_force {
-        recordings.push(recording(
-            Measurand::SupportForce,
-            Keys {
-                table: "measurement.support_force",
-                names: ["adc_range_kn", "noise_rms_kn", "noise_psd_kn2_per_hz", "tones_kn"],
-                scale: 1e3,
-                range: f.adc_range_kn,
-                bits: f.adc_bits,
-                noise: f.noise.as_deref(),
-                rms: f.noise_rms_kn,
-                flat_below: f.pink_flat_below_hz,
-                psd: f.noise_psd_kn2_per_hz.as_deref(),
-                tones: f.tones_kn.as_deref(),
-            },
-            rate_hz,
-        )?);
-    }
-    if let Some(s) = &raw.strain {
-        recordings.push(recording(
-            Measurand::Strain,
-            Keys {
-                table: "measurement.strain",
-                names: [
-                    "adc_range_microstrain",
-                    "noise_rms_microstrain",
-                    "noise_psd_microstrain2_per_hz",
-                    "tones_microstrain",
-                ],
-                scale: 1e-6,
-                range: s.adc_range_microstrain,
-                bits: s.adc_bits,
-                noise: s.noise.as_deref(),
-                rms: s.noise_rms_microstrain,
-                flat_below: s.pink_flat_below_hz,
-                psd: s.noise_psd_microstrain2_per_hz.as_deref(),
-                tones: s.tones_microstrain.as_deref(),
-            },
-            rate_hz,
-        )?);
-    }
-    if recordings.is_empty() {
-        return Err(other(
-            "measurement",
-            "records nothing; give [measurement.acceleration], [measurement.strain] or [measurement.support_force]",
-        ));
-    }
+    let recordings = recordings(raw, rate_hz)?;
     let band_tolerance = match raw.band_tolerance {
         Some(t) => check("measurement.band_tolerance", t, BAND_TOLERANCE, "")?,
         None => DEFAULT_BAND_TOLERANCE,
@@ -250,8 +169,101 @@ pub(crate) fn validate_measurement(raw: &RawMeasurement, model_rate_hz: f64) -> 
     let spec =
         ChainSpec { sensor, anti_alias, rate_hz, recordings, seed: raw.seed.unwrap_or(DEFAULT_SEED), band_tolerance };
     // The rates and the filters' realisability on the model's samples, before any work.
-    Chain::new(spec.clone(), model_rate_hz).map_err(|e| other("measurement", e.to_string()))?;
+    let chain = Chain::new(spec.clone(), model_rate_hz).map_err(|e| other("measurement", e.to_string()))?;
+    let adc_samples = chain.samples(model_samples.ceil() as usize);
+    if (adc_samples as f64) < limits::MIN_SAMPLES {
+        return Err(other(
+            "measurement.rate_hz",
+            format!(
+                "{} Hz leaves {adc_samples} samples of the window; the features need at least {} (raise the rate or lengthen signals.window_ms)",
+                compact(rate_hz),
+                limits::MIN_SAMPLES
+            ),
+        ));
+    }
     Ok(spec)
+}
+
+/// `[measurement.sensor]`: both resonance keys or neither, and the AC coupling.
+fn sensor_band(s: &RawSensor) -> Result<SensorBand, Invalid> {
+    let resonance = match (s.resonance_hz, s.resonance_damping) {
+        (None, None) => None,
+        (Some(f), Some(z)) => Some((
+            check("measurement.sensor.resonance_hz", f, Range::open(0.0, 1e7), "Hz")?,
+            check("measurement.sensor.resonance_damping", z, RESONANCE_DAMPING, "")?,
+        )),
+        _ => {
+            return Err(other(
+                "measurement.sensor",
+                "gives one of resonance_hz and resonance_damping; a mounted resonance needs both",
+            ))
+        }
+    };
+    let high_pass_hz =
+        s.high_pass_hz.map(|f| check("measurement.sensor.high_pass_hz", f, Range::open(0.0, 1e7), "Hz")).transpose()?;
+    Ok(SensorBand { resonance, high_pass_hz })
+}
+
+/// The recorded measurands' tables, each with its unit's keys; at least one.
+fn recordings(raw: &RawMeasurement, rate_hz: f64) -> Result<Vec<Recording>, Invalid> {
+    let mut out = Vec::new();
+    if let Some(a) = &raw.acceleration {
+        let keys = Keys {
+            table: "measurement.acceleration",
+            names: ["adc_range_m_s2", "noise_rms_m_s2", "noise_psd_m2_s4_per_hz", "tones_m_s2"],
+            scale: 1.0,
+            range: a.adc_range_m_s2,
+            bits: a.adc_bits,
+            noise: a.noise.as_deref(),
+            rms: a.noise_rms_m_s2,
+            flat_below: a.pink_flat_below_hz,
+            psd: a.noise_psd_m2_s4_per_hz.as_deref(),
+            tones: a.tones_m_s2.as_deref(),
+        };
+        out.push(recording(Measurand::Acceleration, keys, rate_hz)?);
+    }
+    if let Some(s) = &raw.strain {
+        let keys = Keys {
+            table: "measurement.strain",
+            names: [
+                "adc_range_microstrain",
+                "noise_rms_microstrain",
+                "noise_psd_microstrain2_per_hz",
+                "tones_microstrain",
+            ],
+            scale: 1e-6,
+            range: s.adc_range_microstrain,
+            bits: s.adc_bits,
+            noise: s.noise.as_deref(),
+            rms: s.noise_rms_microstrain,
+            flat_below: s.pink_flat_below_hz,
+            psd: s.noise_psd_microstrain2_per_hz.as_deref(),
+            tones: s.tones_microstrain.as_deref(),
+        };
+        out.push(recording(Measurand::Strain, keys, rate_hz)?);
+    }
+    if let Some(f) = &raw.support_force {
+        let keys = Keys {
+            table: "measurement.support_force",
+            names: ["adc_range_kn", "noise_rms_kn", "noise_psd_kn2_per_hz", "tones_kn"],
+            scale: 1e3,
+            range: f.adc_range_kn,
+            bits: f.adc_bits,
+            noise: f.noise.as_deref(),
+            rms: f.noise_rms_kn,
+            flat_below: f.pink_flat_below_hz,
+            psd: f.noise_psd_kn2_per_hz.as_deref(),
+            tones: f.tones_kn.as_deref(),
+        };
+        out.push(recording(Measurand::SupportForce, keys, rate_hz)?);
+    }
+    if out.is_empty() {
+        return Err(other(
+            "measurement",
+            "records nothing; give [measurement.acceleration], [measurement.strain] or [measurement.support_force]",
+        ));
+    }
+    Ok(out)
 }
 
 /// One measurand's ADC and background from its keys.

@@ -133,7 +133,9 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let signals = validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?;
     let measurement = match (&raw.measurement, analyses.contains(&Analysis::Identify)) {
         (None, _) => None,
-        (Some(m), true) => Some(measurement::validate_measurement(m, signals.rate_hz)?),
+        (Some(m), true) => {
+            Some(measurement::validate_measurement(m, signals.rate_hz, signals.window * signals.rate_hz)?)
+        }
         (Some(_), false) => {
             return Err(other(
                 "measurement",

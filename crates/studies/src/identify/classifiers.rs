@@ -54,13 +54,14 @@ pub fn groups(
         ));
     }
     if named > 0 {
+        let channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect();
         groups.push((
             format!(
                 "every named sensor and corner channel ({} channels) × {} features",
-                named * 3 + corners.len(),
+                channels.len(),
                 FEATURES.len()
             ),
-            (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect(),
+            channels,
         ));
     }
     groups

@@ -1,7 +1,8 @@
 //! What the measurement chain does to an identification run: the signal-to-noise ratio of
 //! every recorded quantity, the ADC's clipping, whether the reduced model's truncation lies
-//! outside the chain's band, and a sweep of the background's level, from none to 30 times the
-//! stated one, that shows at which SNR the separation survives.
+//! outside the chain's band, how much folds at the ADC, and a sweep of the background's
+//! level (none, as stated, and scaled to SNRs of 40 to 0 dB) that shows at which SNR the
+//! separation survives.
 //!
 //! The SNR of a channel is 20 log₁₀(median coal peak / σ) (`identify::measurement`): coal is
 //! the weaker class, so this is the ratio a detector of the weaker impacts works at.
@@ -33,8 +34,8 @@ pub struct QuantitySnr {
     pub unit: &'static str,
     /// σ of the background, its tones and the ADC's step, in the unit.
     pub noise_rms: f64,
-    /// The lowest, median and highest channel SNR, dB.
-    pub snr_db: (f64, f64, f64),
+    /// The lowest, median and highest channel SNR, dB (None if every channel is silent).
+    pub snr_db: Option<(f64, f64, f64)>,
     /// The channels with a signal.
     pub channels: usize,
     /// The channels without one (a median coal peak of 0: on a held edge or corner).
@@ -65,8 +66,15 @@ pub struct ChainSummary {
     pub highest_mode_hz: f64,
     /// The chain's largest gain at or above it: what the truncated modes could pass.
     pub gain_above_highest_mode: f64,
-    /// The chain's largest gain at or above the model's Nyquist frequency: what could fold.
+    /// The chain's largest gain at or above the model's Nyquist frequency: what of the
+    /// model's response above it could fold into its samples.
     pub gain_above_model_nyquist: f64,
+    /// The chain's largest gain at or above the ADC's Nyquist frequency: what folds into the
+    /// ADC's band when every m-th sample is kept.
+    pub gain_above_adc_nyquist: f64,
+    /// The largest relative deviation of the realised (bilinear) chain from the analog one
+    /// over the ADC's band.
+    pub realisation_error: f64,
     /// Whether the truncation lies outside the chain's band (the gain above the highest
     /// mode is at most the band tolerance).
     pub truncation_outside_band: bool,
@@ -113,20 +121,20 @@ pub fn summarise(
     let snr = spec
         .recordings
         .iter()
-        .filter_map(|rec| {
+        .map(|rec| {
             let of_quantity: Vec<usize> =
                 (0..main.channels.len()).filter(|&c| measurand(main.channels[c]) == rec.measurand).collect();
             let mut values: Vec<f64> = of_quantity.iter().filter_map(|&c| channel_snr(main, c, chain)).collect();
             values.sort_by(f64::total_cmp);
-            let (first, last) = (*values.first()?, *values.last()?);
-            Some(QuantitySnr {
+            let range = values.first().zip(values.last()).map(|(a, b)| (*a, values[values.len() / 2], *b));
+            QuantitySnr {
                 quantity: rec.measurand.key(),
                 unit: rec.measurand.unit(),
                 noise_rms: rec.noise_rms(spec.rate_hz),
-                snr_db: (first, values[values.len() / 2], last),
+                snr_db: range,
                 channels: values.len(),
                 silent: of_quantity.len() - values.len(),
-            })
+            }
         })
         .collect();
     let samples = main.validity.impacts * main.channels.len() * chain.samples(instrument.model_samples());
@@ -136,6 +144,8 @@ pub fn summarise(
         highest_mode_hz: highest,
         gain_above_highest_mode: gain_above,
         gain_above_model_nyquist: chain.gain_above(0.5 * spec.rate_hz * chain.decimation() as f64),
+        gain_above_adc_nyquist: chain.gain_above(0.5 * spec.rate_hz),
+        realisation_error: chain.realisation_error(),
         truncation_outside_band: gain_above <= spec.band_tolerance,
         clipped_share: main.clipped as f64 / samples.max(1) as f64,
         snr,
@@ -215,6 +225,25 @@ pub fn sweep(
         });
     }
     Ok(out)
+}
+
+/// The chain's part of a support set's result (None without a chain): the summary of the
+/// `main` run of `instrument`, whose best feature is on channel `best_channel`, with the
+/// background sweep on `main_run`'s model.
+#[allow(clippy::too_many_arguments)]
+pub fn of_set(
+    scene: &Scene,
+    study: &Study,
+    set: &SupportSet,
+    instrument: &Instrument<'_>,
+    main: &ConditionRun,
+    main_run: &MainRun<'_>,
+    best_channel: Option<usize>,
+    seed: u64,
+    progress: &dyn Progress,
+) -> Result<Option<ChainSummary>, Failure> {
+    let Some(summary) = summarise(instrument, main, best_channel) else { return Ok(None) };
+    Ok(Some(ChainSummary { sweep: sweep(scene, study, set, main_run, seed, progress)?, ..summary }))
 }
 
 /// `v` to three significant digits, for a progress label.

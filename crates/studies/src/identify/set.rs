@@ -62,12 +62,8 @@ pub(super) fn run_set(
     let classifiers = classifiers::accuracies(&main, &half, groups, seed)?;
     let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
     let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
-    let measurement = match measured::summarise(&instrument, &main, best(&sep.all, &[]).map(|s| s.channel)) {
-        None => None,
-        Some(m) => {
-            Some(measured::ChainSummary { sweep: measured::sweep(scene, study, set, &main_run, seed, progress)?, ..m })
-        }
-    };
+    let top = best(&sep.all, &[]).map(|s| s.channel);
+    let measurement = measured::of_set(scene, study, set, &instrument, &main, &main_run, top, seed, progress)?;
     let (fc, fg) = split(&main.force_max, main.table.classes());
     let detail = ConditionDetail {
         maps: placement::maps(study, &grid, &infos, &sep.all),
