@@ -120,7 +120,7 @@ fn table(summary: &Summary) -> Table {
             "truncation outside the band",
             "chain's gain above the model's Nyquist",
             "chain's gain above the ADC's Nyquist (what folds at the ADC)",
-            "realised chain against the analog, largest deviation in the ADC's band",
+            "realised chain against the analog: largest gain deviation in the ADC's band, over the passband gain",
         ],
     );
     for c in &summary.conditions {

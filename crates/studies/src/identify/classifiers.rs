@@ -16,10 +16,11 @@ pub type Group = (String, Vec<usize>);
 /// Every channel of the sensor that recorded `s`, described as `what` the sensor is.
 fn sensor_group(infos: &[ChannelInfo], s: &Separability, what: &str) -> Group {
     let sensor = infos[s.channel].sensor;
-    let chans = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
+    let chans: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor == sensor).collect();
     (
         format!(
-            "{what} 3 quantities × {} features, at ({}, {}) mm",
+            "{what} {} quantities × {} features, at ({}, {}) mm",
+            chans.len(),
             FEATURES.len(),
             mm(infos[s.channel].at.0),
             mm(infos[s.channel].at.1)

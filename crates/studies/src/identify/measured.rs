@@ -72,8 +72,8 @@ pub struct ChainSummary {
     /// The chain's largest gain at or above the ADC's Nyquist frequency: what folds into the
     /// ADC's band when every m-th sample is kept.
     pub gain_above_adc_nyquist: f64,
-    /// The largest relative deviation of the realised (bilinear) chain from the analog one
-    /// over the ADC's band.
+    /// The largest deviation of the realised (bilinear) chain's gain from the analog one over
+    /// the ADC's band, as a share of the analog chain's largest gain there.
     pub realisation_error: f64,
     /// Whether the truncation lies outside the chain's band (the gain above the highest
     /// mode is at most the band tolerance).
