@@ -169,10 +169,10 @@ impl<'a> Instrument<'a> {
         })
     }
 
-    /// The same instrument with its chain's background scaled by `scale` (1: as the scene
-    /// states it; 0: none, the ADC's quantisation alone).
-    pub fn with_noise_scale(self, scale: f64) -> Self {
-        Self { noise_scale: scale, ..self }
+    /// Scales its chain's background by `scale` from now on (1: as the scene states it; 0:
+    /// none, the ADC's quantisation alone).
+    pub fn set_noise_scale(&mut self, scale: f64) {
+        self.noise_scale = scale;
     }
 
     /// The model's samples of one window (before the chain's sampler).

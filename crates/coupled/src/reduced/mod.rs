@@ -311,22 +311,16 @@ impl ReducedModel {
         let mesh = self.model.mesh();
         let loc = mesh.locate(x, z)?;
         let (dofs, shape) = shape_at(mesh, x, z)?;
-        let n = self.omega.len();
-        let mut phi = vec![0.0; n];
-        for k in 0..16 {
-            let row = &self.phi[dofs[k] * n..(dofs[k] + 1) * n];
-            let s = shape[k];
-            for (p, r) in phi.iter_mut().zip(row) {
-                *p += s * r;
-            }
-        }
+        // φᵢ(p) is the point functional of the shape functions on the modes.
+        let phi = self.functional_modes(&dofs, &shape);
         let e = loc.ez * mesh.nx() + loc.ex;
         let c_res = self.residual.quadratic(e, &shape).max(0.0);
         let m_res = self.residual.mass_quadratic(e, &shape).max(0.0);
         Ok(Point { dofs, shape, phi, c_res, m_res })
     }
 
-    /// A point functional on the modes, ℓ(φᵢ) = Σ_k values_k φᵢ[dofs_k], for every mode.
+    /// A point functional on the modes, ℓ(φᵢ) = Σ_k values_k φᵢ[dofs_k], for every mode: the
+    /// deflection's (values the shape functions) or a strain gauge's.
     fn functional_modes(&self, dofs: &[usize; 16], values: &plate_fem::element::Vec16) -> Vec<f64> {
         let n = self.omega.len();
         let mut out = vec![0.0; n];

@@ -53,15 +53,6 @@ pub enum Measurand {
 }
 
 impl Measurand {
-    /// Every measurand.
-    pub const ALL: [Measurand; 5] = [
-        Measurand::Acceleration,
-        Measurand::Velocity,
-        Measurand::Displacement,
-        Measurand::SupportForce,
-        Measurand::Strain,
-    ];
-
     /// Its key in scene files and columns.
     pub fn key(self) -> &'static str {
         match self {
@@ -193,7 +184,7 @@ pub enum ChainError {
 }
 
 /// A chain ready to run on one model rate.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct Chain {
     spec: ChainSpec,
     cascade: Cascade,
@@ -201,17 +192,6 @@ pub struct Chain {
     /// Each recording's background synthesizer for the window length first measured (its
     /// FFT plan and bin deviations; a window of another length draws through a new one).
     synthesizers: OnceLock<(usize, Vec<Option<Synthesizer>>)>,
-}
-
-impl Clone for Chain {
-    fn clone(&self) -> Self {
-        Self {
-            spec: self.spec.clone(),
-            cascade: self.cascade.clone(),
-            decimation: self.decimation,
-            synthesizers: OnceLock::new(),
-        }
-    }
 }
 
 impl Chain {
@@ -308,8 +288,8 @@ impl Chain {
                     self.spec.recordings.iter().map(|r| r.background.as_ref().map(|p| Synthesizer::new(p, n, rate)));
                 (n, built.collect())
             });
-            let index = self.spec.recordings.iter().position(|r| std::ptr::eq(r, rec)).unwrap_or(0);
-            let noise = match all.get(index) {
+            let index = self.spec.recordings.iter().position(|r| r.measurand == measurand);
+            let noise = match index.and_then(|i| all.get(i)) {
                 Some(Some(s)) if *len == n => s.draw(rng),
                 _ => noise::synthesize(psd, n, rate, rng),
             };

@@ -121,6 +121,7 @@ pub struct Tone {
 
 /// Draws windows of `n` samples of Gaussian noise of one PSD at one rate (module docs): the
 /// bins' standard deviations and the inverse FFT's plan, computed once.
+#[derive(Clone)]
 pub struct Synthesizer {
     n: usize,
     /// Per bin k = 0..=N/2, the standard deviation of each of X_k's parts, N√(P_k/4) (so

@@ -69,21 +69,17 @@ fn shown_unit(m: Measurand) -> &'static str {
 /// One recording's ADC and background in words.
 fn recording(r: &Recording, rate_hz: f64) -> String {
     let unit = shown_unit(r.measurand);
+    let rms = |p: &Psd| sig(p.power(rate_hz / 2.0).sqrt(), 3);
     let background = match &r.background {
         None => "no stationary background".to_string(),
-        Some(Psd::White { .. }) => format!(
-            "white noise of rms {} {unit}",
-            sig(r.background.as_ref().map_or(0.0, |p| p.power(rate_hz / 2.0)).sqrt(), 3)
-        ),
-        Some(Psd::Pink { f_low, .. }) => format!(
-            "pink noise (1/f, flat below {} Hz) of rms {} {unit}",
-            sig(*f_low, 3),
-            sig(r.background.as_ref().map_or(0.0, |p| p.power(rate_hz / 2.0)).sqrt(), 3)
-        ),
+        Some(p @ Psd::White { .. }) => format!("white noise of rms {} {unit}", rms(p)),
+        Some(p @ Psd::Pink { f_low, .. }) => {
+            format!("pink noise (1/f, flat below {} Hz) of rms {} {unit}", sig(*f_low, 3), rms(p))
+        }
         Some(p @ Psd::Table { points }) => format!(
             "a measured PSD of {} points, rms {} {unit} over 0 to {} Hz",
             points.len(),
-            sig(p.power(rate_hz / 2.0).sqrt(), 3),
+            rms(p),
             sig(rate_hz / 2.0, 3)
         ),
     };

@@ -177,14 +177,13 @@ pub fn sweep(
     if named.is_empty() || !stated_background {
         return Ok(Vec::new());
     }
-    let instrument = |scale: f64| -> Result<Instrument<'_>, Failure> {
-        Ok(Instrument::new(main_run.model, &scene.plate, &spec(scene, named.clone()), scene)?.with_noise_scale(scale))
-    };
-    let base = instrument(1.0)?;
-    let chain = base.chain().ok_or("the sweep needs a measurement chain")?;
-    let infos = channel_infos(&base, &named, &scene.plate);
-    let stated = run(study, Held::NONE, &base, &set.name, "background as stated", progress, |_| Ok(()))?;
+    // One instrument (its probes and the model's factorization once), its background rescaled
+    // between the levels.
+    let mut instrument = Instrument::new(main_run.model, &scene.plate, &spec(scene, named.clone()), scene)?;
+    let infos = channel_infos(&instrument, &named, &scene.plate);
+    let stated = run(study, Held::NONE, &instrument, &set.name, "background as stated", progress, |_| Ok(()))?;
     let Some(tracked) = best(&separabilities(&stated.table), &[]) else { return Ok(Vec::new()) };
+    let chain = instrument.chain().ok_or("the sweep needs a measurement chain")?;
     let Some(rec) = chain.recording(measurand(stated.channels[tracked.channel])) else { return Ok(Vec::new()) };
     let peaks = stated.clean_peaks(tracked.channel);
     let classes = stated.table.classes();
@@ -204,11 +203,14 @@ pub fn sweep(
     scales.sort_by(f64::total_cmp);
     let mut out = Vec::with_capacity(scales.len());
     for (k, &scale) in scales.iter().enumerate() {
+        let rescaled;
         let r = if scale == 1.0 {
-            stated.clone()
+            &stated
         } else {
+            instrument.set_noise_scale(scale);
             let label = format!("background × {}", sig3(scale));
-            run(study, Held::NONE, &instrument(scale)?, &set.name, &label, progress, |_| Ok(()))?
+            rescaled = run(study, Held::NONE, &instrument, &set.name, &label, progress, |_| Ok(()))?;
+            &rescaled
         };
         let s = seed ^ (400 + k as u64);
         let score = |c: usize, f: &'static dyn Feature| {
