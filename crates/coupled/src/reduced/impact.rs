@@ -192,14 +192,14 @@ struct Extended {
 }
 
 /// A field's value at the struck point, Σ N_k(p) f_k over the struck element.
-fn at_point(pt: &Point, f: &[f64]) -> f64 {
+pub(super) fn at_point(pt: &Point, f: &[f64]) -> f64 {
     (0..16).map(|k| pt.shape[k] * f[pt.dofs[k]]).sum()
 }
 
 /// Channel `r` at the struck point, y = A·q + B·q̇ + D P on the (extended) modes (free of
 /// force, D P drops out): with the residual mode, the channel's residual functionals on ψ̂
 /// extend A and B; with the static correction, ℓ_d(R N) joins D (a displacement, no rate).
-fn channel_row(
+pub(super) fn channel_row(
     r: &ChannelRows,
     pt: &Point,
     field_at_p: &[f64],

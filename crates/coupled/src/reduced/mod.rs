@@ -55,6 +55,7 @@ mod corners;
 mod impact;
 pub mod plan;
 pub mod signals;
+pub mod stream;
 pub mod target;
 pub mod window;
 

@@ -42,6 +42,7 @@ pub use contact::{contact_force, contact_force_after, Striker, HERTZ_TIME};
 pub use estimate::{
     choose, choose_on, estimate, Budget, Discretisation, Estimated, Ladder, Quantities, DEFAULT_TOLERANCE,
 };
+pub(crate) use integrate::approach_velocity;
 pub use integrate::{simulate, simulate_with};
 pub use law::thornton::thornton_restitution;
 pub use law::{ContactLaw, ContactState, Law, LawKind};
