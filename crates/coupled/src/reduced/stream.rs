@@ -187,6 +187,7 @@ struct Run<'a> {
     joint_steps: usize,
     unconverged_steps: usize,
     cross_residual_bound: f64,
+    scratch: Scratch,
 }
 
 impl<'a> Run<'a> {
@@ -212,6 +213,7 @@ impl<'a> Run<'a> {
             joint_steps: 0,
             unconverged_steps: 0,
             cross_residual_bound: 0.0,
+            scratch: Scratch::default(),
         }
     }
 
@@ -289,7 +291,9 @@ impl<'a> Run<'a> {
         let maps = self.maps.entry(every).or_insert_with(|| step_maps(model, probes, every));
         let g = flexibility(&self.active, &maps.h);
         for _ in 0..every {
-            step(&mut self.active, &mut self.q, &mut self.v, maps, &g, &mut self.unconverged_steps);
+            if !step(&mut self.active, &mut self.q, &mut self.v, maps, &g, &mut self.scratch) {
+                self.unconverged_steps += 1;
+            }
             let in_contact: Vec<usize> = (0..self.active.len()).filter(|&j| self.active[j].force > 0.0).collect();
             if in_contact.len() > 1 {
                 self.joint_steps += 1;
@@ -386,105 +390,130 @@ fn flexibility(active: &[Active], h: &[f64]) -> Vec<f64> {
     g
 }
 
+/// The per-step work arrays, kept between steps.
+#[derive(Default)]
+struct Scratch {
+    /// Σⱼφᵢ(pⱼ)Pⱼ at the step's start, then at its end.
+    force: Vec<f64>,
+    qh: Vec<f64>,
+    vh: Vec<f64>,
+    /// Per lump: d₀, d₁, r₀, r₁, û, v̂ (module docs of [`step`]).
+    free: Vec<[f64; 6]>,
+    forces: Vec<f64>,
+    approach: Vec<f64>,
+}
+
+impl Scratch {
+    /// Σⱼφᵢ(pⱼ)Pⱼ into `force` with the forces `p`.
+    fn modal_force(&mut self, active: &[Active], p: impl Fn(usize, &Active) -> f64) {
+        self.force.iter_mut().for_each(|f| *f = 0.0);
+        for (j, l) in active.iter().enumerate() {
+            let pj = p(j, l);
+            if pj != 0.0 {
+                for (fi, phi) in self.force.iter_mut().zip(&l.phi) {
+                    *fi += phi * pj;
+                }
+            }
+        }
+    }
+}
+
 /// One contact step of every lump followed (module docs): the modes predicted from the
 /// step's start (exactly if no force acts then, else by Newmark's rule with the start
 /// forces), the step-end forces solved together, then modes, spheres and static corrections
-/// committed. Newmark's rule for a sphere: û = u + Δt u̇ + Δt²/4 (ü + g), v̂ = u̇ + Δt/2 (ü + g).
-fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g: &[f64], unconverged: &mut usize) {
+/// committed. Newmark's rule for a sphere: û = u + Δt u̇ + Δt²/4 ü, v̂ = u̇ + Δt/2 ü, plus
+/// gravity's Δt²/4 g and Δt/2 g; per lump the force-free compression d₀ and rate r₀ at the
+/// step end and its own flexibilities d₁, r₁ (the sphere's and the plate's).
+fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g: &[f64], w: &mut Scratch) -> bool {
     let (dt, n, k) = (maps.dt, q.len(), active.len());
     let c1 = 2.0 / dt;
     let free_start = active.iter().all(|l| l.force == 0.0);
     let [m0, m1, m2, m3] = if free_start { maps.exact.entries() } else { maps.newmark.entries() };
-    let force_on_modes = |active: &[Active]| {
-        let mut f = vec![0.0; n];
-        for l in active.iter().filter(|l| l.force != 0.0) {
-            for (fi, p) in f.iter_mut().zip(&l.phi) {
-                *fi += p * l.force;
-            }
-        }
-        f
-    };
-    let fs = force_on_modes(active);
-    let (mut qh, mut vh) = (vec![0.0; n], vec![0.0; n]);
+    w.force.resize(n, 0.0);
+    w.qh.resize(n, 0.0);
+    w.vh.resize(n, 0.0);
+    w.modal_force(active, |_, l| l.force);
     for i in 0..n {
-        qh[i] = m0[i] * q[i] + m1[i] * v[i] + maps.h[i] * fs[i];
-        vh[i] = m2[i] * q[i] + m3[i] * v[i] + c1 * maps.h[i] * fs[i];
+        let hf = maps.h[i] * w.force[i];
+        w.qh[i] = m0[i] * q[i] + m1[i] * v[i] + hf;
+        w.vh[i] = m2[i] * q[i] + m3[i] * v[i] + c1 * hf;
     }
-    // Per lump: the force-free compression d₀ and rate r₀ at the step end, and its own
-    // flexibilities d₁, r₁ (the sphere's and the plate's).
-    let free: Vec<[f64; 6]> = active
-        .iter()
-        .enumerate()
-        .map(|(j, l)| {
-            let s = &l.striker;
-            let (mut u_hat, mut v_hat) = (l.u + dt * l.v + 0.25 * dt * dt * l.a, l.v + 0.5 * dt * l.a);
-            if s.gravity != 0.0 {
-                u_hat += 0.25 * dt * dt * s.gravity;
-                v_hat += 0.5 * dt * s.gravity;
-            }
-            let (wp, vp) = (dot(&l.phi, &qh), dot(&l.phi, &vh) + l.res_vh);
-            let gjj = g[j * k + j];
-            [u_hat - wp, 0.25 * dt * dt / s.mass + gjj, v_hat - vp, 0.5 * dt / s.mass + c1 * gjj, u_hat, v_hat]
-        })
-        .collect();
-    let (forces, approach) = solve(active, &free, g, c1, unconverged);
-    let fe = {
-        let mut f = vec![0.0; n];
-        for (l, p) in active.iter().zip(&forces) {
-            for (fi, phi) in f.iter_mut().zip(&l.phi) {
-                *fi += phi * p;
-            }
+    w.free.clear();
+    for (j, l) in active.iter().enumerate() {
+        let s = &l.striker;
+        let (mut u_hat, mut v_hat) = (l.u + dt * l.v + 0.25 * dt * dt * l.a, l.v + 0.5 * dt * l.a);
+        if s.gravity != 0.0 {
+            u_hat += 0.25 * dt * dt * s.gravity;
+            v_hat += 0.5 * dt * s.gravity;
         }
-        f
-    };
+        let (wp, vp) = (dot(&l.phi, &w.qh), dot(&l.phi, &w.vh) + l.res_vh);
+        let gjj = g[j * k + j];
+        w.free.push([u_hat - wp, 0.25 * dt * dt / s.mass + gjj, v_hat - vp, 0.5 * dt / s.mass + c1 * gjj, u_hat, v_hat]);
+    }
+    let converged = solve(active, g, c1, w);
+    let forces = std::mem::take(&mut w.forces);
+    w.modal_force(active, |j, _| forces[j]);
     for i in 0..n {
-        q[i] = qh[i] + maps.h[i] * fe[i];
-        v[i] = vh[i] + c1 * maps.h[i] * fe[i];
+        let hf = maps.h[i] * w.force[i];
+        q[i] = w.qh[i] + hf;
+        v[i] = w.vh[i] + c1 * hf;
     }
     for (j, l) in active.iter_mut().enumerate() {
-        let [d0, d1, r0, r1, u_hat, v_hat] = free[j];
+        let [d0, d1, r0, r1, u_hat, v_hat] = w.free[j];
         let coupled: f64 = (0..k).filter(|&m| m != j).map(|m| g[j * k + m] * forces[m]).sum();
         let p = forces[j];
-        let delta = d0 - coupled - d1 * p;
-        let rate = r0 - c1 * coupled - r1 * p;
+        let (delta, rate) = (d0 - coupled - d1 * p, r0 - c1 * coupled - r1 * p);
         let a_contact = -p / l.striker.mass;
         l.u = u_hat + 0.25 * dt * dt * a_contact;
         l.v = v_hat + 0.5 * dt * a_contact;
         l.a = if l.striker.gravity != 0.0 { l.striker.gravity + a_contact } else { a_contact };
-        l.approach = approach[j];
+        l.approach = w.approach[j];
         l.res_v = l.res_vh + c1 * l.c_res * p;
         l.res_vh = if p == 0.0 { 0.0 } else { -c1 * l.c_res * p - l.res_v };
         l.dmax = l.dmax.max(delta);
         l.last = (delta, rate);
-        if p > 0.0 && l.force == 0.0 {
-            l.response.contacts += 1;
-            if l.opened.is_none() {
-                l.opened = Some(l.time);
+        l.record(p, dt);
+    }
+    w.forces = forces;
+    converged
+}
+
+impl Active {
+    /// The contact bookkeeping of a step ending with force `p`.
+    fn record(&mut self, p: f64, dt: f64) {
+        if p > 0.0 && self.force == 0.0 {
+            self.response.contacts += 1;
+            if self.opened.is_none() {
+                self.opened = Some(self.time);
             }
         }
-        l.time += dt;
-        if p == 0.0 && l.force > 0.0 && l.response.contacts == 1 {
-            l.response.contact_time = l.time - l.opened.unwrap_or(0.0);
+        self.time += dt;
+        if p == 0.0 && self.force > 0.0 && self.response.contacts == 1 {
+            self.response.contact_time = self.time - self.opened.unwrap_or(0.0);
         }
-        l.force = p;
-        l.steps += 1;
-        l.response.force_max = l.response.force_max.max(p);
-        l.response.compression_max = l.response.compression_max.max(delta);
+        self.force = p;
+        self.steps += 1;
+        self.response.force_max = self.response.force_max.max(p);
+        self.response.compression_max = self.response.compression_max.max(self.last.0);
     }
 }
 
-/// The step-end forces of every lump followed, solved together by nonlinear Gauss-Seidel
-/// on δⱼ = d₀ⱼ - Σₖ≠ⱼ GⱼₖPₖ - d₁ⱼPⱼ (module docs), and each lump's approach velocity.
-fn solve(active: &[Active], free: &[[f64; 6]], g: &[f64], c1: f64, unconverged: &mut usize) -> (Vec<f64>, Vec<f64>) {
+/// The step-end forces of every lump followed into `w.forces`, solved together by nonlinear
+/// Gauss-Seidel on δⱼ = d₀ⱼ - Σₖ≠ⱼ GⱼₖPₖ - d₁ⱼPⱼ (module docs), and each lump's approach
+/// velocity into `w.approach`; false if the sweeps ran out before the forces settled.
+fn solve(active: &[Active], g: &[f64], c1: f64, w: &mut Scratch) -> bool {
     let k = active.len();
-    let mut p: Vec<f64> = active.iter().map(|l| l.force).collect();
-    let mut approach: Vec<f64> = active.iter().map(|l| l.approach).collect();
-    for sweep in 0..SWEEPS {
+    w.forces.clear();
+    w.forces.extend(active.iter().map(|l| l.force));
+    w.approach.clear();
+    w.approach.extend(active.iter().map(|l| l.approach));
+    let (p, approach) = (&mut w.forces, &mut w.approach);
+    for _ in 0..SWEEPS {
         let mut change: f64 = 0.0;
         for j in 0..k {
             let l = &active[j];
             let s = &l.striker;
-            let [d0, d1, r0, r1, ..] = free[j];
+            let [d0, d1, r0, r1, ..] = w.free[j];
             let coupled: f64 = (0..k).filter(|&m| m != j).map(|m| g[j * k + m] * p[m]).sum();
             let (d0, r0) = (d0 - coupled, r0 - c1 * coupled);
             if l.force == 0.0 {
@@ -496,11 +525,8 @@ fn solve(active: &[Active], free: &[[f64; 6]], g: &[f64], c1: f64, unconverged: 
         }
         let scale = p.iter().fold(0.0f64, |a, &b| a.max(b.abs()));
         if k == 1 || change <= 1e-12 * scale {
-            return (p, approach);
-        }
-        if sweep + 1 == SWEEPS {
-            *unconverged += 1;
+            return true;
         }
     }
-    (p, approach)
+    false
 }
