@@ -18,6 +18,9 @@
 //!   centroid);
 //! - [`stream`]: a continuous caving stream: Poisson arrivals marked coal or gangue by a
 //!   time profile of the gangue share, each lump drawn as an ensemble impact;
+//! - [`detect`]: gangue detection over sliding windows of a stream: the windows' truth,
+//!   cross-validation by time blocks, and the operating answer (delay from the onset of the
+//!   change, false alarms per hour);
 //! - [`roc`]: the AUC (Mann-Whitney), DeLong's standard error and a bootstrap interval;
 //! - [`classify`]: a ridge logistic regression fitted by Newton/IRLS and its stratified
 //!   cross-validated accuracy;
@@ -73,6 +76,7 @@
 #![warn(missing_docs)]
 
 pub mod classify;
+pub mod detect;
 pub mod distribution;
 pub mod ensemble;
 pub mod features;

@@ -448,7 +448,14 @@ fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g:
         }
         let (wp, vp) = (dot(&l.phi, &w.qh), dot(&l.phi, &w.vh) + l.res_vh);
         let gjj = g[j * k + j];
-        w.free.push([u_hat - wp, 0.25 * dt * dt / s.mass + gjj, v_hat - vp, 0.5 * dt / s.mass + c1 * gjj, u_hat, v_hat]);
+        w.free.push([
+            u_hat - wp,
+            0.25 * dt * dt / s.mass + gjj,
+            v_hat - vp,
+            0.5 * dt / s.mass + c1 * gjj,
+            u_hat,
+            v_hat,
+        ]);
     }
     let converged = solve(active, g, c1, w);
     let forces = std::mem::take(&mut w.forces);
