@@ -22,12 +22,13 @@
 //! element blocks. Since R is positive semi-definite it is at most √(C_res(pⱼ)C_res(pₖ))
 //! (Cauchy-Schwarz), and the stream reports that bound against the static compliance.
 //!
-//! **A lump leaves** when it has provably left the plate for good under the plate's free
-//! motion, as in one impact: no force, no gravity, the sphere not approaching, and its
-//! position below -Σᵢ|φᵢ(p)|Aᵢ (every later free deflection at p lies above that;
-//! [`super::target`]); or at the end of one impact's window after its touch, where the
-//! single impact stops following it too. Later lumps' motion of the plate is not checked
-//! against a departed sphere: the lump has fallen away.
+//! **A lump leaves** when it provably makes no further contact within one impact's window
+//! after its touch, under the plate's free motion: no force, and the sphere's free flight
+//! u + u̇τ + gτ²/2 over the rest of the window stays below -Σᵢ|φᵢ(p)|Aᵢ, under which no later
+//! free deflection at p reaches ([`super::target`]); or at the window's end, where one
+//! impact stops following it too. A lump under gravity that would come back after its window
+//! is not followed back, as in one impact; nor is a departed sphere checked against the
+//! plate's motion from later lumps: it has fallen away.
 //!
 //! **Time grid.** Arrivals are placed on the model's sample grid (rounded to the nearest
 //! sample, within T_s/2), so that every contact starts, as one impact's does, at a sample;
@@ -318,11 +319,17 @@ impl<'a> Run<'a> {
     /// Lets go of every lump that has left for good at sample `k`, or whose window has ended.
     fn retire(&mut self, k: usize) {
         let (q, v, omega) = (&self.q, &self.v, &self.model.omega);
+        let ts = self.probes.spec.interval();
         let mut kept = Vec::with_capacity(self.active.len());
         for l in self.active.drain(..) {
             let reach: f64 =
                 (0..omega.len()).map(|i| l.phi[i].abs() * (q[i].powi(2) + (v[i] / omega[i]).powi(2)).sqrt()).sum();
-            let left = l.force == 0.0 && l.striker.gravity == 0.0 && l.v <= 0.0 && l.u + reach < 0.0 && l.steps > 0;
+            // The sphere's free flight over the rest of its window, u + vτ + gτ²/2, is
+            // highest at one of its ends (a parabola opening upward, or a line).
+            let rest = self.window_samples.saturating_sub(k - l.touched) as f64 * ts;
+            let g = l.striker.gravity;
+            let highest = l.u.max(l.u + l.v * rest + 0.5 * g * rest * rest);
+            let left = l.force == 0.0 && l.steps > 0 && highest + reach < 0.0;
             if left || k - l.touched >= self.window_samples {
                 self.done.push(l.response_of());
             } else {
