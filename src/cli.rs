@@ -213,6 +213,23 @@ pub enum Command {
         #[arg(long)]
         no_features_csv: bool,
     },
+    /// Gangue detection on a continuous caving stream ([stream]): the scene's ensemble arriving
+    /// as Poisson streams whose gangue share changes, simulated as one signal, recorded through
+    /// [measurement], scored over sliding windows by a detector cross-validated by time blocks,
+    /// into DIR (default impact-out/<scene name>-stream).
+    Stream {
+        /// Scene file with [ensemble] and [stream] tables and "identify" among its analyses.
+        #[arg(long, value_name = "FILE")]
+        scene: PathBuf,
+        /// Directory for the files, written whole or not at all (an existing one only if empty or
+        /// an earlier output of impact); default
+        /// impact-out/<scene name>-<command>.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print the results as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         /// Directory for the files, written whole or not at all (an existing one only if empty or

@@ -42,6 +42,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
             commit_reporting(target, &impact::report::scene_report(&scene, &Terminal::new())?, &scene, json)
         }
         Command::Identify { scene, out, json, no_features_csv } => identify(&scene, out, json, no_features_csv),
+        Command::Stream { scene, out, json } => stream(&scene, out, json),
         Command::Report { out, json } => {
             let mut target = OutputDir::prepare(&out)?;
             let scene = Scene::default_scene();
@@ -110,6 +111,26 @@ fn identify(path: &Path, dir: Option<PathBuf>, json: bool, no_features_csv: bool
         out(&format!("{}\n", t.to_text()))?;
     }
     Ok(())
+}
+
+/// `impact stream`: the scene's caving-stream detection study, its table on the terminal.
+fn stream(path: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
+    let scene = Scene::load(path)?;
+    if scene.stream.is_none() {
+        return Err(format!(
+            "scene {}: impact stream runs the scene's [stream] table, and it has none (see docs/scenes.md)",
+            scene.name
+        )
+        .into());
+    }
+    let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "stream")))?;
+    let (mut artifacts, data) = impact::report::stream::report(&scene, &Terminal::new())?;
+    Provenance::of(&scene).stamp(&mut artifacts);
+    commit(target, &artifacts)?;
+    if json {
+        return print_json(&scene, &data);
+    }
+    out(&format!("{}\n", impact::report::stream::summary_table(&data).to_text()))
 }
 
 /// `impact fem-bench`: the plate FE compliance map timed on the mesh that reaches the

@@ -203,16 +203,8 @@ impl<'a> Instrument<'a> {
 
     /// Throws the sphere of `draw` (of family `family_name`) and reduces its signals.
     pub fn impact(&self, draw: Draw, family_name: &str) -> Result<ImpactRecord, ModelError> {
-        let sphere = draw.sphere(family_name)?;
-        let k = contact_stiffness(&sphere, self.plate.material());
-        let striker = Striker {
-            k,
-            restitution: self.restitution,
-            mass: sphere.mass(),
-            velocity: draw.velocity,
-            law: self.law.law_for(&sphere),
-            gravity: self.gravity,
-        };
+        let (sphere, striker) = self.striker(&draw, family_name)?;
+        let k = striker.k;
         let hit = self.model.impact(&striker, draw.x, draw.z, &self.probes)?;
         let o = &hit.outcome;
         let delta_my = DruckerPrager::of(&sphere).yield_compression(sphere.radius(), k);
@@ -251,6 +243,47 @@ impl<'a> Instrument<'a> {
             features,
             draw,
         })
+    }
+}
+
+impl Instrument<'_> {
+    /// The sphere of `draw` (of family `family_name`) and its striker: the scene's law,
+    /// restitution and gravity, the contact stiffness against the plate (eq. 3).
+    pub fn striker(&self, draw: &Draw, family_name: &str) -> Result<(analytic::Sphere, Striker), ModelError> {
+        let sphere = draw.sphere(family_name)?;
+        let striker = Striker {
+            k: contact_stiffness(&sphere, self.plate.material()),
+            restitution: self.restitution,
+            mass: sphere.mass(),
+            velocity: draw.velocity,
+            law: self.law.law_for(&sphere),
+            gravity: self.gravity,
+        };
+        Ok((sphere, striker))
+    }
+
+    /// The continuous model signals of a caving stream of `lumps` over `duration` seconds
+    /// ([`crate::reduced::stream`]), the lumps' families named by `family_names`.
+    pub fn stream(
+        &self,
+        lumps: &[identify::stream::Lump],
+        family_names: &[String],
+        duration: f64,
+    ) -> Result<crate::reduced::stream::StreamResponse, ModelError> {
+        let arrivals = lumps
+            .iter()
+            .map(|l| {
+                let name = family_names.get(l.draw.family).map_or("", String::as_str);
+                let (_, striker) = self.striker(&l.draw, name)?;
+                Ok(crate::reduced::stream::Arrival { time: l.time, striker, x: l.draw.x, z: l.draw.z })
+            })
+            .collect::<Result<Vec<_>, ModelError>>()?;
+        self.model.stream(&arrivals, &self.probes, duration)
+    }
+
+    /// The model's sample rate, Hz.
+    pub fn model_rate_hz(&self) -> f64 {
+        self.probes.spec().rate_hz
     }
 }
 

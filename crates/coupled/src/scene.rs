@@ -165,6 +165,10 @@ pub struct Scene {
     /// canonical content (and provenance hash) it had before chains existed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub measurement: Option<identify::measurement::ChainSpec>,
+    /// The caving-stream detection study (`[stream]`) on the ensemble's lumps; None: none.
+    /// Left out of the serialised scene when None, as `measurement` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stream: Option<identify::stream::StreamStudy>,
     /// How the transient model is discretised: by default each case's mesh and step are
     /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.
     pub transient_discretisation: Discretisation,

@@ -32,6 +32,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         transient_discretisation: coupled::transient::Discretisation::Fixed { settings: TransientSettings::default() },
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         measurement: None,
+        stream: None,
         gravity: 0.0,
         plate_damping: None,
     };
@@ -96,6 +97,7 @@ fn one_case(
         transient_discretisation: disc,
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         measurement: None,
+        stream: None,
         gravity: 0.0,
         plate_damping: None,
     }

@@ -79,6 +79,30 @@ pub struct StreamSpec {
     pub seed: u64,
 }
 
+/// A caving-stream detection study: independent streams of one spec (stream r drawn with
+/// the seed `spec.seed + r`), the windows its detector reads, and the sweeps.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StreamStudy {
+    /// The stream: arrival rate, length, gangue profile, seed.
+    pub spec: StreamSpec,
+    /// Independent streams.
+    pub streams: usize,
+    /// Window length W, s.
+    pub window: f64,
+    /// Window hop H, s.
+    pub hop: f64,
+    /// Time blocks of the cross-validation.
+    pub blocks: usize,
+    /// The out-of-fold probability at which the detector raises an alarm.
+    pub alarm_probability: f64,
+    /// Further arrival rates, lumps per second, each run as a whole study.
+    pub rate_sweep: Vec<f64>,
+    /// Scales of the chain's background, each run on the same streams (empty without a chain).
+    pub noise_sweep: Vec<f64>,
+    /// Whether to write the first stream's continuous signals.
+    pub write_signal: bool,
+}
+
 /// The stream number of the arrival process (far above any lump's number).
 pub const ARRIVALS: usize = usize::MAX;
 

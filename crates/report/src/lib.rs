@@ -20,6 +20,7 @@ pub mod plate_field;
 pub mod regimes;
 pub mod signals;
 pub mod skfem;
+pub mod stream;
 pub mod template;
 pub mod transient;
 pub mod yield_models;

@@ -76,6 +76,20 @@ pub fn max_modes(length: f64, width: f64) -> usize {
 }
 /// Most sensors.
 pub const MAX_SENSORS: usize = 64;
+/// Lumps per second of a caving stream (`[stream]`): up to 10,000, where every contact
+/// overlaps others and the stream is a granular flow, not a sequence of impacts.
+pub const STREAM_RATE_PER_S: Range = Range::open_closed(0.0, 1e4);
+/// Length of one stream, s: up to a day.
+pub const STREAM_DURATION_S: Range = Range::open_closed(0.0, 86_400.0);
+/// Independent streams of a study.
+pub const STREAMS: Range = Range::closed(1.0, 64.0);
+/// Time blocks of the stream's cross-validation.
+pub const STREAM_BLOCKS: Range = Range::closed(2.0, 1000.0);
+/// Largest memory of one stream's model signals, bytes (samples x channels x 8): 2 GB.
+pub const MAX_STREAM_SIGNAL_BYTES: f64 = 2.0 * 1024.0 * 1024.0 * 1024.0;
+/// Most lumps of a stream study, over its streams and arrival rates: ten million (about 45
+/// minutes at the measured 3,600 lumps per second of a 160-mode plate).
+pub const MAX_STREAM_LUMPS: f64 = 1e7;
 /// Relative tolerance of the energy balance: below 1e-14 double precision cannot
 /// reach it (the bracketed Newton's rounding floor is ~2e-15); above 1e-3 the "root" is not one (a loose stop returns the starting value).
 pub const SOLVER_TOLERANCE: Range = Range::closed(1e-14, 1e-3);

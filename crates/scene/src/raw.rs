@@ -38,6 +38,8 @@ pub(crate) struct RawScene {
     pub(crate) plate_damping: Option<RawPlateDamping>,
     #[serde(default)]
     pub(crate) measurement: Option<crate::validate::measurement::RawMeasurement>,
+    #[serde(default)]
+    pub(crate) stream: Option<crate::validate::stream::RawStream>,
 }
 
 /// The plate's Rayleigh damping: a ratio reached at two frequencies.

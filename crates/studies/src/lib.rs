@@ -52,6 +52,7 @@ pub mod regimes;
 pub mod run;
 pub mod settings;
 pub mod signals;
+pub mod stream;
 pub mod study;
 pub mod transient;
 pub mod verdict;

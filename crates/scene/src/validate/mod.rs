@@ -13,6 +13,7 @@ mod damping;
 pub(crate) mod measurement;
 mod points;
 mod signals;
+pub(crate) mod stream;
 mod supports;
 
 use crate::{ensemble, slug, MAX_NAME_CHARS};
@@ -143,10 +144,24 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
             ))
         }
     };
+    let stream = match (&raw.stream, analyses.contains(&Analysis::Identify)) {
+        (None, _) => None,
+        (Some(s), true) => {
+            let adc = measurement.as_ref().map_or(signals.rate_hz, |m| m.rate_hz);
+            Some(stream::validate_stream(s, &signals, adc, measurement.is_some())?)
+        }
+        (Some(_), false) => {
+            return Err(other(
+                "stream",
+                "draws its lumps from [ensemble], read only by the \"identify\" analysis; add \"identify\" to analyses or remove the table",
+            ))
+        }
+    };
     Ok(Scene {
         velocities,
         signals,
         measurement,
+        stream,
         solver: validate_solver(&raw.solver)?,
         ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
         name: raw.name,

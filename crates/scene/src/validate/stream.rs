@@ -1,0 +1,159 @@
+//! `[stream]`: a caving-stream detection study (`identify::stream`, `identify::detect`) on
+//! the scene's ensemble, each key in its range in the file's units, converted to SI, and the
+//! study's memory and time budgets checked before any work.
+//!
+//! ```toml
+//! [stream]
+//! rate_per_s = 20.0         # lumps per second (Poisson)
+//! duration_s = 90.0         # each stream's length
+//! streams = 3               # independent streams (seeds seed, seed + 1, ...)
+//! seed = 1
+//! gangue_before = 0.05      # the gangue share before the change
+//! gangue_after = 0.6        # ... and after it
+//! onset_s = 45.0            # when the change starts
+//! ramp_s = 5.0              # how long it takes
+//! window_s = 2.0            # the detector's window
+//! hop_s = 0.5               # ... and its hop
+//! blocks = 6                # time blocks of the cross-validation
+//! alarm_probability = 0.5   # the out-of-fold probability that raises an alarm
+//! rate_sweep_per_s = [5.0, 50.0]
+//! noise_sweep = [0.0, 10.0, 100.0]   # scales of [measurement]'s background
+//! write_signal = true       # the first stream's continuous signals as a file
+//! ```
+
+use super::{count, other, Invalid};
+use crate::limits;
+use analytic::params::{check, Range};
+use coupled::reduced::SignalSettings;
+use identify::stream::{Profile, StreamSpec, StreamStudy};
+use serde::Deserialize;
+
+/// The stream's table as TOML reads it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawStream {
+    rate_per_s: f64,
+    duration_s: f64,
+    #[serde(default)]
+    streams: Option<f64>,
+    #[serde(default)]
+    seed: Option<u64>,
+    gangue_before: f64,
+    gangue_after: f64,
+    onset_s: f64,
+    #[serde(default)]
+    ramp_s: Option<f64>,
+    window_s: f64,
+    hop_s: f64,
+    #[serde(default)]
+    blocks: Option<f64>,
+    #[serde(default)]
+    alarm_probability: Option<f64>,
+    #[serde(default)]
+    rate_sweep_per_s: Vec<f64>,
+    #[serde(default)]
+    noise_sweep: Vec<f64>,
+    #[serde(default)]
+    write_signal: bool,
+}
+
+/// Checks `[stream]` against the signals it will be recorded with: `signals` (the model's
+/// rate and channels) and `adc_rate_hz` (the chain's rate, or the model's without one).
+pub(crate) fn validate_stream(
+    raw: &RawStream,
+    signals: &SignalSettings,
+    adc_rate_hz: f64,
+    has_chain: bool,
+) -> Result<StreamStudy, Invalid> {
+    let rate = check("stream.rate_per_s", raw.rate_per_s, limits::STREAM_RATE_PER_S, "1/s")?;
+    let duration = check("stream.duration_s", raw.duration_s, limits::STREAM_DURATION_S, "s")?;
+    let share = Range::closed(0.0, 1.0);
+    let before = check("stream.gangue_before", raw.gangue_before, share, "")?;
+    let after = check("stream.gangue_after", raw.gangue_after, share, "")?;
+    if before == after {
+        return Err(other(
+            "stream.gangue_after",
+            format!("{after} equals gangue_before: the stream has no change to detect"),
+        ));
+    }
+    let onset = check("stream.onset_s", raw.onset_s, Range::open(0.0, duration), "s")?;
+    let ramp = check("stream.ramp_s", raw.ramp_s.unwrap_or(0.0), Range::closed(0.0, duration - onset), "s")?;
+    // The features need 16 samples of the recording in a window.
+    let shortest = limits::MIN_SAMPLES / adc_rate_hz;
+    let window = check("stream.window_s", raw.window_s, Range::closed(shortest, onset.min(duration - onset)), "s")?;
+    let hop = check("stream.hop_s", raw.hop_s, Range::closed(1.0 / adc_rate_hz, window), "s")?;
+    let streams = count("stream.streams", raw.streams.unwrap_or(1.0), limits::STREAMS)?;
+    let blocks = count("stream.blocks", raw.blocks.unwrap_or(5.0), limits::STREAM_BLOCKS)?;
+    let alarm_probability =
+        check("stream.alarm_probability", raw.alarm_probability.unwrap_or(0.5), Range::open(0.0, 1.0), "")?;
+    let mut rate_sweep = Vec::new();
+    for (i, &r) in raw.rate_sweep_per_s.iter().enumerate() {
+        rate_sweep.push(check(&format!("stream.rate_sweep_per_s[{i}]"), r, limits::STREAM_RATE_PER_S, "1/s")?);
+    }
+    if !raw.noise_sweep.is_empty() && !has_chain {
+        return Err(other("stream.noise_sweep", "scales [measurement]'s background; the scene has no [measurement]"));
+    }
+    let mut noise_sweep = Vec::new();
+    for (i, &s) in raw.noise_sweep.iter().enumerate() {
+        noise_sweep.push(check(&format!("stream.noise_sweep[{i}]"), s, Range::closed(0.0, 1e6), "")?);
+    }
+    let spec = StreamSpec {
+        rate_per_s: rate,
+        duration,
+        profile: Profile { before, after, onset, ramp },
+        seed: raw.seed.unwrap_or(1),
+    };
+    let study = StreamStudy {
+        spec,
+        streams,
+        window,
+        hop,
+        blocks,
+        alarm_probability,
+        rate_sweep,
+        noise_sweep,
+        write_signal: raw.write_signal,
+    };
+    budgets(&study, signals)?;
+    Ok(study)
+}
+
+/// One stream's model signals must fit in memory, and the lumps and stream time of the whole
+/// study in its budgets.
+fn budgets(study: &StreamStudy, signals: &SignalSettings) -> Result<(), Invalid> {
+    // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound.
+    let channels = (4 * signals.sensors.len() + 4) as f64;
+    let bytes = study.spec.duration * signals.rate_hz * channels * 8.0;
+    if bytes > limits::MAX_STREAM_SIGNAL_BYTES {
+        return Err(other(
+            "stream.duration_s",
+            format!(
+                "{} s at {} Hz on up to {channels} channels needs {:.0} MB of signal, above the {:.0} MB budget; shorten the stream",
+                study.spec.duration,
+                signals.rate_hz,
+                bytes / 1e6,
+                limits::MAX_STREAM_SIGNAL_BYTES / 1e6
+            ),
+        ));
+    }
+    let rates: f64 = study.spec.rate_per_s + study.rate_sweep.iter().sum::<f64>();
+    let lumps = rates * study.spec.duration * study.streams as f64;
+    if lumps > limits::MAX_STREAM_LUMPS {
+        return Err(other(
+            "stream.rate_per_s, rate_sweep_per_s, duration_s and streams",
+            format!("expect {lumps:.0} lumps, above the budget of {:.0}", limits::MAX_STREAM_LUMPS),
+        ));
+    }
+    let windows = ((study.spec.duration - study.window) / study.hop).floor() + 1.0;
+    if (study.blocks as f64) > windows * study.streams as f64 {
+        return Err(other(
+            "stream.blocks",
+            format!(
+                "{} blocks for {} windows; at most one block per window",
+                study.blocks,
+                windows * study.streams as f64
+            ),
+        ));
+    }
+    Ok(())
+}

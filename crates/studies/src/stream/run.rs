@@ -1,0 +1,376 @@
+//! One support set's stream study: simulate, record, window, score.
+
+use super::score::Windows;
+use super::{
+    channel_name, Baseline, ConditionStream, LumpRow, NoisePoint, RatePoint, RecordedSignal, Simulation, WindowRow,
+};
+use crate::identify::sensors::{channel_infos, spec};
+use crate::progress::Progress;
+use crate::Failure;
+use coupled::identification::{measurand, Instrument};
+use coupled::reduced::stream::StreamResponse;
+use coupled::reduced::{ChannelKind, ReducedModel};
+use identify::detect::{time_block_folds, windows, Window};
+use identify::features::{Extractor, FEATURES};
+use identify::stream::{lumps, Lump, StreamSpec, StreamStudy};
+use rayon::prelude::*;
+use scene::{Scene, SupportSet};
+use std::time::Instant;
+
+/// The background streams of the stream study's recordings start here, apart from every
+/// single impact's (which are numbered by impact).
+const RECORDING_KEY: usize = 1 << 48;
+
+/// One simulated stream: its lumps, the model's response and the seconds it took.
+struct Simulated {
+    lumps: Vec<Lump>,
+    response: StreamResponse,
+    seconds: f64,
+}
+
+/// The stream study on `set`, the `index`-th support set of `scene`.
+pub(super) fn condition(
+    scene: &Scene,
+    study: &StreamStudy,
+    ensemble: &identify::Study,
+    set: &SupportSet,
+    index: usize,
+    progress: &dyn Progress,
+) -> Result<ConditionStream, Failure> {
+    let plate = &scene.plate;
+    let model = ReducedModel::new(plate, set, scene.signals.reduced())?;
+    let sensors = scene.signals.sensors.clone();
+    let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
+    let infos = channel_infos(&instrument, &sensors, plate);
+    let seed = study.spec.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    progress.start(study.streams * (1 + study.rate_sweep.len()), &format!("{}: streams", set.name));
+    let main = simulate(&instrument, ensemble, study, study.spec.rate_per_s, progress)?;
+    let simulation = simulation(&instrument, ensemble, study, &main, &model)?;
+    let (recorded, rate) = record(&instrument, &main, 1.0);
+    let w = window_set(study, &main, seed);
+    let rows = features(&recorded, rate, &w.windows, study);
+    let kinds = instrument.channels();
+    let mut groups = Vec::new();
+    let (every, scores) = w.score("every channel", &rows, &scale_flags(kinds.len()))?;
+    groups.push(every.clone());
+    for (name, members) in channel_groups(&kinds, sensors.len()) {
+        let sub = select(&rows, &members);
+        groups.push(w.score(&name, &sub, &scale_flags(members.len()))?.0);
+    }
+    let baselines = baselines(&w, &main);
+    let noise_sweep = noise_sweep(&instrument, study, &main, &w, (&recorded, &every))?;
+    let mut rate_sweep = Vec::new();
+    for &rate_per_s in &study.rate_sweep {
+        let sims = simulate(&instrument, ensemble, study, rate_per_s, progress)?;
+        let (rec, r) = record(&instrument, &sims, 1.0);
+        let ws = window_set(study, &sims, seed);
+        let rows = features(&rec, r, &ws.windows, study);
+        let score = ws.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
+        rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
+    }
+    progress.finish();
+    let names: Vec<String> = infos.iter().map(channel_name).collect();
+    let signal = study.write_signal.then(|| RecordedSignal {
+        rate_hz: rate,
+        names: names.clone(),
+        columns: recorded.first().cloned().unwrap_or_default(),
+    });
+    Ok(ConditionStream {
+        name: set.name.clone(),
+        channels: names,
+        simulation,
+        groups,
+        baselines,
+        noise_sweep,
+        rate_sweep,
+        windows: window_rows(&w, &main, &scores, &study.spec.profile),
+        lumps: lump_rows(ensemble, &main),
+        signal,
+    })
+}
+
+/// The study's streams at `rate_per_s` (stream r from seed + r), simulated in parallel.
+fn simulate(
+    instrument: &Instrument<'_>,
+    ensemble: &identify::Study,
+    study: &StreamStudy,
+    rate_per_s: f64,
+    progress: &dyn Progress,
+) -> Result<Vec<Simulated>, Failure> {
+    let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
+    let runs: Vec<Result<Simulated, String>> = (0..study.streams)
+        .into_par_iter()
+        .map(|r| {
+            let spec = StreamSpec { rate_per_s, seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
+            let lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
+            let t0 = Instant::now();
+            let response = instrument.stream(&lumps, &names, spec.duration).map_err(|e| format!("stream {r}: {e}"))?;
+            let seconds = t0.elapsed().as_secs_f64();
+            progress.advance(1);
+            Ok(Simulated { lumps, response, seconds })
+        })
+        .collect();
+    runs.into_iter().map(|r| r.map_err(Failure::from)).collect()
+}
+
+/// The main run's lumps, overlaps and cost, with the free plate's cost over one stream's
+/// length measured in the same run as the reference.
+fn simulation(
+    instrument: &Instrument<'_>,
+    ensemble: &identify::Study,
+    study: &StreamStudy,
+    main: &[Simulated],
+    model: &ReducedModel,
+) -> Result<Simulation, Failure> {
+    let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
+    let t0 = Instant::now();
+    instrument.stream(&[], &names, study.spec.duration)?;
+    let free_seconds = t0.elapsed().as_secs_f64();
+    let seconds: f64 = main.iter().map(|s| s.seconds).sum();
+    let simulated = study.spec.duration * main.len() as f64;
+    Ok(Simulation {
+        lumps: main.iter().map(|s| s.response.lumps.len()).sum(),
+        overlapped_share: overlapped_share(main),
+        joint_steps: main.iter().map(|s| s.response.joint_steps).sum(),
+        unconverged_steps: main.iter().map(|s| s.response.unconverged_steps).sum(),
+        cross_residual_bound: main.iter().map(|s| s.response.cross_residual_bound).fold(0.0, f64::max),
+        real_time_factor: simulated / seconds.max(1e-9),
+        free_real_time_factor: study.spec.duration / free_seconds.max(1e-9),
+        modes: model.modes().omegas().len(),
+        model_rate_hz: instrument.model_rate_hz(),
+    })
+}
+
+/// The share of the lumps that were in contact together with another.
+fn overlapped_share(sims: &[Simulated]) -> f64 {
+    let (n, o) =
+        sims.iter().flat_map(|s| &s.response.lumps).fold((0, 0), |(n, o), l| (n + 1, o + usize::from(l.overlapped)));
+    if n == 0 {
+        0.0
+    } else {
+        o as f64 / n as f64
+    }
+}
+
+/// Every stream's channels as recorded (through the chain, its background scaled by
+/// `scale`, or as the model gives them without one) and the recording's rate.
+fn record(instrument: &Instrument<'_>, sims: &[Simulated], scale: f64) -> (Vec<Vec<Vec<f64>>>, f64) {
+    let Some(chain) = instrument.chain() else {
+        let rate = instrument.model_rate_hz();
+        let out =
+            sims.iter().map(|s| s.response.signals.channels.iter().map(|c| c.samples.clone()).collect()).collect();
+        return (out, rate);
+    };
+    let out = sims
+        .par_iter()
+        .enumerate()
+        .map(|(r, s)| {
+            let mut rng = chain.stream(RECORDING_KEY + r);
+            s.response
+                .signals
+                .channels
+                .iter()
+                .map(|c| {
+                    chain.measure(measurand(c.kind), &c.samples, scale, &mut rng).map_or_else(Vec::new, |m| m.samples)
+                })
+                .collect()
+        })
+        .collect();
+    (out, chain.spec().rate_hz)
+}
+
+/// The windows of every stream on a common time axis (stream r from r(T + W), so that no two
+/// streams' windows touch), labelled by the profile, with their time-block folds.
+fn window_set(study: &StreamStudy, sims: &[Simulated], seed: u64) -> Windows {
+    let (t, w) = (study.spec.duration, study.window);
+    let offsets: Vec<f64> = (0..sims.len()).map(|r| r as f64 * (t + w)).collect();
+    let all: Vec<Window> = offsets.iter().enumerate().flat_map(|(r, &o)| windows(r, o, t, w, study.hop)).collect();
+    let p = study.spec.profile;
+    let middle = 0.5 * (p.before + p.after);
+    let labels = all
+        .iter()
+        .map(|win| {
+            let o = offsets[win.stream];
+            let share = p.mean_share(win.start - o, win.end - o);
+            if p.after > p.before {
+                share >= middle
+            } else {
+                share <= middle
+            }
+        })
+        .collect();
+    let folds = time_block_folds(&all, study.blocks);
+    Windows { windows: all, labels, folds, offsets, onset: p.onset, alarm: study.alarm_probability, seed }
+}
+
+/// One row per window: every channel's features, channel-major.
+fn features(recorded: &[Vec<Vec<f64>>], rate: f64, wins: &[Window], study: &StreamStudy) -> Vec<Vec<f64>> {
+    let n = (study.window * rate).round() as usize;
+    let extractor = Extractor::new(n, rate);
+    let offset = |w: &Window| w.stream as f64 * (study.spec.duration + study.window);
+    wins.par_iter()
+        .map(|w| {
+            let i0 = ((w.start - offset(w)) * rate).round() as usize;
+            let mut row = Vec::new();
+            for channel in &recorded[w.stream] {
+                let end = (i0 + n).min(channel.len());
+                extractor.push_features(FEATURES, &channel[i0.min(end)..end], &mut row);
+            }
+            row
+        })
+        .collect()
+}
+
+/// Whether each column of `channels` channels' features is a scale feature.
+fn scale_flags(channels: usize) -> Vec<bool> {
+    (0..channels).flat_map(|_| FEATURES.iter().map(|f| f.is_scale())).collect()
+}
+
+/// The columns of `members`' features.
+fn select(rows: &[Vec<f64>], members: &[usize]) -> Vec<Vec<f64>> {
+    let k = FEATURES.len();
+    rows.iter().map(|r| members.iter().flat_map(|&c| r[c * k..(c + 1) * k].iter().copied()).collect()).collect()
+}
+
+/// Each sensor's channels, then the supports' channels: (name, channel indices).
+fn channel_groups(kinds: &[ChannelKind], sensors: usize) -> Vec<(String, Vec<usize>)> {
+    let sensor_of = |k: &ChannelKind| match *k {
+        ChannelKind::Displacement { sensor }
+        | ChannelKind::Velocity { sensor }
+        | ChannelKind::Acceleration { sensor }
+        | ChannelKind::Strain { sensor } => Some(sensor),
+        ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => None,
+    };
+    let mut out: Vec<(String, Vec<usize>)> = (0..sensors)
+        .map(|s| (format!("sensor {}", s + 1), (0..kinds.len()).filter(|&c| sensor_of(&kinds[c]) == Some(s)).collect()))
+        .collect();
+    out.push(("supports".into(), (0..kinds.len()).filter(|&c| sensor_of(&kinds[c]).is_none()).collect()));
+    out.retain(|(_, m)| !m.is_empty());
+    out
+}
+
+/// A lump and what it did.
+type LumpOf<'a> = (&'a Lump, &'a coupled::reduced::stream::LumpResponse);
+
+/// The lumps of the window `w` of stream `sims[w.stream]`, with their responses.
+fn lumps_in<'a>(sims: &'a [Simulated], w: &Window, offset: f64) -> impl Iterator<Item = LumpOf<'a>> {
+    let s = &sims[w.stream];
+    let (a, b) = (w.start - offset, w.end - offset);
+    s.lumps.iter().zip(&s.response.lumps).filter(move |(l, _)| l.time >= a && l.time < b)
+}
+
+/// The baselines: each window's lumps' mean contact time, mean P_max, total mass and count.
+fn baselines(w: &Windows, sims: &[Simulated]) -> Vec<Baseline> {
+    let per_window = |f: &dyn Fn(&[LumpOf<'_>]) -> f64| -> Vec<f64> {
+        w.windows
+            .iter()
+            .map(|win| {
+                let ls: Vec<_> = lumps_in(sims, win, w.offsets[win.stream]).collect();
+                f(&ls)
+            })
+            .collect()
+    };
+    let mean = |v: Vec<f64>| if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 };
+    let mass = |l: &Lump| l.draw.density * 4.0 / 3.0 * std::f64::consts::PI * l.draw.radius.powi(3);
+    vec![
+        w.baseline("mean contact time t_c", &per_window(&|ls| mean(ls.iter().map(|(_, r)| r.contact_time).collect()))),
+        w.baseline("mean contact force P_max", &per_window(&|ls| mean(ls.iter().map(|(_, r)| r.force_max).collect()))),
+        w.baseline("total lump mass", &per_window(&|ls| ls.iter().map(|(l, _)| mass(l)).sum())),
+        w.baseline("lump count", &per_window(&|ls| ls.len() as f64)),
+    ]
+}
+
+/// The every-channel detector with the chain's background as stated and scaled by each of
+/// the study's scales, and the best channel's SNR there.
+fn noise_sweep(
+    instrument: &Instrument<'_>,
+    study: &StreamStudy,
+    main: &[Simulated],
+    w: &Windows,
+    (stated, stated_score): (&[Vec<Vec<f64>>], &super::Score),
+) -> Result<Vec<NoisePoint>, Failure> {
+    if study.noise_sweep.is_empty() || instrument.chain().is_none() {
+        return Ok(Vec::new());
+    }
+    let (clean, _) = record(instrument, main, 0.0);
+    let channels = instrument.channels().len();
+    // The stated background first: the main run's recording and score.
+    let mut out = vec![NoisePoint { scale: 1.0, snr_db: best_snr(&clean, stated), score: stated_score.clone() }];
+    for &scale in &study.noise_sweep {
+        let (rec, rate) = record(instrument, main, scale);
+        let rows = features(&rec, rate, &w.windows, study);
+        let score = w.score("every channel", &rows, &scale_flags(channels))?.0;
+        out.push(NoisePoint { scale, snr_db: best_snr(&clean, &rec), score });
+    }
+    Ok(out)
+}
+
+/// The largest SNR over the channels, 10 log₁₀(Σy²/Σ(ŷ - y)²) over every stream, with y the
+/// recording without background and ŷ with it (None where no channel has noise).
+fn best_snr(clean: &[Vec<Vec<f64>>], noisy: &[Vec<Vec<f64>>]) -> Option<f64> {
+    let channels = clean.first().map_or(0, Vec::len);
+    (0..channels)
+        .filter_map(|c| {
+            let (mut s, mut n) = (0.0, 0.0);
+            for (a, b) in clean.iter().zip(noisy) {
+                for (y, z) in a[c].iter().zip(&b[c]) {
+                    s += y * y;
+                    n += (z - y) * (z - y);
+                }
+            }
+            (n > 0.0 && s > 0.0).then(|| 10.0 * (s / n).log10())
+        })
+        .max_by(f64::total_cmp)
+}
+
+/// The main run's windows with their truth and every-channel score.
+fn window_rows(
+    w: &Windows,
+    sims: &[Simulated],
+    scores: &[Option<f64>],
+    p: &identify::stream::Profile,
+) -> Vec<WindowRow> {
+    w.windows
+        .iter()
+        .zip(&w.labels)
+        .zip(scores)
+        .map(|((win, &label), &score)| {
+            let o = w.offsets[win.stream];
+            let ls: Vec<_> = lumps_in(sims, win, o).collect();
+            WindowRow {
+                stream: win.stream,
+                start: win.start - o,
+                end: win.end - o,
+                lumps: ls.len(),
+                gangue: ls.iter().filter(|(l, _)| l.draw.class == identify::Class::Gangue).count(),
+                expected_share: p.mean_share(win.start - o, win.end - o),
+                gangue_rich: label,
+                score,
+            }
+        })
+        .collect()
+}
+
+/// The main run's lumps with what each did.
+fn lump_rows(ensemble: &identify::Study, sims: &[Simulated]) -> Vec<LumpRow> {
+    let mass = |l: &Lump| l.draw.density * 4.0 / 3.0 * std::f64::consts::PI * l.draw.radius.powi(3);
+    sims.iter()
+        .enumerate()
+        .flat_map(|(r, s)| {
+            s.lumps.iter().zip(&s.response.lumps).map(move |(l, resp)| LumpRow {
+                stream: r,
+                time: l.time,
+                family: ensemble.ensemble.families[l.draw.family].name.clone(),
+                gangue: l.draw.class == identify::Class::Gangue,
+                mass: mass(l),
+                velocity: l.draw.velocity,
+                x: l.draw.x,
+                z: l.draw.z,
+                contacts: resp.contacts,
+                contact_time: resp.contact_time,
+                force_max: resp.force_max,
+                overlapped: resp.overlapped,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,131 @@
+//! A detector's score on a stream's windows: its out-of-fold AUC over windows with a
+//! block-bootstrap interval, and its operating answer (delay, false alarms per hour).
+//!
+//! **Interval.** Overlapping windows share lumps and samples, so their scores are not
+//! independent and DeLong's error (which assumes they are) would be too narrow. The interval
+//! resamples whole time blocks (the cross-validation's test blocks) with replacement, the
+//! moving-block bootstrap's answer to dependence (Künsch 1989, *Ann. Statist.* 17:1217),
+//! with blocks far longer than the windows' overlap; blocks that are mostly one class are
+//! resampled apart from those mostly the other, so that every resample scores both.
+
+use super::Baseline;
+use crate::Failure;
+use identify::classify::FitError;
+use identify::detect::{operate, out_of_fold, Fold, Window};
+use identify::ensemble::{impact_stream, open_uniform};
+use identify::roc::auc;
+use serde::Serialize;
+
+/// Resamples of the block bootstrap.
+const RESAMPLES: usize = 400;
+
+/// A detector on one group of channels.
+#[derive(Debug, Clone, Serialize)]
+pub struct Score {
+    /// Which channels it reads.
+    pub group: String,
+    /// Its out-of-fold AUC over the scored windows (gangue-rich against the rest).
+    pub auc: f64,
+    /// The 95 % block-bootstrap interval.
+    pub interval: (f64, f64),
+    /// Windows scored (those straddling a block edge are not).
+    pub scored_windows: usize,
+    /// Per stream: delay from the onset to the first alarm after it, s.
+    pub delays_s: Vec<Option<f64>>,
+    /// Their median over the streams that detected.
+    pub median_delay_s: Option<f64>,
+    /// Alarm episodes before the onset.
+    pub false_alarms: usize,
+    /// Per hour of windows before the onset.
+    pub false_alarms_per_hour: Option<f64>,
+}
+
+/// The windows of a run and what scores them: labels, folds, onsets.
+pub(super) struct Windows {
+    pub windows: Vec<Window>,
+    pub labels: Vec<bool>,
+    pub folds: Vec<Fold>,
+    /// Each stream's start on the common time axis, s.
+    pub offsets: Vec<f64>,
+    pub onset: f64,
+    pub alarm: f64,
+    pub seed: u64,
+}
+
+impl Windows {
+    /// The detector on `rows` (one per window; `scale` per column), named `group`, and its
+    /// out-of-fold probabilities.
+    pub fn score(&self, group: &str, rows: &[Vec<f64>], scale: &[bool]) -> Result<(Score, Vec<Option<f64>>), Failure> {
+        let probabilities = out_of_fold(rows, &self.labels, scale, &self.folds).map_err(|e: FitError| e.to_string())?;
+        let values: Vec<f64> = probabilities.iter().map(|p| p.unwrap_or(f64::NAN)).collect();
+        let (a, interval) = self.auc_and_interval(&values, false);
+        let op = operate(&self.windows, &probabilities, self.alarm, self.onset, &self.offsets);
+        let score = Score {
+            group: group.to_string(),
+            auc: a,
+            interval,
+            scored_windows: probabilities.iter().flatten().count(),
+            median_delay_s: op.median_delay(),
+            false_alarms_per_hour: op.false_alarms_per_hour(),
+            false_alarms: op.false_alarms,
+            delays_s: op.delays,
+        };
+        Ok((score, probabilities))
+    }
+
+    /// A baseline: `values` (one per window, NaN where it has none) as the score, oriented.
+    pub fn baseline(&self, quantity: &'static str, values: &[f64]) -> Baseline {
+        let (auc, interval) = self.auc_and_interval(values, true);
+        Baseline { quantity, auc, interval }
+    }
+
+    /// The AUC of `values` over the scored windows (NaN: left out) and its block-bootstrap
+    /// interval; `oriented`: as max(A, 1 - A), the interval turned with it.
+    fn auc_and_interval(&self, values: &[f64], oriented: bool) -> (f64, (f64, f64)) {
+        let blocks: Vec<Vec<usize>> =
+            self.folds.iter().map(|f| f.test.iter().copied().filter(|&i| values[i].is_finite()).collect()).collect();
+        let all: Vec<usize> = blocks.iter().flatten().copied().collect();
+        let a = self.auc_of(values, &all);
+        let flip = oriented && a < 0.5;
+        let turn = |x: f64| if flip { 1.0 - x } else { x };
+        // Blocks by their majority class, each kind resampled to its own count, so that every
+        // resample has both classes (a block is mostly one phase of the stream).
+        let mostly_gangue = |b: &Vec<usize>| 2 * b.iter().filter(|&&i| self.labels[i]).count() > b.len();
+        let (gangue, coal): (Vec<&Vec<usize>>, Vec<&Vec<usize>>) =
+            blocks.iter().filter(|b| !b.is_empty()).partition(|b| mostly_gangue(b));
+        let mut rng = impact_stream(self.seed, 0);
+        let mut draw = |kind: &[&Vec<usize>], pick: &mut Vec<usize>| {
+            for _ in 0..kind.len() {
+                let b = ((open_uniform(&mut rng) * kind.len() as f64) as usize).min(kind.len() - 1);
+                pick.extend_from_slice(kind[b]);
+            }
+        };
+        let mut resampled: Vec<f64> = (0..RESAMPLES)
+            .map(|_| {
+                let mut pick = Vec::new();
+                draw(&coal, &mut pick);
+                draw(&gangue, &mut pick);
+                turn(self.auc_of(values, &pick))
+            })
+            .collect();
+        resampled.sort_by(f64::total_cmp);
+        let q = |p: f64| resampled[((p * RESAMPLES as f64) as usize).min(RESAMPLES - 1)];
+        (turn(a), (q(0.025), q(0.975)))
+    }
+
+    /// The AUC of `values` over the windows `pick` (½ without both classes).
+    fn auc_of(&self, values: &[f64], pick: &[usize]) -> f64 {
+        let (mut coal, mut gangue) = (Vec::new(), Vec::new());
+        for &i in pick {
+            if self.labels[i] {
+                gangue.push(values[i]);
+            } else {
+                coal.push(values[i]);
+            }
+        }
+        if coal.is_empty() || gangue.is_empty() {
+            return 0.5;
+        }
+        auc(&coal, &gangue)
+    }
+}
