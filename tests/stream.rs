@@ -1,0 +1,138 @@
+//! The caving-stream detection study (`[stream]`, `impact stream`): every bad value is an
+//! error naming the key, the value and its range before anything runs; a run writes the
+//! windows' and lumps' truth consistently with each other and with the Poisson process they
+//! come from, the continuous signal at its rate with its metadata; and it is the same on one
+//! and two threads.
+
+mod common;
+
+use common::scenes::{edit, expect_refused as expect, ENSEMBLE};
+use common::{impact, tmp};
+use impact::scene::{Scene, SceneSource};
+
+const STREAM: &str = r#"
+[stream]
+rate_per_s = 12.0
+duration_s = 6.0
+streams = 2
+seed = 3
+gangue_before = 0.0
+gangue_after = 1.0
+onset_s = 3.0
+ramp_s = 0.5
+window_s = 0.5
+hop_s = 0.25
+blocks = 4
+alarm_probability = 0.5
+write_signal = true
+"#;
+
+/// [`ENSEMBLE`] with two sensors, a 5 ms window (each lump's longest follow) and `stream`.
+fn with_stream(stream: &str) -> String {
+    let signals = "modes = 24\nwindow_ms = 5.0\nsensors_mm = [[229.2, 180.0], [400.0, 90.0]]";
+    format!("{}\n{stream}", edit(ENSEMBLE, "modes = 24", signals))
+}
+
+#[test]
+fn a_stream_is_read_in_si() {
+    let s = Scene::parse(&with_stream(STREAM), "stream").unwrap();
+    let st = s.stream.unwrap();
+    assert_eq!((st.spec.rate_per_s, st.spec.duration, st.streams, st.blocks), (12.0, 6.0, 2, 4));
+    assert_eq!((st.spec.profile.onset, st.spec.profile.ramp, st.window, st.hop), (3.0, 0.5, 0.5, 0.25));
+    assert!(st.write_signal && st.rate_sweep.is_empty() && st.noise_sweep.is_empty());
+}
+
+#[test]
+fn bad_streams_name_the_key_the_value_and_the_range() {
+    let bad = |from: &str, to: &str, needles: &[&str]| expect(&with_stream(&STREAM.replace(from, to)), needles);
+    bad("rate_per_s = 12.0", "rate_per_s = 0.0", &["stream.rate_per_s = 0", "(0, 10000]"]);
+    bad("rate_per_s = 12.0", "rate_per_s = nan", &["stream.rate_per_s = NaN"]);
+    bad("duration_s = 6.0", "duration_s = 1e6", &["stream.duration_s = 1000000", "(0, 86400]"]);
+    bad("gangue_after = 1.0", "gangue_after = 1.5", &["stream.gangue_after = 1.5", "[0, 1]"]);
+    bad("gangue_after = 1.0", "gangue_after = 0.0", &["stream.gangue_after", "no change to detect"]);
+    bad("onset_s = 3.0", "onset_s = 7.0", &["stream.onset_s = 7", "(0, 6)"]);
+    bad("ramp_s = 0.5", "ramp_s = 4.0", &["stream.ramp_s = 4", "[0, 3]"]);
+    bad("window_s = 0.5", "window_s = 4.0", &["stream.window_s = 4", "0.0008", "3]"]);
+    bad("hop_s = 0.25", "hop_s = 0.75", &["stream.hop_s = 0.75", "0.5]"]);
+    bad("streams = 2", "streams = 2.5", &["stream.streams", "not a whole number"]);
+    bad("streams = 2", "streams = 100", &["stream.streams = 100", "[1, 64]"]);
+    bad("blocks = 4", "blocks = 1", &["stream.blocks = 1", "[2, 1000]"]);
+    bad("blocks = 4", "blocks = 900", &["stream.blocks", "900 blocks for 46 windows"]);
+    bad("alarm_probability = 0.5", "alarm_probability = 1.0", &["stream.alarm_probability = 1", "(0, 1)"]);
+    bad("write_signal = true", "noise_sweep = [1.0]", &["stream.noise_sweep", "no [measurement]"]);
+    bad("write_signal = true", "rate_sweep_per_s = [5.0, -1.0]", &["stream.rate_sweep_per_s[1] = -1"]);
+    bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
+    bad("duration_s = 6.0", "duration_s = 80000.0", &["stream.duration_s", "MB of signal", "budget"]);
+    let crowded =
+        STREAM.replace("rate_per_s = 12.0", "rate_per_s = 9000.0").replace("duration_s = 6.0", "duration_s = 60.0");
+    expect(
+        &with_stream(&crowded.replace("streams = 2", "streams = 64")),
+        &["expect 34560000 lumps", "budget of 10000000"],
+    );
+    let text = format!("{}\n{STREAM}", impact::scene::DEFAULT_SCENE);
+    expect(&text, &["stream", "read only by the \"identify\" analysis"]);
+}
+
+/// The rows of a CSV file written by impact (its provenance line first), split at commas.
+fn rows(path: &std::path::Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().skip(1);
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    (header, lines.map(|l| l.split(',').map(String::from).collect()).collect())
+}
+
+#[test]
+fn a_stream_run_writes_consistent_truth_and_the_signal() {
+    let dir = tmp();
+    let scene = dir.write("stream.toml", with_stream(STREAM));
+    for (out, threads) in [("one", "1"), ("two", "2")] {
+        impact(["stream", "--scene"])
+            .arg(&scene)
+            .arg("--out")
+            .arg(dir.join(out))
+            .arg("--json")
+            .env("RAYON_NUM_THREADS", threads)
+            .success();
+    }
+    for f in ["con-1/windows.csv", "con-1/lumps.csv", "con-2/signal.csv"] {
+        let (a, b) = (std::fs::read(dir.join("one").join(f)).unwrap(), std::fs::read(dir.join("two").join(f)).unwrap());
+        assert!(a == b, "{f} differs between one and two threads");
+    }
+    let run = dir.join("one").join("con-1");
+    let (_, lumps) = rows(&run.join("lumps.csv"));
+    // Two streams of 6 s at 12 a second: 144 lumps expected, Poisson, within 4 σ = 48.
+    assert!((lumps.len() as f64 - 144.0).abs() < 48.0, "{} lumps", lumps.len());
+    // The profile is all coal before the onset and all gangue after its ramp.
+    for l in &lumps {
+        let t: f64 = l[1].parse().unwrap();
+        if t < 3.0 {
+            assert_eq!(l[3], "no", "{l:?}");
+        } else if t >= 3.5 {
+            assert_eq!(l[3], "yes", "{l:?}");
+        }
+    }
+    // Every window's lump and gangue counts are those of lumps.csv in its span.
+    let (_, windows) = rows(&run.join("windows.csv"));
+    assert_eq!(windows.len(), 2 * 23);
+    for w in &windows {
+        let (s, a, b): (&str, f64, f64) = (&w[0], w[1].parse().unwrap(), w[2].parse().unwrap());
+        let inside: Vec<_> =
+            lumps.iter().filter(|l| l[0] == s && (a..b).contains(&l[1].parse::<f64>().unwrap())).collect();
+        assert_eq!(w[3].parse::<usize>().unwrap(), inside.len(), "{w:?}");
+        assert_eq!(w[4].parse::<usize>().unwrap(), inside.iter().filter(|l| l[3] == "yes").count(), "{w:?}");
+    }
+    // The signal: 6 s at the model's 20 kHz, its metadata beside it.
+    let (header, signal) = rows(&dir.join("one").join("con-2").join("signal.csv"));
+    assert_eq!(signal.len(), 120_000);
+    assert_eq!(header[0], "t_s");
+    let meta: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("one").join("con-2").join("signal.json")).unwrap()).unwrap();
+    assert_eq!(meta["rate_hz"], 20_000.0);
+    assert_eq!(meta["channels"].as_array().unwrap().len(), header.len() - 1);
+    let data: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("one").join("stream.json")).unwrap()).unwrap();
+    let every = &data["conditions"][0]["groups"][0];
+    assert_eq!(every["group"], "every channel");
+    let auc = every["auc"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&auc));
+}
