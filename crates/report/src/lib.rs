@@ -105,7 +105,14 @@ pub const IDENTIFY_SCENES: [(&str, &str); 3] = [
     ("paper-velocities-ensemble.toml", include_str!("../../../scenes/paper-velocities-ensemble.toml")),
 ];
 
+/// The caving-stream detection scenes `impact report` runs (`impact stream`), shipped in
+/// `scenes/` and embedded: file name and text.
+pub const STREAM_SCENES: [(&str, &str); 1] =
+    [("caving-stream-detect.toml", include_str!("../../../scenes/caving-stream-detect.toml"))];
+
 const INDEX: &str = include_str!("templates/index/index.md");
+const INDEX_STREAM: &str = include_str!("templates/index/stream.md");
+const INDEX_STREAM_ROW: &str = include_str!("templates/index/stream-row.md");
 const INDEX_IDENTIFY: &str = include_str!("templates/index/identify.md");
 const INDEX_IDENTIFY_ROW: &str = include_str!("templates/index/identify-row.md");
 
@@ -123,13 +130,24 @@ pub fn full_report(scene: &Scene, out: &mut OutputDir, progress: &dyn Progress) 
         all.extend(files);
         identified.push((file, s, summary));
     }
-    all.add("index.md", index_page(&identified)?);
+    let mut streamed = Vec::new();
+    for (file, text) in STREAM_SCENES {
+        let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;
+        let (mut files, data) = stream::report(&s, progress)?;
+        Provenance::of(&s).stamp(&mut files);
+        all.nest(&format!("stream/{}", slug(&s.name)), files);
+        streamed.push((file, s, data));
+    }
+    all.add("index.md", index_page(&identified, &streamed)?);
     Ok(all)
 }
 
 /// The report's index page: the identifications' answers (each scene's file name in
-/// `scenes/`, the scene, its summary), then what is where.
-pub fn index_page(identified: &[(&str, Scene, identify::Summary)]) -> Result<String, Failure> {
+/// `scenes/`, the scene, its summary), the stream detections' answers, then what is where.
+pub fn index_page(
+    identified: &[(&str, Scene, identify::Summary)],
+    streamed: &[(&str, Scene, studies::stream::StreamData)],
+) -> Result<String, Failure> {
     let (mut sections, mut rows) = (String::new(), String::new());
     for (file, s, summary) in identified {
         let dir = slug(&s.name);
@@ -169,5 +187,36 @@ pub fn index_page(identified: &[(&str, Scene, identify::Summary)]) -> Result<Str
             &[("dir", dir), ("file", file.to_string())],
         )?);
     }
-    Ok(render("index/index.md", INDEX, &[("identify", sections), ("identify_rows", rows)])?)
+    let (mut stream_sections, mut stream_rows) = (String::new(), String::new());
+    for (file, s, data) in streamed {
+        let dir = slug(&s.name);
+        let st = &data.study;
+        stream_sections.push_str(&render(
+            "index/stream.md",
+            INDEX_STREAM,
+            &[
+                ("scene", s.name.clone()),
+                ("dir", dir.clone()),
+                ("description", s.description.trim().trim_end_matches('.').to_string()),
+                ("streams", st.streams.to_string()),
+                ("duration", crate::present::table::sig(st.spec.duration, 4)),
+                ("table", stream::summary_table(data).to_markdown()),
+            ],
+        )?);
+        stream_rows.push_str(&render(
+            "index/stream-row.md",
+            INDEX_STREAM_ROW,
+            &[("dir", dir), ("file", file.to_string())],
+        )?);
+    }
+    Ok(render(
+        "index/index.md",
+        INDEX,
+        &[
+            ("identify", sections),
+            ("identify_rows", rows),
+            ("stream", stream_sections),
+            ("stream_rows", stream_rows),
+        ],
+    )?)
 }
