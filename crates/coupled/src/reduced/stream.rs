@@ -440,11 +440,7 @@ fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g:
     w.qh.resize(n, 0.0);
     w.vh.resize(n, 0.0);
     w.modal_force(active, |_, l| l.force);
-    for i in 0..n {
-        let hf = maps.h[i] * w.force[i];
-        w.qh[i] = m0[i] * q[i] + m1[i] * v[i] + hf;
-        w.vh[i] = m2[i] * q[i] + m3[i] * v[i] + c1 * hf;
-    }
+    predict([m0, m1, m2, m3], &maps.h, (q, v), &w.force, c1, (&mut w.qh, &mut w.vh));
     w.free.clear();
     for (j, l) in active.iter().enumerate() {
         let s = &l.striker;
@@ -467,11 +463,7 @@ fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g:
     let converged = solve(active, g, c1, w);
     let forces = std::mem::take(&mut w.forces);
     w.modal_force(active, |j, _| forces[j]);
-    for i in 0..n {
-        let hf = maps.h[i] * w.force[i];
-        q[i] = w.qh[i] + hf;
-        v[i] = w.vh[i] + c1 * hf;
-    }
+    commit(&maps.h, (&w.qh, &w.vh), &w.force, c1, (q, v));
     for (j, l) in active.iter_mut().enumerate() {
         let [d0, d1, r0, r1, u_hat, v_hat] = w.free[j];
         let coupled: f64 = (0..k).filter(|&m| m != j).map(|m| g[j * k + m] * forces[m]).sum();
@@ -490,6 +482,30 @@ fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g:
     }
     w.forces = forces;
     converged
+}
+
+/// (q̂, v̂) = M(q, q̇) + (h, (2/Δt)h)F per mode: the step's prediction from its start state
+/// and start force F (every slice cut to the modes, so that the loop vectorizes).
+fn predict(m: [&[f64]; 4], h: &[f64], (q, v): (&[f64], &[f64]), f: &[f64], c1: f64, (qh, vh): (&mut [f64], &mut [f64])) {
+    let n = q.len();
+    let (m0, m1, m2, m3, h, v, f) = (&m[0][..n], &m[1][..n], &m[2][..n], &m[3][..n], &h[..n], &v[..n], &f[..n]);
+    let (qh, vh) = (&mut qh[..n], &mut vh[..n]);
+    for i in 0..n {
+        let hf = h[i] * f[i];
+        qh[i] = m0[i] * q[i] + m1[i] * v[i] + hf;
+        vh[i] = m2[i] * q[i] + m3[i] * v[i] + c1 * hf;
+    }
+}
+
+/// (q, q̇) = (q̂, v̂) + (h, (2/Δt)h)F per mode: the step's end with its end force F.
+fn commit(h: &[f64], (qh, vh): (&[f64], &[f64]), f: &[f64], c1: f64, (q, v): (&mut [f64], &mut [f64])) {
+    let n = q.len();
+    let (h, qh, vh, f, v) = (&h[..n], &qh[..n], &vh[..n], &f[..n], &mut v[..n]);
+    for i in 0..n {
+        let hf = h[i] * f[i];
+        q[i] = qh[i] + hf;
+        v[i] = vh[i] + c1 * hf;
+    }
 }
 
 impl Active {
