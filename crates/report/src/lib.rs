@@ -212,11 +212,6 @@ pub fn index_page(
     Ok(render(
         "index/index.md",
         INDEX,
-        &[
-            ("identify", sections),
-            ("identify_rows", rows),
-            ("stream", stream_sections),
-            ("stream_rows", stream_rows),
-        ],
+        &[("identify", sections), ("identify_rows", rows), ("stream", stream_sections), ("stream_rows", stream_rows)],
     )?)
 }

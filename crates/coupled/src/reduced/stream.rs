@@ -486,7 +486,14 @@ fn step(active: &mut [Active], q: &mut [f64], v: &mut [f64], maps: &StepMaps, g:
 
 /// (q̂, v̂) = M(q, q̇) + (h, (2/Δt)h)F per mode: the step's prediction from its start state
 /// and start force F (every slice cut to the modes, so that the loop vectorizes).
-fn predict(m: [&[f64]; 4], h: &[f64], (q, v): (&[f64], &[f64]), f: &[f64], c1: f64, (qh, vh): (&mut [f64], &mut [f64])) {
+fn predict(
+    m: [&[f64]; 4],
+    h: &[f64],
+    (q, v): (&[f64], &[f64]),
+    f: &[f64],
+    c1: f64,
+    (qh, vh): (&mut [f64], &mut [f64]),
+) {
     let n = q.len();
     let (m0, m1, m2, m3, h, v, f) = (&m[0][..n], &m[1][..n], &m[2][..n], &m[3][..n], &h[..n], &v[..n], &f[..n]);
     let (qh, vh) = (&mut qh[..n], &mut vh[..n]);

@@ -16,6 +16,7 @@ use identify::{Class, Variable};
 use serde::Serialize;
 
 mod measurement;
+mod stream;
 
 /// One key of a table.
 struct Key {
@@ -187,6 +188,13 @@ fn tables() -> Vec<Key> {
             "[measurement]",
             "none: the features read the model's exact samples",
             "The measurement chain of the identification (\"identify\" only)",
+        ),
+        table(
+            "stream",
+            TABLE,
+            "[stream]",
+            "none: no stream study",
+            "A caving-stream detection study on the ensemble (\"identify\" only; `impact stream`)",
         ),
     ]
 }
@@ -472,6 +480,7 @@ fn sections() -> Vec<Section> {
     }
     all.push(families());
     all.extend(measurement::sections());
+    all.extend(stream::sections());
     all
 }
 

@@ -6,6 +6,7 @@ use crate::ensemble::{RawEnsemble, RawFamily, RawPlacement, RawRegion};
 use crate::validate::measurement::{
     RawAcceleration, RawAntiAlias, RawMeasurement, RawSensor, RawStrain, RawSupportForce,
 };
+use crate::validate::stream::RawStream;
 use crate::{
     RawBody, RawCondition, RawCorners, RawEdges, RawGrid, RawPlate, RawPlateDamping, RawPoints, RawScene, RawSignals,
     RawSolver, RawTransient, RawVelocities,
@@ -70,6 +71,7 @@ fn every_key_of_every_table_is_described_and_nothing_else() {
         ("[measurement.acceleration]", fields::<RawAcceleration>()),
         ("[measurement.strain]", fields::<RawStrain>()),
         ("[measurement.support_force]", fields::<RawSupportForce>()),
+        ("[stream]", fields::<RawStream>()),
     ];
     let sections = sections();
     let titles: Vec<&str> = sections.iter().map(|s| s.title).collect();

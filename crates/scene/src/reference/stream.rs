@@ -1,0 +1,39 @@
+//! The reference's section of `[stream]`: the caving-stream detection study
+//! (`identify::stream`, `identify::detect`).
+
+use super::{key, num, whole, Section, NO_UNIT, REQUIRED};
+use crate::limits;
+use analytic::params::Range;
+
+/// `[stream]`.
+pub(super) fn sections() -> Vec<Section> {
+    let share = Range::closed(0.0, 1.0);
+    vec![Section {
+        title: "[stream]",
+        about: "A caving-stream detection study on the scene's `[ensemble]` (\"identify\" only; `impact stream`): the ensemble's lumps arrive as a Poisson process whose gangue share steps from `gangue_before` to `gangue_after`, the plate carries every lump's response into the next, the channels are recorded through `[measurement]` if given, and a logistic detector scores sliding windows, cross-validated by time blocks. Each stream's model signals must fit in 2 GB and the study's lumps (every stream and rate) in ten million.".into(),
+        keys: vec![
+            num("rate_per_s", "1/s", limits::STREAM_RATE_PER_S, REQUIRED, "Lumps per second λ"),
+            num("duration_s", "s", limits::STREAM_DURATION_S, REQUIRED, "Length of each stream"),
+            whole("streams", limits::STREAMS, "1", "Independent streams (stream r drawn with seed + r)"),
+            key("seed", "whole number", NO_UNIT, "0 to 2^63 - 1 (a TOML integer)", "1", "Seed of the arrivals and their classes"),
+            num("gangue_before", NO_UNIT, share, REQUIRED, "Gangue share before the change"),
+            num("gangue_after", NO_UNIT, share, REQUIRED, "Gangue share after it; not equal to `gangue_before`"),
+            key("onset_s", "number", "s", "(0, duration_s)", REQUIRED, "When the change starts"),
+            key("ramp_s", "number", "s", "[0, duration_s - onset_s]", "0", "How long the change takes (linear)"),
+            key(
+                "window_s",
+                "number",
+                "s",
+                "[16 samples of the recording, min(onset_s, duration_s - onset_s)]",
+                REQUIRED,
+                "The detector's window W",
+            ),
+            key("hop_s", "number", "s", "[one sample, window_s]", REQUIRED, "Its hop H"),
+            whole("blocks", limits::STREAM_BLOCKS, "5", "Time blocks of the cross-validation, at most one per window"),
+            num("alarm_probability", NO_UNIT, Range::open(0.0, 1.0), "0.5", "The out-of-fold probability that raises an alarm"),
+            key("rate_sweep_per_s", "list of numbers", "1/s", limits::STREAM_RATE_PER_S.to_string(), "none", "Further arrival rates, each a whole study"),
+            key("noise_sweep", "list of numbers", NO_UNIT, "[0, 1e6]; needs `[measurement]`", "none", "Scales of the chain's background, each scored on the same streams"),
+            key("write_signal", "boolean", NO_UNIT, "true, false", "false", "Write the first stream's recorded signals (`signal.csv` with `signal.json`)"),
+        ],
+    }]
+}
