@@ -82,6 +82,8 @@ pub struct StreamResponse {
     pub signals: Signals,
     /// One per lump that touched before the stream's last sample, in arrival order.
     pub lumps: Vec<LumpResponse>,
+    /// Contact steps taken (at the contact step, between the samples).
+    pub steps: usize,
     /// Contact steps taken with two or more lumps in contact.
     pub joint_steps: usize,
     /// Joint steps whose Gauss-Seidel solve had not converged to 1e-12 in its iterations.
@@ -185,6 +187,7 @@ struct Run<'a> {
     done: Vec<(usize, LumpResponse)>,
     maps: HashMap<usize, StepMaps>,
     window_samples: usize,
+    steps: usize,
     joint_steps: usize,
     unconverged_steps: usize,
     cross_residual_bound: f64,
@@ -211,6 +214,7 @@ impl<'a> Run<'a> {
             done: Vec::new(),
             maps: HashMap::new(),
             window_samples: probes.spec.samples(),
+            steps: 0,
             joint_steps: 0,
             unconverged_steps: 0,
             cross_residual_bound: 0.0,
@@ -285,12 +289,17 @@ impl<'a> Run<'a> {
         }
     }
 
-    /// One sample interval of contact steps, and the sample at its end.
+    /// One sample interval of contact steps, and the sample at its end; where no lump can
+    /// touch within it, the interval in one exact step.
     fn contact_interval(&mut self) {
+        if self.clear_interval() {
+            return self.free_interval();
+        }
         let every = self.active.iter().map(|a| a.every).max().unwrap_or(1);
         let (model, probes) = (self.model, self.probes);
         let maps = self.maps.entry(every).or_insert_with(|| step_maps(model, probes, every));
         let g = flexibility(&self.active, &maps.h);
+        self.steps += every;
         for _ in 0..every {
             if !step(&mut self.active, &mut self.q, &mut self.v, maps, &g, &mut self.scratch) {
                 self.unconverged_steps += 1;
@@ -316,20 +325,63 @@ impl<'a> Run<'a> {
         }
     }
 
+    /// Whether no lump is in contact and none can touch within the next sample interval:
+    /// each sphere's flight over it stays below the lowest the plate's free deflection at its
+    /// point can reach in it, the larger of -Σᵢ|φᵢ(p)|Aᵢ (ever) and w(p) - T_s Σᵢ|φᵢ(p)|ωᵢAᵢ
+    /// (in T_s at the largest speed |ẇ(p)| can have).
+    fn clear_interval(&self) -> bool {
+        let ts = self.probes.spec.interval();
+        let (q, v, omega) = (&self.q, &self.v, &self.model.omega);
+        self.active.iter().all(|l| {
+            if l.force != 0.0 {
+                return false;
+            }
+            let (mut ever, mut speed) = (0.0, 0.0);
+            for i in 0..omega.len() {
+                let a = l.phi[i].abs() * (q[i] * q[i] + (v[i] / omega[i]).powi(2)).sqrt();
+                ever += a;
+                speed += a * omega[i];
+            }
+            l.highest(ts) < (-ever).max(dot(&l.phi, q) - ts * speed)
+        })
+    }
+
+    /// A sample interval free of force: every mode by its exact map over T_s, every sphere on
+    /// its flight (which Newmark's rule follows exactly under a constant body force), and
+    /// the sample at its end.
+    fn free_interval(&mut self) {
+        let ts = self.probes.spec.interval();
+        let map = self.probes.step_map(1);
+        let w = &mut self.scratch;
+        w.qh.resize(self.q.len(), 0.0);
+        w.vh.resize(self.q.len(), 0.0);
+        map.apply(&self.q, &self.v, &mut w.qh, &mut w.vh);
+        std::mem::swap(&mut self.q, &mut w.qh);
+        std::mem::swap(&mut self.v, &mut w.vh);
+        for l in &mut self.active {
+            let g = l.striker.gravity;
+            l.u += l.v * ts + 0.5 * g * ts * ts;
+            l.v += g * ts;
+            l.a = g;
+            l.res_v = 0.0;
+            l.time += ts;
+            l.last = (l.u - dot(&l.phi, &self.q), l.v - dot(&l.phi, &self.v));
+        }
+        for (row, o) in self.rows.iter().zip(self.out.iter_mut()) {
+            let a = row.a.as_ref().map_or(0.0, |a| dot(a, &self.q));
+            let b = row.b.as_ref().map_or(0.0, |b| dot(b, &self.v));
+            o.push(a + b);
+        }
+    }
+
     /// Lets go of every lump that has left for good at sample `k`, or whose window has ended.
     fn retire(&mut self, k: usize) {
-        let (q, v, omega) = (&self.q, &self.v, &self.model.omega);
         let ts = self.probes.spec.interval();
         let mut kept = Vec::with_capacity(self.active.len());
-        for l in self.active.drain(..) {
-            let reach: f64 =
-                (0..omega.len()).map(|i| l.phi[i].abs() * (q[i].powi(2) + (v[i] / omega[i]).powi(2)).sqrt()).sum();
-            // The sphere's free flight over the rest of its window, u + vτ + gτ²/2, is
-            // highest at one of its ends (a parabola opening upward, or a line).
+        for l in std::mem::take(&mut self.active) {
+            let reach = reach(&l.phi, &self.q, &self.v, &self.model.omega);
             let rest = self.window_samples.saturating_sub(k - l.touched) as f64 * ts;
-            let g = l.striker.gravity;
-            let highest = l.u.max(l.u + l.v * rest + 0.5 * g * rest * rest);
-            let left = l.force == 0.0 && l.steps > 0 && highest + reach < 0.0;
+            let left = l.force == 0.0 && l.steps > 0 && l.highest(rest) + reach < 0.0;
             if left || k - l.touched >= self.window_samples {
                 self.done.push(l.response_of());
             } else {
@@ -339,6 +391,7 @@ impl<'a> Run<'a> {
         self.active = kept;
     }
 
+    /// The signals and every lump's response, in arrival order.
     fn finish(mut self) -> StreamResponse {
         for l in std::mem::take(&mut self.active) {
             self.done.push(l.response_of());
@@ -351,6 +404,7 @@ impl<'a> Run<'a> {
         StreamResponse {
             signals: Signals { rate_hz: self.probes.spec.rate_hz, channels },
             lumps,
+            steps: self.steps,
             joint_steps: self.joint_steps,
             unconverged_steps: self.unconverged_steps,
             cross_residual_bound: self.cross_residual_bound,
@@ -515,7 +569,19 @@ fn commit(h: &[f64], (qh, vh): (&[f64], &[f64]), f: &[f64], c1: f64, (q, v): (&m
     }
 }
 
+/// Σᵢ|φᵢ(p)|Aᵢ with Aᵢ = √(qᵢ² + q̇ᵢ²/ωᵢ²): no later free deflection at p reaches beyond it
+/// ([`super::target`]).
+fn reach(phi: &[f64], q: &[f64], v: &[f64], omega: &[f64]) -> f64 {
+    (0..omega.len()).map(|i| phi[i].abs() * (q[i] * q[i] + (v[i] / omega[i]).powi(2)).sqrt()).sum()
+}
+
 impl Active {
+    /// The highest the sphere's free flight u + u̇τ + gτ²/2 reaches over the next `tau`
+    /// seconds: at one of its ends (g ≥ 0, a parabola opening upward, or a line).
+    fn highest(&self, tau: f64) -> f64 {
+        self.u.max(self.u + self.v * tau + 0.5 * self.striker.gravity * tau * tau)
+    }
+
     /// The contact bookkeeping of a step ending with force `p`.
     fn record(&mut self, p: f64, dt: f64) {
         if p > 0.0 && self.force == 0.0 {

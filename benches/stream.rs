@@ -1,0 +1,83 @@
+//! The caving stream as `impact stream` simulates it: two acceleration sensors at 20 kHz on the
+//! 80-mode plate (Con 3), the lumps of `scenes/caving-stream-detect.toml` (its ensemble, its
+//! gravity) arriving at 20 a second, 10 s of stream per iteration. The reference in the same
+//! run is the same plate ringing free over the same 10 s with no lumps: the arithmetic floor of
+//! the propagation (modes × samples, each mode's exact 2 x 2 map and the two channels' dot
+//! products), so the ratio of the two is the cost of the contacts. Before the timed runs the
+//! bench prints both as real-time factors (stream seconds per second of one core).
+
+use coupled::identification::Instrument;
+use coupled::reduced::{Quantity, ReducedModel, SignalSpec};
+use criterion::{criterion_group, criterion_main, Criterion};
+use identify::stream::{lumps, StreamSpec};
+use impact::scene::{Scene, SceneSource};
+use std::hint::black_box;
+use std::time::Instant;
+
+/// The detection scene at 20 kHz and 80 modes, without its measurement chain.
+fn scene() -> Scene {
+    let text = impact::report::STREAM_SCENES[0].1;
+    let text = text[..text.find("[measurement]").expect("the scene has a chain")].to_string()
+        + &text[text.find("[stream]").expect("the scene has a stream")..];
+    let text = text.replace("rate_hz = 40000.0", "rate_hz = 20000.0").replace("modes = 160", "modes = 80");
+    let text = text.replace("noise_sweep = [0.0, 10.0, 100.0]", "");
+    Scene::parse(&text, "bench").expect("the bench's scene is valid")
+}
+
+fn stream(c: &mut Criterion) {
+    let scene = scene();
+    let set = &scene.conditions[2];
+    let model = ReducedModel::new(&scene.plate, set, scene.signals.reduced()).unwrap();
+    let spec = SignalSpec {
+        quantities: vec![Quantity::Acceleration],
+        corners: false,
+        ..SignalSpec {
+            window: scene.signals.window,
+            rate_hz: scene.signals.rate_hz,
+            ..SignalSpec::new(scene.signals.sensors.clone())
+        }
+    };
+    let instrument = Instrument::new(&model, &scene.plate, &spec, &scene).unwrap();
+    let ensemble = &scene.ensemble.as_ref().unwrap().ensemble;
+    let names: Vec<String> = ensemble.families.iter().map(|f| f.name.clone()).collect();
+    let duration = 10.0;
+    let s = StreamSpec { rate_per_s: 20.0, duration, ..scene.stream.as_ref().unwrap().spec };
+    let drawn = lumps(ensemble, &s).unwrap();
+    let best = |f: &dyn Fn()| {
+        (0..5)
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let with = best(&|| {
+        black_box(instrument.stream(&drawn, &names, duration).unwrap());
+    });
+    let run = instrument.stream(&drawn, &names, duration).unwrap();
+    let free = best(&|| {
+        black_box(instrument.stream(&[], &names, duration).unwrap());
+    });
+    println!(
+        "stream: {} lumps in {duration} s, {} contact steps ({:.0} a lump), {:.0}x real time; free plate {:.0}x real time (the floor); contacts cost {:.2}x the floor",
+        drawn.len(),
+        run.steps,
+        run.steps as f64 / drawn.len() as f64,
+        duration / with,
+        duration / free,
+        with / free
+    );
+    let mut g = c.benchmark_group("stream");
+    g.sample_size(10);
+    g.bench_function("10 s at 20 lumps/s, 2 sensors, 20 kHz, 80 modes", |b| {
+        b.iter(|| black_box(instrument.stream(&drawn, &names, duration).unwrap()))
+    });
+    g.bench_function("reference: the free plate over 10 s", |b| {
+        b.iter(|| black_box(instrument.stream(&[], &names, duration).unwrap()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, stream);
+criterion_main!(benches);
