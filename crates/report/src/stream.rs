@@ -104,7 +104,7 @@ fn alarm_cell(s: &Score) -> Cell {
 pub fn summary_table(d: &StreamData) -> Table {
     let mut t = Table::new(
         "window detection on every channel: AUC over windows (95 % block-bootstrap interval), median delay from the onset, false alarms per hour (count)",
-        &["support set", "signals", "AUC", "median delay", "false alarms/h", "best baseline", "its AUC"],
+        &["support set", "signals", "AUC", "median delay", "false alarms/h", "best baseline", "its AUC", "detector against it"],
     );
     for c in &d.conditions {
         let Some(every) = c.groups.first() else { continue };
@@ -119,9 +119,21 @@ pub fn summary_table(d: &StreamData) -> Table {
             best.map_or("".into(), |b| {
                 format!("{} ({}-{})", sig(b.auc, 3), sig(b.interval.0, 3), sig(b.interval.1, 3)).into()
             }),
+            best.map_or("".into(), |b| against(every, b).into()),
         ]);
     }
     t
+}
+
+/// The detector's AUC against a baseline's, by their intervals.
+fn against(s: &Score, b: &studies::stream::Baseline) -> &'static str {
+    if s.interval.0 > b.interval.1 {
+        "above, beyond both intervals"
+    } else if s.interval.1 < b.interval.0 {
+        "below, beyond both intervals"
+    } else {
+        "within the intervals"
+    }
 }
 
 fn baselines_table(d: &StreamData) -> Table {
@@ -209,6 +221,7 @@ fn simulation_table(d: &StreamData) -> Table {
         &[
             "support set",
             "lumps",
+            "contact steps a lump",
             "in contact together",
             "joint steps",
             "unconverged",
@@ -224,6 +237,7 @@ fn simulation_table(d: &StreamData) -> Table {
         t.push(vec![
             c.name.as_str().into(),
             Cell::Int(s.lumps as u64),
+            Cell::Sig(s.steps_per_lump, 3),
             Cell::Rel(s.overlapped_share),
             Cell::Int(s.joint_steps as u64),
             Cell::Int(s.unconverged_steps as u64),

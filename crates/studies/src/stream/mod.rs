@@ -71,6 +71,8 @@ pub struct Simulation {
     pub lumps: usize,
     /// Share of them in contact at the same time as another.
     pub overlapped_share: f64,
+    /// Contact steps per lump (the stream's whole contact stepping over its lumps).
+    pub steps_per_lump: f64,
     /// Contact steps with two or more lumps in contact.
     pub joint_steps: usize,
     /// Joint steps whose solve did not converge.

@@ -128,8 +128,11 @@ fn simulation(
     let free_seconds = t0.elapsed().as_secs_f64();
     let seconds: f64 = main.iter().map(|s| s.seconds).sum();
     let simulated = study.spec.duration * main.len() as f64;
+    let lumps: usize = main.iter().map(|s| s.response.lumps.len()).sum();
+    let steps: usize = main.iter().map(|s| s.response.steps).sum();
     Ok(Simulation {
-        lumps: main.iter().map(|s| s.response.lumps.len()).sum(),
+        lumps,
+        steps_per_lump: steps as f64 / lumps.max(1) as f64,
         overlapped_share: overlapped_share(main),
         joint_steps: main.iter().map(|s| s.response.joint_steps).sum(),
         unconverged_steps: main.iter().map(|s| s.response.unconverged_steps).sum(),
