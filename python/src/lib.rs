@@ -15,6 +15,7 @@ mod dict;
 mod errors;
 mod identify;
 mod scene;
+mod stream;
 
 use ::scene::{limits, Analysis};
 use analytic::params::{check, Range};
@@ -207,6 +208,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run, m)?)?;
     m.add_function(wrap_pyfunction!(transient, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
+    m.add_function(wrap_pyfunction!(stream::stream, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The Python layer documents these from here rather than repeat the numbers.
     let t = limits::TRANSIENT_TOLERANCE;

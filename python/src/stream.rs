@@ -1,0 +1,81 @@
+//! The scene's caving-stream detection study (`[stream]`; what `impact stream` runs,
+//! `studies::stream::compute`): per support set the windows' and lumps' truth as columns and,
+//! where the scene asks for it, the first stream's recorded signals as numpy arrays, with the
+//! study's results as JSON text for the Python layer to parse.
+
+use crate::columns::Table;
+use crate::errors::{argument_message, model_error};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use studies::progress::Silent;
+use studies::stream::ConditionStream;
+
+/// Runs the `[stream]` study of `scene`.
+#[pyfunction]
+pub fn stream<'py>(py: Python<'py>, scene: &crate::scene::Scene) -> PyResult<Bound<'py, PyDict>> {
+    let s = &scene.scene;
+    if s.stream.is_none() {
+        return Err(argument_message(
+            "scene",
+            format!("{} has no [stream] table (see docs/scenes.md); impact.stream runs it", s.name),
+        ));
+    }
+    let data = py.detach(|| studies::stream::compute(s, &Silent).map_err(|e| e.to_string())).map_err(model_error)?;
+    let out = PyDict::new(py);
+    out.set_item("results", serde_json::to_string(&data).map_err(model_error)?)?;
+    let conditions = PyDict::new(py);
+    for c in &data.conditions {
+        let d = PyDict::new(py);
+        d.set_item("windows", windows(c).into_py(py)?)?;
+        d.set_item("lumps", lumps(c).into_py(py)?)?;
+        if let Some(sig) = &c.signal {
+            let columns = PyDict::new(py);
+            for (name, samples) in sig.names.iter().zip(&sig.columns) {
+                columns.set_item(name, PyArray1::from_slice(py, samples))?;
+            }
+            d.set_item("signal_rate_hz", sig.rate_hz)?;
+            d.set_item("signal", columns)?;
+        }
+        conditions.set_item(&c.name, d)?;
+    }
+    out.set_item("conditions", conditions)?;
+    Ok(out)
+}
+
+/// Every window of the main run: its stream, span, truth and every-channel score.
+fn windows(c: &ConditionStream) -> Table {
+    let mut t = Table::new(c.windows.len(), &[]);
+    for (row, w) in c.windows.iter().enumerate() {
+        t.int("stream", row, w.stream as i64);
+        t.num("start_s", row, w.start);
+        t.num("end_s", row, w.end);
+        t.int("lumps", row, w.lumps as i64);
+        t.int("gangue_lumps", row, w.gangue as i64);
+        t.num("expected_gangue_share", row, w.expected_share);
+        t.flag("gangue_rich", row, w.gangue_rich);
+        // A window straddling a block edge is not scored: NaN.
+        t.num("probability_gangue_rich", row, w.score.unwrap_or(f64::NAN));
+    }
+    t
+}
+
+/// Every lump of the main run.
+fn lumps(c: &ConditionStream) -> Table {
+    let mut t = Table::new(c.lumps.len(), &[]);
+    for (row, l) in c.lumps.iter().enumerate() {
+        t.int("stream", row, l.stream as i64);
+        t.num("time_s", row, l.time);
+        t.text("family", row, &l.family);
+        t.flag("gangue", row, l.gangue);
+        t.num("mass_kg", row, l.mass);
+        t.num("velocity_m_per_s", row, l.velocity);
+        t.num("x_m", row, l.x);
+        t.num("z_m", row, l.z);
+        t.int("contacts", row, l.contacts as i64);
+        t.num("contact_time_s", row, l.contact_time);
+        t.num("force_max_N", row, l.force_max);
+        t.flag("overlapped", row, l.overlapped);
+    }
+    t
+}
