@@ -252,6 +252,11 @@ fn channel_groups(kinds: &[ChannelKind], sensors: usize) -> Vec<(String, Vec<usi
     out
 }
 
+/// A lump's mass ρ·4πR³/3, kg.
+fn mass(l: &Lump) -> f64 {
+    l.draw.density * 4.0 / 3.0 * std::f64::consts::PI * l.draw.radius.powi(3)
+}
+
 /// A lump and what it did.
 type LumpOf<'a> = (&'a Lump, &'a coupled::reduced::stream::LumpResponse);
 
@@ -274,7 +279,6 @@ fn baselines(w: &Windows, sims: &[Simulated]) -> Vec<Baseline> {
             .collect()
     };
     let mean = |v: Vec<f64>| if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 };
-    let mass = |l: &Lump| l.draw.density * 4.0 / 3.0 * std::f64::consts::PI * l.draw.radius.powi(3);
     vec![
         w.baseline("mean contact time t_c", &per_window(&|ls| mean(ls.iter().map(|(_, r)| r.contact_time).collect()))),
         w.baseline("mean contact force P_max", &per_window(&|ls| mean(ls.iter().map(|(_, r)| r.force_max).collect()))),
@@ -356,7 +360,6 @@ fn window_rows(
 
 /// The main run's lumps with what each did.
 fn lump_rows(ensemble: &identify::Study, sims: &[Simulated]) -> Vec<LumpRow> {
-    let mass = |l: &Lump| l.draw.density * 4.0 / 3.0 * std::f64::consts::PI * l.draw.radius.powi(3);
     sims.iter()
         .enumerate()
         .flat_map(|(r, s)| {
