@@ -199,7 +199,7 @@ pub fn index_page(
                 ("dir", dir.clone()),
                 ("description", s.description.trim().trim_end_matches('.').to_string()),
                 ("streams", st.streams.to_string()),
-                ("duration", crate::present::table::sig(st.spec.duration, 4)),
+                ("duration", analytic::params::compact(st.spec.duration)),
                 ("table", stream::summary_table(data).to_markdown()),
             ],
         )?);

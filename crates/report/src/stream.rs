@@ -5,6 +5,7 @@
 
 use crate::present::table::{sig, Cell, Table};
 use crate::template::render;
+use analytic::params::compact;
 use crate::Failure;
 use output::Artifacts;
 use scene::Scene;
@@ -58,16 +59,16 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
         &[
             ("scene", scene.name.clone()),
             ("streams", s.streams.to_string()),
-            ("duration", sig(s.spec.duration, 4)),
-            ("rate", sig(s.spec.rate_per_s, 4)),
-            ("before", sig(p.before, 3)),
-            ("after", sig(p.after, 3)),
-            ("onset", sig(p.onset, 4)),
-            ("ramp", sig(p.ramp, 4)),
-            ("window", sig(s.window, 4)),
-            ("hop", sig(s.hop, 4)),
+            ("duration", compact(s.spec.duration)),
+            ("rate", compact(s.spec.rate_per_s)),
+            ("before", compact(p.before)),
+            ("after", compact(p.after)),
+            ("onset", compact(p.onset)),
+            ("ramp", compact(p.ramp)),
+            ("window", compact(s.window)),
+            ("hop", compact(s.hop)),
             ("blocks", s.blocks.to_string()),
-            ("alarm", sig(s.alarm_probability, 3)),
+            ("alarm", compact(s.alarm_probability)),
             (
                 "signals",
                 if d.measured {
