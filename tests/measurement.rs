@@ -185,3 +185,41 @@ fn a_run_under_a_chain_is_the_same_on_one_and_two_threads() {
     assert_eq!(m["decimation"], 2);
     assert!(m["snr"][0]["snr_db"][1].as_f64().unwrap().is_finite());
 }
+
+/// A measured PSD given as a file beside the scene is the same chain as its points written
+/// inline; a file and inline points at once, a missing file and a bad line are refused with
+/// the key and the file named.
+#[test]
+fn a_measured_psd_file_is_its_points() {
+    let dir = tmp();
+    let inline = "noise = \"measured\"\nnoise_psd_m2_s4_per_hz = [[0.0, 1e-6], [100.0, 1e-6], [2000.0, 1e-8]]";
+    let by_file = "noise = \"measured\"\nnoise_psd_file = \"psd/measured.csv\"";
+    std::fs::create_dir_all(dir.join("psd")).unwrap();
+    std::fs::write(
+        dir.join("psd/measured.csv"),
+        "# tail beam, shearer running\nfrequency_hz,psd\n0,1e-6\n100,1e-6\n2000,1e-8\n",
+    )
+    .unwrap();
+    let chain =
+        |noise: &str| with_chain(&CHAIN.replace("noise = \"pink\"", noise).replace("noise_rms_m_s2 = 0.01\n", ""));
+    let a = Scene::parse(&chain(inline), "inline").unwrap();
+    let b = Scene::load(&dir.write("by-file.toml", chain(by_file))).unwrap();
+    assert_eq!(a.measurement, b.measurement);
+    let both = format!("{inline}\nnoise_psd_file = \"psd/measured.csv\"");
+    let refused = |path: &std::path::Path, needles: &[&str]| {
+        let e = Scene::load(path).unwrap_err().to_string();
+        for n in needles {
+            assert!(e.contains(n), "'{e}' does not mention '{n}'");
+        }
+    };
+    refused(&dir.write("both.toml", chain(&both)), &["measurement.acceleration.noise_psd_file", "both given"]);
+    refused(
+        &dir.write("missing.toml", chain(&by_file.replace("measured.csv", "nothing.csv"))),
+        &["measurement.acceleration.noise_psd_file", "nothing.csv", "cannot be read"],
+    );
+    std::fs::write(dir.join("psd/bad.csv"), "0,1e-6\n100\n").unwrap();
+    refused(
+        &dir.write("bad.toml", chain(&by_file.replace("measured.csv", "bad.csv"))),
+        &["noise_psd_file", "bad.csv", "line 2", "has 1 numbers"],
+    );
+}

@@ -5,8 +5,8 @@
 
 use crate::present::table::{sig, Cell, Table};
 use crate::template::render;
-use analytic::params::compact;
 use crate::Failure;
+use analytic::params::compact;
 use output::Artifacts;
 use scene::Scene;
 use studies::progress::Progress;

@@ -93,23 +93,31 @@ impl SceneSource for Scene {
             });
         }
         let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { path: shown.clone(), source })?;
-        Self::parse(&text, &shown)
+        parse_in(&text, &shown, path.parent())
     }
 
     fn parse(text: &str, origin: &str) -> Result<Self, SceneError> {
-        let raw: RawScene = toml::from_str(text).map_err(|e| SceneError::Syntax {
-            origin: origin.to_string(),
-            message: e.to_string().trim_end().to_string(),
-            reason: e.message().trim_end().to_string(),
-            span: e.span(),
-        })?;
-        validate(raw).map_err(|e| match e {
-            Invalid::Range(source) => SceneError::OutOfRange { origin: origin.to_string(), source },
-            Invalid::Other { field, message } => {
-                SceneError::Inconsistent { origin: origin.to_string(), field, message }
-            }
-        })
+        parse_in(text, origin, None)
     }
+}
+
+/// Parses and validates scene text; files it names (a measured PSD) are read relative to
+/// `base`, the scene file's folder (the working folder when None).
+fn parse_in(text: &str, origin: &str, base: Option<&Path>) -> Result<Scene, SceneError> {
+    let mut raw: RawScene = toml::from_str(text).map_err(|e| SceneError::Syntax {
+        origin: origin.to_string(),
+        message: e.to_string().trim_end().to_string(),
+        reason: e.message().trim_end().to_string(),
+        span: e.span(),
+    })?;
+    let read = match raw.measurement.as_mut() {
+        Some(m) => validate::measurement::read_psd_files(m, base),
+        None => Ok(()),
+    };
+    read.and_then(|()| validate(raw)).map_err(|e| match e {
+        Invalid::Range(source) => SceneError::OutOfRange { origin: origin.to_string(), source },
+        Invalid::Other { field, message } => SceneError::Inconsistent { origin: origin.to_string(), field, message },
+    })
 }
 
 /// A length in metres as millimetres with one decimal, the trailing ".0" dropped: how a

@@ -58,6 +58,14 @@ fn recording(
                 "A measured one-sided PSD: linear between its points, zero outside them",
             ),
             key(
+                "noise_psd_file",
+                STRING,
+                NO_UNIT,
+                format!("a path, relative to the scene file's folder; one point a line, [f, S] as `{psd}`"),
+                "none",
+                "The measured PSD read from a file (CSV or whitespace; `#` lines and one header skipped), in place of the points inline",
+            ),
+            key(
                 tones,
                 "list of [f, rms]",
                 unit,

@@ -82,6 +82,7 @@ pub(crate) struct RawAcceleration {
     noise_rms_m_s2: Option<f64>,
     pink_flat_below_hz: Option<f64>,
     noise_psd_m2_s4_per_hz: Option<Vec<Vec<f64>>>,
+    noise_psd_file: Option<String>,
     tones_m_s2: Option<Vec<Vec<f64>>>,
 }
 
@@ -95,6 +96,7 @@ pub(crate) struct RawSupportForce {
     noise_rms_kn: Option<f64>,
     pink_flat_below_hz: Option<f64>,
     noise_psd_kn2_per_hz: Option<Vec<Vec<f64>>>,
+    noise_psd_file: Option<String>,
     tones_kn: Option<Vec<Vec<f64>>>,
 }
 
@@ -108,7 +110,43 @@ pub(crate) struct RawStrain {
     noise_rms_microstrain: Option<f64>,
     pink_flat_below_hz: Option<f64>,
     noise_psd_microstrain2_per_hz: Option<Vec<Vec<f64>>>,
+    noise_psd_file: Option<String>,
     tones_microstrain: Option<Vec<Vec<f64>>>,
+}
+
+/// A recording's PSD file and inline points.
+type PsdKeys<'a> = (&'a mut Option<String>, &'a mut Option<Vec<Vec<f64>>>);
+
+/// Reads each recording's `noise_psd_file` (relative to `base`) into its inline points, so
+/// that validation sees one list either way; both at once is refused.
+pub(crate) fn read_psd_files(raw: &mut RawMeasurement, base: Option<&std::path::Path>) -> Result<(), Invalid> {
+    let tables: [(&str, &str, Option<PsdKeys<'_>>); 3] = [
+        (
+            "measurement.acceleration",
+            "noise_psd_m2_s4_per_hz",
+            raw.acceleration.as_mut().map(|a| (&mut a.noise_psd_file, &mut a.noise_psd_m2_s4_per_hz)),
+        ),
+        (
+            "measurement.strain",
+            "noise_psd_microstrain2_per_hz",
+            raw.strain.as_mut().map(|a| (&mut a.noise_psd_file, &mut a.noise_psd_microstrain2_per_hz)),
+        ),
+        (
+            "measurement.support_force",
+            "noise_psd_kn2_per_hz",
+            raw.support_force.as_mut().map(|a| (&mut a.noise_psd_file, &mut a.noise_psd_kn2_per_hz)),
+        ),
+    ];
+    for (table, inline, keys) in tables {
+        let Some((file, points)) = keys else { continue };
+        let Some(path) = file.as_deref() else { continue };
+        let field = format!("{table}.noise_psd_file");
+        if points.is_some() {
+            return Err(other(field, format!("and {table}.{inline} are both given; give one")));
+        }
+        *points = Some(super::psd_file::read(&field, path, base)?);
+    }
+    Ok(())
 }
 
 /// One recording's keys, whatever their unit; `scale` converts the file's unit to SI.

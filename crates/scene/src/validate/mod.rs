@@ -12,6 +12,7 @@ use coupled::SupportSet;
 mod damping;
 pub(crate) mod measurement;
 mod points;
+mod psd_file;
 mod signals;
 pub(crate) mod stream;
 mod supports;
