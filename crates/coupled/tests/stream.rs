@@ -233,3 +233,23 @@ fn an_empty_stream_is_silent() {
     assert!(s.lumps.is_empty());
     assert!(s.signals.channels.iter().all(|c| c.samples.len() == 1000 && c.samples.iter().all(|&x| x == 0.0)));
 }
+
+/// Arrivals out of time order, a negative time and a duration that is not positive are
+/// refused with the value named, before anything runs.
+#[test]
+fn bad_arrivals_are_refused() {
+    let plate = plate();
+    let set = SupportSet::new("Con 1", Supports::con1());
+    let model =
+        ReducedModel::new(&plate, &set, ReducedSettings { modes: 10, elements: 6, ..ReducedSettings::default() })
+            .unwrap();
+    let probes = model.probes(&SignalSpec::new(vec![(0.1, 0.1)])).unwrap();
+    let s = striker(&plate, &rock("coal", 1380.0, 2.26e9), 0.65, 1.0);
+    let at = |time: f64| Arrival { time, striker: s, x: 0.2, z: 0.2 };
+    let e = model.stream(&[at(0.02), at(0.01)], &probes, 0.05).unwrap_err().to_string();
+    assert!(e.contains("arrival 1's time") && e.contains("0.01"), "{e}");
+    let e = model.stream(&[at(-1.0)], &probes, 0.05).unwrap_err().to_string();
+    assert!(e.contains("arrival 0's time") && e.contains("-1"), "{e}");
+    let e = model.stream(&[], &probes, f64::NAN).unwrap_err().to_string();
+    assert!(e.contains("duration"), "{e}");
+}

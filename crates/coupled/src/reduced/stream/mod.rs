@@ -44,6 +44,7 @@ use super::window::free_window;
 use super::{Correction, ReducedModel};
 use crate::error::ModelError;
 use crate::transient::Striker;
+use analytic::params::{check, Range};
 use serde::Serialize;
 use std::collections::HashMap;
 use step::{flexibility, step, Scratch};
@@ -148,6 +149,11 @@ impl ReducedModel {
             return Err(ModelError::Missing(
                 "a stream carries the truncated modes as the static correction; set correction = \"static\"".into(),
             ));
+        }
+        check("duration", duration, Range::open(0.0, f64::INFINITY), "s")?;
+        for (i, a) in arrivals.iter().enumerate() {
+            let earlier = if i == 0 { 0.0 } else { arrivals[i - 1].time };
+            check(&format!("arrival {i}'s time"), a.time, Range::closed(earlier, f64::INFINITY), "s")?;
         }
         let rate = probes.spec.rate_hz;
         let total = (duration * rate - 1e-9).ceil().max(1.0) as usize;
