@@ -116,13 +116,7 @@ fn identify(path: &Path, dir: Option<PathBuf>, json: bool, no_features_csv: bool
 /// `impact stream`: the scene's caving-stream detection study, its table on the terminal.
 fn stream(path: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
     let scene = Scene::load(path)?;
-    if scene.stream.is_none() {
-        return Err(format!(
-            "scene {}: impact stream runs the scene's [stream] table, and it has none (see docs/scenes.md)",
-            scene.name
-        )
-        .into());
-    }
+    impact::report::stream::check(&scene)?;
     let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "stream")))?;
     let (mut artifacts, data) = impact::report::stream::report(&scene, &Terminal::new())?;
     Provenance::of(&scene).stamp(&mut artifacts);

@@ -217,9 +217,50 @@ fn a_measured_psd_file_is_its_points() {
         &dir.write("missing.toml", chain(&by_file.replace("measured.csv", "nothing.csv"))),
         &["measurement.acceleration.noise_psd_file", "nothing.csv", "cannot be read"],
     );
+    refused(
+        &dir.write("white.toml", chain(&by_file.replace("\"measured\"", "\"white\"\nnoise_rms_m_s2 = 0.01"))),
+        &["measurement.acceleration.noise_psd_file", "read only by noise = \"measured\""],
+    );
+    std::fs::write(dir.join("psd/falling.csv"), "0,1e-6\n100,1e-6\n50,1e-7\n").unwrap();
+    refused(
+        &dir.write("falling.toml", chain(&by_file.replace("measured.csv", "falling.csv"))),
+        &["noise_psd_file ('psd/falling.csv'), point[2][0] (frequency)", "does not rise"],
+    );
     std::fs::write(dir.join("psd/bad.csv"), "0,1e-6\n100\n").unwrap();
     refused(
         &dir.write("bad.toml", chain(&by_file.replace("measured.csv", "bad.csv"))),
         &["noise_psd_file", "bad.csv", "line 2", "has 1 numbers"],
     );
+}
+
+/// `[signals] modes = "chain"`: on each support set the reduced model keeps the fewest modes
+/// whose highest the chain's gain above stays within the band tolerance, and one fewer would
+/// not (checked on the plate's own frequencies and the chain's analog gain); the page says
+/// so. Without a chain, or as another word, it is refused with the key named.
+#[test]
+fn the_chain_chooses_the_modes() {
+    use coupled::reduced::frequencies_hz;
+    use identify::measurement::Chain;
+    // An 8th-order Butterworth at 2 kHz: its gain falls to 1e-3 at 2.37 × 2 kHz = 4.7 kHz,
+    // within the reach of 24-plus modes of the paper's plate.
+    let chain = "[measurement]\nrate_hz = 10000.0\nanti_alias = { order = 8, corner_hz = 2000.0 }\n[measurement.acceleration]\nadc_range_m_s2 = 1000.0\nadc_bits = 24\n";
+    let text = with_chain(chain).replace("modes = 24", "modes = \"chain\"");
+    let dir = tmp();
+    let scene_file = dir.write("chain-modes.toml", &text);
+    let scene = Scene::parse(&text, "chain").unwrap();
+    assert!(scene.signals.modes_from_chain);
+    impact(["identify", "--scene"]).arg(&scene_file).arg("--out").arg(dir.join("o")).arg("--json").success();
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("o").join("summary.json")).unwrap()).unwrap();
+    let c = Chain::new(scene.measurement.clone().unwrap(), scene.signals.rate_hz).unwrap();
+    for (set, result) in scene.conditions.iter().zip(summary["conditions"].as_array().unwrap()) {
+        let n = result["chain_modes"].as_u64().unwrap() as usize;
+        let f = frequencies_hz(&scene.plate, set, scene.signals.reduced()).unwrap();
+        assert!(n < f.len(), "{}: {n} of {} modes", set.name, f.len());
+        assert!(c.gain_above(f[n - 1]) <= 1e-3 && c.gain_above(f[n - 2]) > 1e-3, "{}: {n}", set.name);
+    }
+    let page = std::fs::read_to_string(dir.join("o").join("index.md")).unwrap();
+    assert!(page.contains("the fewest the measurement chain needs"), "{page}");
+    expect(&edit(ENSEMBLE, "modes = 24", "modes = \"chain\""), &["signals.modes", "no [measurement]"]);
+    expect(&with_chain(chain).replace("modes = 24", "modes = \"auto\""), &["signals.modes", "'auto'", "\"chain\""]);
 }

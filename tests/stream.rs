@@ -64,11 +64,13 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
     bad("duration_s = 6.0", "duration_s = 80000.0", &["stream.duration_s", "MB of signal", "budget"]);
     let crowded =
-        STREAM.replace("rate_per_s = 12.0", "rate_per_s = 9000.0").replace("duration_s = 6.0", "duration_s = 60.0");
+        STREAM.replace("rate_per_s = 12.0", "rate_per_s = 9000.0").replace("duration_s = 6.0", "duration_s = 10.0");
     expect(
         &with_stream(&crowded.replace("streams = 2", "streams = 64")),
-        &["expect 34560000 lumps", "budget of 10000000"],
+        &["expect 11520000 lumps", "every stream, rate and support set", "budget of 10000000"],
     );
+    let fine = STREAM.replace("duration_s = 6.0", "duration_s = 60.0").replace("hop_s = 0.25", "hop_s = 0.00005");
+    expect(&with_stream(&fine), &["stream.hop_s", "windows, above the budget of 1000000"]);
     let text = format!("{}\n{STREAM}", impact::scene::DEFAULT_SCENE);
     expect(&text, &["stream", "read only by the \"identify\" analysis"]);
 }
@@ -135,4 +137,19 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     assert_eq!(every["group"], "every channel");
     let auc = every["auc"].as_f64().unwrap();
     assert!((0.0..=1.0).contains(&auc));
+}
+
+/// A cross-validation that cannot score (one stream cut into two blocks at its change: each
+/// block's training windows are of the other class only) is refused before any stream runs,
+/// naming the key; the output folder is not created.
+#[test]
+fn a_cross_validation_that_cannot_score_is_refused() {
+    let dir = tmp();
+    let scene = dir.write(
+        "one.toml",
+        with_stream(&STREAM.replace("streams = 2", "streams = 1").replace("blocks = 4", "blocks = 2")),
+    );
+    let run = impact(["stream", "--scene"]).arg(&scene).arg("--out").arg(dir.join("out")).within(30).fails();
+    assert!(run.stderr.contains("stream.blocks") && run.stderr.contains("one class only"), "{}", run.stderr);
+    assert!(!dir.join("out").exists());
 }

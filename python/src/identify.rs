@@ -40,7 +40,8 @@ fn reduced_model(text: &str, s: &coupled::Scene, set: &coupled::SupportSet) -> R
         kept.push(entry);
         return Ok(model);
     }
-    let model = Arc::new(ReducedModel::new(&s.plate, set, s.signals.reduced()).map_err(|x| x.to_string())?);
+    let settings = studies::identify::sensors::reduced_settings(s, set).map_err(|x| x.to_string())?;
+    let model = Arc::new(ReducedModel::new(&s.plate, set, settings).map_err(|x| x.to_string())?);
     if kept.len() == MODELS_KEPT {
         kept.remove(0);
     }

@@ -12,15 +12,16 @@
 //! so shuffled folds would train on the test windows' own signal (Roberts et al. 2017,
 //! *Ecography* 40:913, on blocking for dependent data). The streams' time axis is cut into
 //! contiguous blocks; each block's windows are scored by the logistic model
-//! ([`crate::classify::Logistic`]) fitted on the windows that overlap none of them (a window
+//! ([`crate::classify::Logistic`]) fitted on the windows outside the block (a window
 //! straddling a block's edge is left out of both), so no training window shares a sample
-//! with a test window.
+//! with a test window. With several streams laid end to end with gaps and one block per
+//! stream, this is leave-one-stream-out and every window is scored.
 //!
-//! **Operating answer.** An alarm is raised at the end of every window whose out-of-fold
-//! probability reaches the threshold. The delay is the time from the onset of the change
-//! to the end of the first alarmed window ending after it; a false alarm is an alarm
-//! episode (a run of alarmed windows) that starts in a window ending before the onset,
-//! counted per hour of such windows.
+//! **Operating answer.** An alarm is raised at the end of every scored window whose
+//! out-of-fold probability reaches the threshold (a window no fold scores is passed over).
+//! The delay is the time from the onset of the change to the end of the first alarmed window
+//! ending after it; a false alarm is an alarm episode (a run of alarmed windows) that starts
+//! in a window ending before the onset, counted per hour of such windows.
 
 use crate::classify::{FitError, Logistic, RIDGE};
 use serde::Serialize;
@@ -68,7 +69,8 @@ pub struct Fold {
 }
 
 /// `blocks` contiguous blocks of equal length over the span of `windows`: block b's test
-/// windows lie wholly inside it; its training windows overlap no test window.
+/// windows lie wholly inside it; its training windows lie wholly outside it, so they overlap
+/// no test window.
 pub fn time_block_folds(windows: &[Window], blocks: usize) -> Vec<Fold> {
     let (Some(t0), Some(t1)) =
         (windows.iter().map(|w| w.start).min_by(f64::total_cmp), windows.iter().map(|w| w.end).max_by(f64::total_cmp))
@@ -82,9 +84,7 @@ pub fn time_block_folds(windows: &[Window], blocks: usize) -> Vec<Fold> {
             let (lo, hi) = (edge(b), edge(b + 1));
             let test: Vec<usize> =
                 (0..windows.len()).filter(|&i| windows[i].start >= lo && windows[i].end <= hi).collect();
-            let train = (0..windows.len())
-                .filter(|&i| !test.contains(&i) && !test.iter().any(|&t| windows[t].overlaps(&windows[i])))
-                .collect();
+            let train = (0..windows.len()).filter(|&i| windows[i].end <= lo || windows[i].start >= hi).collect();
             Fold { test, train }
         })
         .filter(|f| !f.test.is_empty())
@@ -148,7 +148,7 @@ impl Operating {
 
 /// The operating answer at `threshold` of the scores of `windows` (in time order within each
 /// of `streams` streams), the change starting `onset` seconds into each stream whose
-/// windows start at `offsets[stream]`. Unscored windows raise no alarm.
+/// windows start at `offsets[stream]`. Unscored windows are passed over.
 pub fn operate(windows: &[Window], scores: &[Option<f64>], threshold: f64, onset: f64, offsets: &[f64]) -> Operating {
     let mut delays = vec![None; offsets.len()];
     let (mut false_alarms, mut before) = (0, 0.0);
@@ -156,11 +156,16 @@ pub fn operate(windows: &[Window], scores: &[Option<f64>], threshold: f64, onset
     let mut hop_before = vec![None::<f64>; offsets.len()];
     for (w, s) in windows.iter().zip(scores) {
         let r = w.stream;
-        let alarm = s.is_some_and(|p| p >= threshold);
+        // A window nobody scored is no evidence either way: it neither alarms nor ends an
+        // episode, and its time is not counted as watched.
+        let Some(p) = s else { continue };
+        let alarm = *p >= threshold;
         let end = w.end - offsets[r];
         if end <= onset {
-            // The time a window adds is its hop (its end less the previous window's end).
-            before += end - hop_before[r].unwrap_or(end - (w.end - w.start));
+            // The time a window adds is its hop (its end less the previous scored window's
+            // end), at most its length.
+            let length = w.end - w.start;
+            before += (end - hop_before[r].unwrap_or(end - length)).min(length);
             hop_before[r] = Some(end);
             if alarm && !last_alarm[r] {
                 false_alarms += 1;
@@ -226,6 +231,19 @@ mod tests {
         assert_eq!(op.false_alarms, 1);
         assert!((op.hours_before_onset - 10.0 / 3600.0).abs() < 1e-12);
         assert!((op.false_alarms_per_hour().unwrap() - 360.0).abs() < 1e-9);
+    }
+
+    /// An unscored window is passed over: it neither breaks an alarm episode nor counts as
+    /// watched time.
+    #[test]
+    fn unscored_windows_are_passed_over() {
+        let w = windows(0, 0.0, 20.0, 1.0, 1.0);
+        let mut scores: Vec<Option<f64>> = w.iter().map(|w| Some(if w.start >= 12.0 { 0.9 } else { 0.1 })).collect();
+        (scores[2], scores[3], scores[4]) = (Some(0.8), None, Some(0.8));
+        let op = operate(&w, &scores, 0.5, 10.0, &[0.0]);
+        assert_eq!(op.false_alarms, 1, "one episode across the unscored window");
+        assert!((op.hours_before_onset - 9.0 / 3600.0).abs() < 1e-12);
+        assert_eq!(op.delays, vec![Some(3.0)]);
     }
 
     /// A feature that separates the classes up to noise is learned across blocks: the

@@ -9,7 +9,8 @@
 //! λ p(t) (marking theorem, Kingman, *Poisson Processes*, 1993, section 5.2). Within its class
 //! a lump's family is chosen in proportion to the families' counts, and its point, size, speed
 //! and material are drawn as an ensemble's impact is ([`Ensemble::draw_of`]), from its own
-//! stream: lump k's variables depend only on the ensemble's seed, k and its family.
+//! stream: lump k's variables depend only on the ensemble's seed mixed with the stream's
+//! ([`lump_seed`]), k and its family, so two streams of different seeds share no lump.
 
 use crate::ensemble::{impact_stream, open_uniform, Class, Draw, Ensemble, Held};
 use serde::Serialize;
@@ -158,6 +159,7 @@ pub fn lumps(ensemble: &Ensemble, spec: &StreamSpec) -> Result<Vec<Lump>, Stream
     if (p.before > 0.0 || p.after > 0.0) && gangue.is_empty() {
         return Err(StreamError::MissingClass { class: "gangue", share: p.before.max(p.after) });
     }
+    let lumps_of = Ensemble { seed: lump_seed(ensemble.seed, spec.seed), ..ensemble.clone() };
     let mut rng = impact_stream(spec.seed, ARRIVALS);
     let mut out = Vec::new();
     let mut t = 0.0;
@@ -169,9 +171,15 @@ pub fn lumps(ensemble: &Ensemble, spec: &StreamSpec) -> Result<Vec<Lump>, Stream
         }
         let is_gangue = open_uniform(&mut rng) < p.share(t);
         let family = pick(if is_gangue { &gangue } else { &coal }, open_uniform(&mut rng));
-        let draw = ensemble.draw_of(out.len(), family, Held::NONE);
+        let draw = lumps_of.draw_of(out.len(), family, Held::NONE);
         out.push(Lump { time: t, draw });
     }
+}
+
+/// The seed of a stream's lumps: the ensemble's seed mixed with the stream's (by the golden
+/// ratio's odd multiplier, so that neighbouring stream seeds give unrelated lump seeds).
+pub fn lump_seed(ensemble_seed: u64, stream_seed: u64) -> u64 {
+    ensemble_seed ^ stream_seed.wrapping_add(1).wrapping_mul(0x9e37_79b9_7f4a_7c15)
 }
 
 /// Every number of `spec` in its range: a positive finite rate and duration whose expected
@@ -293,7 +301,8 @@ mod tests {
         assert!((mud - 0.75).abs() < 4.0 * (0.75 * 0.25 / gangue.len() as f64).sqrt(), "{mud}");
     }
 
-    /// A lump's variables are an ensemble impact's of the same number and family.
+    /// A lump's variables are an ensemble impact's of the same number and family, drawn with
+    /// the stream's lump seed; two streams share no lump.
     #[test]
     fn a_lump_is_drawn_as_an_impact() {
         let e = ensemble();
@@ -303,9 +312,17 @@ mod tests {
             profile: Profile { before: 0.0, after: 1.0, onset: 5.0, ramp: 0.0 },
             seed: 2,
         };
-        for lump in lumps(&e, &spec).unwrap() {
-            assert_eq!(lump.draw, e.draw_of(lump.draw.index, lump.draw.family, Held::NONE));
+        let seeded = Ensemble { seed: lump_seed(e.seed, spec.seed), ..e.clone() };
+        let first = lumps(&e, &spec).unwrap();
+        for lump in &first {
+            assert_eq!(lump.draw, seeded.draw_of(lump.draw.index, lump.draw.family, Held::NONE));
             assert_eq!(lump.draw.class == Class::Gangue, lump.time >= 5.0);
+        }
+        let other = lumps(&e, &StreamSpec { seed: 3, ..spec }).unwrap();
+        for a in &first {
+            assert!(other
+                .iter()
+                .all(|b| (a.draw.x, a.draw.z, a.draw.velocity) != (b.draw.x, b.draw.z, b.draw.velocity)));
         }
         let coal_only = Ensemble { families: vec![e.families[0].clone()], ..e.clone() };
         assert!(matches!(lumps(&coal_only, &spec), Err(StreamError::MissingClass { class: "gangue", .. })));

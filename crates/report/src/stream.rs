@@ -10,6 +10,7 @@ use analytic::params::compact;
 use output::Artifacts;
 use scene::Scene;
 use studies::progress::Progress;
+pub use studies::stream::check;
 use studies::stream::{compute, ConditionStream, Score, StreamData};
 
 const PAGE: &str = include_str!("templates/stream/page.md");
@@ -25,15 +26,19 @@ pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Stre
         a.add(format!("{dir}/windows.csv"), windows_table(c).to_csv());
         a.add(format!("{dir}/lumps.csv"), lumps_table(c).to_csv());
         if let Some(s) = &c.signal {
-            a.add(format!("{dir}/signal.csv"), signal_table(s).to_csv());
+            let csv = signal_table(s).to_csv();
+            // The CSV's column keys, as its header (after the provenance line) has them.
+            let keys: Vec<&str> = csv.lines().nth(1).map_or_else(Vec::new, |h| h.split(',').collect());
             let meta = serde_json::json!({
                 "rate_hz": s.rate_hz,
-                "channels": s.names,
                 "samples": s.columns.first().map_or(0, Vec::len),
                 "stream": 0,
-                "time_column": "t (s)",
+                "time_column": keys.first(),
+                "columns": keys.get(1..).unwrap_or_default(),
+                "channels": s.names,
                 "measured": data.measured,
             });
+            a.add(format!("{dir}/signal.csv"), csv);
             a.add(format!("{dir}/signal.json"), serde_json::to_string_pretty(&meta)?);
         }
     }
@@ -218,7 +223,7 @@ fn rate_table(d: &StreamData) -> Table {
 
 fn simulation_table(d: &StreamData) -> Table {
     let mut t = Table::new(
-        "the simulation: lumps, simultaneous contacts, the left-out cross static correction's bound, and the cost against the free plate measured in the same run (one core per stream)",
+        "the simulation: lumps, simultaneous contacts, lumps let go while resting on the plate, the left-out cross static correction's bound, and the cost against the free plate measured in the same run",
         &[
             "support set",
             "lumps",
@@ -226,6 +231,7 @@ fn simulation_table(d: &StreamData) -> Table {
             "in contact together",
             "joint steps",
             "unconverged",
+            "let go in contact",
             "cross correction bound",
             "modes",
             "model rate (Hz)",
@@ -242,6 +248,7 @@ fn simulation_table(d: &StreamData) -> Table {
             Cell::Rel(s.overlapped_share),
             Cell::Int(s.joint_steps as u64),
             Cell::Int(s.unconverged_steps as u64),
+            Cell::Int(s.released_in_contact as u64),
             Cell::Rel(s.cross_residual_bound),
             Cell::Int(s.modes as u64),
             Cell::Given(s.model_rate_hz),

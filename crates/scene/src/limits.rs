@@ -85,11 +85,15 @@ pub const STREAM_DURATION_S: Range = Range::open_closed(0.0, 86_400.0);
 pub const STREAMS: Range = Range::closed(1.0, 64.0);
 /// Time blocks of the stream's cross-validation.
 pub const STREAM_BLOCKS: Range = Range::closed(2.0, 1000.0);
-/// Largest memory of one stream's model signals, bytes (samples x channels x 8): 2 GB.
-pub const MAX_STREAM_SIGNAL_BYTES: f64 = 2.0 * 1024.0 * 1024.0 * 1024.0;
-/// Most lumps of a stream study, over its streams and arrival rates: ten million (about 45
-/// minutes at the measured 3,600 lumps per second of a 160-mode plate).
+/// Largest memory of a stream study's signals, held at once: every stream's model signals and
+/// their recording (samples x channels x 8 bytes each), 4 GB.
+pub const MAX_STREAM_SIGNAL_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
+/// Most lumps of a stream study, over its streams, arrival rates and support sets: ten
+/// million (hours at the measured 1,100-1,400 contact steps a lump).
 pub const MAX_STREAM_LUMPS: f64 = 1e7;
+/// Most windows of a stream study, over its streams: a million (each a feature row per
+/// channel, computed on every recording of the sweeps).
+pub const MAX_STREAM_WINDOWS: f64 = 1e6;
 /// Relative tolerance of the energy balance: below 1e-14 double precision cannot
 /// reach it (the bracketed Newton's rounding floor is ~2e-15); above 1e-3 the "root" is not one (a loose stop returns the starting value).
 pub const SOLVER_TOLERANCE: Range = Range::closed(1e-14, 1e-3);

@@ -57,8 +57,16 @@ pub(crate) struct RawSignals {
     pub(crate) window_ms: Option<f64>,
     pub(crate) rate_hz: Option<f64>,
     pub(crate) damping_ratio: Option<f64>,
-    pub(crate) modes: Option<f64>,
+    pub(crate) modes: Option<RawModes>,
     pub(crate) sensors_mm: Option<Vec<Vec<f64>>>,
+}
+
+/// `signals.modes`: a number of modes, or a word ("chain").
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub(crate) enum RawModes {
+    Count(f64),
+    Word(String),
 }
 
 /// Where the transient study strikes, if not at the scene's points.

@@ -177,8 +177,14 @@ pub struct SignalSettings {
     pub damping_ratio: f64,
     /// The scene's plate damping, which replaces `damping_ratio` when given.
     pub rayleigh: Option<Rayleigh>,
-    /// N, the modes kept.
+    /// N, the modes kept; with `modes_from_chain`, the most that may be kept.
     pub modes: usize,
+    /// Whether each support set keeps only the modes the measurement chain needs: the fewest
+    /// whose highest the chain's gain above stays within its band tolerance
+    /// (`identify::measurement::Chain::modes_needed`), at most `modes`. Left out of the
+    /// serialised scene when false, so that a scene without it keeps its provenance hash.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub modes_from_chain: bool,
     /// Sensor points (x, z), m.
     pub sensors: Vec<(f64, f64)>,
 }
@@ -192,6 +198,7 @@ impl Default for SignalSettings {
             damping_ratio: ReducedSettings::DEFAULT_DAMPING_RATIO,
             rayleigh: None,
             modes: ReducedSettings::DEFAULT_MODES,
+            modes_from_chain: false,
             sensors: Vec::new(),
         }
     }
@@ -262,19 +269,10 @@ impl ReducedModel {
     /// Meshes the plate, finds its lowest `settings.modes` modes on `set` and the residual
     /// flexibility of the rest.
     pub fn new(plate: &Plate, set: &SupportSet, settings: ReducedSettings) -> Result<Self, ModelError> {
-        check("reduced.modes", settings.modes as f64, ReducedSettings::MODES, "")?;
         check("reduced.damping_ratio", settings.damping_ratio, ReducedSettings::DAMPING_RATIO, "")?;
-        check("reduced.elements", settings.elements as f64, Range::closed(2.0, 400.0), "")?;
         check("reduced.steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
-        let props = plate_properties(plate);
-        let model = Model::new(props, mesh_for(&props, settings.elements)?)?;
-        let fact = model.factorize(&set.supports)?;
-        let free = model.dofs() - fact.held().len();
-        let modes = if free <= plate_fem::modes::DENSE_LIMIT {
-            Modes::dense(&model, &set.supports, settings.modes)?
-        } else {
-            Modes::krylov(&fact, settings.modes)?
-        };
+        let model = mesh_model(plate, settings)?;
+        let (fact, modes) = lowest_modes(&model, set, settings.modes)?;
         let residual = ResidualFlexibility::new(&fact, &modes)?;
         let n = modes.count();
         let ndof = model.dofs();
@@ -384,6 +382,41 @@ impl ReducedModel {
         let map = (free == FreeSteps::Exact).then(|| FreeMaps::new(&self.omega, self.settings.damping(), dt));
         self.run(striker, x, z, probes, map, dt, every)
     }
+}
+
+/// The natural frequencies of the lowest `settings.modes` modes of `plate` on `set`, Hz, on
+/// the reduced model's mesh: the modes [`ReducedModel::new`] would keep, without the residual
+/// flexibility it builds on them (to choose how many to keep).
+pub fn frequencies_hz(plate: &Plate, set: &SupportSet, settings: ReducedSettings) -> Result<Vec<f64>, ModelError> {
+    let model = mesh_model(plate, settings)?;
+    let (_, modes) = lowest_modes(&model, set, settings.modes)?;
+    Ok(modes.omegas().iter().map(|w| w / (2.0 * std::f64::consts::PI)).collect())
+}
+
+/// The plate's FE model on the reduced model's mesh (`settings.elements` along the longer side).
+fn mesh_model(plate: &Plate, settings: ReducedSettings) -> Result<Model, ModelError> {
+    check("reduced.modes", settings.modes as f64, ReducedSettings::MODES, "")?;
+    check("reduced.elements", settings.elements as f64, Range::closed(2.0, 400.0), "")?;
+    let props = plate_properties(plate);
+    Ok(Model::new(props, mesh_for(&props, settings.elements)?)?)
+}
+
+/// The factorization of `model` on `set` and its lowest `count` modes (dense below
+/// [`plate_fem::modes::DENSE_LIMIT`] free DOFs, else shift-invert Krylov on the
+/// factorization).
+fn lowest_modes<'m>(
+    model: &'m Model,
+    set: &SupportSet,
+    count: usize,
+) -> Result<(plate_fem::Factorization<'m>, Modes), ModelError> {
+    let fact = model.factorize(&set.supports)?;
+    let free = model.dofs() - fact.held().len();
+    let modes = if free <= plate_fem::modes::DENSE_LIMIT {
+        Modes::dense(model, &set.supports, count)?
+    } else {
+        Modes::krylov(&fact, count)?
+    };
+    Ok((fact, modes))
 }
 
 /// Σ φᵢ(p)²/ωᵢ²: the modes' part of the static compliance.

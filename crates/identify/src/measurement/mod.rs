@@ -258,6 +258,14 @@ impl Chain {
         (0..=600).map(|k| self.gain(f_hz * 10f64.powf(k as f64 / 200.0))).fold(0.0, f64::max)
     }
 
+    /// The fewest of the modes of natural frequencies `frequencies_hz` (rising) to keep so
+    /// that the chain's gain above the highest kept one is at most `band_tolerance`: what the
+    /// truncation leaves out then reaches the recording at most that much. None if even all
+    /// of them leave more.
+    pub fn modes_needed(&self, frequencies_hz: &[f64]) -> Option<usize> {
+        frequencies_hz.iter().position(|&f| self.gain_above(f) <= self.spec.band_tolerance).map(|i| i + 1)
+    }
+
     /// The generator of the backgrounds of window `index`: ChaCha8 keyed by the chain's seed
     /// mixed with [`BACKGROUND_KEY`], on stream `index`, so that a chain seeded as its ensemble
     /// never draws an impact's own random numbers.
@@ -319,6 +327,20 @@ pub fn quantise(x: &mut [f64], range: f64, bits: u32) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The modes to keep against the closed form: behind an 8th-order Butterworth at 4 kHz
+    /// alone, abs(H) = 1/√(1 + (f/f_c)¹⁶) falls monotonically, so the gain above f is abs(H(f))
+    /// and it reaches 1e-3 at f_c (10⁶ - 1)^(1/16) = 9,484 Hz: of modes at 1, 5, 9, 9.6 and
+    /// 12 kHz the first four are needed; of modes up to 9 kHz, none suffices.
+    #[test]
+    fn the_modes_needed_end_where_the_chain_is_deaf() {
+        let spec = ChainSpec { sensor: SensorBand { resonance: None, high_pass_hz: None }, ..spec(40_000.0) };
+        let chain = Chain::new(spec, 40_000.0).unwrap();
+        let edge = 4_000.0 * (1e6f64 - 1.0).powf(1.0 / 16.0);
+        assert!((chain.gain(edge) - 1e-3).abs() < 1e-9, "{}", chain.gain(edge));
+        assert_eq!(chain.modes_needed(&[1e3, 5e3, 9e3, 9.6e3, 12e3]), Some(4));
+        assert_eq!(chain.modes_needed(&[1e3, 5e3, 9e3]), None);
+    }
 
     fn spec(rate_hz: f64) -> ChainSpec {
         ChainSpec {

@@ -75,12 +75,22 @@ fn families_table(study: &Study) -> Table {
     families
 }
 
+/// The modes kept: the scene's count, or per support set those the chain chose.
+fn modes_text(summary: &Summary) -> String {
+    if summary.conditions.iter().all(|c| c.chain_modes.is_none()) {
+        return summary.signals.modes.to_string();
+    }
+    let each: Vec<String> =
+        summary.conditions.iter().map(|c| format!("{} on {}", c.modes(&summary.signals), c.condition)).collect();
+    format!("{} (the fewest the measurement chain needs, `[signals] modes = \"chain\"`)", each.join(", "))
+}
+
 /// The head of the page of `summary`, the identification of `scene`'s ensemble `study`.
 pub(super) fn head(scene: &Scene, study: &Study, summary: &Summary) -> Result<String, Failure> {
     let (e, settings) = (&study.ensemble, &summary.signals);
     let mut findings = String::new();
     for c in &summary.conditions {
-        findings.push_str(&finding(c, settings.modes)?);
+        findings.push_str(&finding(c, c.modes(settings))?);
     }
     let speed = match &e.speed {
         Speed::FallHeight(h) => format!("free fall from rest, v = √(2gh), fall height h {}", describe(h, "m", 1.0)),
@@ -112,7 +122,7 @@ pub(super) fn head(scene: &Scene, study: &Study, summary: &Summary) -> Result<St
             ("families", families_table(study).to_markdown()),
             ("window_ms", sig(settings.window * 1e3, 3)),
             ("rate_hz", sig(settings.rate_hz, 3)),
-            ("modes", settings.modes.to_string()),
+            ("modes", modes_text(summary)),
             ("damping", sig(settings.damping_ratio * 100.0, 3)),
             ("contact_law", scene.contact_law.key().to_string()),
             ("restitution", sig(scene.restitution, 3)),

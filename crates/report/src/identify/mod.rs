@@ -64,7 +64,7 @@ pub fn report(scene: &Scene, data: &IdentifyData, files: RowFiles) -> Result<Art
     let mut sections = String::new();
     for (i, (c, d)) in summary.conditions.iter().zip(&data.details).enumerate() {
         let (maps, hists) = figures::figures(&c.condition, &format!("c{}", i + 1), d, &mut artifacts);
-        let modes = summary.signals.modes;
+        let modes = c.modes(&summary.signals);
         sections.push_str(&section::section(c, modes, scene.contact_law, (&maps, &hists), d.reference.as_deref())?);
     }
     let head = head::head(scene, study, summary)?;

@@ -355,7 +355,7 @@ fn runs() -> Vec<Section> {
                 num("window_ms", "ms", limits::SIGNAL_WINDOW_MS, compact(d.window * 1e3), "Length of each signal from first touch"),
                 num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, compact(d.rate_hz), "Sampling rate"),
                 num("damping_ratio", NO_UNIT, ReducedSettings::DAMPING_RATIO, compact(d.damping_ratio), "Modal damping ratio ζ of every mode (not with [plate_damping], which replaces it)"),
-                whole("modes", limits::MODES, d.modes.to_string(), "Modes the reduced model keeps: at most an eighth of the degrees of freedom of its mesh of the plate (178 on a 458.4 x 360 mm plate, 220 on a square one); by default 80, or that many where fewer"),
+                key("modes", "whole number or `\"chain\"`", NO_UNIT, format!("{} and the plate's most, or `\"chain\"` (needs `[measurement]`)", limits::MODES), d.modes.to_string(), "Modes the reduced model keeps: at most an eighth of the degrees of freedom of its mesh of the plate (178 on a 458.4 x 360 mm plate, 220 on a square one); by default 80, or that many where fewer. `\"chain\"`: on each support set the fewest whose highest the measurement chain's gain above stays within `measurement.band_tolerance`, the plate's most if none does"),
                 key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}, at least 0.1 mm apart (channels are named by position to 0.1 mm)", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate"),
             ],
         },

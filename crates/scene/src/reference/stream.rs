@@ -10,7 +10,7 @@ pub(super) fn sections() -> Vec<Section> {
     let share = Range::closed(0.0, 1.0);
     vec![Section {
         title: "[stream]",
-        about: "A caving-stream detection study on the scene's `[ensemble]` (\"identify\" only; `impact stream`): the ensemble's lumps arrive as a Poisson process whose gangue share steps from `gangue_before` to `gangue_after`, the plate carries every lump's response into the next, the channels are recorded through `[measurement]` if given, and a logistic detector scores sliding windows, cross-validated by time blocks. Each stream's model signals must fit in 2 GB and the study's lumps (every stream and rate) in ten million.".into(),
+        about: "A caving-stream detection study on the scene's `[ensemble]` (\"identify\" only; `impact stream`): the ensemble's lumps arrive as a Poisson process whose gangue share steps from `gangue_before` to `gangue_after`, the plate carries every lump's response into the next, the channels are recorded through `[measurement]` if given, and a logistic detector scores sliding windows, cross-validated by time blocks. The streams are held at once: their model signals and recordings must fit in 4 GB, the lumps of every stream, rate and support set in ten million, and the windows in a million. With as many `blocks` as `streams` the cross-validation is leave-one-stream-out and every window is scored; a block whose training windows hold one class only is refused before anything runs.".into(),
         keys: vec![
             num("rate_per_s", "1/s", limits::STREAM_RATE_PER_S, REQUIRED, "Lumps per second λ"),
             num("duration_s", "s", limits::STREAM_DURATION_S, REQUIRED, "Length of each stream"),
@@ -29,7 +29,7 @@ pub(super) fn sections() -> Vec<Section> {
                 "The detector's window W",
             ),
             key("hop_s", "number", "s", "[one sample, window_s]", REQUIRED, "Its hop H"),
-            whole("blocks", limits::STREAM_BLOCKS, "5", "Time blocks of the cross-validation, at most one per window"),
+            whole("blocks", limits::STREAM_BLOCKS, "5", "Time blocks of the cross-validation over the streams laid end to end, at most one per window"),
             num("alarm_probability", NO_UNIT, Range::open(0.0, 1.0), "0.5", "The out-of-fold probability that raises an alarm"),
             key("rate_sweep_per_s", "list of numbers", "1/s", limits::STREAM_RATE_PER_S.to_string(), "none", "Further arrival rates, each a whole study"),
             key("noise_sweep", "list of numbers", NO_UNIT, "[0, 1e6]; needs `[measurement]`", "none", "Scales of the chain's background, each scored on the same streams"),

@@ -83,6 +83,9 @@ pub(crate) struct RawAcceleration {
     pink_flat_below_hz: Option<f64>,
     noise_psd_m2_s4_per_hz: Option<Vec<Vec<f64>>>,
     noise_psd_file: Option<String>,
+    /// Where the points came from when read from `noise_psd_file` (for errors).
+    #[serde(skip)]
+    psd_origin: Option<String>,
     tones_m_s2: Option<Vec<Vec<f64>>>,
 }
 
@@ -97,6 +100,9 @@ pub(crate) struct RawSupportForce {
     pink_flat_below_hz: Option<f64>,
     noise_psd_kn2_per_hz: Option<Vec<Vec<f64>>>,
     noise_psd_file: Option<String>,
+    /// Where the points came from when read from `noise_psd_file` (for errors).
+    #[serde(skip)]
+    psd_origin: Option<String>,
     tones_kn: Option<Vec<Vec<f64>>>,
 }
 
@@ -111,11 +117,14 @@ pub(crate) struct RawStrain {
     pink_flat_below_hz: Option<f64>,
     noise_psd_microstrain2_per_hz: Option<Vec<Vec<f64>>>,
     noise_psd_file: Option<String>,
+    /// Where the points came from when read from `noise_psd_file` (for errors).
+    #[serde(skip)]
+    psd_origin: Option<String>,
     tones_microstrain: Option<Vec<Vec<f64>>>,
 }
 
-/// A recording's PSD file and inline points.
-type PsdKeys<'a> = (&'a mut Option<String>, &'a mut Option<Vec<Vec<f64>>>);
+/// A recording's background kind, PSD file, inline points and where they came from.
+type PsdKeys<'a> = (Option<&'a str>, &'a Option<String>, &'a mut Option<Vec<Vec<f64>>>, &'a mut Option<String>);
 
 /// Reads each recording's `noise_psd_file` (relative to `base`) into its inline points, so
 /// that validation sees one list either way; both at once is refused.
@@ -124,27 +133,37 @@ pub(crate) fn read_psd_files(raw: &mut RawMeasurement, base: Option<&std::path::
         (
             "measurement.acceleration",
             "noise_psd_m2_s4_per_hz",
-            raw.acceleration.as_mut().map(|a| (&mut a.noise_psd_file, &mut a.noise_psd_m2_s4_per_hz)),
+            raw.acceleration
+                .as_mut()
+                .map(|a| (a.noise.as_deref(), &a.noise_psd_file, &mut a.noise_psd_m2_s4_per_hz, &mut a.psd_origin)),
         ),
         (
             "measurement.strain",
             "noise_psd_microstrain2_per_hz",
-            raw.strain.as_mut().map(|a| (&mut a.noise_psd_file, &mut a.noise_psd_microstrain2_per_hz)),
+            raw.strain.as_mut().map(|a| {
+                (a.noise.as_deref(), &a.noise_psd_file, &mut a.noise_psd_microstrain2_per_hz, &mut a.psd_origin)
+            }),
         ),
         (
             "measurement.support_force",
             "noise_psd_kn2_per_hz",
-            raw.support_force.as_mut().map(|a| (&mut a.noise_psd_file, &mut a.noise_psd_kn2_per_hz)),
+            raw.support_force
+                .as_mut()
+                .map(|a| (a.noise.as_deref(), &a.noise_psd_file, &mut a.noise_psd_kn2_per_hz, &mut a.psd_origin)),
         ),
     ];
     for (table, inline, keys) in tables {
-        let Some((file, points)) = keys else { continue };
+        let Some((noise, file, points, origin)) = keys else { continue };
         let Some(path) = file.as_deref() else { continue };
         let field = format!("{table}.noise_psd_file");
+        if noise != Some("measured") {
+            return Err(other(field, "is read only by noise = \"measured\""));
+        }
         if points.is_some() {
             return Err(other(field, format!("and {table}.{inline} are both given; give one")));
         }
         *points = Some(super::psd_file::read(&field, path, base)?);
+        *origin = Some(format!("{field} ('{path}'), point"));
     }
     Ok(())
 }
@@ -161,6 +180,8 @@ struct Keys<'a> {
     rms: Option<f64>,
     flat_below: Option<f64>,
     psd: Option<&'a [Vec<f64>]>,
+    /// The points' name in errors when they were read from a file.
+    psd_origin: Option<&'a str>,
     tones: Option<&'a [Vec<f64>]>,
 }
 
@@ -256,6 +277,7 @@ fn recordings(raw: &RawMeasurement, rate_hz: f64) -> Result<Vec<Recording>, Inva
             rms: a.noise_rms_m_s2,
             flat_below: a.pink_flat_below_hz,
             psd: a.noise_psd_m2_s4_per_hz.as_deref(),
+            psd_origin: a.psd_origin.as_deref(),
             tones: a.tones_m_s2.as_deref(),
         };
         out.push(recording(Measurand::Acceleration, keys, rate_hz)?);
@@ -276,6 +298,7 @@ fn recordings(raw: &RawMeasurement, rate_hz: f64) -> Result<Vec<Recording>, Inva
             rms: s.noise_rms_microstrain,
             flat_below: s.pink_flat_below_hz,
             psd: s.noise_psd_microstrain2_per_hz.as_deref(),
+            psd_origin: s.psd_origin.as_deref(),
             tones: s.tones_microstrain.as_deref(),
         };
         out.push(recording(Measurand::Strain, keys, rate_hz)?);
@@ -291,6 +314,7 @@ fn recordings(raw: &RawMeasurement, rate_hz: f64) -> Result<Vec<Recording>, Inva
             rms: f.noise_rms_kn,
             flat_below: f.pink_flat_below_hz,
             psd: f.noise_psd_kn2_per_hz.as_deref(),
+            psd_origin: f.psd_origin.as_deref(),
             tones: f.tones_kn.as_deref(),
         };
         out.push(recording(Measurand::SupportForce, keys, rate_hz)?);
@@ -316,6 +340,9 @@ fn recording(measurand: Measurand, k: Keys<'_>, rate_hz: f64) -> Result<Recordin
         let v = k.rms.ok_or_else(|| other(&key, format!("is required by noise = \"{need}\"")))?;
         Ok(check(&key, v, NOISE_RMS, "")? * k.scale)
     };
+    if k.psd.is_some() && k.noise != Some("measured") {
+        return Err(other(field(psd_key), "is read only by noise = \"measured\""));
+    }
     let background = match k.noise {
         None => None,
         Some("white") => Some(Psd::white(rms("white")?, band)),
@@ -325,7 +352,9 @@ fn recording(measurand: Measurand, k: Keys<'_>, rate_hz: f64) -> Result<Recordin
             let flat = check(&key, flat, Range::open(0.0, band), "Hz")?;
             Some(Psd::pink(rms("pink")?, flat, band))
         }
-        Some("measured") => Some(measured_psd(&field(psd_key), k.psd, k.scale)?),
+        Some("measured") => {
+            Some(measured_psd(&k.psd_origin.map_or_else(|| field(psd_key), str::to_string), k.psd, k.scale)?)
+        }
         Some(other_kind) => {
             return Err(other(
                 field("noise"),

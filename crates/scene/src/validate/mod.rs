@@ -145,11 +145,17 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
             ))
         }
     };
+    if signals.modes_from_chain && measurement.is_none() {
+        return Err(other(
+            "signals.modes",
+            "\"chain\" keeps the modes the measurement chain needs; the scene has no [measurement]",
+        ));
+    }
     let stream = match (&raw.stream, analyses.contains(&Analysis::Identify)) {
         (None, _) => None,
         (Some(s), true) => {
             let adc = measurement.as_ref().map_or(signals.rate_hz, |m| m.rate_hz);
-            Some(stream::validate_stream(s, &signals, adc, measurement.is_some())?)
+            Some(stream::validate_stream(s, &signals, adc, measurement.is_some(), conditions.len())?)
         }
         (Some(_), false) => {
             return Err(other(

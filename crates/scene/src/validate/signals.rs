@@ -56,7 +56,7 @@ pub(super) fn validate_signals(
         Some(z) => check("signals.damping_ratio", z, coupled::reduced::ReducedSettings::DAMPING_RATIO, "")?,
         None => d.damping_ratio,
     };
-    let modes = modes(raw.modes, l_mm, b_mm)?;
+    let (modes, modes_from_chain) = modes(raw.modes.as_ref(), l_mm, b_mm)?;
     let sensors = match &raw.sensors_mm {
         None => Vec::new(),
         Some(list) => {
@@ -78,14 +78,23 @@ pub(super) fn validate_signals(
         }
     };
     check_sensors(&sensors, samples)?;
-    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, rayleigh, modes, sensors })
+    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, rayleigh, modes, modes_from_chain, sensors })
 }
 
 /// `signals.modes`: a whole number within [`limits::MODES`] and the plate's
-/// [`limits::max_modes`]; absent, the default or the plate's most, whichever is fewer.
-fn modes(raw: Option<f64>, l_mm: f64, b_mm: f64) -> Result<usize, Invalid> {
+/// [`limits::max_modes`]; absent, the default or the plate's most, whichever is fewer;
+/// `"chain"`, the plate's most with each support set keeping those the chain needs. Returns
+/// the count and whether the chain chooses.
+fn modes(raw: Option<&RawModes>, l_mm: f64, b_mm: f64) -> Result<(usize, bool), Invalid> {
     let most = limits::max_modes(l_mm, b_mm);
-    let Some(n) = raw else { return Ok(SignalSettings::default().modes.min(most)) };
+    let n = match raw {
+        None => return Ok((SignalSettings::default().modes.min(most), false)),
+        Some(RawModes::Word(w)) if w == "chain" => return Ok((most, true)),
+        Some(RawModes::Word(w)) => {
+            return Err(other("signals.modes", format!("'{w}' is neither a number of modes nor \"chain\"")))
+        }
+        Some(RawModes::Count(n)) => *n,
+    };
     if n > most as f64 {
         return Err(other(
             "signals.modes",
@@ -97,7 +106,7 @@ fn modes(raw: Option<f64>, l_mm: f64, b_mm: f64) -> Result<usize, Invalid> {
             ),
         ));
     }
-    count("signals.modes", n, limits::MODES)
+    Ok((count("signals.modes", n, limits::MODES)?, false))
 }
 
 /// The sensors as a whole: distinct channel names, and one impact's signals within

@@ -64,6 +64,7 @@ pub(crate) fn validate_stream(
     signals: &SignalSettings,
     adc_rate_hz: f64,
     has_chain: bool,
+    conditions: usize,
 ) -> Result<StreamStudy, Invalid> {
     let rate = check("stream.rate_per_s", raw.rate_per_s, limits::STREAM_RATE_PER_S, "1/s")?;
     let duration = check("stream.duration_s", raw.duration_s, limits::STREAM_DURATION_S, "s")?;
@@ -114,21 +115,24 @@ pub(crate) fn validate_stream(
         noise_sweep,
         write_signal: raw.write_signal,
     };
-    budgets(&study, signals)?;
+    budgets(&study, signals, conditions)?;
     Ok(study)
 }
 
-/// One stream's model signals must fit in memory, and the lumps and stream time of the whole
-/// study in its budgets.
-fn budgets(study: &StreamStudy, signals: &SignalSettings) -> Result<(), Invalid> {
-    // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound.
+/// The study's streams are held at once (every stream's model signals and their recording),
+/// so together they must fit the memory budget; its lumps (every stream, rate and support
+/// set) and its windows must fit theirs.
+fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize) -> Result<(), Invalid> {
+    // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
+    // the recording is at most as long again.
     let channels = (4 * signals.sensors.len() + 4) as f64;
-    let bytes = study.spec.duration * signals.rate_hz * channels * 8.0;
+    let bytes = 2.0 * study.streams as f64 * study.spec.duration * signals.rate_hz * channels * 8.0;
     if bytes > limits::MAX_STREAM_SIGNAL_BYTES {
         return Err(other(
-            "stream.duration_s",
+            "stream.duration_s and stream.streams",
             format!(
-                "{} s at {} Hz on up to {channels} channels needs {:.0} MB of signal, above the {:.0} MB budget; shorten the stream",
+                "{} streams of {} s at {} Hz on up to {channels} channels, recorded, hold {:.0} MB of signal, above the {:.0} MB budget; shorten the streams or run fewer",
+                study.streams,
                 study.spec.duration,
                 signals.rate_hz,
                 bytes / 1e6,
@@ -137,22 +141,27 @@ fn budgets(study: &StreamStudy, signals: &SignalSettings) -> Result<(), Invalid>
         ));
     }
     let rates: f64 = study.spec.rate_per_s + study.rate_sweep.iter().sum::<f64>();
-    let lumps = rates * study.spec.duration * study.streams as f64;
+    let lumps = rates * study.spec.duration * study.streams as f64 * conditions as f64;
     if lumps > limits::MAX_STREAM_LUMPS {
         return Err(other(
             "stream.rate_per_s, rate_sweep_per_s, duration_s and streams",
-            format!("expect {lumps:.0} lumps, above the budget of {:.0}", limits::MAX_STREAM_LUMPS),
+            format!(
+                "expect {lumps:.0} lumps over every stream, rate and support set, above the budget of {:.0}",
+                limits::MAX_STREAM_LUMPS
+            ),
         ));
     }
-    let windows = ((study.spec.duration - study.window) / study.hop).floor() + 1.0;
-    if (study.blocks as f64) > windows * study.streams as f64 {
+    let windows = (((study.spec.duration - study.window) / study.hop).floor() + 1.0) * study.streams as f64;
+    if windows > limits::MAX_STREAM_WINDOWS {
+        return Err(other(
+            "stream.hop_s",
+            format!("{windows:.0} windows, above the budget of {:.0}; lengthen the hop", limits::MAX_STREAM_WINDOWS),
+        ));
+    }
+    if (study.blocks as f64) > windows {
         return Err(other(
             "stream.blocks",
-            format!(
-                "{} blocks for {} windows; at most one block per window",
-                study.blocks,
-                windows * study.streams as f64
-            ),
+            format!("{} blocks for {windows} windows; at most one block per window", study.blocks),
         ));
     }
     Ok(())

@@ -37,7 +37,7 @@ pub fn run(
     Ok(run)
 }
 
-/// The same impacts at the same `sensors` on the model of `set` with half the scene's modes:
+/// The same impacts at the same `sensors` on the model of `set` with half its modes:
 /// what each number owes to the modal truncation (the difference overstates the error at N
 /// if the AUC converges in N).
 pub fn half_modes(
@@ -47,8 +47,8 @@ pub fn half_modes(
     sensors: &[(f64, f64)],
     progress: &dyn Progress,
 ) -> Result<ConditionRun, Failure> {
-    let settings = &scene.signals;
-    let half = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings.reduced() };
+    let settings = super::sensors::reduced_settings(scene, set)?;
+    let half = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings };
     let model = ReducedModel::new(&scene.plate, set, half)?;
     let instrument = Instrument::new(&model, &scene.plate, &spec(scene, sensors.to_vec()), scene)?;
     run(study, Held::NONE, &instrument, &set.name, &format!("{} modes", half.modes), progress, |_| Ok(()))

@@ -150,6 +150,17 @@ pub struct ConditionResult {
     pub full_model: FullModelCheck,
     /// What the measurement chain did, if the scene has one.
     pub measurement: Option<measured::ChainSummary>,
+    /// The modes kept on this support set where the chain chose them (`[signals] modes =
+    /// "chain"`); left out otherwise, when the scene's count holds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub chain_modes: Option<usize>,
+}
+
+impl ConditionResult {
+    /// The modes the reduced model kept on this support set, given the scene's `signals`.
+    pub fn modes(&self, signals: &coupled::reduced::SignalSettings) -> usize {
+        self.chain_modes.unwrap_or(signals.modes)
+    }
 }
 
 /// One impact on the full transient model beside the reduced one, in the same run.

@@ -4,11 +4,24 @@
 use crate::channel::ChannelInfo;
 use crate::Failure;
 use coupled::identification::Instrument;
-use coupled::reduced::{Quantity, SignalSpec};
+use coupled::reduced::{Quantity, ReducedSettings, SignalSpec};
 use identify::features::FEATURES;
 use identify::measurement::Measurand;
 use identify::Study;
 use scene::{Scene, SupportSet};
+
+/// The reduced model's settings on `set`: the scene's, with the fewest modes the measurement
+/// chain needs where `[signals] modes = "chain"` (the modes whose highest the chain's gain
+/// above stays within its band tolerance, `identify::measurement::Chain::modes_needed`;
+/// all the scene allows if none suffices, which the report then flags).
+pub fn reduced_settings(scene: &Scene, set: &SupportSet) -> Result<ReducedSettings, Failure> {
+    let settings = scene.signals.reduced();
+    let (true, Some(spec)) = (scene.signals.modes_from_chain, &scene.measurement) else { return Ok(settings) };
+    let chain = identify::measurement::Chain::new(spec.clone(), scene.signals.rate_hz)?;
+    let frequencies = coupled::reduced::frequencies_hz(&scene.plate, set, settings)?;
+    let modes = chain.modes_needed(&frequencies).unwrap_or(frequencies.len());
+    Ok(ReducedSettings { modes, ..settings })
+}
 
 /// Channels an identification records per impact on `set`: each recorded quantity at every
 /// named and candidate sensor (once where they coincide), and the held or sprung corners if

@@ -30,7 +30,7 @@ pub(super) fn run_set(
 ) -> Result<(ConditionResult, ConditionDetail), Failure> {
     let (plate, settings, e) = (&scene.plate, &scene.signals, &study.ensemble);
     let started = Instant::now();
-    let model = ReducedModel::new(plate, set, settings.reduced())?;
+    let model = ReducedModel::new(plate, set, super::sensors::reduced_settings(scene, set)?)?;
     let setup_seconds = started.elapsed().as_secs_f64();
 
     // The main run: named sensors, then the candidate grid (less its points at named
@@ -98,6 +98,7 @@ pub(super) fn run_set(
         feature_bytes,
         full_model,
         measurement,
+        chain_modes: settings.modes_from_chain.then(|| model.settings().modes),
     };
     Ok((result, detail))
 }

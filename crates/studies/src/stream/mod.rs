@@ -77,6 +77,8 @@ pub struct Simulation {
     pub joint_steps: usize,
     /// Joint steps whose solve did not converge.
     pub unconverged_steps: usize,
+    /// Lumps let go while still in contact, after four windows resting on the plate.
+    pub released_in_contact: usize,
     /// The left-out cross static correction's bound over the static compliance.
     pub cross_residual_bound: f64,
     /// Stream seconds simulated per second of computing (the model alone, no chain).
@@ -186,8 +188,9 @@ pub struct RecordedSignal {
 
 /// Runs the stream study of `scene` (its `[stream]` table) on every support set.
 pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Failure> {
+    check(scene)?;
     let (Some(study), Some(ensemble)) = (&scene.stream, &scene.ensemble) else {
-        return Err(format!("scene {} has no [stream] table (and [ensemble]) for impact stream", scene.name).into());
+        return Err("the scene has no [stream] and [ensemble]".into());
     };
     let mut conditions = Vec::with_capacity(scene.conditions.len());
     for (index, set) in scene.conditions.iter().enumerate() {
@@ -199,6 +202,19 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
         measured: scene.measurement.is_some(),
         conditions,
     })
+}
+
+/// Whether the scene's stream study can run and be scored, before anything runs: it has one,
+/// and its cross-validation scores (the folds depend only on the study, not on the streams).
+pub fn check(scene: &Scene) -> Result<(), Failure> {
+    let (Some(study), Some(_)) = (&scene.stream, &scene.ensemble) else {
+        return Err(format!(
+            "scene {}: impact stream runs the scene's [stream] table (with [ensemble]), and it has none (see docs/scenes.md)",
+            scene.name
+        )
+        .into());
+    };
+    run::window_set(study, study.spec.seed).check()
 }
 
 /// "acceleration at (229.2, 180) mm (m/s^2)".

@@ -38,16 +38,16 @@ pub(super) fn condition(
     progress: &dyn Progress,
 ) -> Result<ConditionStream, Failure> {
     let plate = &scene.plate;
-    let model = ReducedModel::new(plate, set, scene.signals.reduced())?;
+    let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
     let sensors = scene.signals.sensors.clone();
     let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     let seed = study.spec.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
     progress.start(study.streams * (1 + study.rate_sweep.len()), &format!("{}: streams", set.name));
+    let w = window_set(study, seed);
     let main = simulate(&instrument, ensemble, study, study.spec.rate_per_s, progress)?;
     let simulation = simulation(&instrument, ensemble, study, &main, &model)?;
     let (recorded, rate) = record(&instrument, &main, 1.0);
-    let w = window_set(study, &main, seed);
     let rows = features(&recorded, rate, &w.windows, study);
     let kinds = instrument.channels();
     let mut groups = Vec::new();
@@ -63,9 +63,8 @@ pub(super) fn condition(
     for &rate_per_s in &study.rate_sweep {
         let sims = simulate(&instrument, ensemble, study, rate_per_s, progress)?;
         let (rec, r) = record(&instrument, &sims, 1.0);
-        let ws = window_set(study, &sims, seed);
-        let rows = features(&rec, r, &ws.windows, study);
-        let score = ws.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
+        let rows = features(&rec, r, &w.windows, study);
+        let score = w.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
     }
     progress.finish();
@@ -136,6 +135,7 @@ fn simulation(
         overlapped_share: overlapped_share(main),
         joint_steps: main.iter().map(|s| s.response.joint_steps).sum(),
         unconverged_steps: main.iter().map(|s| s.response.unconverged_steps).sum(),
+        released_in_contact: main.iter().map(|s| s.response.released_in_contact).sum(),
         cross_residual_bound: main.iter().map(|s| s.response.cross_residual_bound).fold(0.0, f64::max),
         real_time_factor: simulated / seconds.max(1e-9),
         free_real_time_factor: study.spec.duration / free_seconds.max(1e-9),
@@ -183,10 +183,11 @@ fn record(instrument: &Instrument<'_>, sims: &[Simulated], scale: f64) -> (Vec<V
 }
 
 /// The windows of every stream on a common time axis (stream r from r(T + W), so that no two
-/// streams' windows touch), labelled by the profile, with their time-block folds.
-fn window_set(study: &StreamStudy, sims: &[Simulated], seed: u64) -> Windows {
+/// streams' windows touch), labelled by the profile, with their time-block folds: what the
+/// detector is scored on, known before any stream is simulated.
+pub(super) fn window_set(study: &StreamStudy, seed: u64) -> Windows {
     let (t, w) = (study.spec.duration, study.window);
-    let offsets: Vec<f64> = (0..sims.len()).map(|r| r as f64 * (t + w)).collect();
+    let offsets: Vec<f64> = (0..study.streams).map(|r| r as f64 * (t + w)).collect();
     let all: Vec<Window> = offsets.iter().enumerate().flat_map(|(r, &o)| windows(r, o, t, w, study.hop)).collect();
     let p = study.spec.profile;
     let middle = 0.5 * (p.before + p.after);

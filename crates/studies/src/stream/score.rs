@@ -53,6 +53,32 @@ pub(super) struct Windows {
 }
 
 impl Windows {
+    /// Whether the cross-validation can score: every block's training windows hold both
+    /// classes, and the scored windows hold both.
+    pub fn check(&self) -> Result<(), Failure> {
+        let both = |idx: &mut dyn Iterator<Item = &usize>| {
+            let (mut rich, mut poor) = (false, false);
+            for &i in idx {
+                (rich, poor) = (rich || self.labels[i], poor || !self.labels[i]);
+            }
+            rich && poor
+        };
+        let blocks = self.folds.len();
+        for (b, f) in self.folds.iter().enumerate() {
+            if !both(&mut f.train.iter()) {
+                return Err(format!(
+                    "stream.blocks: block {} of {blocks} leaves training windows of one class only (gangue-rich or not); use as many blocks as streams (leave-one-stream-out), or more streams",
+                    b + 1
+                )
+                .into());
+            }
+        }
+        if !both(&mut self.folds.iter().flat_map(|f| f.test.iter())) {
+            return Err("stream.blocks: the scored windows hold one class only; use as many blocks as streams".into());
+        }
+        Ok(())
+    }
+
     /// The detector on `rows` (one per window; `scale` per column), named `group`, and its
     /// out-of-fold probabilities.
     pub fn score(&self, group: &str, rows: &[Vec<f64>], scale: &[bool]) -> Result<(Score, Vec<Option<f64>>), Failure> {

@@ -80,7 +80,7 @@ pub(super) fn step(
             u_hat += 0.25 * dt * dt * s.gravity;
             v_hat += 0.5 * dt * s.gravity;
         }
-        let (wp, vp) = (dot(&l.phi, &w.qh), dot(&l.phi, &w.vh) + l.res_vh);
+        let (wp, vp) = (dot(&l.phi, &w.qh), dot(&l.phi, &w.vh) + residual_rate(l, c1));
         let gjj = g[j * k + j];
         w.free.push([
             u_hat - wp,
@@ -105,8 +105,7 @@ pub(super) fn step(
         l.v = v_hat + 0.5 * dt * a_contact;
         l.a = if l.striker.gravity != 0.0 { l.striker.gravity + a_contact } else { a_contact };
         l.approach = w.approach[j];
-        l.res_v = l.res_vh + c1 * l.c_res * p;
-        l.res_vh = if p == 0.0 { 0.0 } else { -c1 * l.c_res * p - l.res_v };
+        l.res_v = residual_rate(l, c1) + c1 * l.c_res * p;
         l.dmax = l.dmax.max(delta);
         l.last = (delta, rate);
         l.record(p, dt);
@@ -143,6 +142,18 @@ fn commit(h: &[f64], (qh, vh): (&[f64], &[f64]), f: &[f64], c1: f64, (q, v): (&m
         let hf = h[i] * f[i];
         q[i] = qh[i] + hf;
         v[i] = vh[i] + c1 * hf;
+    }
+}
+
+/// The static correction's velocity at the step's end before its end force, by the
+/// trapezoidal rule C_res(P₊ - P)(2/Δt) - v with this step's Δt: (2/Δt)C_res P₊ is added
+/// once P₊ is known; without a start force the correction is at rest (a static response to
+/// no load).
+fn residual_rate(l: &Active, c1: f64) -> f64 {
+    if l.force == 0.0 {
+        0.0
+    } else {
+        -c1 * l.c_res * l.force - l.res_v
     }
 }
 
