@@ -108,9 +108,9 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     for l in &lumps {
         let t: f64 = l[1].parse().unwrap();
         if t < 3.0 {
-            assert_eq!(l[3], "no", "{l:?}");
+            assert_eq!(l[3], "0", "{l:?}");
         } else if t >= 3.5 {
-            assert_eq!(l[3], "yes", "{l:?}");
+            assert_eq!(l[3], "1", "{l:?}");
         }
     }
     // Every window's lump and gangue counts are those of lumps.csv in its span.
@@ -121,7 +121,7 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
         let inside: Vec<_> =
             lumps.iter().filter(|l| l[0] == s && (a..b).contains(&l[1].parse::<f64>().unwrap())).collect();
         assert_eq!(w[3].parse::<usize>().unwrap(), inside.len(), "{w:?}");
-        assert_eq!(w[4].parse::<usize>().unwrap(), inside.iter().filter(|l| l[3] == "yes").count(), "{w:?}");
+        assert_eq!(w[4].parse::<usize>().unwrap(), inside.iter().filter(|l| l[3] == "1").count(), "{w:?}");
     }
     // The signal: 6 s at the model's 20 kHz, its metadata beside it.
     let (header, signal) = rows(&dir.join("one").join("con-2").join("signal.csv"));

@@ -281,7 +281,7 @@ fn windows_table(c: &ConditionStream) -> Table {
             Cell::Int(w.lumps as u64),
             Cell::Int(w.gangue as u64),
             Cell::Num(w.expected_share),
-            (if w.gangue_rich { "yes" } else { "no" }).into(),
+            w.gangue_rich.into(),
             w.score.map_or("".into(), Cell::Num),
         ]);
     }
@@ -311,7 +311,7 @@ fn lumps_table(c: &ConditionStream) -> Table {
             Cell::Int(l.stream as u64),
             Cell::Num(l.time),
             l.family.as_str().into(),
-            (if l.gangue { "yes" } else { "no" }).into(),
+            l.gangue.into(),
             Cell::Num(l.mass),
             Cell::Num(l.velocity),
             Cell::Num(l.x),
@@ -319,7 +319,7 @@ fn lumps_table(c: &ConditionStream) -> Table {
             Cell::Int(l.contacts as u64),
             Cell::Num(l.contact_time),
             Cell::Num(l.force_max),
-            (if l.overlapped { "yes" } else { "no" }).into(),
+            l.overlapped.into(),
         ]);
     }
     t
