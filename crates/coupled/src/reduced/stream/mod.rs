@@ -24,7 +24,8 @@
 //!
 //! **A lump leaves** when it makes no further contact within one impact's window after its
 //! touch while the plate vibrates freely: no force, and the sphere's free flight
-//! u + u̇τ + gτ²/2 over the rest of the window stays below -Σᵢ|φᵢ(p)|Aᵢ, under which no later
+//! u + u̇τ + gτ²/2 over the rest of the window, less the permanent set δ_p at which its law's
+//! contact opens, stays below -Σᵢ|φᵢ(p)|Aᵢ, under which no later
 //! free deflection at p reaches ([`super::target`]; lumps in contact elsewhere can push the
 //! plate further, so this is a proof only for the free plate); or, out of contact, at the
 //! window's end, where one impact stops following it too (a lump still in contact there is
@@ -37,6 +38,7 @@
 //! the contact step is T_s/m with m from the stiffest lump in contact
 //! ([`super::ReducedModel::impact_with`]'s rule).
 
+mod envelope;
 mod step;
 
 use super::impact::{at_point, channel_row};
@@ -47,6 +49,7 @@ use super::{Correction, ReducedModel};
 use crate::error::ModelError;
 use crate::transient::Striker;
 use analytic::params::{check, Range};
+use envelope::{half_periods, lowest_deflection, reach, HalfPeriod};
 use serde::Serialize;
 use std::collections::HashMap;
 use step::{flexibility, step, Scratch};
@@ -203,6 +206,7 @@ struct Run<'a> {
     active: Vec<Active>,
     done: Vec<(usize, LumpResponse)>,
     maps: HashMap<usize, StepMaps>,
+    half_period: HalfPeriod,
     window_samples: usize,
     steps: usize,
     joint_steps: usize,
@@ -231,6 +235,7 @@ impl<'a> Run<'a> {
             active: Vec::new(),
             done: Vec::new(),
             maps: HashMap::new(),
+            half_period: half_periods(&model.omega, model.settings.damping(), probes.spec.interval()),
             window_samples: probes.spec.samples(),
             steps: 0,
             joint_steps: 0,
@@ -310,8 +315,15 @@ impl<'a> Run<'a> {
     /// One sample interval of contact steps, and the sample at its end; where no lump can
     /// touch within it, the interval in one exact step.
     fn contact_interval(&mut self) {
-        if self.clear_interval() {
-            return self.free_interval();
+        if self.active.iter().all(|l| l.force == 0.0) {
+            let n = self.q.len();
+            let w = &mut self.scratch;
+            w.qh.resize(n, 0.0);
+            w.vh.resize(n, 0.0);
+            self.probes.step_map(1).apply(&self.q, &self.v, &mut w.qh, &mut w.vh);
+            if self.clear_interval() {
+                return self.free_interval();
+            }
         }
         let every = self.active.iter().map(|a| a.every).max().unwrap_or(1);
         let (model, probes) = (self.model, self.probes);
@@ -343,37 +355,24 @@ impl<'a> Run<'a> {
         }
     }
 
-    /// Whether no lump is in contact and none can touch within the next sample interval:
-    /// each sphere's flight over it stays below the lowest the plate's free deflection at its
-    /// point can reach in it, the larger of -Σᵢ|φᵢ(p)|Aᵢ (ever) and w(p) - T_s Σᵢ|φᵢ(p)|ωᵢAᵢ
-    /// (in T_s at the largest speed |ẇ(p)| can have).
+    /// Whether no lump can touch within the next sample interval, no force acting and the
+    /// modes' exact state at the interval's end in the scratch: each sphere's flight over it,
+    /// less the permanent set δ_p its law opens at, stays below the lowest the plate's free
+    /// deflection at its point reaches in it ([`lowest_deflection`]), so that δ ≤ δ_p.
     fn clear_interval(&self) -> bool {
         let ts = self.probes.spec.interval();
-        let (q, v, omega) = (&self.q, &self.v, &self.model.omega);
-        self.active.iter().all(|l| {
-            if l.force != 0.0 {
-                return false;
-            }
-            let (mut ever, mut speed) = (0.0, 0.0);
-            for i in 0..omega.len() {
-                let a = l.phi[i].abs() * (q[i] * q[i] + (v[i] / omega[i]).powi(2)).sqrt();
-                ever += a;
-                speed += a * omega[i];
-            }
-            l.highest(ts) < (-ever).max(dot(&l.phi, q) - ts * speed)
-        })
+        let (start, end) = ((&self.q[..], &self.v[..]), (&self.scratch.qh[..], &self.scratch.vh[..]));
+        self.active
+            .iter()
+            .all(|l| l.highest(ts) - l.opens_at() < lowest_deflection(&l.phi, start, end, &self.half_period))
     }
 
-    /// A sample interval free of force: every mode by its exact map over T_s, every sphere on
-    /// its flight (which Newmark's rule follows exactly under a constant body force), and
-    /// the sample at its end.
+    /// A sample interval free of force, the modes' exact map over T_s already in the scratch:
+    /// every sphere on its flight (which Newmark's rule follows exactly under a constant body
+    /// force), and the sample at its end.
     fn free_interval(&mut self) {
         let ts = self.probes.spec.interval();
-        let map = self.probes.step_map(1);
         let w = &mut self.scratch;
-        w.qh.resize(self.q.len(), 0.0);
-        w.vh.resize(self.q.len(), 0.0);
-        map.apply(&self.q, &self.v, &mut w.qh, &mut w.vh);
         std::mem::swap(&mut self.q, &mut w.qh);
         std::mem::swap(&mut self.v, &mut w.vh);
         for l in &mut self.active {
@@ -399,7 +398,7 @@ impl<'a> Run<'a> {
         for l in std::mem::take(&mut self.active) {
             let reach = reach(&l.phi, &self.q, &self.v, &self.model.omega);
             let rest = self.window_samples.saturating_sub(k - l.touched) as f64 * ts;
-            let left = l.force == 0.0 && l.steps > 0 && l.highest(rest) + reach < 0.0;
+            let left = l.force == 0.0 && l.steps > 0 && l.highest(rest) - l.opens_at() + reach < 0.0;
             // At its window's end a lump is let go once it is out of contact (dropping a force
             // would jolt the plate), and in contact only after [`HELD_WINDOWS`] windows: a lump
             // resting on the plate, which in a mine slides off.
@@ -463,17 +462,16 @@ fn step_maps(model: &ReducedModel, probes: &Probes, every: usize) -> StepMaps {
     }
 }
 
-/// Σᵢ|φᵢ(p)|Aᵢ with Aᵢ = √(qᵢ² + q̇ᵢ²/ωᵢ²): no later free deflection at p reaches beyond it
-/// ([`super::target`]).
-fn reach(phi: &[f64], q: &[f64], v: &[f64], omega: &[f64]) -> f64 {
-    (0..omega.len()).map(|i| phi[i].abs() * (q[i] * q[i] + (v[i] / omega[i]).powi(2)).sqrt()).sum()
-}
-
 impl Active {
     /// The highest the sphere's free flight u + u̇τ + gτ²/2 reaches over the next `tau`
     /// seconds: at one of its ends (g ≥ 0, a parabola opening upward, or a line).
     fn highest(&self, tau: f64) -> f64 {
         self.u.max(self.u + self.v * tau + 0.5 * self.striker.gravity * tau * tau)
+    }
+
+    /// The compression δ_p at which its contact opens: the permanent set its law has left.
+    fn opens_at(&self) -> f64 {
+        self.striker.permanent_set(self.dmax)
     }
 
     /// The contact bookkeeping of a step ending with force `p`.
