@@ -230,6 +230,28 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Apply a window detector (a detector.json written by impact stream) to a recording (a
+    /// signal.json sidecar beside its CSV, docs/guide.md): every window's probability of
+    /// gangue-rich into DIR/scores.csv, and, where the sidecar states onset_s, the delay,
+    /// false alarms per hour and AUC into DIR/detect.json (default
+    /// impact-out/<detector's scene name>-detect).
+    Detect {
+        /// The detector (JSON, format impact-detector/1).
+        #[arg(long, value_name = "FILE")]
+        detector: PathBuf,
+        /// The recording's sidecar (JSON, format impact-signal/1); its CSV is read from the
+        /// sidecar's folder.
+        #[arg(long, value_name = "FILE")]
+        signal: PathBuf,
+        /// Directory for the files, written whole or not at all (an existing one only if empty or
+        /// an earlier output of impact); default
+        /// impact-out/<scene name>-<command>.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print the results as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         /// Directory for the files, written whole or not at all (an existing one only if empty or

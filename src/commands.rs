@@ -43,6 +43,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
         }
         Command::Identify { scene, out, json, no_features_csv } => identify(&scene, out, json, no_features_csv),
         Command::Stream { scene, out, json } => stream(&scene, out, json),
+        Command::Detect { detector, signal, out, json } => detect(&detector, &signal, out, json),
         Command::Report { out, json } => {
             let mut target = OutputDir::prepare(&out)?;
             let scene = Scene::default_scene();
@@ -125,6 +126,39 @@ fn stream(path: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> 
         return print_json(&scene, &data);
     }
     out(&format!("{}\n", impact::report::stream::summary_table(&data).to_text()))
+}
+
+/// Largest recording or detector file read, bytes: its text and parsed samples stay in
+/// memory together (a 4 GB CSV holds about 200 million samples).
+const MAX_READ_BYTES: u64 = 4_000_000_000;
+
+/// The text of `path`, refused before reading beyond [`MAX_READ_BYTES`].
+fn read_text(path: &Path, what: &str) -> Result<String, Failure> {
+    let size = std::fs::metadata(path).map_err(|e| format!("{what} {}: {e}", path.display()))?.len();
+    if size > MAX_READ_BYTES {
+        return Err(format!("{what} {}: {size} bytes, allowed at most {MAX_READ_BYTES}", path.display()).into());
+    }
+    Ok(std::fs::read_to_string(path).map_err(|e| format!("{what} {}: {e}", path.display()))?)
+}
+
+/// `impact detect`: a detector file applied to a recording, every file read and checked
+/// before the output folder is prepared.
+fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
+    let d = identify::detector::Detector::from_json(&read_text(detector, "--detector")?)
+        .map_err(|e| format!("--detector {}: {e}", detector.display()))?;
+    let origin = signal.display().to_string();
+    let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
+    let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
+    let recording = sidecar.read(&read_text(&csv, "the recording's data")?, &csv.display().to_string())?;
+    let target = OutputDir::prepare(
+        dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-detect", slug(&d.provenance.scene)))),
+    )?;
+    let (artifacts, data) = impact::report::detect::detect(&d, &recording, (&detector.display().to_string(), &origin))?;
+    commit(target, &artifacts)?;
+    if json {
+        return out(&format!("{}\n", serde_json::to_string_pretty(&data)?));
+    }
+    out(&format!("{}\n", impact::report::detect::summary_table(&data).to_text()))
 }
 
 /// `impact fem-bench`: the plate FE compliance map timed on the mesh that reaches the

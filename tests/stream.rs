@@ -131,12 +131,67 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
         serde_json::from_slice(&std::fs::read(dir.join("one").join("con-2").join("signal.json")).unwrap()).unwrap();
     assert_eq!(meta["rate_hz"], 20_000.0);
     assert_eq!(meta["channels"].as_array().unwrap().len(), header.len() - 1);
+    assert_eq!(meta["time_column"], header[0]);
+    let columns: Vec<&str> = meta["columns"].as_array().unwrap().iter().map(|c| c.as_str().unwrap()).collect();
+    assert_eq!(columns, header[1..]);
+    assert_eq!(
+        (meta["format"].as_str(), meta["data"].as_str(), meta["onset_s"].as_f64()),
+        (Some("impact-signal/1"), Some("signal.csv"), Some(3.0))
+    );
+    detect_reads_the_run(&dir.join("one").join("con-2"), &dir);
     let data: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("one").join("stream.json")).unwrap()).unwrap();
     let every = &data["conditions"][0]["groups"][0];
     assert_eq!(every["group"], "every channel");
     let auc = every["auc"].as_f64().unwrap();
     assert!((0.0..=1.0).contains(&auc));
+}
+
+/// `impact detect` reads the run's own detector and signal: the stream's 23 windows, each
+/// alarm at the detector's probability, the onset from the sidecar; a sidecar of another
+/// rate, a missing column or a detector of another format is refused before anything is
+/// written, naming it.
+fn detect_reads_the_run(run: &std::path::Path, dir: &common::tmp::Tmp) {
+    let out = dir.join("detected");
+    let args = |signal: &std::path::Path, out: &std::path::Path| {
+        impact(["detect", "--detector"])
+            .arg(run.join("detector.json"))
+            .arg("--signal")
+            .arg(signal)
+            .arg("--out")
+            .arg(out)
+    };
+    let ok = args(&run.join("signal.json"), &out).arg("--json").within(60).success();
+    let answer = ok.json();
+    assert_eq!(answer["windows"], 23);
+    assert_eq!(answer["assessment"]["onset_s"], 3.0);
+    // Windows ending by 3 s: starts 0 to 2.5 s; starting from 3 s: 3 to 5.5 s.
+    assert_eq!(
+        (answer["assessment"]["windows_before"].as_u64(), answer["assessment"]["windows_after"].as_u64()),
+        (Some(11), Some(11))
+    );
+    let (header, scores) = rows(&out.join("scores.csv"));
+    assert_eq!(header, ["start_s", "end_s", "probability_gangue_rich", "alarm"]);
+    assert_eq!(scores.len(), 23);
+    for s in &scores {
+        let p: f64 = s[2].parse().unwrap();
+        assert!((0.0..=1.0).contains(&p));
+        assert_eq!(s[3], if p >= 0.5 { "1" } else { "0" }, "{s:?}");
+    }
+    let sidecar = std::fs::read_to_string(run.join("signal.json")).unwrap();
+    let meta: serde_json::Value = serde_json::from_str(&sidecar).unwrap();
+    let first_column = format!("\"{}\"", meta["columns"][0].as_str().unwrap());
+    for (name, from, to, words) in [
+        ("rate.json", "\"rate_hz\": 20000.0".to_string(), "\"rate_hz\": 10000.0", &["rate_hz = 10000", "20000 Hz"][..]),
+        ("column.json", first_column, "\"no_such_column\"", &["no column \"no_such_column\""][..]),
+    ] {
+        assert!(sidecar.contains(&from), "{from}");
+        let bad = run.join(name);
+        std::fs::write(&bad, sidecar.replacen(&from, to, 1)).unwrap();
+        let refused = args(&bad, &dir.join(name)).within(60).fails();
+        assert!(words.iter().all(|w| refused.stderr.contains(w)), "{}", refused.stderr);
+        assert!(!dir.join(name).exists());
+    }
 }
 
 /// A cross-validation that cannot score (one stream cut into two blocks at its change: each

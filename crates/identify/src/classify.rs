@@ -29,7 +29,7 @@ use crate::ensemble::{impact_stream, open_uniform};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::{Mat, Par};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The ridge λ on the standardised weights.
 pub const RIDGE: f64 = 1.0;
@@ -39,7 +39,7 @@ pub const FOLDS: usize = 5;
 pub const MAX_ITERATIONS: usize = 100;
 
 /// How one column enters the model.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Column {
     /// Taken as ln x.
     pub log: bool,
@@ -61,7 +61,7 @@ impl Column {
 }
 
 /// A fitted model.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Logistic {
     /// b.
     pub intercept: f64,

@@ -21,6 +21,8 @@
 //! - [`detect`]: gangue detection over sliding windows of a stream: the windows' truth,
 //!   cross-validation by time blocks, and the operating answer (delay from the onset of the
 //!   change, false alarms per hour);
+//! - [`detector`]: a trained window detector saved as JSON and applied to a new recording;
+//! - [`recording`]: a recorded signal (a JSON sidecar beside a CSV) as the detector reads it;
 //! - [`roc`]: the AUC (Mann-Whitney), DeLong's standard error and a bootstrap interval;
 //! - [`classify`]: a ridge logistic regression fitted by Newton/IRLS and its stratified
 //!   cross-validated accuracy;
@@ -77,11 +79,13 @@
 
 pub mod classify;
 pub mod detect;
+pub mod detector;
 pub mod distribution;
 pub mod ensemble;
 pub mod features;
 pub mod measurement;
 pub mod placement;
+pub mod recording;
 pub mod roc;
 pub mod stream;
 

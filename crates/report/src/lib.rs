@@ -8,6 +8,7 @@ pub mod present;
 pub mod provenance;
 
 pub mod comparison;
+pub mod detect;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;

@@ -21,21 +21,30 @@ pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Stre
     let mut a = Artifacts::new();
     a.add("index.md", page(scene, &data)?);
     a.add("stream.json", serde_json::to_string_pretty(&data)?);
+    let stamp = crate::provenance::Provenance::of(scene);
     for c in &data.conditions {
         let dir = crate::present::rows::slug(&c.name);
+        let mut detector = c.detector.clone();
+        detector.provenance.scene_hash = Some(stamp.scene_sha256.clone());
+        detector.provenance.program = format!("{} {}", stamp.program, stamp.version);
+        a.add(format!("{dir}/detector.json"), detector.to_json());
         a.add(format!("{dir}/windows.csv"), windows_table(c).to_csv());
         a.add(format!("{dir}/lumps.csv"), lumps_table(c).to_csv());
         if let Some(s) = &c.signal {
             let csv = signal_table(s).to_csv();
-            // The CSV's column keys, as its header (after the provenance line) has them.
-            let keys: Vec<&str> = csv.lines().nth(1).map_or_else(Vec::new, |h| h.split(',').collect());
+            // The CSV's column keys, as its header (the first line that is not a comment) has them.
+            let header = csv.lines().find(|l| !l.starts_with('#'));
+            let keys: Vec<&str> = header.map_or_else(Vec::new, |h| h.split(',').collect());
             let meta = serde_json::json!({
+                "format": identify::recording::FORMAT,
+                "data": "signal.csv",
                 "rate_hz": s.rate_hz,
                 "samples": s.columns.first().map_or(0, Vec::len),
                 "stream": 0,
                 "time_column": keys.first(),
                 "columns": keys.get(1..).unwrap_or_default(),
                 "channels": s.names,
+                "onset_s": data.study.spec.profile.onset,
                 "measured": data.measured,
             });
             a.add(format!("{dir}/signal.csv"), csv);

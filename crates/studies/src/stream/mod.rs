@@ -62,6 +62,9 @@ pub struct ConditionStream {
     /// The first stream's recorded signals, when the scene asks for them: (channel, samples).
     #[serde(skip)]
     pub signal: Option<RecordedSignal>,
+    /// The every-channel detector fitted on every window of the main run, to be taken away.
+    #[serde(skip)]
+    pub detector: identify::detector::Detector,
 }
 
 /// What the stream simulation did and cost.

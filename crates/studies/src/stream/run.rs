@@ -4,6 +4,7 @@ use super::score::Windows;
 use super::{
     channel_name, Baseline, ConditionStream, LumpRow, NoisePoint, RatePoint, RecordedSignal, Simulation, WindowRow,
 };
+use crate::channel::ChannelInfo;
 use crate::identify::sensors::{channel_infos, spec};
 use crate::progress::Progress;
 use crate::Failure;
@@ -11,7 +12,8 @@ use coupled::identification::{measurand, Instrument};
 use coupled::reduced::stream::StreamResponse;
 use coupled::reduced::{ChannelKind, ReducedModel};
 use identify::detect::{time_block_folds, windows, Window};
-use identify::features::{Extractor, FEATURES};
+use identify::detector::{scale_flags, window_features, ChannelSpec, Detector, Provenance};
+use identify::features::FEATURES;
 use identify::stream::{lumps, Lump, StreamSpec, StreamStudy};
 use rayon::prelude::*;
 use scene::{Scene, SupportSet};
@@ -57,6 +59,7 @@ pub(super) fn condition(
         let sub = select(&rows, &members);
         groups.push(w.score(&name, &sub, &scale_flags(members.len()))?.0);
     }
+    let detector = detector(scene, study, set, (&w, &rows, rate), &infos)?;
     let baselines = baselines(&w, &main);
     let noise_sweep = noise_sweep(&instrument, study, &main, &w, (&recorded, &every))?;
     let mut rate_sweep = Vec::new();
@@ -85,7 +88,29 @@ pub(super) fn condition(
         windows: window_rows(&w, &main, &scores, &study.spec.profile),
         lumps: lump_rows(ensemble, &main),
         signal,
+        detector,
     })
+}
+
+/// The every-channel detector fitted on all the main run's windows, to be taken away: what
+/// the cross-validation scores, fitted once more on everything.
+fn detector(
+    scene: &Scene,
+    study: &StreamStudy,
+    set: &SupportSet,
+    (w, rows, rate): (&Windows, &[Vec<f64>], f64),
+    infos: &[ChannelInfo],
+) -> Result<Detector, Failure> {
+    let channels = infos.iter().map(|i| ChannelSpec { name: i.label(), unit: i.unit.to_string() }).collect();
+    let provenance = Provenance {
+        scene: scene.name.clone(),
+        support_set: set.name.clone(),
+        chain: scene.measurement.as_ref().and_then(|c| serde_json::to_value(c).ok()),
+        ..Provenance::default()
+    };
+    let timing = (study.window, study.hop, rate);
+    Detector::fit(rows, &w.labels, timing, channels, study.alarm_probability, provenance)
+        .map_err(|e| Failure::from(e.to_string()))
 }
 
 /// The study's streams at `rate_per_s` (stream r from seed + r), simulated in parallel.
@@ -207,27 +232,19 @@ pub(super) fn window_set(study: &StreamStudy, seed: u64) -> Windows {
     Windows { windows: all, labels, folds, offsets, onset: p.onset, alarm: study.alarm_probability, seed }
 }
 
-/// One row per window: every channel's features, channel-major.
+/// One row per window: every channel's features, channel-major ([`window_features`]).
 fn features(recorded: &[Vec<Vec<f64>>], rate: f64, wins: &[Window], study: &StreamStudy) -> Vec<Vec<f64>> {
-    let n = (study.window * rate).round() as usize;
-    let extractor = Extractor::new(n, rate);
     let offset = |w: &Window| w.stream as f64 * (study.spec.duration + study.window);
-    wins.par_iter()
-        .map(|w| {
-            let i0 = ((w.start - offset(w)) * rate).round() as usize;
-            let mut row = Vec::new();
-            for channel in &recorded[w.stream] {
-                let end = (i0 + n).min(channel.len());
-                extractor.push_features(FEATURES, &channel[i0.min(end)..end], &mut row);
-            }
-            row
-        })
-        .collect()
-}
-
-/// Whether each column of `channels` channels' features is a scale feature.
-fn scale_flags(channels: usize) -> Vec<bool> {
-    (0..channels).flat_map(|_| FEATURES.iter().map(|f| f.is_scale())).collect()
+    let mut rows = vec![Vec::new(); wins.len()];
+    for (r, channels) in recorded.iter().enumerate() {
+        let members: Vec<usize> = (0..wins.len()).filter(|&i| wins[i].stream == r).collect();
+        let mine: Vec<Window> = members.iter().map(|&i| wins[i]).collect();
+        let channels: Vec<&[f64]> = channels.iter().map(Vec::as_slice).collect();
+        for (i, row) in members.into_iter().zip(window_features(&channels, rate, &mine, study.window, offset)) {
+            rows[i] = row;
+        }
+    }
+    rows
 }
 
 /// The columns of `members`' features.
