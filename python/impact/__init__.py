@@ -51,11 +51,12 @@ except ImportError as e:  # the source tree's python/impact, not the installed p
         "impact's extension module impact._impact is not built here: install the package with "
         "`pip install ./python` and import it from outside the python/ directory"
     ) from e
-from ._impact import ModelError, Scene, SceneError, SceneTypeError
+from ._impact import Detector, ModelError, Scene, SceneError, SceneTypeError
 
 __all__ = [
     "Columns",
     "DEFAULT_TOLERANCE",
+    "Detector",
     "ModelError",
     "Results",
     "Scene",
@@ -68,6 +69,7 @@ __all__ = [
     "ensemble_size",
     "identify",
     "load_scene",
+    "read_signal",
     "solve",
     "stream",
     "sweep",
@@ -332,12 +334,16 @@ class StreamCondition:
         signal: the first stream as recorded, one array per channel named as in the report
             ("acceleration at (229.2, 180) mm (m/s^2)"), when the scene sets ``write_signal``.
         signal_rate_hz: its sample rate.
+        detector: the every-channel detector fitted on every window of the main run, the one
+            ``impact stream`` writes as ``detector.json`` (without the scene's hash, which
+            the command line adds); ``detector.score(channels, rate_hz)`` applies it.
     """
 
     windows: Columns
     lumps: Columns
     signal: dict[str, np.ndarray] | None
     signal_rate_hz: float | None
+    detector: Detector
 
 
 @dataclass(frozen=True)
@@ -366,10 +372,21 @@ def stream(scene: SceneLike) -> StreamResults:
             lumps=_columns(c["lumps"]),
             signal=c.get("signal"),
             signal_rate_hz=c.get("signal_rate_hz"),
+            detector=c["detector"],
         )
         for name, c in raw["conditions"].items()
     }
     return StreamResults(results=json.loads(raw["results"]), conditions=conditions)
+
+
+def read_signal(path: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
+    """A recording as ``impact detect`` reads it: the sidecar ``path`` (JSON, format
+    ``impact-signal/1``) and the CSV it names beside it. Returns ``channels`` (a list of
+    float64 arrays, in the sidecar's ``columns`` order), ``names``, ``rate_hz`` and
+    ``onset_s`` (None where the sidecar states none). A detector scores it with
+    ``detector.score(r["channels"], r["rate_hz"])``; ``detector.detect(path)`` does both and
+    adds the operating answer."""
+    return _impact.read_signal(os.fspath(path))
 
 
 def ensemble_size(scene: SceneLike) -> int:

@@ -4,6 +4,8 @@
 from os import PathLike
 from typing import Any, Literal
 
+import numpy as np
+
 Model = Literal["beam", "plate", "transient", "all"]
 
 __version__: str
@@ -87,3 +89,42 @@ def identify(
     sensors_mm: list[tuple[float, float]] | None = None,
 ) -> dict[str, Any]: ...
 def stream(scene: Scene) -> dict[str, Any]: ...
+def read_signal(signal: str) -> dict[str, Any]: ...
+
+class Detector:
+    """A trained window detector (``detector.json``, format impact-detector/1): the logistic
+    model over every channel's features in sliding windows, with its channels, features,
+    window, rate, alarm probability and provenance. The same code as ``impact detect``: the
+    same file gives the same scores bit for bit."""
+
+    @staticmethod
+    def from_json(text: str) -> Detector: ...
+    @staticmethod
+    def load(path: str | PathLike[str]) -> Detector:
+        """Reads a detector file; a file of another format, with unknown features or a model
+        that does not match its channels is refused with a ValueError saying why."""
+    def to_json(self) -> str: ...
+    @property
+    def channels(self) -> list[tuple[str, str]]:
+        """(name, unit) of each channel, in the model's order."""
+    @property
+    def features(self) -> list[str]: ...
+    @property
+    def window_s(self) -> tuple[float, float]:
+        """(window length, hop), s."""
+    @property
+    def rate_hz(self) -> float: ...
+    @property
+    def alarm_probability(self) -> float: ...
+    @property
+    def provenance(self) -> str:
+        """Scene, its hash, support set, measurement chain and training windows, as JSON text."""
+    def score(self, channels: list[np.ndarray], rate_hz: float) -> dict[str, np.ndarray]:
+        """P(gangue-rich) of every window (W every H from the first sample, each wholly
+        inside): columns ``start_s``, ``end_s``, ``probability_gangue_rich``, ``alarm``. The
+        channels are float64 arrays of equal length, the detector's channels in order, at
+        its rate; anything else is a ValueError naming it."""
+    def detect(self, signal: str | PathLike[str]) -> dict[str, Any]:
+        """Reads the recording whose sidecar is ``signal`` and scores it: ``scores`` (as
+        ``score``), ``assessment`` (JSON text: delay, false alarms per hour and AUC after
+        the sidecar's ``onset_s``; null without one), ``names``, ``rate_hz``."""

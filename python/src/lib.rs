@@ -11,6 +11,7 @@
 #![warn(missing_docs)]
 
 mod columns;
+mod detector;
 mod dict;
 mod errors;
 mod identify;
@@ -202,6 +203,7 @@ fn transient<'py>(
 fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Scene>()?;
+    m.add_class::<detector::Detector>()?;
     m.add("SceneError", py.get_type::<errors::SceneError>())?;
     m.add("ModelError", py.get_type::<errors::ModelError>())?;
     m.add("SceneTypeError", errors::scene_type_error(py)?)?;
@@ -209,6 +211,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(transient, m)?)?;
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add_function(wrap_pyfunction!(stream::stream, m)?)?;
+    m.add_function(wrap_pyfunction!(detector::read_signal, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The Python layer documents these from here rather than repeat the numbers.
     let t = limits::TRANSIENT_TOLERANCE;

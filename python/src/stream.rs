@@ -29,6 +29,7 @@ pub fn stream<'py>(py: Python<'py>, scene: &crate::scene::Scene) -> PyResult<Bou
         let d = PyDict::new(py);
         d.set_item("windows", windows(c).into_py(py)?)?;
         d.set_item("lumps", lumps(c).into_py(py)?)?;
+        d.set_item("detector", crate::detector::Detector { detector: c.detector.clone() })?;
         if let Some(sig) = &c.signal {
             let columns = PyDict::new(py);
             for (name, samples) in sig.names.iter().zip(&sig.columns) {

@@ -85,3 +85,49 @@ def test_python_and_the_command_line_agree_bit_for_bit(tmp_path):
     p = r.conditions["Con 2"].windows["probability_gangue_rich"]
     for row, q in zip(rows, p, strict=True):
         assert (row[7] == "" and np.isnan(q)) or float(row[7]) == q
+
+
+@pytest.mark.skipif(BINARY is None, reason="no impact binary: cargo build --release")
+def test_the_detector_scores_the_same_in_python_and_the_command_line(tmp_path):
+    """`impact stream`'s detector.json, applied by `impact detect` and by `impact.Detector`
+    (to the sidecar, and to the arrays `impact.read_signal` returns), gives every window the
+    same probability bit for bit; the detector Python's `impact.stream` fits is the command
+    line's (the same model, bit for bit)."""
+    scene = impact.Scene.from_dict(tiny())
+    path = tmp_path / "stream.toml"
+    path.write_text(scene.to_toml_str())
+    out = tmp_path / "out"
+    subprocess.run([str(BINARY), "stream", "--scene", str(path), "--out", str(out)], check=True, capture_output=True)
+    run = out / "con-2"
+    subprocess.run(
+        [str(BINARY), "detect", "--detector", str(run / "detector.json"), "--signal", str(run / "signal.json"), "--out", str(tmp_path / "d")],
+        check=True,
+        capture_output=True,
+    )
+    with open(tmp_path / "d" / "scores.csv") as f:
+        rows = list(csv.reader(line for line in f if not line.startswith("#")))
+    assert rows[0] == ["start_s", "end_s", "probability_gangue_rich", "alarm"]
+    cli = np.array([float(r[2]) for r in rows[1:]])
+    detector = impact.Detector.load(run / "detector.json")
+    detected = detector.detect(run / "signal.json")
+    assert np.array_equal(detected["scores"]["probability_gangue_rich"], cli)
+    signal = impact.read_signal(run / "signal.json")
+    scored = detector.score(signal["channels"], signal["rate_hz"])
+    assert np.array_equal(scored["probability_gangue_rich"], cli)
+    assert signal["onset_s"] == STREAM["onset_s"]
+    # 4 s in windows of 0.5 s every 0.25 s: 15 of them; 7 end by the onset at 2 s (starts 0
+    # to 1.5 s), 7 start from it (2 to 3.5 s), the one from 1.75 s straddles it.
+    answer = json.loads((tmp_path / "d" / "detect.json").read_text())["assessment"]
+    assert (answer["windows_before"], answer["windows_after"]) == (7, 7)
+    assert json.loads(detected["assessment"]) == {k: v for k, v in answer.items() if k != "provenance"}
+    fitted = impact.stream(scene).conditions["Con 2"].detector
+    assert json.loads(fitted.to_json())["model"] == json.loads(detector.to_json())["model"]
+    with pytest.raises(ValueError, match="rate_hz = 1000"):
+        detector.score(signal["channels"], 1000.0)
+    with pytest.raises(ValueError, match="channels given"):
+        detector.score(signal["channels"][:1], signal["rate_hz"])
+    (tmp_path / "bad.json").write_text('{"format": "something-else/2"}')
+    with pytest.raises(ValueError, match="something-else/2"):
+        impact.Detector.load(tmp_path / "bad.json")
+    with pytest.raises(FileNotFoundError):
+        impact.Detector.load(tmp_path / "missing.json")

@@ -26,7 +26,6 @@ pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Stre
         let dir = crate::present::rows::slug(&c.name);
         let mut detector = c.detector.clone();
         detector.provenance.scene_hash = Some(stamp.scene_sha256.clone());
-        detector.provenance.program = format!("{} {}", stamp.program, stamp.version);
         a.add(format!("{dir}/detector.json"), detector.to_json());
         a.add(format!("{dir}/windows.csv"), windows_table(c).to_csv());
         a.add(format!("{dir}/lumps.csv"), lumps_table(c).to_csv());

@@ -106,6 +106,7 @@ fn detector(
         scene: scene.name.clone(),
         support_set: set.name.clone(),
         chain: scene.measurement.as_ref().and_then(|c| serde_json::to_value(c).ok()),
+        program: format!("impact {}", env!("CARGO_PKG_VERSION")),
         ..Provenance::default()
     };
     let timing = (study.window, study.hop, rate);

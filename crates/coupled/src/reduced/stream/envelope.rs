@@ -93,8 +93,8 @@ mod tests {
             }
             let start: Vec<(f64, f64)> = omega.iter().map(|&w| (next() * 1e-5, next() * 1e-5 * w)).collect();
             let end: Vec<(f64, f64)> = omega.iter().zip(&start).map(|(&w, &s)| mode_at(w, zeta, s, ts)).collect();
-            let split = |x: &[(f64, f64)]| (x.iter().map(|p| p.0).collect::<Vec<_>>(), x.iter().map(|p| p.1).collect());
-            let ((q0, v0), (q1, v1)): ((Vec<f64>, Vec<f64>), (Vec<f64>, Vec<f64>)) = (split(&start), split(&end));
+            let split = |x: &[(f64, f64)]| -> (Vec<f64>, Vec<f64>) { x.iter().copied().unzip() };
+            let ((q0, v0), (q1, v1)) = (split(&start), split(&end));
             let bound = lowest_deflection(&phi, (&q0, &v0), (&q1, &v1), &modes);
             let sampled = (0..=4_000)
                 .map(|k| {

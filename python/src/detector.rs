@@ -1,0 +1,161 @@
+//! A trained window detector (`identify::detector`, what `impact stream` writes as
+//! `detector.json` and `impact detect` applies) and a recording (`identify::recording`, a
+//! `signal.json` sidecar beside its CSV), for the Python layer: the same code as the command
+//! line, so the same file gives the same scores bit for bit.
+
+use crate::columns::Table;
+use crate::errors::{argument_message, model_error};
+use identify::detector::{assess, Detector as Trained, WindowScore};
+use identify::recording::Sidecar;
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::Path;
+
+/// A trained window detector.
+#[pyclass(frozen, module = "impact._impact", name = "Detector")]
+pub struct Detector {
+    pub(crate) detector: Trained,
+}
+
+/// The text of `path`, a missing file as Python's `FileNotFoundError`.
+fn read(path: &Path, field: &str) -> PyResult<String> {
+    std::fs::read_to_string(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => {
+            pyo3::exceptions::PyFileNotFoundError::new_err(format!("{field}: {}: {e}", path.display()))
+        }
+        _ => argument_message(field, format!("{}: {e}", path.display())),
+    })
+}
+
+/// Every window's score as columns.
+fn score_columns(scores: &[WindowScore]) -> Table {
+    let mut t = Table::new(scores.len(), &[]);
+    for (row, s) in scores.iter().enumerate() {
+        t.num("start_s", row, s.start_s);
+        t.num("end_s", row, s.end_s);
+        t.num("probability_gangue_rich", row, s.probability);
+        t.flag("alarm", row, s.alarm);
+    }
+    t
+}
+
+#[pymethods]
+impl Detector {
+    /// Reads a detector from JSON text (format impact-detector/1).
+    #[staticmethod]
+    fn from_json(text: &str) -> PyResult<Self> {
+        Trained::from_json(text)
+            .map(|detector| Self { detector })
+            .map_err(|e| argument_message("detector", e.to_string()))
+    }
+
+    /// Reads a detector file.
+    #[staticmethod]
+    fn load(path: std::path::PathBuf) -> PyResult<Self> {
+        Self::from_json(&read(&path, "path")?)
+            .map_err(|e| Python::attach(|py| argument_message("path", format!("{}: {}", path.display(), e.value(py)))))
+    }
+
+    /// The detector as JSON text, as `impact stream` writes it.
+    fn to_json(&self) -> String {
+        self.detector.to_json()
+    }
+
+    /// The channels in the model's order: (name, unit).
+    #[getter]
+    fn channels(&self) -> Vec<(String, String)> {
+        self.detector.channels.iter().map(|c| (c.name.clone(), c.unit.clone())).collect()
+    }
+
+    /// The features read on every channel, by key.
+    #[getter]
+    fn features(&self) -> Vec<String> {
+        self.detector.features.clone()
+    }
+
+    /// (window length, hop), s.
+    #[getter]
+    fn window_s(&self) -> (f64, f64) {
+        (self.detector.window_s, self.detector.hop_s)
+    }
+
+    /// The sample rate the features assume, Hz.
+    #[getter]
+    fn rate_hz(&self) -> f64 {
+        self.detector.rate_hz
+    }
+
+    /// The probability at which a window raises an alarm.
+    #[getter]
+    fn alarm_probability(&self) -> f64 {
+        self.detector.alarm_probability
+    }
+
+    /// Where it comes from, as JSON text.
+    #[getter]
+    fn provenance(&self) -> PyResult<String> {
+        serde_json::to_string(&self.detector.provenance).map_err(model_error)
+    }
+
+    /// P(gangue-rich) of every window of `channels` (float64 arrays, the detector's channels in
+    /// order, each sampled at `rate_hz`), as columns.
+    fn score<'py>(
+        &self,
+        py: Python<'py>,
+        channels: Vec<PyReadonlyArray1<'py, f64>>,
+        rate_hz: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let views: Vec<&[f64]> = channels
+            .iter()
+            .map(|c| c.as_slice())
+            .collect::<Result<_, _>>()
+            .map_err(|e| argument_message("channels", e.to_string()))?;
+        let scores = self.detector.score(&views, rate_hz).map_err(|e| argument_message("channels", e.to_string()))?;
+        score_columns(&scores).into_py(py)
+    }
+
+    /// Applies the detector to the recording whose sidecar is `signal` (its CSV beside it):
+    /// the windows' scores as columns, and the operating answer as JSON text (null where the
+    /// sidecar states no onset), as `impact detect` writes them.
+    fn detect<'py>(&self, py: Python<'py>, signal: std::path::PathBuf) -> PyResult<Bound<'py, PyDict>> {
+        let origin = signal.display().to_string();
+        let sidecar = Sidecar::parse(&read(&signal, "signal")?, &origin)
+            .map_err(|e| argument_message("signal", e.to_string()))?;
+        let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
+        let recording = sidecar
+            .read(&read(&csv, "signal")?, &csv.display().to_string())
+            .map_err(|e| argument_message("signal", e.to_string()))?;
+        let views: Vec<&[f64]> = recording.channels.iter().map(Vec::as_slice).collect();
+        let d = &self.detector;
+        let scores = py
+            .detach(|| d.score(&views, recording.rate_hz))
+            .map_err(|e| argument_message("signal", format!("{origin}: {e}")))?;
+        let assessment = recording.onset_s.map(|t| assess(&scores, d.alarm_probability, t));
+        let out = PyDict::new(py);
+        out.set_item("scores", score_columns(&scores).into_py(py)?)?;
+        out.set_item("assessment", serde_json::to_string(&assessment).map_err(model_error)?)?;
+        out.set_item("names", recording.names.clone())?;
+        out.set_item("rate_hz", recording.rate_hz)?;
+        Ok(out)
+    }
+}
+
+/// A recording: its sidecar read and its CSV columns as float64 arrays.
+#[pyfunction]
+pub fn read_signal<'py>(py: Python<'py>, signal: std::path::PathBuf) -> PyResult<Bound<'py, PyDict>> {
+    let origin = signal.display().to_string();
+    let sidecar =
+        Sidecar::parse(&read(&signal, "signal")?, &origin).map_err(|e| argument_message("signal", e.to_string()))?;
+    let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
+    let r = sidecar
+        .read(&read(&csv, "signal")?, &csv.display().to_string())
+        .map_err(|e| argument_message("signal", e.to_string()))?;
+    let out = PyDict::new(py);
+    let channels: Vec<Bound<'py, PyArray1<f64>>> = r.channels.iter().map(|c| PyArray1::from_slice(py, c)).collect();
+    out.set_item("channels", channels)?;
+    out.set_item("names", r.names)?;
+    out.set_item("rate_hz", r.rate_hz)?;
+    out.set_item("onset_s", r.onset_s)?;
+    Ok(out)
+}
