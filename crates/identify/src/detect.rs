@@ -99,16 +99,30 @@ pub fn out_of_fold(
     scale: &[bool],
     folds: &[Fold],
 ) -> Result<Vec<Option<f64>>, FitError> {
-    let mut scores = vec![None; rows.len()];
+    out_of_fold_across(rows, rows, labels, scale, folds)
+}
+
+/// As [`out_of_fold`], each fold's model fitted on the training windows of `fitted` and
+/// scoring the test windows of `scored`: the same windows recorded under two conditions (a
+/// detector carried from one to the other, no window it scores sharing time with one it
+/// was fitted on).
+pub fn out_of_fold_across(
+    fitted: &[Vec<f64>],
+    scored: &[Vec<f64>],
+    labels: &[bool],
+    scale: &[bool],
+    folds: &[Fold],
+) -> Result<Vec<Option<f64>>, FitError> {
+    let mut scores = vec![None; scored.len()];
     for f in folds {
         let train_labels: Vec<bool> = f.train.iter().map(|&i| labels[i]).collect();
         if !(train_labels.contains(&true) && train_labels.contains(&false)) {
             continue;
         }
-        let train_rows: Vec<Vec<f64>> = f.train.iter().map(|&i| rows[i].clone()).collect();
+        let train_rows: Vec<Vec<f64>> = f.train.iter().map(|&i| fitted[i].clone()).collect();
         let model = Logistic::fit(&train_rows, &train_labels, scale, RIDGE)?;
         for &i in &f.test {
-            scores[i] = Some(model.probability(&rows[i]));
+            scores[i] = Some(model.probability(&scored[i]));
         }
     }
     Ok(scores)

@@ -66,6 +66,7 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
         .map(|t| t.to_markdown())
         .collect::<Vec<_>>()
         .join("\n");
+    let transfer = transfer_table(d);
     Ok(render(
         "stream/page.md",
         PAGE,
@@ -95,6 +96,8 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
             ("groups", groups),
             ("sweeps", sweeps),
             ("simulation", simulation_table(d).to_markdown()),
+            ("transfer", transfer.0.to_markdown()),
+            ("worst", transfer.1),
         ],
     )?)
 }
@@ -207,6 +210,42 @@ fn noise_table(d: &StreamData) -> Table {
         }
     }
     t
+}
+
+/// Every transfer, and the shift that costs the most AUC in words.
+fn transfer_table(d: &StreamData) -> (Table, String) {
+    let mut t = Table::new(
+        "transfer: a detector on the sensors' channels fitted on one support set's main run (its training blocks), carried to another condition's held-out block; beside it the matched detector, cross-validated on the test condition itself",
+        &["trained on", "carried to", "shift", "AUC carried", "AUC matched", "loss", "median delay", "false alarms/h"],
+    );
+    for p in &d.transfer {
+        t.push(vec![
+            p.trained_on.as_str().into(),
+            p.tested_on.as_str().into(),
+            (if p.shift.is_empty() { "support set" } else { p.shift.as_str() }).into(),
+            auc_cell(&p.transferred),
+            auc_cell(&p.matched),
+            Cell::Sig(p.loss(), 2),
+            delay_cell(p.transferred.median_delay_s),
+            alarm_cell(&p.transferred),
+        ]);
+    }
+    let worst = d.transfer.iter().max_by(|a, b| a.loss().total_cmp(&b.loss()));
+    let words = worst.map_or("No transfer ran (one support set, no sweeps, or no sensor channels).".to_string(), |w| {
+        let shift = if w.shift.is_empty() {
+            format!("to {}", w.tested_on)
+        } else {
+            format!("to {} on {}", w.shift, w.tested_on)
+        };
+        format!(
+            "The shift that costs the most: {} carried {shift}, AUC {} against {} matched (loss {}).",
+            w.trained_on,
+            sig(w.transferred.auc, 3),
+            sig(w.matched.auc, 3),
+            sig(w.loss(), 2)
+        )
+    });
+    (t, words)
 }
 
 fn rate_table(d: &StreamData) -> Table {

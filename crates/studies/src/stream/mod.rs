@@ -9,10 +9,14 @@
 //! baselines of the lumps' own truth per window (mean contact time, mean P_max, total mass,
 //! count); then the same streams with the chain's background scaled (what survives the
 //! noise) and streams at other arrival rates (what survives crowding), each scored on every
-//! channel together.
+//! channel together. Then the detector on the sensors' channels carried, without refitting,
+//! from each support set's main run to the other support sets and to its own sweeps
+//! ([`transfer`]), and the every-channel detector fitted on every window, to take away
+//! ([`identify::detector`]).
 
 mod run;
 mod score;
+pub mod transfer;
 
 use crate::channel::ChannelInfo;
 use crate::progress::Progress;
@@ -22,6 +26,7 @@ use scene::Scene;
 use serde::Serialize;
 
 pub use score::Score;
+pub use transfer::TransferPoint;
 
 /// The study's results.
 #[derive(Debug, Clone, Serialize)]
@@ -34,6 +39,8 @@ pub struct StreamData {
     pub measured: bool,
     /// Per support set.
     pub conditions: Vec<ConditionStream>,
+    /// Detectors applied where they were not trained ([`transfer`]).
+    pub transfer: Vec<TransferPoint>,
 }
 
 /// One support set's detection results.
@@ -196,14 +203,18 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
         return Err("the scene has no [stream] and [ensemble]".into());
     };
     let mut conditions = Vec::with_capacity(scene.conditions.len());
+    let mut shifted = Vec::with_capacity(scene.conditions.len());
     for (index, set) in scene.conditions.iter().enumerate() {
-        conditions.push(run::condition(scene, study, ensemble, set, index, progress)?);
+        let (data, rows) = run::condition(scene, study, ensemble, set, index, progress)?;
+        conditions.push(data);
+        shifted.push(rows);
     }
     Ok(StreamData {
         scene: scene.name.clone(),
         study: study.clone(),
         measured: scene.measurement.is_some(),
         conditions,
+        transfer: transfer::transfers(&shifted)?,
     })
 }
 

@@ -1,6 +1,7 @@
 //! One support set's stream study: simulate, record, window, score.
 
 use super::score::Windows;
+use super::transfer::Shifted;
 use super::{
     channel_name, Baseline, ConditionStream, LumpRow, NoisePoint, RatePoint, RecordedSignal, Simulation, WindowRow,
 };
@@ -8,6 +9,7 @@ use crate::channel::ChannelInfo;
 use crate::identify::sensors::{channel_infos, spec};
 use crate::progress::Progress;
 use crate::Failure;
+use analytic::params::compact;
 use coupled::identification::{measurand, Instrument};
 use coupled::reduced::stream::StreamResponse;
 use coupled::reduced::{ChannelKind, ReducedModel};
@@ -38,7 +40,7 @@ pub(super) fn condition(
     set: &SupportSet,
     index: usize,
     progress: &dyn Progress,
-) -> Result<ConditionStream, Failure> {
+) -> Result<(ConditionStream, Shifted), Failure> {
     let plate = &scene.plate;
     let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
     let sensors = scene.signals.sensors.clone();
@@ -55,13 +57,17 @@ pub(super) fn condition(
     let mut groups = Vec::new();
     let (every, scores) = w.score("every channel", &rows, &scale_flags(kinds.len()))?;
     groups.push(every.clone());
+    let mut on_sensors = Vec::new();
     for (name, members) in channel_groups(&kinds, sensors.len()) {
         let sub = select(&rows, &members);
         groups.push(w.score(&name, &sub, &scale_flags(members.len()))?.0);
+        if name != SUPPORTS {
+            on_sensors.extend(members);
+        }
     }
     let detector = detector(scene, study, set, (&w, &rows, rate), &infos)?;
     let baselines = baselines(&w, &main);
-    let noise_sweep = noise_sweep(&instrument, study, &main, &w, (&recorded, &every))?;
+    let (noise_sweep, mut others) = noise_sweep(&instrument, study, &main, &w, (&recorded, &every))?;
     let mut rate_sweep = Vec::new();
     for &rate_per_s in &study.rate_sweep {
         let sims = simulate(&instrument, ensemble, study, rate_per_s, progress)?;
@@ -69,7 +75,15 @@ pub(super) fn condition(
         let rows = features(&rec, r, &w.windows, study);
         let score = w.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
+        others.push((format!("{} lumps/s", compact(rate_per_s)), select(&rows, &on_sensors)));
     }
+    let shifted = Shifted {
+        name: set.name.clone(),
+        channels: on_sensors.len(),
+        main: select(&rows, &on_sensors),
+        others: others.into_iter().map(|(shift, rows)| (shift, select(&rows, &on_sensors))).collect(),
+        windows: window_set(study, seed),
+    };
     progress.finish();
     let names: Vec<String> = infos.iter().map(channel_name).collect();
     let signal = study.write_signal.then(|| RecordedSignal {
@@ -77,7 +91,7 @@ pub(super) fn condition(
         names: names.clone(),
         columns: recorded.first().cloned().unwrap_or_default(),
     });
-    Ok(ConditionStream {
+    let data = ConditionStream {
         name: set.name.clone(),
         channels: names,
         simulation,
@@ -89,7 +103,8 @@ pub(super) fn condition(
         lumps: lump_rows(ensemble, &main),
         signal,
         detector,
-    })
+    };
+    Ok((data, shifted))
 }
 
 /// The every-channel detector fitted on all the main run's windows, to be taken away: what
@@ -254,6 +269,9 @@ fn select(rows: &[Vec<f64>], members: &[usize]) -> Vec<Vec<f64>> {
     rows.iter().map(|r| members.iter().flat_map(|&c| r[c * k..(c + 1) * k].iter().copied()).collect()).collect()
 }
 
+/// The name of the supports' channel group.
+const SUPPORTS: &str = "supports";
+
 /// Each sensor's channels, then the supports' channels: (name, channel indices).
 fn channel_groups(kinds: &[ChannelKind], sensors: usize) -> Vec<(String, Vec<usize>)> {
     let sensor_of = |k: &ChannelKind| match *k {
@@ -266,7 +284,7 @@ fn channel_groups(kinds: &[ChannelKind], sensors: usize) -> Vec<(String, Vec<usi
     let mut out: Vec<(String, Vec<usize>)> = (0..sensors)
         .map(|s| (format!("sensor {}", s + 1), (0..kinds.len()).filter(|&c| sensor_of(&kinds[c]) == Some(s)).collect()))
         .collect();
-    out.push(("supports".into(), (0..kinds.len()).filter(|&c| sensor_of(&kinds[c]).is_none()).collect()));
+    out.push((SUPPORTS.into(), (0..kinds.len()).filter(|&c| sensor_of(&kinds[c]).is_none()).collect()));
     out.retain(|(_, m)| !m.is_empty());
     out
 }
@@ -306,6 +324,9 @@ fn baselines(w: &Windows, sims: &[Simulated]) -> Vec<Baseline> {
     ]
 }
 
+/// A condition's name and its windows' feature rows.
+pub(super) type Condition = (String, Vec<Vec<f64>>);
+
 /// The every-channel detector with the chain's background as stated and scaled by each of
 /// the study's scales, and the best channel's SNR there.
 fn noise_sweep(
@@ -314,21 +335,23 @@ fn noise_sweep(
     main: &[Simulated],
     w: &Windows,
     (stated, stated_score): (&[Vec<Vec<f64>>], &super::Score),
-) -> Result<Vec<NoisePoint>, Failure> {
+) -> Result<(Vec<NoisePoint>, Vec<Condition>), Failure> {
     if study.noise_sweep.is_empty() || instrument.chain().is_none() {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), Vec::new()));
     }
     let (clean, _) = record(instrument, main, 0.0);
     let channels = instrument.channels().len();
     // The stated background first: the main run's recording and score.
     let mut out = vec![NoisePoint { scale: 1.0, snr_db: best_snr(&clean, stated), score: stated_score.clone() }];
+    let mut rows_at = Vec::new();
     for &scale in &study.noise_sweep {
         let (rec, rate) = record(instrument, main, scale);
         let rows = features(&rec, rate, &w.windows, study);
         let score = w.score("every channel", &rows, &scale_flags(channels))?.0;
         out.push(NoisePoint { scale, snr_db: best_snr(&clean, &rec), score });
+        rows_at.push((format!("background × {}", compact(scale)), rows));
     }
-    Ok(out)
+    Ok((out, rows_at))
 }
 
 /// The largest SNR over the channels, 10 log₁₀(Σy²/Σ(ŷ - y)²) over every stream, with y the

@@ -11,7 +11,7 @@
 use super::Baseline;
 use crate::Failure;
 use identify::classify::FitError;
-use identify::detect::{operate, out_of_fold, Fold, Window};
+use identify::detect::{operate, out_of_fold, out_of_fold_across, Fold, Window};
 use identify::ensemble::{impact_stream, open_uniform};
 use identify::roc::auc;
 use serde::Serialize;
@@ -83,10 +83,30 @@ impl Windows {
     /// out-of-fold probabilities.
     pub fn score(&self, group: &str, rows: &[Vec<f64>], scale: &[bool]) -> Result<(Score, Vec<Option<f64>>), Failure> {
         let probabilities = out_of_fold(rows, &self.labels, scale, &self.folds).map_err(|e: FitError| e.to_string())?;
+        let score = self.scored(group, &probabilities);
+        Ok((score, probabilities))
+    }
+
+    /// The detector fitted, fold by fold, on `fitted` (the windows under one condition) and
+    /// scoring `scored` (the same windows under another), as [`Windows::score`] scores.
+    pub fn carried(
+        &self,
+        group: &str,
+        fitted: &[Vec<f64>],
+        scored: &[Vec<f64>],
+        scale: &[bool],
+    ) -> Result<Score, Failure> {
+        let probabilities = out_of_fold_across(fitted, scored, &self.labels, scale, &self.folds)
+            .map_err(|e: FitError| e.to_string())?;
+        Ok(self.scored(group, &probabilities))
+    }
+
+    /// The score of out-of-fold `probabilities` (None: not scored).
+    fn scored(&self, group: &str, probabilities: &[Option<f64>]) -> Score {
         let values: Vec<f64> = probabilities.iter().map(|p| p.unwrap_or(f64::NAN)).collect();
         let (a, interval) = self.auc_and_interval(&values, false);
-        let op = operate(&self.windows, &probabilities, self.alarm, self.onset, &self.offsets);
-        let score = Score {
+        let op = operate(&self.windows, probabilities, self.alarm, self.onset, &self.offsets);
+        Score {
             group: group.to_string(),
             auc: a,
             interval,
@@ -95,8 +115,7 @@ impl Windows {
             false_alarms_per_hour: op.false_alarms_per_hour(),
             false_alarms: op.false_alarms,
             delays_s: op.delays,
-        };
-        Ok((score, probabilities))
+        }
     }
 
     /// A baseline: `values` (one per window, NaN where it has none) as the score, oriented.
