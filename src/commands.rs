@@ -141,8 +141,8 @@ fn read_text(path: &Path, what: &str) -> Result<String, Failure> {
     Ok(std::fs::read_to_string(path).map_err(|e| format!("{what} {}: {e}", path.display()))?)
 }
 
-/// `impact detect`: a detector file applied to a recording, every file read and checked
-/// before the output folder is prepared.
+/// `impact detect`: a detector file applied to a recording, every file read and checked and
+/// the recording scored before the output folder is prepared.
 fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
     let d = identify::detector::Detector::from_json(&read_text(detector, "--detector")?)
         .map_err(|e| format!("--detector {}: {e}", detector.display()))?;
@@ -150,10 +150,10 @@ fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> R
     let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
     let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
     let recording = sidecar.read(&read_text(&csv, "the recording's data")?, &csv.display().to_string())?;
+    let (artifacts, data) = impact::report::detect::detect(&d, &recording, (&detector.display().to_string(), &origin))?;
     let target = OutputDir::prepare(
         dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-detect", slug(&d.provenance.scene)))),
     )?;
-    let (artifacts, data) = impact::report::detect::detect(&d, &recording, (&detector.display().to_string(), &origin))?;
     commit(target, &artifacts)?;
     if json {
         return out(&format!("{}\n", serde_json::to_string_pretty(&data)?));

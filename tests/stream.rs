@@ -192,6 +192,19 @@ fn detect_reads_the_run(run: &std::path::Path, dir: &common::tmp::Tmp) {
         assert!(words.iter().all(|w| refused.stderr.contains(w)), "{}", refused.stderr);
         assert!(!dir.join(name).exists());
     }
+    let other = run.join("other-detector.json");
+    let text = std::fs::read_to_string(run.join("detector.json")).unwrap();
+    std::fs::write(&other, text.replace("impact-detector/1", "impact-detector/0")).unwrap();
+    let refused = impact(["detect", "--detector"])
+        .arg(&other)
+        .arg("--signal")
+        .arg(run.join("signal.json"))
+        .arg("--out")
+        .arg(dir.join("other"))
+        .within(60)
+        .fails();
+    assert!(refused.stderr.contains("\"impact-detector/0\""), "{}", refused.stderr);
+    assert!(!dir.join("other").exists());
 }
 
 /// A cross-validation that cannot score (one stream cut into two blocks at its change: each

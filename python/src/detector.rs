@@ -7,7 +7,7 @@ use crate::columns::Table;
 use crate::errors::{argument_message, model_error};
 use identify::detector::{assess, Detector as Trained, WindowScore};
 use identify::recording::Sidecar;
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
@@ -34,7 +34,8 @@ fn score_columns(scores: &[WindowScore]) -> Table {
     for (row, s) in scores.iter().enumerate() {
         t.num("start_s", row, s.start_s);
         t.num("end_s", row, s.end_s);
-        t.num("probability_gangue_rich", row, s.probability);
+        // NaN where the model says nothing (a silent channel), as for an unscored window.
+        t.num("probability_gangue_rich", row, s.probability.unwrap_or(f64::NAN));
         t.flag("alarm", row, s.alarm);
     }
     t
@@ -53,8 +54,9 @@ impl Detector {
     /// Reads a detector file.
     #[staticmethod]
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
-        Self::from_json(&read(&path, "path")?)
-            .map_err(|e| Python::attach(|py| argument_message("path", format!("{}: {}", path.display(), e.value(py)))))
+        Trained::from_json(&read(&path, "path")?)
+            .map(|detector| Self { detector })
+            .map_err(|e| argument_message("path", format!("{}: {e}", path.display())))
     }
 
     /// The detector as JSON text, as `impact stream` writes it.
@@ -98,20 +100,18 @@ impl Detector {
         serde_json::to_string(&self.detector.provenance).map_err(model_error)
     }
 
-    /// P(gangue-rich) of every window of `channels` (float64 arrays, the detector's channels in
-    /// order, each sampled at `rate_hz`), as columns.
+    /// P(gangue-rich) of every window of `channels` (one array or sequence of numbers per
+    /// channel, the detector's channels in order, each sampled at `rate_hz`), as columns.
     fn score<'py>(
         &self,
         py: Python<'py>,
-        channels: Vec<PyReadonlyArray1<'py, f64>>,
+        channels: Vec<PyArrayLike1<'py, f64, AllowTypeChange>>,
         rate_hz: f64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let views: Vec<&[f64]> = channels
-            .iter()
-            .map(|c| c.as_slice())
-            .collect::<Result<_, _>>()
-            .map_err(|e| argument_message("channels", e.to_string()))?;
-        let scores = self.detector.score(&views, rate_hz).map_err(|e| argument_message("channels", e.to_string()))?;
+        let owned: Vec<Vec<f64>> = channels.iter().map(|c| c.as_array().to_vec()).collect();
+        let views: Vec<&[f64]> = owned.iter().map(Vec::as_slice).collect();
+        let d = &self.detector;
+        let scores = py.detach(|| d.score(&views, rate_hz)).map_err(|e| argument_message("channels", e.to_string()))?;
         score_columns(&scores).into_py(py)
     }
 

@@ -113,6 +113,14 @@ pub fn out_of_fold_across(
     scale: &[bool],
     folds: &[Fold],
 ) -> Result<Vec<Option<f64>>, FitError> {
+    if fitted.len() != labels.len() || scored.len() != labels.len() {
+        return Err(FitError::Shape(format!(
+            "{} rows fitted and {} scored for {} labels",
+            fitted.len(),
+            scored.len(),
+            labels.len()
+        )));
+    }
     let mut scores = vec![None; scored.len()];
     for f in folds {
         let train_labels: Vec<bool> = f.train.iter().map(|&i| labels[i]).collect();

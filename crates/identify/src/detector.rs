@@ -28,6 +28,9 @@ use serde::{Deserialize, Serialize};
 /// The file format this code writes and reads.
 pub const FORMAT: &str = "impact-detector/1";
 
+/// Most samples in a window (a window's features hold its spectrum: 10⁷ samples is 80 MB).
+pub const MAX_WINDOW_SAMPLES: usize = 10_000_000;
+
 /// A recorded channel as the detector reads it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ChannelSpec {
@@ -37,13 +40,21 @@ pub struct ChannelSpec {
     pub unit: String,
 }
 
-/// Where a detector comes from.
+/// Where a detector comes from: the fields every file `impact` writes opens with (program,
+/// version, scene, its hash, units), then the support set, the chain and the windows.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 pub struct Provenance {
+    /// The program that fitted it, "impact".
+    pub program: String,
+    /// Its version.
+    pub version: String,
     /// The scene it was trained on.
     pub scene: String,
-    /// The scene's provenance hash (SHA-256 of its canonical form), when known.
-    pub scene_hash: Option<String>,
+    /// The scene's provenance hash (SHA-256 of its canonical form), where the file was written
+    /// by the command line (null from a library call).
+    pub scene_sha256: Option<String>,
+    /// The unit system, "SI".
+    pub units: String,
     /// The support set.
     pub support_set: String,
     /// The measurement chain the recordings went through, as the scene states it (null: the
@@ -53,13 +64,13 @@ pub struct Provenance {
     pub windows: usize,
     /// See `windows`.
     pub gangue_rich: usize,
-    /// The program that fitted it, name and version.
-    pub program: String,
 }
 
 /// A trained window detector (module docs).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Detector {
+    /// Where it comes from.
+    pub provenance: Provenance,
     /// [`FORMAT`].
     pub format: String,
     /// Window length W, s.
@@ -76,8 +87,6 @@ pub struct Detector {
     pub alarm_probability: f64,
     /// The model: one column per channel and feature, channel-major.
     pub model: Logistic,
-    /// Where it comes from.
-    pub provenance: Provenance,
 }
 
 /// One window of a recording and its score.
@@ -87,8 +96,10 @@ pub struct WindowScore {
     pub start_s: f64,
     /// End, s.
     pub end_s: f64,
-    /// P(gangue-rich).
-    pub probability: f64,
+    /// P(gangue-rich); None where a channel the model reads as a logarithm (peak, RMS,
+    /// energy) is silent in the window (every sample zero: nothing struck, or a dead
+    /// sensor), where the model says nothing.
+    pub probability: Option<f64>,
     /// Whether it reaches the alarm probability.
     pub alarm: bool,
 }
@@ -190,7 +201,9 @@ impl Detector {
     }
 
     /// Whether the file's parts agree: known features in [`FEATURES`]' order, one column per
-    /// channel and feature, positive finite W ≥ H and rate, a probability in (0, 1).
+    /// channel and feature, a positive finite rate, a window of 2 to [`MAX_WINDOW_SAMPLES`]
+    /// samples and a hop of at least one, a probability in (0, 1), finite coefficients and no
+    /// negative spread.
     fn check(&self) -> Result<(), String> {
         let known: Vec<&str> = FEATURES.iter().map(|f| f.key()).collect();
         if self.features != known {
@@ -216,8 +229,15 @@ impl Detector {
         positive("rate_hz", self.rate_hz)?;
         positive("window_s", self.window_s)?;
         positive("hop_s", self.hop_s)?;
-        if (self.window_s * self.rate_hz).round() < 2.0 {
-            return Err(format!("window_s = {} holds fewer than 2 samples at {} Hz", self.window_s, self.rate_hz));
+        let n = (self.window_s * self.rate_hz).round();
+        if !(2.0..=MAX_WINDOW_SAMPLES as f64).contains(&n) {
+            return Err(format!(
+                "window_s = {} is {n} samples at {} Hz, allowed 2 to {MAX_WINDOW_SAMPLES}",
+                self.window_s, self.rate_hz
+            ));
+        }
+        if self.hop_s * self.rate_hz < 1.0 {
+            return Err(format!("hop_s = {} is less than one sample at {} Hz", self.hop_s, self.rate_hz));
         }
         if !(self.alarm_probability > 0.0 && self.alarm_probability < 1.0) {
             return Err(format!("alarm_probability = {}, allowed (0, 1)", self.alarm_probability));
@@ -227,6 +247,9 @@ impl Detector {
             .chain(self.model.columns.iter().flat_map(|c| [c.mean, c.sd]));
         if numbers.into_iter().any(|v| !v.is_finite()) {
             return Err("the model holds a number that is not finite".into());
+        }
+        if let Some(j) = self.model.columns.iter().position(|c| c.sd < 0.0) {
+            return Err(format!("model column {j} has sd = {}, allowed [0, ∞)", self.model.columns[j].sd));
         }
         Ok(())
     }
@@ -243,9 +266,16 @@ impl Detector {
         if !(rate_hz.is_finite() && (rate_hz / self.rate_hz - 1.0).abs() <= 1e-9) {
             return bad(format!("rate_hz = {rate_hz}; the detector's features assume {} Hz", self.rate_hz));
         }
-        let len = channels[0].len();
+        let len = channels.first().map_or(0, |c| c.len());
         if let Some(c) = channels.iter().position(|c| c.len() != len) {
             return bad(format!("channel {c} has {} samples, channel 0 has {len}", channels[c].len()));
+        }
+        let n = (self.window_s * self.rate_hz).round() as usize;
+        if len < n {
+            return bad(format!(
+                "{len} samples, fewer than one window of {n} ({} s at {} Hz)",
+                self.window_s, self.rate_hz
+            ));
         }
         for (c, ch) in channels.iter().enumerate() {
             if let Some(i) = ch.iter().position(|v| !v.is_finite()) {
@@ -259,15 +289,17 @@ impl Detector {
             .iter()
             .zip(&rows)
             .map(|(w, row)| {
-                let probability = self.model.probability(row);
-                WindowScore {
-                    start_s: w.start,
-                    end_s: w.end,
-                    probability,
-                    alarm: probability >= self.alarm_probability,
-                }
+                let probability = self.speaks(row).then(|| self.model.probability(row)).filter(|p| p.is_finite());
+                let alarm = probability.is_some_and(|p| p >= self.alarm_probability);
+                WindowScore { start_s: w.start, end_s: w.end, probability, alarm }
             })
             .collect())
+    }
+
+    /// Whether every column the model reads as a logarithm is positive in `row` (a silent
+    /// channel's features are all zero).
+    fn speaks(&self, row: &[f64]) -> bool {
+        self.model.columns.iter().zip(row).all(|(c, &x)| !(c.log && c.sd > 0.0) || x > 0.0)
     }
 }
 
@@ -276,7 +308,8 @@ impl Detector {
 pub struct Assessment {
     /// When the stream turned gangue-rich, s from the first sample.
     pub onset_s: f64,
-    /// Windows wholly before the onset, and wholly after it (a window across it is neither).
+    /// Scored windows wholly before the onset, and wholly after it (a window across it is
+    /// neither).
     pub windows_before: usize,
     /// See `windows_before`.
     pub windows_after: usize,
@@ -296,10 +329,10 @@ pub struct Assessment {
 /// (one recording's, from [`Detector::score`]) at its `threshold`, the change at `onset_s`.
 pub fn assess(scores: &[WindowScore], threshold: f64, onset_s: f64) -> Assessment {
     let wins: Vec<Window> = scores.iter().map(|s| Window { stream: 0, start: s.start_s, end: s.end_s }).collect();
-    let p: Vec<Option<f64>> = scores.iter().map(|s| Some(s.probability)).collect();
+    let p: Vec<Option<f64>> = scores.iter().map(|s| s.probability).collect();
     let op = crate::detect::operate(&wins, &p, threshold, onset_s, &[0.0]);
-    let before: Vec<f64> = scores.iter().filter(|s| s.end_s <= onset_s).map(|s| s.probability).collect();
-    let after: Vec<f64> = scores.iter().filter(|s| s.start_s >= onset_s).map(|s| s.probability).collect();
+    let before: Vec<f64> = scores.iter().filter(|s| s.end_s <= onset_s).filter_map(|s| s.probability).collect();
+    let after: Vec<f64> = scores.iter().filter(|s| s.start_s >= onset_s).filter_map(|s| s.probability).collect();
     Assessment {
         onset_s,
         windows_before: before.len(),

@@ -119,7 +119,10 @@ impl Sidecar {
             .collect::<Result<_, _>>()?;
         let mut channels = vec![Vec::new(); index.len()];
         for (row, record) in reader.records().enumerate() {
-            let line = record.as_ref().ok().and_then(|r| r.position()).map_or(row + 2, |p| p.line() as usize);
+            let line = match &record {
+                Ok(r) => r.position().map_or(row + 2, |p| p.line() as usize),
+                Err(e) => e.position().map_or(row + 2, |p| p.line() as usize),
+            };
             let record = record.map_err(|e| error(origin, format!("line {line}: {e}")))?;
             for (k, (channel, &i)) in channels.iter_mut().zip(&index).enumerate() {
                 let text = record.get(i).unwrap_or("");

@@ -55,7 +55,8 @@ fn a_peak_detector_scores_each_window_by_its_known_peak() {
     for (k, (s, a)) in scores.iter().zip(amps).enumerate() {
         let t = -1.0 + 2.0 * (a.ln() - 0.0) / 0.5;
         let p = 1.0 / (1.0 + (-t).exp());
-        assert!((s.probability - p).abs() <= 1e-14, "window {k}: {} against {p}", s.probability);
+        let got = s.probability.unwrap();
+        assert!((got - p).abs() <= 1e-14, "window {k}: {got} against {p}");
         assert!((s.start_s - 0.1 * k as f64).abs() < 1e-12 && (s.end_s - s.start_s - 0.1).abs() < 1e-12);
         assert_eq!(s.alarm, p >= 0.5);
     }
@@ -102,6 +103,24 @@ fn a_recording_that_does_not_match_is_refused() {
     let mut bad = x.clone();
     bad[17] = f64::NAN;
     assert!(e(d.score(&[&bad], RATE)).contains("sample 17 is NaN"));
+    assert!(e(d.score(&[&x[..99]], RATE)).contains("99 samples, fewer than one window of 100"));
+    assert!(e(d.score(&[&[]], RATE)).contains("0 samples"));
+    let mut tiny_hop = d.clone();
+    tiny_hop.hop_s = 1e-9;
+    assert!(Detector::from_json(&tiny_hop.to_json()).unwrap_err().to_string().contains("less than one sample"));
+    let mut huge = d.clone();
+    huge.window_s = 1e9;
+    assert!(Detector::from_json(&huge.to_json()).unwrap_err().to_string().contains("allowed 2 to"));
+}
+
+/// A window in which the channel is silent (every sample zero: ln of its peak is -∞) is
+/// left unscored, not given a probability, and passed over by the operating answer.
+#[test]
+fn a_silent_window_is_left_unscored() {
+    let d = peak_detector();
+    let scores = d.score(&[&tones(&[1.0, 0.0, 2.0])], RATE).unwrap();
+    assert!(scores[0].probability.is_some() && scores[2].probability.is_some());
+    assert_eq!((scores[1].probability, scores[1].alarm), (None, false));
 }
 
 #[test]
@@ -159,10 +178,11 @@ fn a_bad_recording_is_refused_naming_the_key_or_line() {
 }
 
 /// A detector carried to another condition recovers the known answer. One feature, coal
-/// N(0, 1) and gangue N(1.5, 1) on 400 windows, fitted on the first half; the second half
-/// recorded under a changed gain and offset (x → 3x + 7: a monotone change) scores exactly
-/// the AUC of its raw values (Mann-Whitney, computed here), and under a sign flip exactly its
-/// complement; with nothing changed it is the plain out-of-fold answer.
+/// N(0, 1) and gangue N(1.5, 1) on 400 windows, fitted on the first half; the same windows
+/// recorded again (fresh draws) under a changed gain and offset (x → 3x + 7: a monotone
+/// change) score on the second half exactly the AUC of their raw values (Mann-Whitney,
+/// computed here), and under a sign flip exactly its complement; with nothing changed it is
+/// the plain out-of-fold answer.
 #[test]
 fn a_carried_detector_recovers_the_known_answer() {
     use identify::detect::{out_of_fold, out_of_fold_across, Fold};
@@ -199,11 +219,15 @@ fn a_carried_detector_recovers_the_known_answer() {
         let as_rows: Vec<Vec<f64>> = p.iter().map(|p| vec![p.unwrap_or(f64::NAN)]).collect();
         raw_auc(&as_rows)
     };
-    let gained: Vec<Vec<f64>> = fitted.iter().map(|r| vec![3.0 * r[0] + 7.0]).collect();
-    let flipped: Vec<Vec<f64>> = fitted.iter().map(|r| vec![-r[0]]).collect();
+    // The scored condition: fresh draws of the same classes under a gain and offset, so its
+    // raw AUC is its own, not the fitted rows'.
+    let gained: Vec<Vec<f64>> =
+        labels.iter().map(|&g| vec![3.0 * (normal() + if g { 1.5 } else { 0.0 }) + 7.0]).collect();
+    let flipped: Vec<Vec<f64>> = gained.iter().map(|r| vec![-r[0]]).collect();
     assert!(raw_auc(&fitted) > 0.8, "the classes separate: {}", raw_auc(&fitted));
+    assert_ne!(raw_auc(&gained), raw_auc(&fitted));
     assert_eq!(carried_auc(&gained), raw_auc(&gained));
-    assert!((carried_auc(&flipped) - (1.0 - raw_auc(&fitted))).abs() < 1e-12);
+    assert!((carried_auc(&flipped) - (1.0 - raw_auc(&gained))).abs() < 1e-12);
     assert_eq!(
         out_of_fold_across(&fitted, &fitted, &labels, &[false], &folds),
         out_of_fold(&fitted, &labels, &[false], &folds)

@@ -26,8 +26,13 @@ pub struct DetectData {
     pub samples: usize,
     /// See `samples`.
     pub rate_hz: f64,
-    /// Windows scored and how many reached the alarm probability.
+    /// Whether the recording's channel names are the detector's (a recording from another
+    /// rig names its channels its own way: the order is what counts, and it is the user's).
+    pub names_match: bool,
+    /// Windows, and how many reached the alarm probability.
     pub windows: usize,
+    /// Windows left unscored: a channel read as a logarithm silent in them.
+    pub silent_windows: usize,
     /// See `windows`.
     pub alarms: usize,
     /// The alarm probability.
@@ -54,7 +59,14 @@ pub fn detect(
         channels: detector.channels.iter().map(|c| c.name.clone()).zip(recording.names.iter().cloned()).collect(),
         samples: channels.first().map_or(0, |c| c.len()),
         rate_hz: recording.rate_hz,
+        names_match: detector
+            .channels
+            .iter()
+            .map(|c| format!("{} ({})", c.name, c.unit))
+            .eq(recording.names.iter().cloned())
+            || detector.channels.iter().map(|c| c.name.clone()).eq(recording.names.iter().cloned()),
         windows: scores.len(),
+        silent_windows: scores.iter().filter(|s| s.probability.is_none()).count(),
         alarms: scores.iter().filter(|s| s.alarm).count(),
         alarm_probability: detector.alarm_probability,
         assessment: recording.onset_s.map(|t| assess(&scores, detector.alarm_probability, t)),
@@ -77,7 +89,7 @@ fn provenance(d: &Detector) -> Provenance {
         program: "impact",
         version: env!("CARGO_PKG_VERSION"),
         scene: d.provenance.scene.clone(),
-        scene_sha256: d.provenance.scene_hash.clone().unwrap_or_else(|| "unknown".into()),
+        scene_sha256: d.provenance.scene_sha256.clone().unwrap_or_else(|| "unknown".into()),
         units: "SI",
     }
 }
@@ -86,7 +98,9 @@ fn provenance(d: &Detector) -> Provenance {
 fn scores_table(d: &DetectData) -> Table {
     let mut t = Table::new("", &["start (s)", "end (s)", "probability gangue-rich", "alarm"]);
     for s in &d.scores {
-        t.push(vec![Cell::Num(s.start_s), Cell::Num(s.end_s), Cell::Num(s.probability), s.alarm.into()]);
+        // A silent window's probability is left empty, as an unscored window's in windows.csv.
+        let p = s.probability.map_or(Cell::Text(String::new()), Cell::Num);
+        t.push(vec![Cell::Num(s.start_s), Cell::Num(s.end_s), p, s.alarm.into()]);
     }
     t
 }
@@ -95,13 +109,19 @@ fn scores_table(d: &DetectData) -> Table {
 pub fn summary_table(d: &DetectData) -> Table {
     let mut t = Table::new(
         format!(
-            "the detector of {} ({}) on {}: {} windows, {} alarms at probability {}",
+            "the detector of {} ({}) on {}: {} windows ({} silent, unscored), {} alarms at probability {}{}",
             d.detector.scene,
             d.detector.support_set,
             d.recording_file,
             d.windows,
+            d.silent_windows,
             d.alarms,
-            sig(d.alarm_probability, 3)
+            sig(d.alarm_probability, 3),
+            if d.names_match {
+                ""
+            } else {
+                "; the recording's channel names are not the detector's (detect.json lists both): check their order"
+            }
         ),
         &["onset", "windows before/after", "AUC after against before", "delay", "false alarms/h (count)"],
     );

@@ -202,6 +202,7 @@ pub fn index_page(
                 ("streams", st.streams.to_string()),
                 ("duration", analytic::params::compact(st.spec.duration)),
                 ("table", stream::summary_table(data).to_markdown()),
+                ("transfer", stream::worst_transfer(data)),
             ],
         )?);
         stream_rows.push_str(&render(

@@ -25,7 +25,7 @@ pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Stre
     for c in &data.conditions {
         let dir = crate::present::rows::slug(&c.name);
         let mut detector = c.detector.clone();
-        detector.provenance.scene_hash = Some(stamp.scene_sha256.clone());
+        detector.provenance.scene_sha256 = Some(stamp.scene_sha256.clone());
         a.add(format!("{dir}/detector.json"), detector.to_json());
         a.add(format!("{dir}/windows.csv"), windows_table(c).to_csv());
         a.add(format!("{dir}/lumps.csv"), lumps_table(c).to_csv());
@@ -210,6 +210,11 @@ fn noise_table(d: &StreamData) -> Table {
         }
     }
     t
+}
+
+/// The shift that costs the most AUC, in words.
+pub fn worst_transfer(d: &StreamData) -> String {
+    transfer_table(d).1
 }
 
 /// Every transfer, and the shift that costs the most AUC in words.

@@ -75,7 +75,7 @@ pub(super) fn condition(
         let rows = features(&rec, r, &w.windows, study);
         let score = w.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
-        others.push((format!("{} lumps/s", compact(rate_per_s)), select(&rows, &on_sensors)));
+        others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
     }
     let shifted = Shifted {
         name: set.name.clone(),
@@ -121,7 +121,9 @@ fn detector(
         scene: scene.name.clone(),
         support_set: set.name.clone(),
         chain: scene.measurement.as_ref().and_then(|c| serde_json::to_value(c).ok()),
-        program: format!("impact {}", env!("CARGO_PKG_VERSION")),
+        program: "impact".into(),
+        version: env!("CARGO_PKG_VERSION").into(),
+        units: "SI".into(),
         ..Provenance::default()
     };
     let timing = (study.window, study.hop, rate);

@@ -2,9 +2,12 @@
 //! on the sensors' channels fitted on one support set's main run, scored on another support
 //! set's main run (the matrix), and on its own support set with the chain's background scaled
 //! and at other arrival rates. The conditions record the same streams (the same lumps on
-//! another plate, or under more noise), so the carried detector too is fitted and scored by
-//! the time blocks: fitted on the training blocks under one condition, it scores the held-out
-//! block under the other, and no lump it was fitted on is in a window it scores. Beside each,
+//! another plate, or under more noise; at another rate each stream draws the same lumps,
+//! arriving sooner or later), so the carried detector too is fitted and scored by the time
+//! blocks: fitted on the training blocks under one condition, it scores the held-out block
+//! under the other. With one block per stream (leave-one-stream-out, as the shipped scene)
+//! no lump it was fitted on is in a window it scores; with blocks inside a stream, a rate
+//! shift can move a lump's draw from a training block into the scored one. Beside each,
 //! the matched detector: the same channels cross-validated on the test condition itself, so
 //! that the loss is the shift's alone. The supports' channels are left out: their kinds
 //! differ between support sets (a spring's force, a fixed corner's reaction).

@@ -206,6 +206,8 @@ struct Run<'a> {
     active: Vec<Active>,
     done: Vec<(usize, LumpResponse)>,
     maps: HashMap<usize, StepMaps>,
+    /// The exact map over one sample interval.
+    sample_map: FreeMaps,
     half_period: HalfPeriod,
     window_samples: usize,
     steps: usize,
@@ -235,6 +237,7 @@ impl<'a> Run<'a> {
             active: Vec::new(),
             done: Vec::new(),
             maps: HashMap::new(),
+            sample_map: probes.step_map(1),
             half_period: half_periods(&model.omega, model.settings.damping(), probes.spec.interval()),
             window_samples: probes.spec.samples(),
             steps: 0,
@@ -320,7 +323,7 @@ impl<'a> Run<'a> {
             let w = &mut self.scratch;
             w.qh.resize(n, 0.0);
             w.vh.resize(n, 0.0);
-            self.probes.step_map(1).apply(&self.q, &self.v, &mut w.qh, &mut w.vh);
+            self.sample_map.apply(&self.q, &self.v, &mut w.qh, &mut w.vh);
             if self.clear_interval() {
                 return self.free_interval();
             }
