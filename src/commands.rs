@@ -148,7 +148,7 @@ fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> R
         .map_err(|e| format!("--detector {}: {e}", detector.display()))?;
     let origin = signal.display().to_string();
     let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
-    let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
+    let csv = sidecar.data_path(signal);
     let recording = sidecar.read(&read_text(&csv, "the recording's data")?, &csv.display().to_string())?;
     let (artifacts, data) = impact::report::detect::detect(&d, &recording, (&detector.display().to_string(), &origin))?;
     let target = OutputDir::prepare(

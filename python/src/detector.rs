@@ -122,7 +122,7 @@ impl Detector {
         let origin = signal.display().to_string();
         let sidecar = Sidecar::parse(&read(&signal, "signal")?, &origin)
             .map_err(|e| argument_message("signal", e.to_string()))?;
-        let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
+        let csv = sidecar.data_path(&signal);
         let recording = sidecar
             .read(&read(&csv, "signal")?, &csv.display().to_string())
             .map_err(|e| argument_message("signal", e.to_string()))?;
@@ -147,7 +147,7 @@ pub fn read_signal<'py>(py: Python<'py>, signal: std::path::PathBuf) -> PyResult
     let origin = signal.display().to_string();
     let sidecar =
         Sidecar::parse(&read(&signal, "signal")?, &origin).map_err(|e| argument_message("signal", e.to_string()))?;
-    let csv = signal.parent().unwrap_or(Path::new(".")).join(&sidecar.data);
+    let csv = sidecar.data_path(&signal);
     let r = sidecar
         .read(&read(&csv, "signal")?, &csv.display().to_string())
         .map_err(|e| argument_message("signal", e.to_string()))?;

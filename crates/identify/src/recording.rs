@@ -103,6 +103,11 @@ impl Sidecar {
         Ok(s)
     }
 
+    /// The CSV's path: `data`, relative to the folder of the sidecar at `sidecar`.
+    pub fn data_path(&self, sidecar: &std::path::Path) -> std::path::PathBuf {
+        sidecar.parent().unwrap_or(std::path::Path::new(".")).join(&self.data)
+    }
+
     /// The recording: the sidecar's columns of the CSV text `csv` (from the file `origin`).
     pub fn read(&self, csv_text: &str, origin: &str) -> Result<Recording, RecordingError> {
         let mut reader =
