@@ -50,6 +50,12 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     bad("duration_s = 6.0", "duration_s = 1e6", &["stream.duration_s = 1000000", "(0, 86400]"]);
     bad("gangue_after = 1.0", "gangue_after = 1.5", &["stream.gangue_after = 1.5", "[0, 1]"]);
     bad("gangue_after = 1.0", "gangue_after = 0.0", &["stream.gangue_after", "no change to detect"]);
+    let falling = ("gangue_before = 0.0\ngangue_after = 1.0", "gangue_before = 0.8\ngangue_after = 0.3");
+    bad(
+        falling.0,
+        falling.1,
+        &["stream.gangue_after", "0.3 is below gangue_before = 0.8", "turn to gangue-rich", "(0.8, 1]"],
+    );
     bad("onset_s = 3.0", "onset_s = 7.0", &["stream.onset_s = 7", "(0, 6)"]);
     bad("ramp_s = 0.5", "ramp_s = 4.0", &["stream.ramp_s = 4", "[0, 3]"]);
     bad("window_s = 0.5", "window_s = 4.0", &["stream.window_s = 4", "0.0008", "3]"]);

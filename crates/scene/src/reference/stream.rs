@@ -17,7 +17,7 @@ pub(super) fn sections() -> Vec<Section> {
             whole("streams", limits::STREAMS, "1", "Independent streams (stream r drawn with seed + r)"),
             key("seed", "whole number", NO_UNIT, "0 to 2^63 - 1 (a TOML integer)", "1", "Seed of the arrivals and their classes"),
             num("gangue_before", NO_UNIT, share, REQUIRED, "Gangue share before the change"),
-            num("gangue_after", NO_UNIT, share, REQUIRED, "Gangue share after it; not equal to `gangue_before`"),
+            num("gangue_after", NO_UNIT, share, REQUIRED, "Gangue share after it; above `gangue_before` (the detector looks for a turn to gangue-rich)"),
             key("onset_s", "number", "s", "(0, duration_s)", REQUIRED, "When the change starts"),
             key("ramp_s", "number", "s", "[0, duration_s - onset_s]", "0", "How long the change takes (linear)"),
             key(

@@ -77,6 +77,16 @@ pub(crate) fn validate_stream(
             format!("{after} equals gangue_before: the stream has no change to detect"),
         ));
     }
+    // The detector's positive class is "gangue-rich", the later state; a stream turning
+    // coal-rich would make an alarm mean the opposite under the same name.
+    if after < before {
+        return Err(other(
+            "stream.gangue_after",
+            format!(
+                "{after} is below gangue_before = {before}: the study detects a turn to gangue-rich; allowed ({before}, 1]"
+            ),
+        ));
+    }
     let onset = check("stream.onset_s", raw.onset_s, Range::open(0.0, duration), "s")?;
     let ramp = check("stream.ramp_s", raw.ramp_s.unwrap_or(0.0), Range::closed(0.0, duration - onset), "s")?;
     // The features need 16 samples of the recording in a window.

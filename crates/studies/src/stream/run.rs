@@ -239,11 +239,8 @@ pub(super) fn window_set(study: &StreamStudy, seed: u64) -> Windows {
         .map(|win| {
             let o = offsets[win.stream];
             let share = p.mean_share(win.start - o, win.end - o);
-            if p.after > p.before {
-                share >= middle
-            } else {
-                share <= middle
-            }
+            // The scene refuses a falling profile: gangue-rich is the later state.
+            share >= middle
         })
         .collect();
     let folds = time_block_folds(&all, study.blocks);
