@@ -22,6 +22,9 @@ pub struct Scene {
     text: String,
     /// Where it came from, for messages.
     origin: String,
+    /// The folder of the file it was read from (absolute), against which the files it names
+    /// are read again when it is unpickled elsewhere; None for text and dicts.
+    folder: Option<PathBuf>,
 }
 
 impl Scene {
@@ -32,7 +35,7 @@ impl Scene {
 
     fn parse(text: String, origin: String) -> PyResult<Self> {
         let scene = Validated::parse(&text, &origin).map_err(|e| scene_error(&e))?;
-        Ok(Self { scene, text, origin })
+        Ok(Self { scene, text, origin, folder: None })
     }
 }
 
@@ -141,7 +144,8 @@ impl Scene {
         // The file checks (regular file, size) are the command line's.
         let scene = py.detach(|| Validated::load(&path)).map_err(|e| scene_error(&e))?;
         let text = std::fs::read_to_string(&path).map_err(|e| PyValueError::new_err(format!("{shown}: {e}")))?;
-        Ok(Self { scene, text, origin: shown })
+        let folder = std::path::absolute(&path).ok().and_then(|p| p.parent().map(PathBuf::from));
+        Ok(Self { scene, text, origin: shown, folder })
     }
 
     /// Parses and validates scene text; `origin` names it in error messages.
@@ -169,7 +173,7 @@ impl Scene {
                     format!("{path} = {written} is beyond the range of a float"),
                     Some("a finite number".into()),
                 )),
-                None => Ok(Self { scene, text: emitted.text, origin }),
+                None => Ok(Self { scene, text: emitted.text, origin, folder: None }),
             },
             Err(Invalid::Syntax { reason, span, .. }) => Err(dict_syntax_error(&emitted, &reason, span.as_ref())),
             Err(Invalid::OutOfRange { source, .. })
@@ -266,9 +270,26 @@ impl Scene {
         )
     }
 
-    /// Pickles as its TOML text, read again (and validated) on unpickling.
-    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
+    /// Reads scene text from a file in `folder` (what unpickling a scene read from a file
+    /// calls): the files it names are read relative to that folder.
+    #[staticmethod]
+    fn _from_str_in(text: String, origin: String, folder: PathBuf) -> PyResult<Self> {
+        let scene = ::scene::parse_in_folder(&text, &origin, &folder).map_err(|e| scene_error(&e))?;
+        Ok(Self { scene, text, origin, folder: Some(folder) })
+    }
+
+    /// Pickles as its TOML text, read again (and validated) on unpickling; a scene read from
+    /// a file keeps its folder, so that the files it names (a measured PSD) are found again
+    /// from any working folder.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
         let s = slf.get();
-        Ok((slf.get_type().getattr("from_str")?, (s.text.clone(), s.origin.clone())))
+        let py = slf.py();
+        match &s.folder {
+            Some(folder) => Ok((
+                slf.get_type().getattr("_from_str_in")?,
+                (s.text.clone(), s.origin.clone(), folder.clone()).into_pyobject(py)?,
+            )),
+            None => Ok((slf.get_type().getattr("from_str")?, (s.text.clone(), s.origin.clone()).into_pyobject(py)?)),
+        }
     }
 }

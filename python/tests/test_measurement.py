@@ -91,3 +91,26 @@ def test_a_bad_chain_names_its_key(path, value, needle):
     target[path[-1]] = value
     with pytest.raises(impact.SceneError, match=needle.replace(".", r"\.")):
         with_chain(chain)
+
+
+def test_a_pickled_scene_finds_its_psd_file_from_any_folder(tmp_path, monkeypatch):
+    """A scene read from a file whose chain names a measured PSD file (relative to the scene's
+    folder) unpickles, and is validated again, in a process with another working folder (a
+    Dask worker); its text alone, read there, would not find the file."""
+    import pickle
+
+    text = (REPO / "scenes" / "caving-stream-measured.toml").read_text()
+    text = text.replace('noise = "pink"\nnoise_rms_m_s2 = 2.0\npink_flat_below_hz = 10.0\n', 'noise = "measured"\nnoise_psd_file = "psd/tail-beam.csv"\n')
+    assert 'noise_psd_file = "psd/tail-beam.csv"' in text
+    (tmp_path / "scene" / "psd").mkdir(parents=True)
+    (tmp_path / "scene" / "psd" / "tail-beam.csv").write_text("frequency_hz,psd\n0,1e-2\n100,1e-2\n5000,1e-4\n")
+    (tmp_path / "scene" / "s.toml").write_text(text)
+    scene = impact.Scene.from_toml(tmp_path / "scene" / "s.toml")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    back = pickle.loads(pickle.dumps(scene))
+    assert back.to_toml_str() == scene.to_toml_str()
+    # The text without its folder would look for the file here, and not find it.
+    with pytest.raises(impact.SceneError, match="noise_psd_file"):
+        impact.Scene.from_str(scene.to_toml_str())

@@ -101,6 +101,13 @@ impl SceneSource for Scene {
     }
 }
 
+/// Parses and validates scene text read from a file in `folder`: the files it names (a
+/// measured PSD) are read relative to that folder, as [`SceneSource::load`] reads them (a
+/// scene's text sent to another process, read there).
+pub fn parse_in_folder(text: &str, origin: &str, folder: &Path) -> Result<Scene, SceneError> {
+    parse_in(text, origin, Some(folder))
+}
+
 /// Parses and validates scene text; files it names (a measured PSD) are read relative to
 /// `base`, the scene file's folder (the working folder when None).
 fn parse_in(text: &str, origin: &str, base: Option<&Path>) -> Result<Scene, SceneError> {
