@@ -6,7 +6,7 @@
 use crate::columns::Table;
 use crate::errors::{argument_message, model_error};
 use identify::detector::{assess, Detector as Trained, WindowScore};
-use identify::recording::Sidecar;
+use identify::recording::{Recording, Sidecar};
 use numpy::{AllowTypeChange, PyArray1, PyArrayLike1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -120,12 +120,7 @@ impl Detector {
     /// sidecar states no onset), as `impact detect` writes them.
     fn detect<'py>(&self, py: Python<'py>, signal: std::path::PathBuf) -> PyResult<Bound<'py, PyDict>> {
         let origin = signal.display().to_string();
-        let sidecar = Sidecar::parse(&read(&signal, "signal")?, &origin)
-            .map_err(|e| argument_message("signal", e.to_string()))?;
-        let csv = sidecar.data_path(&signal);
-        let recording = sidecar
-            .read(&read(&csv, "signal")?, &csv.display().to_string())
-            .map_err(|e| argument_message("signal", e.to_string()))?;
+        let recording = recording(&signal)?;
         let views: Vec<&[f64]> = recording.channels.iter().map(Vec::as_slice).collect();
         let d = &self.detector;
         let scores = py
@@ -141,16 +136,21 @@ impl Detector {
     }
 }
 
+/// The recording whose sidecar is `signal`, its CSV read from the sidecar's folder.
+fn recording(signal: &Path) -> PyResult<Recording> {
+    let origin = signal.display().to_string();
+    let sidecar =
+        Sidecar::parse(&read(signal, "signal")?, &origin).map_err(|e| argument_message("signal", e.to_string()))?;
+    let csv = sidecar.data_path(signal);
+    sidecar
+        .read(&read(&csv, "signal")?, &csv.display().to_string())
+        .map_err(|e| argument_message("signal", e.to_string()))
+}
+
 /// A recording: its sidecar read and its CSV columns as float64 arrays.
 #[pyfunction]
 pub fn read_signal<'py>(py: Python<'py>, signal: std::path::PathBuf) -> PyResult<Bound<'py, PyDict>> {
-    let origin = signal.display().to_string();
-    let sidecar =
-        Sidecar::parse(&read(&signal, "signal")?, &origin).map_err(|e| argument_message("signal", e.to_string()))?;
-    let csv = sidecar.data_path(&signal);
-    let r = sidecar
-        .read(&read(&csv, "signal")?, &csv.display().to_string())
-        .map_err(|e| argument_message("signal", e.to_string()))?;
+    let r = recording(&signal)?;
     let out = PyDict::new(py);
     let channels: Vec<Bound<'py, PyArray1<f64>>> = r.channels.iter().map(|c| PyArray1::from_slice(py, c)).collect();
     out.set_item("channels", channels)?;

@@ -77,13 +77,6 @@ pub(super) fn condition(
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
         others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
     }
-    let shifted = Shifted {
-        name: set.name.clone(),
-        channels: on_sensors.len(),
-        main: select(&rows, &on_sensors),
-        others: others.into_iter().map(|(shift, rows)| (shift, select(&rows, &on_sensors))).collect(),
-        windows: window_set(study, seed),
-    };
     progress.finish();
     let names: Vec<String> = infos.iter().map(channel_name).collect();
     let signal = study.write_signal.then(|| RecordedSignal {
@@ -103,6 +96,13 @@ pub(super) fn condition(
         lumps: lump_rows(ensemble, &main),
         signal,
         detector,
+    };
+    let shifted = Shifted {
+        name: set.name.clone(),
+        channels: on_sensors.len(),
+        main: select(&rows, &on_sensors),
+        others: others.into_iter().map(|(shift, rows)| (shift, select(&rows, &on_sensors))).collect(),
+        windows: w,
     };
     Ok((data, shifted))
 }
