@@ -392,3 +392,34 @@ fn well_conditioned_results_are_bit_identical() {
         }
     }
 }
+
+/// Past the break-even point the base is probed through its selected inverse; each point
+/// then agrees with its own solve (`Factorization::respond`, corner reactions k_b u) to
+/// 1e-10 of the largest C in C (a point on a supported edge has none) and of the largest |u|
+/// in every corner deflection. Both carry the
+/// base's conditioning only (relative residuals ~1e-12 here); an error in the inverse or
+/// in the reciprocity read of u is O(1).
+#[test]
+fn probes_from_the_selected_inverse_equal_solves() {
+    for edges in
+        [[EdgeSupport::Free; 4], [EdgeSupport::Simple, EdgeSupport::Simple, EdgeSupport::Free, EdgeSupport::Free]]
+    {
+        let m = model(paper(), 12, 10);
+        let fam = CornerFamily::new(&m, edges, CornerFamily::default_base_stiffness(&m)).unwrap();
+        let points: Vec<(f64, f64)> =
+            (0..15).flat_map(|i| (0..12).map(move |j| (L * i as f64 / 14.0, B * j as f64 / 11.0))).collect();
+        assert!(fam.base().selected_inverse_pays(points.len()) && !fam.base().selected_inverse_pays(1));
+        let many = fam.probe_many(&points).unwrap();
+        let largest = many.iter().fold(0.0f64, |a, p| a.max(p.compliance));
+        for (p, bp) in points.iter().zip(&many) {
+            let one = fam.base().respond(p.0, p.1).unwrap();
+            let gap = (bp.compliance - one.compliance).abs();
+            assert!(gap < 1e-10 * largest, "{p:?}: {} against {}", bp.compliance, one.compliance);
+            let u: Vec<f64> = one.corners.iter().map(|c| c.reaction / fam.k_base()).collect();
+            let scale = u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            for c in 0..4 {
+                assert!((bp.u[c] - u[c]).abs() <= 1e-10 * scale, "{p:?} corner {c}: {} against {}", bp.u[c], u[c]);
+            }
+        }
+    }
+}

@@ -114,9 +114,8 @@ impl ReducedModel {
     /// shape ψ = RN normalised, ψ̂ = ψ/√m_ψ, ψ̂ᵀN = C_res/√m_ψ), where the settings ask for it.
     /// Without compliance or mass left to carry (all modes kept, to rounding) there is none.
     fn residual_mode(&self, pt: &Point, static_compliance: f64) -> Option<(f64, f64)> {
-        let carried = pt.c_res > 1e-12 * static_compliance && pt.m_res > 0.0;
-        (self.settings.correction == Correction::ResidualMode && carried)
-            .then(|| ((pt.c_res / pt.m_res).sqrt(), pt.m_res.sqrt()))
+        let m_res = pt.m_res.filter(|_| self.settings.correction == Correction::ResidualMode)?;
+        (pt.c_res > 1e-12 * static_compliance && m_res > 0.0).then(|| ((pt.c_res / m_res).sqrt(), m_res.sqrt()))
     }
 
     /// The moving corners at the struck point: their rows on the (extended) modes, their

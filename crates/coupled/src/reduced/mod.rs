@@ -261,8 +261,8 @@ struct Point {
     shape: plate_fem::element::Vec16,
     phi: Vec<f64>,
     c_res: f64,
-    /// m_ψ, the residual shape's mass.
-    m_res: f64,
+    /// m_ψ, the residual shape's mass (with the residual-mode correction only).
+    m_res: Option<f64>,
 }
 
 impl ReducedModel {
@@ -273,7 +273,11 @@ impl ReducedModel {
         check("reduced.steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
         let model = mesh_model(plate, settings)?;
         let (fact, modes) = lowest_modes(&model, set, settings.modes)?;
-        let residual = ResidualFlexibility::new(&fact, &modes)?;
+        // The residual shape's mass (K⁻¹MK⁻¹, by solves) only where it enters as a mode.
+        let residual = match settings.correction {
+            Correction::Static => ResidualFlexibility::new(&fact, &modes)?,
+            Correction::ResidualMode => ResidualFlexibility::with_inertia(&fact, &modes)?,
+        };
         let n = modes.count();
         let ndof = model.dofs();
         let shapes = modes.shapes();
@@ -314,7 +318,7 @@ impl ReducedModel {
         let phi = self.functional_modes(&dofs, &shape);
         let e = loc.ez * mesh.nx() + loc.ex;
         let c_res = self.residual.quadratic(e, &shape).max(0.0);
-        let m_res = self.residual.mass_quadratic(e, &shape).max(0.0);
+        let m_res = self.residual.mass_quadratic(e, &shape).map(|m| m.max(0.0));
         Ok(Point { dofs, shape, phi, c_res, m_res })
     }
 

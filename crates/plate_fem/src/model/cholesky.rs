@@ -65,6 +65,16 @@ impl Cholesky {
         Ok(Self { symbolic: symbolic.clone(), values })
     }
 
+    /// The symbolic analysis, with the fill-reducing ordering.
+    pub(crate) fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        &self.symbolic.0
+    }
+
+    /// L's values in the supernodal layout of [`Self::symbolic`].
+    pub(crate) fn values(&self) -> &[f64] {
+        &self.values
+    }
+
     /// Overwrites the columns of `rhs` with the solutions of LLᵀx = rhs.
     pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
         let llt = LltRef::new(&self.symbolic.0, &self.values);

@@ -3,6 +3,7 @@
 
 use super::cholesky::Cholesky;
 use super::Model;
+use super::SelectedInverse;
 use crate::element::Vec16;
 use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
 use crate::FemError;
@@ -209,6 +210,19 @@ impl<'m> Factorization<'m> {
             }
         }
         self.llt.solve_in_place(rhs.as_mut());
+    }
+
+    /// Every entry of K⁻¹ on the factor's pattern (each element's 16 x 16 block among them),
+    /// by Takahashi's equations on the factor: for a small multiple of one factorization,
+    /// where the blocks by solves cost two triangular solves per DOF.
+    pub fn selected_inverse(&self) -> Result<SelectedInverse, FemError> {
+        SelectedInverse::new(&self.llt, &self.held)
+    }
+
+    /// Whether the compliances of `points` points cost less from the selected inverse than
+    /// from one solve each (the flop counts of both on this factor's supernodes).
+    pub fn selected_inverse_pays(&self, points: usize) -> bool {
+        super::selected_inverse::flops(&self.llt).is_some_and(|(sweep, solve)| points as f64 * solve > sweep)
     }
 
     /// Sets the number of iterative-refinement steps after each solve (default 1).

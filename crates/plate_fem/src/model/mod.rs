@@ -21,11 +21,13 @@ use std::collections::HashMap;
 
 mod cholesky;
 mod factorization;
+mod selected_inverse;
 
 pub use factorization::{
     mass_stiffness_pass, symmetric_upper_apply, symmetric_upper_apply_into, symmetric_upper_quadratic, CornerResponse,
     Factorization, PointResponse,
 };
+pub use selected_inverse::SelectedInverse;
 
 /// The plate: geometry and an isotropic material (SI units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

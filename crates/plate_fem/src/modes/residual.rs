@@ -25,92 +25,48 @@ pub struct ResidualFlexibility {
     mesh: Mesh,
     /// Per element (row order, ex fastest), R's 16 x 16 block, row-major.
     blocks: Vec<[f64; 256]>,
-    /// Per element, RMR's block.
-    mass_blocks: Vec<[f64; 256]>,
+    /// Per element, RMR's block, where it was asked for ([`Self::with_inertia`]).
+    mass_blocks: Option<Vec<[f64; 256]>>,
 }
 
 impl ResidualFlexibility {
-    /// Assembles the element blocks of K⁻¹ and K⁻¹MK⁻¹ from solves with unit loads on every
-    /// free DOF (in blocks of 64 columns) and subtracts the modes' parts.
+    /// R's element blocks: K⁻¹'s from the selected inverse of the factor, less the modes'
+    /// parts. The cost is a small multiple of the factorization, with no solve.
     pub fn new(fact: &Factorization<'_>, modes: &Modes) -> Result<Self, FemError> {
-        let model = fact.model();
-        let mesh = model.mesh().clone();
-        if modes.mesh != mesh || modes.supports != *fact.supports() {
-            return Err(FemError::Modes(
-                "the modes belong to another mesh or support set than the factorization".into(),
-            ));
-        }
-        let mass = model.supported_mass(fact.supports())?;
-        let n = model.dofs();
-        let (nx, nz) = (mesh.nx(), mesh.nz());
-        let mut blocks = vec![[0.0f64; 256]; mesh.elements()];
-        let mut mass_blocks = vec![[0.0f64; 256]; mesh.elements()];
-        let held: std::collections::HashSet<usize> = fact.held().iter().copied().collect();
-        const CHUNK: usize = 64;
-        let cols: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
-        let nodes_x = nx + 1;
-        let harvest = |blocks: &mut [[f64; 256]], x: &Mat<f64>, j: usize, d: usize| {
-            let node = d / 4;
-            let q = d % 4;
-            let (i, jn) = (node % nodes_x, node / nodes_x);
-            for ez in jn.saturating_sub(1)..=jn.min(nz - 1) {
-                for ex in i.saturating_sub(1)..=i.min(nx - 1) {
-                    let local_node = [(0, 0), (1, 0), (0, 1), (1, 1)]
-                        .iter()
-                        .position(|&(di, dj)| ex + di == i && ez + dj == jn)
-                        .unwrap_or(0);
-                    let l = 4 * local_node + q;
-                    let dofs = mesh.element_dofs(ex, ez);
-                    let b = &mut blocks[ez * nx + ex];
-                    for k in 0..16 {
-                        b[k * 16 + l] = x[(dofs[k], j)];
-                    }
-                }
-            }
-        };
-        for chunk in cols.chunks(CHUNK) {
-            let mut x = Mat::<f64>::zeros(n, chunk.len());
-            for (j, &d) in chunk.iter().enumerate() {
-                x[(d, j)] = 1.0;
-            }
-            fact.solve_in_place(&mut x);
-            let mut y = Mat::<f64>::zeros(n, chunk.len());
-            for j in 0..chunk.len() {
-                let mx = symmetric_upper_apply(&mass, x.col_as_slice(j));
-                y.col_as_slice_mut(j).copy_from_slice(&mx);
-            }
-            fact.solve_in_place(&mut y);
-            for (j, &d) in chunk.iter().enumerate() {
-                harvest(&mut blocks, &x, j, d);
-                harvest(&mut mass_blocks, &y, j, d);
-            }
-        }
-        let shapes = modes.shapes();
-        let count = modes.count();
-        for ez in 0..nz {
-            for ex in 0..nx {
+        check_same_plate(fact, modes)?;
+        let inverse = fact.selected_inverse()?;
+        let mesh = fact.model().mesh().clone();
+        let mut blocks = Vec::with_capacity(mesh.elements());
+        for ez in 0..mesh.nz() {
+            for ex in 0..mesh.nx() {
                 let dofs = mesh.element_dofs(ex, ez);
-                let e = ez * nx + ex;
-                for (b, power) in [(&mut blocks[e], 2), (&mut mass_blocks[e], 4)] {
-                    for k in 0..16 {
-                        for l in 0..16 {
-                            let modal: f64 = (0..count)
-                                .map(|m| shapes[(dofs[k], m)] * shapes[(dofs[l], m)] / modes.omega[m].powi(power))
-                                .sum();
-                            b[k * 16 + l] -= modal;
-                        }
-                    }
-                    for k in 0..16 {
-                        for l in 0..k {
-                            let s = 0.5 * (b[k * 16 + l] + b[l * 16 + k]);
-                            b[k * 16 + l] = s;
-                            b[l * 16 + k] = s;
-                        }
-                    }
-                }
+                let mut b = inverse.block(&dofs).ok_or_else(|| {
+                    FemError::Modes("selected inversion: an element's DOF pair is outside the factor's pattern; this is a defect of this crate".into())
+                })?;
+                subtract_modes(&mut b, &dofs, modes, 2);
+                blocks.push(b);
             }
         }
-        Ok(Self { mesh, blocks, mass_blocks })
+        Ok(Self { mesh, blocks, mass_blocks: None })
+    }
+
+    /// R's blocks and RMR's, the residual shape's mass. K⁻¹MK⁻¹ is not on any factor's
+    /// pattern: its element blocks come from solves with unit loads on every free DOF (in
+    /// blocks of 64 columns), K⁻¹ then K⁻¹M of each.
+    pub fn with_inertia(fact: &Factorization<'_>, modes: &Modes) -> Result<Self, FemError> {
+        let mut this = Self::new(fact, modes)?;
+        let mut mass_blocks = inverse_mass_inverse_blocks(fact)?;
+        let mesh = &this.mesh;
+        for ez in 0..mesh.nz() {
+            for ex in 0..mesh.nx() {
+                let dofs = mesh.element_dofs(ex, ez);
+                let b = &mut mass_blocks[ez * mesh.nx() + ex];
+                subtract_modes(b, &dofs, modes, 4);
+                symmetrize(b);
+            }
+        }
+        this.mass_blocks = Some(mass_blocks);
+        Ok(this)
     }
 
     /// N(p)ᵀ R N(p) at p = (x, z), m/N: the static compliance of the truncated modes.
@@ -127,9 +83,9 @@ impl ResidualFlexibility {
     }
 
     /// Nᵀ (RMR) N on element `e` for shape values `n`: the mass m_ψ of the residual shape
-    /// ψ = RN, kg·(m/N)².
-    pub fn mass_quadratic(&self, e: usize, n: &Vec16) -> f64 {
-        quadratic(&self.mass_blocks[e], n)
+    /// ψ = RN, kg·(m/N)²; `None` unless built [`with_inertia`](Self::with_inertia).
+    pub fn mass_quadratic(&self, e: usize, n: &Vec16) -> Option<f64> {
+        self.mass_blocks.as_ref().map(|m| quadratic(&m[e], n))
     }
 
     /// The mesh.
@@ -140,4 +96,80 @@ impl ResidualFlexibility {
 
 fn quadratic(b: &[f64; 256], n: &Vec16) -> f64 {
     (0..16).map(|k| n[k] * (0..16).map(|l| b[k * 16 + l] * n[l]).sum::<f64>()).sum()
+}
+
+fn check_same_plate(fact: &Factorization<'_>, modes: &Modes) -> Result<(), FemError> {
+    if modes.mesh != *fact.model().mesh() || modes.supports != *fact.supports() {
+        return Err(FemError::Modes("the modes belong to another mesh or support set than the factorization".into()));
+    }
+    Ok(())
+}
+
+/// b -= Σᵢ φᵢφᵢᵀ/ωᵢ^power on the element's DOFs: the kept modes' part of K⁻¹ (power 2) or of
+/// K⁻¹MK⁻¹ (power 4).
+fn subtract_modes(b: &mut [f64; 256], dofs: &[usize; 16], modes: &Modes, power: i32) {
+    let shapes = modes.shapes();
+    for k in 0..16 {
+        for l in 0..16 {
+            let modal: f64 = (0..modes.count())
+                .map(|m| shapes[(dofs[k], m)] * shapes[(dofs[l], m)] / modes.omega[m].powi(power))
+                .sum();
+            b[k * 16 + l] -= modal;
+        }
+    }
+}
+
+fn symmetrize(b: &mut [f64; 256]) {
+    for k in 0..16 {
+        for l in 0..k {
+            let s = 0.5 * (b[k * 16 + l] + b[l * 16 + k]);
+            b[k * 16 + l] = s;
+            b[l * 16 + k] = s;
+        }
+    }
+}
+
+/// The element blocks of K⁻¹MK⁻¹, by solves: column d of K⁻¹ for every free DOF d, then
+/// K⁻¹M of it, harvested onto the elements around d.
+fn inverse_mass_inverse_blocks(fact: &Factorization<'_>) -> Result<Vec<[f64; 256]>, FemError> {
+    const CHUNK: usize = 64;
+    let model = fact.model();
+    let mesh = model.mesh();
+    let mass = model.supported_mass(fact.supports())?;
+    let n = model.dofs();
+    let (nx, nz) = (mesh.nx(), mesh.nz());
+    let mut blocks = vec![[0.0f64; 256]; mesh.elements()];
+    let held: std::collections::HashSet<usize> = fact.held().iter().copied().collect();
+    let cols: Vec<usize> = (0..n).filter(|d| !held.contains(d)).collect();
+    let nodes_x = nx + 1;
+    for chunk in cols.chunks(CHUNK) {
+        let mut x = Mat::<f64>::zeros(n, chunk.len());
+        for (j, &d) in chunk.iter().enumerate() {
+            x[(d, j)] = 1.0;
+        }
+        fact.solve_in_place(&mut x);
+        let mut y = Mat::<f64>::zeros(n, chunk.len());
+        for j in 0..chunk.len() {
+            let mx = symmetric_upper_apply(&mass, x.col_as_slice(j));
+            y.col_as_slice_mut(j).copy_from_slice(&mx);
+        }
+        fact.solve_in_place(&mut y);
+        for (j, &d) in chunk.iter().enumerate() {
+            let (node, q) = (d / 4, d % 4);
+            let (i, jn) = (node % nodes_x, node / nodes_x);
+            for ez in jn.saturating_sub(1)..=jn.min(nz - 1) {
+                for ex in i.saturating_sub(1)..=i.min(nx - 1) {
+                    // The node's place among the element's four, so the column within its block.
+                    let local_node = (jn - ez) * 2 + (i - ex);
+                    let l = 4 * local_node + q;
+                    let dofs = mesh.element_dofs(ex, ez);
+                    let b = &mut blocks[ez * nx + ex];
+                    for k in 0..16 {
+                        b[k * 16 + l] = y[(dofs[k], j)];
+                    }
+                }
+            }
+        }
+    }
+    Ok(blocks)
 }
