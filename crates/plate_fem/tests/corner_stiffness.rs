@@ -417,8 +417,8 @@ fn probes_from_the_selected_inverse_equal_solves() {
             assert!(gap < 1e-10 * largest, "{p:?}: {} against {}", bp.compliance, one.compliance);
             let u: Vec<f64> = one.corners.iter().map(|c| c.reaction / fam.k_base()).collect();
             let scale = u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            for c in 0..4 {
-                assert!((bp.u[c] - u[c]).abs() <= 1e-10 * scale, "{p:?} corner {c}: {} against {}", bp.u[c], u[c]);
+            for (c, want) in u.iter().enumerate() {
+                assert!((bp.u[c] - want).abs() <= 1e-10 * scale, "{p:?} corner {c}: {} against {want}", bp.u[c]);
             }
         }
     }

@@ -344,7 +344,7 @@ impl<'m> CornerFamily<'m> {
         // Relative to the largest compliance: a point on a supported edge has C = 0.
         let scale = out.iter().fold(solved.compliance.abs(), |a, p| a.max(p.compliance.abs()));
         let gap = (out[0].compliance - solved.compliance).abs() / scale;
-        if !(gap <= SELECTED_AGREEMENT) {
+        if gap.is_nan() || gap > SELECTED_AGREEMENT {
             return Err(FemError::Modes(format!(
                 "selected inversion: the compliance at ({}, {}) m differs from a solve's by {gap:e} of the largest, above {SELECTED_AGREEMENT:e}",
                 first.0, first.1
