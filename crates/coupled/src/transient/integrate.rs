@@ -33,8 +33,9 @@ pub fn simulate(s: &Striker, plate: Option<&mut Newmark<'_>>, dt: f64, t_max: f6
 /// product the point deflection w_p = Nᵀw obeys |w_p| ≤ √(wᵀKw · NᵀK⁻¹N) ≤ √(2E_p C_p) = W
 /// for all later time, C_p the static compliance at the point. The sphere's displacement u
 /// (toward the plate, from the first touch) is linear in time once free. Contact needs
-/// δ = u - w_p > 0, so once u < -W with u̇ ≤ 0 no contact can ever occur again: the run
-/// stops there. A rigid target has W = 0, so it stops at the first separation. Without C_p
+/// δ = u - w_p > δ_p, the permanent set of the largest compression so far (0 for the elastic
+/// laws; a yielded lump unloads to δ_p and reloads along its elastic branch from there), so
+/// once u - δ_p < -W with u̇ ≤ 0 no contact can ever occur again: the run stops there. A rigid target has W = 0, so it stops at the first separation. Without C_p
 /// the run stops at the first separation or, with [`PlateFacts::follow_unbounded`], follows
 /// the free motion to `t_max`; either way [`Outcome::left_at`] is None. A target that knows a
 /// tighter bound on its later free motion gives it by [`Target::free_reach`] (the modal
@@ -85,7 +86,8 @@ pub fn simulate_with<T: Target + ?Sized>(
         }
         prev = end;
         if first.done && sequence.current.is_none() {
-            match stopping_rule(plate.as_deref(), &facts, &end, sphere.u, (s.gravity, t_max - t)) {
+            // A contact opens at δ = δ_p, the permanent set: the sphere's reach is u - δ_p.
+            match stopping_rule(plate.as_deref(), &facts, &end, sphere.u - set, (s.gravity, t_max - t)) {
                 Verdict::Left(returns) => {
                     later.left_at = Some(t);
                     later.returns_at = returns.map(|tau| t + tau);
@@ -390,8 +392,9 @@ enum Verdict {
     Continue,
 }
 
-/// The stopping rule of [`simulate_with`]: the sphere at `u`, moving at `end.v`, is beyond
-/// the reach W of the free plate and moving away. W is the energy bound √(2E_p C_p) or the
+/// The stopping rule of [`simulate_with`]: the sphere at `u` (less the permanent set δ_p
+/// of its largest compression, at which a yielded lump's contact opens again), moving at
+/// `end.v`, is beyond the reach W of the free plate and moving away. W is the energy bound √(2E_p C_p) or the
 /// target's own bound on its free motion, whichever is smaller (0 for a rigid target).
 ///
 /// Under gravity g toward the plate the free sphere moves on u(τ) = u + vτ + gτ²/2 and
