@@ -208,5 +208,27 @@ fn growth(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, throughput, growth);
+/// The reduced model's set-up on Con 3 (20 x 16 mesh, N = 80): the static correction, whose
+/// residual flexibility is read off the selected inverse, against the residual-mode
+/// correction, which adds K⁻¹MK⁻¹'s element blocks by two solves per free DOF (the set-up
+/// every correction paid before the selected inverse), and against the floor the set-up
+/// cannot go below: one numeric factorization of the same stiffness.
+fn setup(c: &mut Criterion) {
+    use coupled::reduced::Correction;
+    let scene = Scene::default_scene();
+    let set = con3(&scene);
+    let mut g = c.benchmark_group("reduced set-up, Con 3, N = 80");
+    g.sample_size(10);
+    for (name, correction) in [("static correction", Correction::Static), ("residual mode", Correction::ResidualMode)] {
+        let settings = ReducedSettings { correction, ..ReducedSettings::default() };
+        g.bench_function(name, |b| b.iter(|| black_box(ReducedModel::new(&scene.plate, &set, settings).unwrap())));
+    }
+    let reduced = ReducedModel::new(&scene.plate, &set, ReducedSettings::default()).unwrap();
+    let props = coupled::discretisation::plate_properties(&scene.plate);
+    let model = plate_fem::Model::new(props, reduced.mesh().clone()).unwrap();
+    g.bench_function("floor: one factorization", |b| b.iter(|| black_box(model.factorize(&set.supports).unwrap())));
+    g.finish();
+}
+
+criterion_group!(benches, throughput, growth, setup);
 criterion_main!(benches);
