@@ -156,7 +156,13 @@ impl Logistic {
                 Column { log, mean, sd }
             })
             .collect();
-        let z: Vec<Vec<f64>> = rows.iter().map(|r| r.iter().zip(&columns).map(|(&x, c)| c.z(x)).collect()).collect();
+        // Each row as x = (1, z): the intercept's column first, so that the Hessian's rows
+        // are contiguous products.
+        let xs: Vec<Vec<f64>> = rows
+            .iter()
+            .map(|r| std::iter::once(1.0).chain(r.iter().zip(&columns).map(|(&x, c)| c.z(x))).collect())
+            .collect();
+        let z: Vec<&[f64]> = xs.iter().map(|x| &x[1..]).collect();
         let y: Vec<f64> = labels.iter().map(|&g| if g { 1.0 } else { 0.0 }).collect();
         // Parameters θ = (b, w); the penalty skips b.
         let d = p + 1;
@@ -179,15 +185,15 @@ impl Logistic {
             let mut g = vec![0.0; d];
             // H is symmetric: its lower triangle is all the solve reads.
             let mut h = vec![0.0; d * d];
-            for (zi, yi) in z.iter().zip(&y) {
-                let t = theta[0] + zi.iter().zip(&theta[1..]).map(|(a, b)| a * b).sum::<f64>();
+            for (xi, yi) in xs.iter().zip(&y) {
+                let t = theta[0] + xi[1..].iter().zip(&theta[1..]).map(|(a, b)| a * b).sum::<f64>();
                 let pi = sigmoid(t);
                 let wi = pi * (1.0 - pi);
-                let xi = |k: usize| if k == 0 { 1.0 } else { zi[k - 1] };
                 for a in 0..d {
-                    g[a] += (pi - yi) * xi(a);
-                    for b in 0..=a {
-                        h[a * d + b] += wi * xi(a) * xi(b);
+                    g[a] += (pi - yi) * xi[a];
+                    let wa = wi * xi[a];
+                    for (hb, xb) in h[a * d..=a * d + a].iter_mut().zip(&xi[..=a]) {
+                        *hb += wa * xb;
                     }
                 }
             }

@@ -19,7 +19,8 @@
 //! their quasi-static answer to the load (the static correction, or mode-acceleration
 //! method: Craig & Kurdila, *Fundamentals of Structural Dynamics*, 2nd ed., 2006). Between
 //! two points p, s it is N(p)ᵀ R N(s). [`ResidualFlexibility`] keeps R's 16 x 16 block on
-//! every element, so R at any point is one element evaluation; [`Modes::residual_field`]
+//! every element (K⁻¹'s from the factor's selected inverse, less the modes' parts), so R at
+//! any point is one element evaluation; [`Modes::residual_field`]
 //! gives R f for any load vector f with one solve.
 
 use crate::element::{self, Vec16};
