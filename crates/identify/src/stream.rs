@@ -100,6 +100,12 @@ pub struct StreamStudy {
     pub rate_sweep: Vec<f64>,
     /// Scales of the chain's background, each run on the same streams (empty without a chain).
     pub noise_sweep: Vec<f64>,
+    /// Scales of every family's radius law (that of R·scale, [`crate::distribution::Distribution::scaled`]),
+    /// each run on streams of its own: the same lumps, each that many times as large, for the
+    /// detector carried to them. Left out of the serialised scene when empty, so that a scene without
+    /// it keeps its provenance hash.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub size_sweep: Vec<f64>,
     /// Whether to write the first stream's continuous signals.
     pub write_signal: bool,
 }

@@ -81,6 +81,9 @@ pub const MAX_SENSORS: usize = 64;
 pub const STREAM_RATE_PER_S: Range = Range::open_closed(0.0, 1e4);
 /// Length of one stream, s: up to a day.
 pub const STREAM_DURATION_S: Range = Range::open_closed(0.0, 86_400.0);
+/// A scale of the ensemble's radius laws in `[stream] size_sweep`: a factor of ten either way
+/// is another population of lumps, not a shift of one.
+pub const STREAM_SIZE_SCALE: Range = Range::closed(0.1, 10.0);
 /// Independent streams of a study.
 pub const STREAMS: Range = Range::closed(1.0, 64.0);
 /// Time blocks of the stream's cross-validation.

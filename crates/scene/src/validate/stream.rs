@@ -18,6 +18,7 @@
 //! alarm_probability = 0.5   # the out-of-fold probability that raises an alarm
 //! rate_sweep_per_s = [5.0, 50.0]
 //! noise_sweep = [0.0, 10.0, 100.0]   # scales of [measurement]'s background
+//! size_sweep = [1.5]        # scales of every family's radius law, for the transfer
 //! write_signal = true       # the first stream's continuous signals as a file
 //! ```
 
@@ -53,6 +54,8 @@ pub(crate) struct RawStream {
     rate_sweep_per_s: Vec<f64>,
     #[serde(default)]
     noise_sweep: Vec<f64>,
+    #[serde(default)]
+    size_sweep: Vec<f64>,
     #[serde(default)]
     write_signal: bool,
 }
@@ -108,6 +111,10 @@ pub(crate) fn validate_stream(
     for (i, &s) in raw.noise_sweep.iter().enumerate() {
         noise_sweep.push(check(&format!("stream.noise_sweep[{i}]"), s, Range::closed(0.0, 1e6), "")?);
     }
+    let mut size_sweep = Vec::new();
+    for (i, &s) in raw.size_sweep.iter().enumerate() {
+        size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
+    }
     let spec = StreamSpec {
         rate_per_s: rate,
         duration,
@@ -123,6 +130,7 @@ pub(crate) fn validate_stream(
         alarm_probability,
         rate_sweep,
         noise_sweep,
+        size_sweep,
         write_signal: raw.write_signal,
     };
     budgets(&study, signals, conditions)?;
@@ -150,13 +158,14 @@ fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize) -> 
             ),
         ));
     }
-    let rates: f64 = study.spec.rate_per_s + study.rate_sweep.iter().sum::<f64>();
+    // The size sweep runs whole studies at the main rate.
+    let rates: f64 = study.spec.rate_per_s * (1 + study.size_sweep.len()) as f64 + study.rate_sweep.iter().sum::<f64>();
     let lumps = rates * study.spec.duration * study.streams as f64 * conditions as f64;
     if lumps > limits::MAX_STREAM_LUMPS {
         return Err(other(
-            "stream.rate_per_s, rate_sweep_per_s, duration_s and streams",
+            "stream.rate_per_s, rate_sweep_per_s, size_sweep, duration_s and streams",
             format!(
-                "expect {lumps:.0} lumps over every stream, rate and support set, above the budget of {:.0}",
+                "expect {lumps:.0} lumps over every stream, rate, size law and support set, above the budget of {:.0}",
                 limits::MAX_STREAM_LUMPS
             ),
         ));

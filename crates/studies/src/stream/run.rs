@@ -47,7 +47,8 @@ pub(super) fn condition(
     let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     let seed = study.spec.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    progress.start(study.streams * (1 + study.rate_sweep.len()), &format!("{}: streams", set.name));
+    let runs = 1 + study.rate_sweep.len() + study.size_sweep.len();
+    progress.start(study.streams * runs, &format!("{}: streams", set.name));
     let w = window_set(study, seed);
     let main = simulate(&instrument, ensemble, study, study.spec.rate_per_s, progress)?;
     let simulation = simulation(&instrument, ensemble, study, &main, &model)?;
@@ -76,6 +77,11 @@ pub(super) fn condition(
         let score = w.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
         others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
+    }
+    for &scale in &study.size_sweep {
+        let sims = simulate(&instrument, &sized(ensemble, scale), study, study.spec.rate_per_s, progress)?;
+        let (rec, r) = record(&instrument, &sims, 1.0);
+        others.push((format!("radii x {}", compact(scale)), features(&rec, r, &w.windows, study)));
     }
     progress.finish();
     let names: Vec<String> = infos.iter().map(channel_name).collect();
@@ -129,6 +135,17 @@ fn detector(
     let timing = (study.window, study.hop, rate);
     Detector::fit(rows, &w.labels, timing, channels, study.alarm_probability, provenance)
         .map_err(|e| Failure::from(e.to_string()))
+}
+
+/// `ensemble` with every family's radius law that of R·`scale` ([`identify::distribution::Distribution::scaled`]):
+/// each lump draws the same uniforms, so the same streams arrive at the same instants and
+/// points with the same speeds and materials, every lump `scale` times as large.
+fn sized(ensemble: &identify::Study, scale: f64) -> identify::Study {
+    let mut out = ensemble.clone();
+    for f in &mut out.ensemble.families {
+        f.radius = f.radius.scaled(scale);
+    }
+    out
 }
 
 /// The study's streams at `rate_per_s` (stream r from seed + r), simulated in parallel.

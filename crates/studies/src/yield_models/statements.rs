@@ -402,16 +402,14 @@ impl Facts<'_> {
 
 /// The extremes (x_min, v_min, x_max, v_max) of a curve.
 fn extremes(points: &[(f64, f64)]) -> (f64, f64, f64, f64) {
-    let mut e = (f64::NAN, f64::INFINITY, f64::NAN, f64::NEG_INFINITY);
-    for &(x, v) in points {
-        if v < e.1 {
-            (e.0, e.1) = (x, v);
-        }
-        if v > e.3 {
-            (e.2, e.3) = (x, v);
-        }
-    }
-    e
+    let lowest = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let highest = points.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+    // Mirror points of a symmetric plate agree to rounding (1e-13 here), which would decide
+    // between them; values within TIE of the extreme count as equal and the first is named.
+    const TIE: f64 = 1e-9;
+    let tie = TIE * lowest.abs().max(highest.abs());
+    let first = |at: &dyn Fn(f64) -> bool| points.iter().find(|p| at(p.1)).map_or(f64::NAN, |p| p.0);
+    (first(&|v| v <= lowest + tie), lowest, first(&|v| v >= highest - tie), highest)
 }
 
 #[cfg(test)]
@@ -419,6 +417,25 @@ mod tests {
     use super::super::paper::{Minimum, Quoted};
     use super::*;
     use coupled::yield_root::TransientYield;
+
+    /// A symmetric curve whose mirror points differ by rounding names the first of each pair,
+    /// whichever rounds lower; a real difference (1e-6) still decides.
+    #[test]
+    fn extremes_name_the_first_of_values_equal_to_rounding() {
+        for eps in [1e-15, -1e-15] {
+            let curve = [
+                (0.0, 9.82e-3 * (1.0 + eps)),
+                (0.1, 9.04e-3),
+                (0.2, 9.5e-3),
+                (0.3, 9.04e-3 * (1.0 + eps)),
+                (0.4, 9.82e-3),
+            ];
+            let (min_x, _, max_x, _) = extremes(&curve);
+            assert_eq!((min_x, max_x), (0.1, 0.0), "{eps}");
+        }
+        let (min_x, _, _, _) = extremes(&[(0.1, 9.04e-3), (0.3, 9.04e-3 * (1.0 - 1e-6))]);
+        assert_eq!(min_x, 0.3);
+    }
 
     /// A Table 2 cell whose three models give `v` (the transient bracket 1e-6 of it).
     fn cell(body: &str, condition: usize, area: usize, v: f64) -> Table2Cell {
