@@ -68,13 +68,18 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     bad("write_signal = true", "noise_sweep = [1.0]", &["stream.noise_sweep", "no [measurement]"]);
     bad("write_signal = true", "rate_sweep_per_s = [5.0, -1.0]", &["stream.rate_sweep_per_s[1] = -1"]);
     bad("write_signal = true", "size_sweep = [1.5, 0.0]", &["stream.size_sweep[1] = 0", "[0.1, 10]"]);
+    bad(
+        "write_signal = true",
+        "law_sweep = [\"flores\", \"elastic\"]",
+        &["stream.law_sweep[1]", "'elastic' is not a contact law", "\"thornton\""],
+    );
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
     bad("duration_s = 6.0", "duration_s = 80000.0", &["stream.duration_s", "MB of signal", "budget"]);
     let crowded =
         STREAM.replace("rate_per_s = 12.0", "rate_per_s = 9000.0").replace("duration_s = 6.0", "duration_s = 10.0");
     expect(
         &with_stream(&crowded.replace("streams = 2", "streams = 64")),
-        &["expect 11520000 lumps", "every stream, rate, size law and support set", "budget of 10000000"],
+        &["expect 11520000 lumps", "every stream, rate, size law, contact law and support set", "budget of 10000000"],
     );
     let fine = STREAM.replace("duration_s = 6.0", "duration_s = 60.0").replace("hop_s = 0.25", "hop_s = 0.00005");
     expect(&with_stream(&fine), &["stream.hop_s", "windows, above the budget of 1000000"]);
@@ -93,7 +98,8 @@ fn rows(path: &std::path::Path) -> (Vec<String>, Vec<Vec<String>>) {
 #[test]
 fn a_stream_run_writes_consistent_truth_and_the_signal() {
     let dir = tmp();
-    let scene = dir.write("stream.toml", with_stream(&format!("{STREAM}size_sweep = [1.0]\n")));
+    let scene =
+        dir.write("stream.toml", with_stream(&format!("{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\n")));
     for (out, threads) in [("one", "1"), ("two", "2")] {
         impact(["stream", "--scene"])
             .arg(&scene)
@@ -152,13 +158,17 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     assert_eq!(every["group"], "every channel");
     let auc = every["auc"].as_f64().unwrap();
     assert!((0.0..=1.0).contains(&auc));
-    // Radii scaled by one are the same lumps and the same signals: the detector carried to
-    // them is fitted on the same training blocks as the matched one and scores the same
-    // held-out windows, so the two agree exactly; a misaligned carry (rows, labels or
-    // blocks of another condition) would not.
-    let same: Vec<&serde_json::Value> =
-        data["transfer"].as_array().unwrap().iter().filter(|p| p["shift"] == "radii x 1").collect();
-    assert_eq!(same.len(), 2, "one per support set");
+    // Radii scaled by one, and the scene's own contact law (Flores), are the same lumps and
+    // the same signals: the detector carried to them is fitted on the same training blocks
+    // as the matched one and scores the same held-out windows, so the two agree exactly; a
+    // misaligned carry (rows, labels or blocks of another condition) would not.
+    let same: Vec<&serde_json::Value> = data["transfer"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|p| p["shift"] == "radii x 1" || p["shift"] == "flores contact law")
+        .collect();
+    assert_eq!(same.len(), 4, "two shifts per support set");
     for p in same {
         assert_eq!(p["transferred"], p["matched"], "{p}");
     }

@@ -169,6 +169,11 @@ pub struct Scene {
     /// Left out of the serialised scene when None, as `measurement` is.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stream: Option<identify::stream::StreamStudy>,
+    /// The contact laws `[stream] law_sweep` runs the stream study's streams with besides
+    /// `contact_law`, each a whole set of streams to which each support set's detector is
+    /// carried. Left out of the serialised scene when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stream_law_sweep: Vec<LawKind>,
     /// How the transient model is discretised: by default each case's mesh and step are
     /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.
     pub transient_discretisation: Discretisation,

@@ -33,6 +33,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         measurement: None,
         stream: None,
+        stream_law_sweep: Vec::new(),
         gravity: 0.0,
         plate_damping: None,
     };
@@ -98,6 +99,7 @@ fn one_case(
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         measurement: None,
         stream: None,
+        stream_law_sweep: Vec::new(),
         gravity: 0.0,
         plate_damping: None,
     }

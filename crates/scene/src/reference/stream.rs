@@ -34,6 +34,7 @@ pub(super) fn sections() -> Vec<Section> {
             key("rate_sweep_per_s", "list of numbers", "1/s", limits::STREAM_RATE_PER_S.to_string(), "none", "Further arrival rates, each a whole study"),
             key("noise_sweep", "list of numbers", NO_UNIT, "[0, 1e6]; needs `[measurement]`", "none", "Scales of the chain's background, each scored on the same streams"),
             key("size_sweep", "list of numbers", NO_UNIT, limits::STREAM_SIZE_SCALE.to_string(), "none", "Scales of every family's radius law (median and bounds), each a whole study at the main rate, to which each support set's detector is carried"),
+            key("law_sweep", "list of strings", NO_UNIT, "keys of `contact_law`", "none", "Other contact laws, each a whole study at the main rate, to which each support set's detector is carried"),
             key("write_signal", "boolean", NO_UNIT, "true, false", "false", "Write the first stream's recorded signals (`signal.csv` with `signal.json`)"),
         ],
     }]

@@ -151,11 +151,12 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
             "\"chain\" keeps the modes the measurement chain needs; the scene has no [measurement]",
         ));
     }
-    let stream = match (&raw.stream, analyses.contains(&Analysis::Identify)) {
-        (None, _) => None,
+    let (stream, stream_law_sweep) = match (&raw.stream, analyses.contains(&Analysis::Identify)) {
+        (None, _) => (None, Vec::new()),
         (Some(s), true) => {
             let adc = measurement.as_ref().map_or(signals.rate_hz, |m| m.rate_hz);
-            Some(stream::validate_stream(s, &signals, adc, measurement.is_some(), conditions.len())?)
+            let (study, laws) = stream::validate_stream(s, &signals, adc, measurement.is_some(), conditions.len())?;
+            (Some(study), laws)
         }
         (Some(_), false) => {
             return Err(other(
@@ -169,6 +170,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         signals,
         measurement,
         stream,
+        stream_law_sweep,
         solver: validate_solver(&raw.solver)?,
         ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
         name: raw.name,
@@ -190,13 +192,15 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
 
 /// `contact_law`: a key of the law registry, or the default law.
 fn contact_law(name: Option<&str>) -> Result<LawKind, Invalid> {
-    match name {
-        None => Ok(LawKind::default()),
-        Some(name) => LawKind::from_key(name).ok_or_else(|| {
-            let keys: Vec<_> = LawKind::ALL.iter().map(|l| format!("\"{}\"", l.key())).collect();
-            other("contact_law", format!("'{name}' is not a contact law; allowed: {}", keys.join(", ")))
-        }),
-    }
+    name.map_or(Ok(LawKind::default()), |name| law_key("contact_law", name))
+}
+
+/// A key of the law registry at `field`.
+pub(crate) fn law_key(field: &str, name: &str) -> Result<LawKind, Invalid> {
+    LawKind::from_key(name).ok_or_else(|| {
+        let keys: Vec<_> = LawKind::ALL.iter().map(|l| format!("\"{}\"", l.key())).collect();
+        other(field, format!("'{name}' is not a contact law; allowed: {}", keys.join(", ")))
+    })
 }
 
 /// `[plate]`: material, size and density, a plate (not a strip, not a block).

@@ -19,6 +19,7 @@
 //! rate_sweep_per_s = [5.0, 50.0]
 //! noise_sweep = [0.0, 10.0, 100.0]   # scales of [measurement]'s background
 //! size_sweep = [1.5]        # scales of every family's radius law, for the transfer
+//! law_sweep = ["flores"]    # other contact laws, for the transfer
 //! write_signal = true       # the first stream's continuous signals as a file
 //! ```
 
@@ -26,6 +27,7 @@ use super::{count, other, Invalid};
 use crate::limits;
 use analytic::params::{check, Range};
 use coupled::reduced::SignalSettings;
+use coupled::transient::LawKind;
 use identify::stream::{Profile, StreamSpec, StreamStudy};
 use serde::Deserialize;
 
@@ -57,18 +59,21 @@ pub(crate) struct RawStream {
     #[serde(default)]
     size_sweep: Vec<f64>,
     #[serde(default)]
+    law_sweep: Vec<String>,
+    #[serde(default)]
     write_signal: bool,
 }
 
 /// Checks `[stream]` against the signals it will be recorded with: `signals` (the model's
-/// rate and channels) and `adc_rate_hz` (the chain's rate, or the model's without one).
+/// rate and channels) and `adc_rate_hz` (the chain's rate, or the model's without one); the
+/// study, and the contact laws of its law sweep.
 pub(crate) fn validate_stream(
     raw: &RawStream,
     signals: &SignalSettings,
     adc_rate_hz: f64,
     has_chain: bool,
     conditions: usize,
-) -> Result<StreamStudy, Invalid> {
+) -> Result<(StreamStudy, Vec<LawKind>), Invalid> {
     let rate = check("stream.rate_per_s", raw.rate_per_s, limits::STREAM_RATE_PER_S, "1/s")?;
     let duration = check("stream.duration_s", raw.duration_s, limits::STREAM_DURATION_S, "s")?;
     let share = Range::closed(0.0, 1.0);
@@ -115,6 +120,12 @@ pub(crate) fn validate_stream(
     for (i, &s) in raw.size_sweep.iter().enumerate() {
         size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
     }
+    let laws = raw
+        .law_sweep
+        .iter()
+        .enumerate()
+        .map(|(i, k)| super::law_key(&format!("stream.law_sweep[{i}]"), k))
+        .collect::<Result<Vec<_>, _>>()?;
     let spec = StreamSpec {
         rate_per_s: rate,
         duration,
@@ -133,14 +144,14 @@ pub(crate) fn validate_stream(
         size_sweep,
         write_signal: raw.write_signal,
     };
-    budgets(&study, signals, conditions)?;
-    Ok(study)
+    budgets(&study, signals, conditions, laws.len())?;
+    Ok((study, laws))
 }
 
 /// The study's streams are held at once (every stream's model signals and their recording),
 /// so together they must fit the memory budget; its lumps (every stream, rate and support
 /// set) and its windows must fit theirs.
-fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize) -> Result<(), Invalid> {
+fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, laws: usize) -> Result<(), Invalid> {
     // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
     // the recording is at most as long again.
     let channels = (4 * signals.sensors.len() + 4) as f64;
@@ -158,14 +169,15 @@ fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize) -> 
             ),
         ));
     }
-    // The size sweep runs whole studies at the main rate.
-    let rates: f64 = study.spec.rate_per_s * (1 + study.size_sweep.len()) as f64 + study.rate_sweep.iter().sum::<f64>();
+    // The size and law sweeps run whole studies at the main rate.
+    let at_main = 1 + study.size_sweep.len() + laws;
+    let rates: f64 = study.spec.rate_per_s * at_main as f64 + study.rate_sweep.iter().sum::<f64>();
     let lumps = rates * study.spec.duration * study.streams as f64 * conditions as f64;
     if lumps > limits::MAX_STREAM_LUMPS {
         return Err(other(
-            "stream.rate_per_s, rate_sweep_per_s, size_sweep, duration_s and streams",
+            "stream.rate_per_s, rate_sweep_per_s, size_sweep, law_sweep, duration_s and streams",
             format!(
-                "expect {lumps:.0} lumps over every stream, rate, size law and support set, above the budget of {:.0}",
+                "expect {lumps:.0} lumps over every stream, rate, size law, contact law and support set, above the budget of {:.0}",
                 limits::MAX_STREAM_LUMPS
             ),
         ));

@@ -47,7 +47,7 @@ pub(super) fn condition(
     let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     let seed = study.spec.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    let runs = 1 + study.rate_sweep.len() + study.size_sweep.len();
+    let runs = 1 + study.rate_sweep.len() + study.size_sweep.len() + scene.stream_law_sweep.len();
     progress.start(study.streams * runs, &format!("{}: streams", set.name));
     let w = window_set(study, seed);
     let main = simulate(&instrument, ensemble, study, study.spec.rate_per_s, progress)?;
@@ -78,11 +78,7 @@ pub(super) fn condition(
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
         others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
     }
-    for &scale in &study.size_sweep {
-        let sims = simulate(&instrument, &sized(ensemble, scale), study, study.spec.rate_per_s, progress)?;
-        let (rec, r) = record(&instrument, &sims, 1.0);
-        others.push((format!("radii x {}", compact(scale)), features(&rec, r, &w.windows, study)));
-    }
+    others.extend(other_lumps(scene, (ensemble, study), (&model, &instrument, &w), progress)?);
     progress.finish();
     let names: Vec<String> = infos.iter().map(channel_name).collect();
     let signal = study.write_signal.then(|| RecordedSignal {
@@ -135,6 +131,31 @@ fn detector(
     let timing = (study.window, study.hop, rate);
     Detector::fit(rows, &w.labels, timing, channels, study.alarm_probability, provenance)
         .map_err(|e| Failure::from(e.to_string()))
+}
+
+/// The size and law sweeps: the main run's streams with every lump's radius scaled, and
+/// struck under each other contact law (the same plate, chain and lumps; only the contact's
+/// force law differs), each with its window features, for the transfer.
+fn other_lumps(
+    scene: &Scene,
+    (ensemble, study): (&identify::Study, &StreamStudy),
+    (model, instrument, w): (&ReducedModel, &Instrument<'_>, &Windows),
+    progress: &dyn Progress,
+) -> Result<Vec<Condition>, Failure> {
+    let mut out = Vec::new();
+    for &scale in &study.size_sweep {
+        let sims = simulate(instrument, &sized(ensemble, scale), study, study.spec.rate_per_s, progress)?;
+        let (rec, r) = record(instrument, &sims, 1.0);
+        out.push((format!("radii x {}", compact(scale)), features(&rec, r, &w.windows, study)));
+    }
+    for &law in &scene.stream_law_sweep {
+        let with_law = Scene { contact_law: law, ..scene.clone() };
+        let striking = Instrument::new(model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), &with_law)?;
+        let sims = simulate(&striking, ensemble, study, study.spec.rate_per_s, progress)?;
+        let (rec, r) = record(&striking, &sims, 1.0);
+        out.push((format!("{} contact law", law.key()), features(&rec, r, &w.windows, study)));
+    }
+    Ok(out)
 }
 
 /// `ensemble` with every family's radius law that of R·`scale` ([`identify::distribution::Distribution::scaled`]):
