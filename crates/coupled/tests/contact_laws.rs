@@ -143,3 +143,33 @@ fn on_the_papers_plate_plastic_flow_caps_the_force_and_dissipates() {
         prev = Some((t.3, t.4));
     }
 }
+
+/// A yielded lump's contact opens again only at its permanent set δ_p, so the stopping rule
+/// measures the sphere's reach from δ_p: the run on the paper's plate (Con 1, the centre,
+/// coal under Thornton's law at 2 m/s, about 200 times its yield velocity) stops once the
+/// sphere is beyond the free plate's reach W of δ_p. The proof is checked against the same
+/// impact followed with no stopping rule for 30 Hertz times: the same contacts, to the bit,
+/// and none after. The rebounding sphere flies back far less than δ_p before the stop: a rule
+/// measuring from δ = 0 would wait until it had flown back δ_p + W.
+#[test]
+fn a_yielded_lump_has_left_once_beyond_the_plates_reach_of_its_permanent_set() {
+    use coupled::transient::{simulate_with, PlateFacts};
+    let p = plate();
+    let case = TransientCase::new(&p, TransientSettings::default()).unwrap();
+    let set = SupportSet::new("Con 1", Supports::con1());
+    let (x, z) = (p.length() / 2.0, p.width() / 2.0);
+    let s = thornton(2.0);
+    let stopped = case.run(&set, &s, x, z).unwrap();
+    let left = stopped.left_at.expect("the rule stops the run");
+    let last = *stopped.contacts.last().unwrap();
+    let set_p = s.permanent_set(stopped.compression_max);
+    let flown = -stopped.final_velocity * (left - (last.start + last.duration));
+    assert!(set_p > 0.0 && flown < 0.5 * set_p, "flew back {flown:e} m before the stop, δ_p = {set_p:e} m");
+    let dt = s.hertz_time() / case.settings().steps_per_contact;
+    let mut nm = plate_fem::dynamics::Newmark::damped(case.model(), set.supports, dt, (x, z), None).unwrap();
+    let facts = PlateFacts { follow_unbounded: true, ..PlateFacts::default() };
+    let followed = simulate_with(&s, Some(&mut nm), facts, dt, 30.0 * s.hertz_time());
+    assert!(followed.left_at.is_none() && followed.steps_total > stopped.steps_total);
+    assert_eq!(followed.contacts, stopped.contacts);
+    assert!(followed.unfinished_contact.is_none());
+}
