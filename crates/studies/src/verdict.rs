@@ -68,6 +68,21 @@ impl From<bool> for Verdict {
     }
 }
 
+/// Values closer than this, relative to the larger extreme, count as equal in
+/// [`extreme_indices`]: mirror points of a symmetric plate agree to rounding (1e-13 on the
+/// paper's), which would otherwise decide between them.
+pub const TIE: f64 = 1e-9;
+
+/// The first index of the least and of the greatest of `values`, values within [`TIE`] of an
+/// extreme counting as equal to it; None when empty.
+pub fn extreme_indices(values: &[f64]) -> Option<(usize, usize)> {
+    let lowest = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let highest = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let tie = TIE * lowest.abs().max(highest.abs());
+    let first = |at: &dyn Fn(f64) -> bool| values.iter().position(|&v| at(v));
+    Some((first(&|v| v <= lowest + tie)?, first(&|v| v >= highest - tie)?))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -51,14 +51,12 @@ impl<'a> Line<'a> {
         Ok(yield_velocity(body, &imp, self.compliance(plate, c, x)?.total(), d))
     }
 
-    /// Where along the line `f` is least and greatest, in units of L, and its values there.
+    /// Where along the line `f` is least and greatest, in units of L, and its values there:
+    /// the first of values equal to rounding ([`crate::verdict::extreme_indices`]).
     pub fn extremes(&self, f: impl Fn(f64) -> Result<f64, Failure>) -> Result<Extremes, Failure> {
         let vals: Vec<f64> = self.xs.iter().map(|&x| f(x)).collect::<Result<_, _>>()?;
         let l = self.scene.plate.length();
-        let (imin, imax) = vals
-            .iter()
-            .enumerate()
-            .fold((0, 0), |(a, b), (i, v)| (if *v < vals[a] { i } else { a }, if *v > vals[b] { i } else { b }));
+        let (imin, imax) = crate::verdict::extreme_indices(&vals).ok_or("a line without points")?;
         Ok((self.xs[imin] / l, vals[imin], self.xs[imax] / l, vals[imax]))
     }
 }

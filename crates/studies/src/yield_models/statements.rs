@@ -402,14 +402,11 @@ impl Facts<'_> {
 
 /// The extremes (x_min, v_min, x_max, v_max) of a curve.
 fn extremes(points: &[(f64, f64)]) -> (f64, f64, f64, f64) {
-    let lowest = points.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-    let highest = points.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
-    // Mirror points of a symmetric plate agree to rounding (1e-13 here), which would decide
-    // between them; values within TIE of the extreme count as equal and the first is named.
-    const TIE: f64 = 1e-9;
-    let tie = TIE * lowest.abs().max(highest.abs());
-    let first = |at: &dyn Fn(f64) -> bool| points.iter().find(|p| at(p.1)).map_or(f64::NAN, |p| p.0);
-    (first(&|v| v <= lowest + tie), lowest, first(&|v| v >= highest - tie), highest)
+    let values: Vec<f64> = points.iter().map(|p| p.1).collect();
+    match crate::verdict::extreme_indices(&values) {
+        Some((lo, hi)) => (points[lo].0, points[lo].1, points[hi].0, points[hi].1),
+        None => (f64::NAN, f64::INFINITY, f64::NAN, f64::NEG_INFINITY),
+    }
 }
 
 #[cfg(test)]
