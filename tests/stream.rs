@@ -73,6 +73,14 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
         "law_sweep = [\"flores\", \"elastic\"]",
         &["stream.law_sweep[1]", "'elastic' is not a contact law", "\"thornton\""],
     );
+    bad(
+        "write_signal = true",
+        "law_sweep = [\"hertz\", \"hertz\"]",
+        &["stream.law_sweep[1]", "'hertz' is named twice"],
+    );
+    let huge = with_stream(&STREAM.replace("write_signal = true", "size_sweep = [10.0]"))
+        .replace("max = 40.0 }", "max = 2000.0 }");
+    expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
     bad("duration_s = 6.0", "duration_s = 80000.0", &["stream.duration_s", "MB of signal", "budget"]);
     let crowded =

@@ -145,17 +145,8 @@ impl Logistic {
     pub fn fit(rows: &[Vec<f64>], labels: &[bool], scale: &[bool], lambda: f64) -> Result<Self, FitError> {
         let p = check_shape(rows, labels)?;
         let n = rows.len() as f64;
-        let columns: Vec<Column> = (0..p)
-            .map(|j| {
-                let log = scale.get(j).copied().unwrap_or(false) && rows.iter().all(|r| r[j] > 0.0);
-                let t = |v: f64| if log { v.ln() } else { v };
-                let mean = rows.iter().map(|r| t(r[j])).sum::<f64>() / n;
-                let var = rows.iter().map(|r| (t(r[j]) - mean).powi(2)).sum::<f64>() / n;
-                // A spread below rounding of the mean is no spread.
-                let sd = if var.sqrt() > 1e-12 * mean.abs().max(f64::MIN_POSITIVE) { var.sqrt() } else { 0.0 };
-                Column { log, mean, sd }
-            })
-            .collect();
+        let columns: Vec<Column> =
+            (0..p).map(|j| Column::of(rows, j, scale.get(j).copied().unwrap_or(false))).collect();
         // Each row as x = (1, z): the intercept's column first, so that the Hessian's rows
         // are contiguous products.
         let xs: Vec<Vec<f64>> = rows
@@ -182,21 +173,7 @@ impl Logistic {
         let mut iterations = 0;
         for it in 0..MAX_ITERATIONS {
             iterations = it + 1;
-            let mut g = vec![0.0; d];
-            // H is symmetric: its lower triangle is all the solve reads.
-            let mut h = vec![0.0; d * d];
-            for (xi, yi) in xs.iter().zip(&y) {
-                let t = theta[0] + xi[1..].iter().zip(&theta[1..]).map(|(a, b)| a * b).sum::<f64>();
-                let pi = sigmoid(t);
-                let wi = pi * (1.0 - pi);
-                for a in 0..d {
-                    g[a] += (pi - yi) * xi[a];
-                    let wa = wi * xi[a];
-                    for (hb, xb) in h[a * d..=a * d + a].iter_mut().zip(&xi[..=a]) {
-                        *hb += wa * xb;
-                    }
-                }
-            }
+            let (mut g, mut h) = newton_system(&xs, &y, &theta);
             for a in 1..d {
                 g[a] += lambda * theta[a];
                 h[a * d + a] += lambda;
@@ -297,6 +274,43 @@ pub fn cross_validate(
     let n = rows.len();
     let a = correct as f64 / n as f64;
     Ok(CrossValidated { accuracy: a, standard_error: (a * (1.0 - a) / n as f64).sqrt(), n, folds: k })
+}
+
+impl Column {
+    /// Column `j` of `rows`: the logarithm where `scale` and every value is positive, its
+    /// mean and standard deviation (0 where the spread is below rounding of the mean).
+    fn of(rows: &[Vec<f64>], j: usize, scale: bool) -> Self {
+        let n = rows.len() as f64;
+        let log = scale && rows.iter().all(|r| r[j] > 0.0);
+        let t = |v: f64| if log { v.ln() } else { v };
+        let mean = rows.iter().map(|r| t(r[j])).sum::<f64>() / n;
+        let var = rows.iter().map(|r| (t(r[j]) - mean).powi(2)).sum::<f64>() / n;
+        // A spread below rounding of the mean is no spread.
+        let sd = if var.sqrt() > 1e-12 * mean.abs().max(f64::MIN_POSITIVE) { var.sqrt() } else { 0.0 };
+        Column { log, mean, sd }
+    }
+}
+
+/// The gradient Σ(pᵢ - yᵢ)xᵢ and the lower triangle of the Hessian Σpᵢ(1 - pᵢ)xᵢxᵢᵀ of the
+/// negative log-likelihood at `theta`, for rows x = (1, z) (the penalty is the caller's).
+fn newton_system(xs: &[Vec<f64>], y: &[f64], theta: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let d = theta.len();
+    let mut g = vec![0.0; d];
+    // H is symmetric: its lower triangle is all the solve reads.
+    let mut h = vec![0.0; d * d];
+    for (xi, yi) in xs.iter().zip(y) {
+        let t = theta[0] + xi[1..].iter().zip(&theta[1..]).map(|(a, b)| a * b).sum::<f64>();
+        let pi = sigmoid(t);
+        let wi = pi * (1.0 - pi);
+        for a in 0..d {
+            g[a] += (pi - yi) * xi[a];
+            let wa = wi * xi[a];
+            for (hb, xb) in h[a * d..=a * d + a].iter_mut().zip(&xi[..=a]) {
+                *hb += wa * xb;
+            }
+        }
+    }
+    (g, h)
 }
 
 #[cfg(test)]

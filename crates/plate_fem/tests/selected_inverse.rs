@@ -81,8 +81,8 @@ fn element_blocks_equal_the_dense_inverse() {
     }
 }
 
-/// A held DOF reads as zero, as a solve leaves it, though the factor keeps it with a unit
-/// diagonal.
+/// A held DOF reads as zero, as a solve leaves it, though the factor keeps it with its
+/// assembled diagonal.
 #[test]
 fn held_dofs_read_as_zero() {
     let m = model(4, 3);

@@ -74,11 +74,12 @@ impl From<bool> for Verdict {
 pub const TIE: f64 = 1e-9;
 
 /// The first index of the least and of the greatest of `values`, values within [`TIE`] of an
-/// extreme counting as equal to it; None when empty.
+/// extreme (relative to the largest finite magnitude) counting as equal to it; NaN is never an
+/// extreme, an infinity only ties with itself; None when no value is a number.
 pub fn extreme_indices(values: &[f64]) -> Option<(usize, usize)> {
     let lowest = values.iter().copied().fold(f64::INFINITY, f64::min);
     let highest = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let tie = TIE * lowest.abs().max(highest.abs());
+    let tie = TIE * values.iter().filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
     let first = |at: &dyn Fn(f64) -> bool| values.iter().position(|&v| at(v));
     Some((first(&|v| v <= lowest + tie)?, first(&|v| v >= highest - tie)?))
 }

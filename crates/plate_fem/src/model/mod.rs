@@ -10,8 +10,8 @@
 //! numeric factorization ([`Factorization`]), and each impact point one solve: by
 //! reciprocity C(p) = N(p)ᵀ K⁻¹ N(p), where N(p) are the shape functions at p. Many points
 //! are cheaper from the [`SelectedInverse`]: K⁻¹ on the factor's pattern, which holds every
-//! element's 16 x 16 block, for about one more factorization; C(p) is then a quadratic form
-//! on one block.
+//! element's 16 x 16 block, for a small multiple of one factorization; C(p) is then a
+//! quadratic form on one block.
 
 use crate::assembly;
 use crate::element::{self, Mat16, Vec16};
@@ -30,7 +30,7 @@ pub use factorization::{
     mass_stiffness_pass, symmetric_upper_apply, symmetric_upper_apply_into, symmetric_upper_quadratic, CornerResponse,
     Factorization, PointResponse,
 };
-pub use selected_inverse::SelectedInverse;
+pub use selected_inverse::{SelectedInverse, SELECTED_AGREEMENT};
 
 /// The plate: geometry and an isotropic material (SI units).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -5,6 +5,7 @@ use crate::limits;
 use crate::raw::*;
 use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
 use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
+use coupled::reduced::SignalSettings;
 use coupled::scene::{Analysis, Points, Scene};
 use coupled::transient::LawKind;
 use coupled::SupportSet;
@@ -133,6 +134,44 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         return Err(other("conditions, points, bodies and velocities", why));
     }
     let signals = validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?;
+    let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?;
+    let (measurement, stream, stream_law_sweep) =
+        chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
+    Ok(Scene {
+        velocities,
+        signals,
+        measurement,
+        stream,
+        stream_law_sweep,
+        solver: validate_solver(&raw.solver)?,
+        ensemble,
+        name: raw.name,
+        description: raw.description,
+        plate,
+        bodies,
+        restitution,
+        contact_law,
+        gravity,
+        plate_damping,
+        conditions,
+        points,
+        transient_points,
+        analyses,
+        transient_discretisation: coupled::transient::Discretisation::default(),
+        main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
+    })
+}
+
+/// `[measurement]` and `[stream]`, both read only by the identification: the chain, the
+/// stream study and its law sweep, the size sweep's radii checked against `ensemble`'s laws.
+#[allow(clippy::type_complexity)]
+fn chain_and_stream(
+    raw: &RawScene,
+    analyses: &[Analysis],
+    signals: &SignalSettings,
+    conditions: usize,
+    ensemble: Option<&identify::Study>,
+) -> Result<(Option<identify::measurement::ChainSpec>, Option<identify::stream::StreamStudy>, Vec<LawKind>), Invalid> {
     let measurement = match (&raw.measurement, analyses.contains(&Analysis::Identify)) {
         (None, _) => None,
         (Some(m), true) => {
@@ -151,11 +190,11 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
             "\"chain\" keeps the modes the measurement chain needs; the scene has no [measurement]",
         ));
     }
-    let (stream, stream_law_sweep) = match (&raw.stream, analyses.contains(&Analysis::Identify)) {
+    let (stream, laws) = match (&raw.stream, analyses.contains(&Analysis::Identify)) {
         (None, _) => (None, Vec::new()),
         (Some(s), true) => {
             let adc = measurement.as_ref().map_or(signals.rate_hz, |m| m.rate_hz);
-            let (study, laws) = stream::validate_stream(s, &signals, adc, measurement.is_some(), conditions.len())?;
+            let (study, laws) = stream::validate_stream(s, signals, adc, measurement.is_some(), conditions)?;
             (Some(study), laws)
         }
         (Some(_), false) => {
@@ -165,29 +204,10 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
             ))
         }
     };
-    Ok(Scene {
-        velocities,
-        signals,
-        measurement,
-        stream,
-        stream_law_sweep,
-        solver: validate_solver(&raw.solver)?,
-        ensemble: validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?,
-        name: raw.name,
-        description: raw.description,
-        plate,
-        bodies,
-        restitution,
-        contact_law,
-        gravity,
-        plate_damping,
-        conditions,
-        points,
-        transient_points,
-        analyses,
-        transient_discretisation: coupled::transient::Discretisation::default(),
-        main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
-    })
+    if let (Some(study), Some(ensemble)) = (&stream, ensemble) {
+        stream::check_size_sweep(study, ensemble)?;
+    }
+    Ok((measurement, stream, laws))
 }
 
 /// `contact_law`: a key of the law registry, or the default law.

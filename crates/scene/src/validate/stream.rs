@@ -120,12 +120,15 @@ pub(crate) fn validate_stream(
     for (i, &s) in raw.size_sweep.iter().enumerate() {
         size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
     }
-    let laws = raw
-        .law_sweep
-        .iter()
-        .enumerate()
-        .map(|(i, k)| super::law_key(&format!("stream.law_sweep[{i}]"), k))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut laws = Vec::new();
+    for (i, k) in raw.law_sweep.iter().enumerate() {
+        let field = format!("stream.law_sweep[{i}]");
+        let law = super::law_key(&field, k)?;
+        if laws.contains(&law) {
+            return Err(other(&field, format!("'{k}' is named twice; name each law once")));
+        }
+        laws.push(law);
+    }
     let spec = StreamSpec {
         rate_per_s: rate,
         duration,
@@ -194,6 +197,30 @@ fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, law
             "stream.blocks",
             format!("{} blocks for {windows} windows; at most one block per window", study.blocks),
         ));
+    }
+    Ok(())
+}
+
+/// Every family's radius law scaled by each of `study`'s size scales stays within the radii a
+/// scene may give ([`limits::RADIUS_MM`]).
+pub(crate) fn check_size_sweep(study: &StreamStudy, ensemble: &identify::Study) -> Result<(), Invalid> {
+    let (lo, hi) = (limits::RADIUS_MM.lo * 1e-3, limits::RADIUS_MM.hi * 1e-3);
+    for (i, &scale) in study.size_sweep.iter().enumerate() {
+        for f in &ensemble.ensemble.families {
+            let Some((a, b)) = f.radius.scaled(scale).bounds() else { continue };
+            if a < lo || b > hi {
+                return Err(other(
+                    format!("stream.size_sweep[{i}]"),
+                    format!(
+                        "{scale} scales family '{}' to radii {} to {} mm, outside the allowed {} mm",
+                        f.name,
+                        a * 1e3,
+                        b * 1e3,
+                        limits::RADIUS_MM
+                    ),
+                ));
+            }
+        }
     }
     Ok(())
 }

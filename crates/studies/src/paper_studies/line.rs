@@ -56,7 +56,7 @@ impl<'a> Line<'a> {
     pub fn extremes(&self, f: impl Fn(f64) -> Result<f64, Failure>) -> Result<Extremes, Failure> {
         let vals: Vec<f64> = self.xs.iter().map(|&x| f(x)).collect::<Result<_, _>>()?;
         let l = self.scene.plate.length();
-        let (imin, imax) = crate::verdict::extreme_indices(&vals).ok_or("a line without points")?;
+        let (imin, imax) = crate::verdict::extreme_indices(&vals).ok_or("no value along the line is a number")?;
         Ok((self.xs[imin] / l, vals[imin], self.xs[imax] / l, vals[imax]))
     }
 }
