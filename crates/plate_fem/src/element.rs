@@ -31,6 +31,12 @@ fn hermite(t: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
     (f, d1, d2)
 }
 
+/// nᵀ B n for an element block `b` (16 x 16, row-major): a point compliance N(p)ᵀ K⁻¹ N(p)
+/// when `b` is K⁻¹'s block and `n` the shape functions at p.
+pub fn quadratic(b: &[f64; 256], n: &Vec16) -> f64 {
+    (0..16).map(|k| n[k] * (0..16).map(|l| b[k * 16 + l] * n[l]).sum::<f64>()).sum()
+}
+
 /// For local DOF k: which 1-D Hermite function along x and along z it uses.
 /// Local node n = (e, f) in the order (0,0), (1,0), (0,1), (1,1); DOFs (w, w_x, w_z, w_xz).
 fn factors(k: usize) -> (usize, usize) {

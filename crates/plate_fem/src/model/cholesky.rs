@@ -22,6 +22,11 @@ use std::sync::Arc;
 pub(crate) struct Symbolic(Arc<SymbolicCholesky<usize>>);
 
 impl Symbolic {
+    /// faer's analysis.
+    pub(crate) fn faer(&self) -> &SymbolicCholesky<usize> {
+        &self.0
+    }
+
     /// Analyses the upper triangle `pattern` (n DOFs, for the error message).
     pub(crate) fn new(pattern: SymbolicSparseColMatRef<'_, usize>, n: usize) -> Result<Self, FemError> {
         let params = CholeskySymbolicParams {
@@ -65,9 +70,9 @@ impl Cholesky {
         Ok(Self { symbolic: symbolic.clone(), values })
     }
 
-    /// The symbolic analysis, with the fill-reducing ordering.
-    pub(crate) fn symbolic(&self) -> &SymbolicCholesky<usize> {
-        &self.symbolic.0
+    /// The symbolic analysis, with the fill-reducing ordering (shared, not copied).
+    pub(crate) fn symbolic(&self) -> &Symbolic {
+        &self.symbolic
     }
 
     /// L's values in the supernodal layout of [`Self::symbolic`].

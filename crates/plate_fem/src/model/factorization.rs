@@ -3,7 +3,7 @@
 
 use super::cholesky::Cholesky;
 use super::Model;
-use super::SelectedInverse;
+use super::{SelectedInverse, SELECTED_AGREEMENT};
 use crate::element::Vec16;
 use crate::supports::{Corner, CornerSupport, EdgeSupport, Supports};
 use crate::FemError;
@@ -217,6 +217,33 @@ impl<'m> Factorization<'m> {
     /// where the blocks by solves cost two triangular solves per DOF.
     pub fn selected_inverse(&self) -> Result<SelectedInverse, FemError> {
         SelectedInverse::new(&self.llt, &self.held)
+    }
+
+    /// The selected inverse's compliance at (x, z) against this factorization's solve there,
+    /// to [`SELECTED_AGREEMENT`] of `scale` or of the solved compliance, whichever is larger
+    /// (a point on a held edge has none); the solve's response.
+    pub fn check_selected_inverse(
+        &self,
+        inverse: &SelectedInverse,
+        (x, z): (f64, f64),
+        scale: f64,
+    ) -> Result<PointResponse, FemError> {
+        let (dofs, n) = self.model.load(x, z)?;
+        let selected = inverse.quadratic(&dofs, &n).ok_or_else(|| {
+            FemError::Modes(
+                "selected inversion: an element's DOF pair is outside the factor's pattern; this is a defect of this crate"
+                    .into(),
+            )
+        })?;
+        let solved = self.respond(x, z)?;
+        let scale = scale.max(solved.compliance.abs());
+        let gap = (selected - solved.compliance).abs() / if scale > 0.0 { scale } else { 1.0 };
+        if gap.is_nan() || gap > SELECTED_AGREEMENT {
+            return Err(FemError::Modes(format!(
+                "selected inversion: the compliance at ({x}, {z}) m differs from a solve's by {gap:e} of the largest, above {SELECTED_AGREEMENT:e}; the support set is conditioned too badly for it"
+            )));
+        }
+        Ok(solved)
     }
 
     /// Whether the compliances of `points` points cost less from the selected inverse than

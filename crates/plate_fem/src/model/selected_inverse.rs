@@ -22,7 +22,7 @@
 //! The pattern holds every pair of DOFs an element couples, so each element's 16 x 16 block
 //! of K⁻¹ is here: a point compliance N(p)ᵀK⁻¹N(p) is a quadratic form on one block.
 
-use super::cholesky::Cholesky;
+use super::cholesky::{Cholesky, Symbolic};
 use crate::element::Vec16;
 use crate::FemError;
 use faer::linalg::matmul::matmul;
@@ -39,7 +39,8 @@ pub const SELECTED_AGREEMENT: f64 = 1e-8;
 /// The entries of K⁻¹ on the pattern of K's supernodal Cholesky factor.
 #[derive(Debug, Clone)]
 pub struct SelectedInverse {
-    cholesky: Cholesky,
+    /// The factor's symbolic analysis (its supernodes and ordering), shared with it.
+    symbolic: Symbolic,
     /// Z in L's supernodal layout: per supernode, its (|S| + |R|) x |S| block, column-major,
     /// with the diagonal block stored whole.
     values: Vec<f64>,
@@ -55,7 +56,7 @@ impl SelectedInverse {
     /// Sweeps Takahashi's equations over the supernodes of `cholesky`, last to first; the
     /// DOFs `held` read as zero.
     pub(crate) fn new(cholesky: &Cholesky, held: &[usize]) -> Result<Self, FemError> {
-        let symbolic = cholesky.symbolic();
+        let symbolic = cholesky.symbolic().faer();
         let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() else {
             return Err(defect("the factor is not supernodal"));
         };
@@ -79,17 +80,23 @@ impl SelectedInverse {
                 *h = true;
             }
         }
-        let mut this =
-            Self { cholesky: cholesky.clone(), values: vec![0.0; s.len_val()], supernode_of, permuted, held: is_held };
+        let mut this = Self {
+            symbolic: cholesky.symbolic().clone(),
+            values: vec![0.0; s.len_val()],
+            supernode_of,
+            permuted,
+            held: is_held,
+        };
         for k in (0..s.n_supernodes()).rev() {
-            this.sweep(s, k)?;
+            this.sweep(s, cholesky.values(), k)?;
         }
         Ok(this)
     }
 
-    /// Z_RS and Z_SS of supernode `k`, from its L blocks and the Z_RR found before.
-    fn sweep(&mut self, s: &SymbolicSupernodalCholesky<usize>, k: usize) -> Result<(), FemError> {
-        let l = block(s, self.cholesky.values(), k);
+    /// Z_RS and Z_SS of supernode `k`, from its L blocks (in `l_values`) and the Z_RR found
+    /// before.
+    fn sweep(&mut self, s: &SymbolicSupernodalCholesky<usize>, l_values: &[f64], k: usize) -> Result<(), FemError> {
+        let l = block(s, l_values, k);
         let ns = l.ncols();
         let pattern = s.supernode(k).pattern();
         let nr = pattern.len();
@@ -184,12 +191,11 @@ impl SelectedInverse {
     /// N ᵀ K⁻¹ N for the values `n` on `dofs` (a point's shape functions: its compliance), or
     /// `None` if a pair is outside L's pattern.
     pub fn quadratic(&self, dofs: &[usize; 16], n: &Vec16) -> Option<f64> {
-        let b = self.block(dofs)?;
-        Some((0..16).map(|k| n[k] * (0..16).map(|l| b[k * 16 + l] * n[l]).sum::<f64>()).sum())
+        Some(crate::element::quadratic(&self.block(dofs)?, n))
     }
 
     fn supernodal(&self) -> &SymbolicSupernodalCholesky<usize> {
-        match self.cholesky.symbolic().raw() {
+        match self.symbolic.faer().raw() {
             SymbolicCholeskyRaw::Supernodal(s) => s,
             // `new` refuses any other factor.
             SymbolicCholeskyRaw::Simplicial(_) => unreachable!("a selected inverse is built on a supernodal factor"),
@@ -203,7 +209,7 @@ impl SelectedInverse {
 /// entry of L and way. Their ratio is the number
 /// of points beyond which the selected inverse is the cheaper way to their compliances.
 pub(crate) fn flops(cholesky: &Cholesky) -> Option<(f64, f64)> {
-    let SymbolicCholeskyRaw::Supernodal(s) = cholesky.symbolic().raw() else { return None };
+    let SymbolicCholeskyRaw::Supernodal(s) = cholesky.symbolic().faer().raw() else { return None };
     let mut sweep = 0.0;
     for k in 0..s.n_supernodes() {
         let ns = (s.supernode_end()[k] - s.supernode_begin()[k]) as f64;

@@ -71,9 +71,7 @@ pub(super) fn condition(
     let (noise_sweep, mut others) = noise_sweep(&instrument, study, &main, &w, (&recorded, &every))?;
     let mut rate_sweep = Vec::new();
     for &rate_per_s in &study.rate_sweep {
-        let sims = simulate(&instrument, ensemble, study, rate_per_s, progress)?;
-        let (rec, r) = record(&instrument, &sims, 1.0);
-        let rows = features(&rec, r, &w.windows, study);
+        let (sims, rows) = windowed(&instrument, (ensemble, study, rate_per_s), &w, progress)?;
         let score = w.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
         others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
@@ -144,18 +142,30 @@ fn other_lumps(
 ) -> Result<Vec<Condition>, Failure> {
     let mut out = Vec::new();
     for &scale in &study.size_sweep {
-        let sims = simulate(instrument, &sized(ensemble, scale), study, study.spec.rate_per_s, progress)?;
-        let (rec, r) = record(instrument, &sims, 1.0);
-        out.push((format!("radii x {}", compact(scale)), features(&rec, r, &w.windows, study)));
+        let rows = windowed(instrument, (&sized(ensemble, scale), study, study.spec.rate_per_s), w, progress)?.1;
+        out.push((format!("radii x {}", compact(scale)), rows));
     }
     for &law in &scene.stream_law_sweep {
         let with_law = Scene { contact_law: law, ..scene.clone() };
         let striking = Instrument::new(model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), &with_law)?;
-        let sims = simulate(&striking, ensemble, study, study.spec.rate_per_s, progress)?;
-        let (rec, r) = record(&striking, &sims, 1.0);
-        out.push((format!("{} contact law", law.key()), features(&rec, r, &w.windows, study)));
+        let rows = windowed(&striking, (ensemble, study, study.spec.rate_per_s), w, progress)?.1;
+        out.push((format!("{} contact law", law.key()), rows));
     }
     Ok(out)
+}
+
+/// The study's streams of `ensemble` at `rate_per_s`, recorded through `instrument` as it
+/// stands, and their window features.
+fn windowed(
+    instrument: &Instrument<'_>,
+    (ensemble, study, rate_per_s): (&identify::Study, &StreamStudy, f64),
+    w: &Windows,
+    progress: &dyn Progress,
+) -> Result<(Vec<Simulated>, Vec<Vec<f64>>), Failure> {
+    let sims = simulate(instrument, ensemble, study, rate_per_s, progress)?;
+    let (rec, r) = record(instrument, &sims, 1.0);
+    let rows = features(&rec, r, &w.windows, study);
+    Ok((sims, rows))
 }
 
 /// `ensemble` with every family's radius law that of R·`scale` ([`identify::distribution::Distribution::scaled`]):
