@@ -180,6 +180,12 @@ impl<'a> Instrument<'a> {
         self.model_samples
     }
 
+    /// The feature extractor of its recorded window: the chain's samples where it has one,
+    /// else the model's.
+    pub fn extractor(&self) -> &Extractor {
+        &self.extractor
+    }
+
     /// The measurement chain, if any.
     pub fn chain(&self) -> Option<&Chain> {
         self.chain.as_ref()

@@ -65,6 +65,10 @@ analyses! {
     PaperStudies => "paper-studies",
     /// Coal-gangue identification over the scene's random-impact ensemble (`[ensemble]`).
     Identify => "identify",
+    /// Recorded drop tests against the model (`impact drops --signal`): the scene gives the
+    /// plate, the support sets, the sensors and the measurement chain; the drops come with
+    /// the recording.
+    Drops => "drops",
 }
 
 /// Impact points, (x, z) in m: x from the left end in [0, L], z from the near edge in [0, B].

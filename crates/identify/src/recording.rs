@@ -18,6 +18,21 @@
 //! gangue-rich, s from the first sample, for the operating answer. Other keys (sensor
 //! positions, units, the run's truth) are kept for the reader and not needed here.
 //!
+//! **Drops** (optional): a drop-test recording names the support set it was made on
+//! (`"condition"`, a condition of the scene it is compared with) and lists its drops, each
+//! with the instant its lump touched the plate and what was dropped where:
+//! ```json
+//! "condition": "Con 1",
+//! "drops": [ { "touch_s": 0.105, "point_mm": [229.2, 180.0], "radius_mm": 25.0,
+//!              "density_kg_m3": 2400.0, "youngs_modulus_gpa": 16.0, "poisson_ratio": 0.28,
+//!              "cohesion_mpa": 37.68, "friction_angle_deg": 37.0, "fall_height_m": 0.45,
+//!              "class": "gangue", "force_max_kn": 12.3, "contact_time_ms": 0.61 } ]
+//! ```
+//! The speed is `fall_height_m` (free fall from rest) or `velocity_m_per_s`, exactly one;
+//! `class`, and the impact force's peak and duration where an instrumented lump or a load
+//! cell measured them (`force_max_kn`, `contact_time_ms`), are optional. The scene crate
+//! checks every value against its range; this module reads them as written.
+//!
 //! **The CSV**: lines starting with `#` are comments, the first other line is the header
 //! (column keys), and every later line holds one sample of every column.
 
@@ -43,6 +58,49 @@ pub struct Sidecar {
     /// When the stream turned gangue-rich, s from the first sample.
     #[serde(default)]
     pub onset_s: Option<f64>,
+    /// The support set a drop test was recorded on: a condition of the scene.
+    #[serde(default)]
+    pub condition: Option<String>,
+    /// The drops, in the sidecar's order (module docs).
+    #[serde(skip)]
+    pub drops: Vec<DropRecord>,
+}
+
+/// One drop as the sidecar states it, in the units its keys name (module docs).
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DropRecord {
+    /// When the lump touched the plate, s from the first sample.
+    pub touch_s: f64,
+    /// Impact point (x, z), mm.
+    pub point_mm: [f64; 2],
+    /// Lump radius, mm.
+    pub radius_mm: f64,
+    /// Lump density, kg/m³.
+    pub density_kg_m3: f64,
+    /// Lump Young's modulus, GPa.
+    pub youngs_modulus_gpa: f64,
+    /// Lump Poisson ratio.
+    pub poisson_ratio: f64,
+    /// Lump cohesion, MPa.
+    pub cohesion_mpa: f64,
+    /// Lump friction angle, degrees.
+    pub friction_angle_deg: f64,
+    /// Fall height from rest, m.
+    #[serde(default)]
+    pub fall_height_m: Option<f64>,
+    /// Impact velocity, m/s.
+    #[serde(default)]
+    pub velocity_m_per_s: Option<f64>,
+    /// "coal" or "gangue".
+    #[serde(default)]
+    pub class: Option<String>,
+    /// Measured peak impact force, kN.
+    #[serde(default)]
+    pub force_max_kn: Option<f64>,
+    /// Measured duration of the first contact, ms.
+    #[serde(default)]
+    pub contact_time_ms: Option<f64>,
 }
 
 /// A recording: channels of samples at one rate.
@@ -56,6 +114,10 @@ pub struct Recording {
     pub channels: Vec<Vec<f64>>,
     /// When the stream turned gangue-rich, s from the first sample.
     pub onset_s: Option<f64>,
+    /// The support set a drop test was recorded on.
+    pub condition: Option<String>,
+    /// The drops it holds, as written.
+    pub drops: Vec<DropRecord>,
 }
 
 /// A sidecar or CSV that cannot be read, with where.
@@ -84,7 +146,8 @@ impl Sidecar {
                 return Err(error(origin, format!("format is {found}, this program reads \"{FORMAT}\"")));
             }
         }
-        let s: Sidecar = serde_json::from_value(value).map_err(|e| error(origin, e.to_string()))?;
+        let mut s: Sidecar = serde_json::from_value(value.clone()).map_err(|e| error(origin, e.to_string()))?;
+        s.drops = drops(&value, origin)?;
         if !(s.rate_hz.is_finite() && s.rate_hz > 0.0) {
             return Err(error(origin, format!("rate_hz = {}, allowed (0, ∞) Hz", s.rate_hz)));
         }
@@ -144,6 +207,26 @@ impl Sidecar {
             return Err(error(origin, "no samples after the header".into()));
         }
         let names = if self.channels.is_empty() { self.columns.clone() } else { self.channels.clone() };
-        Ok(Recording { rate_hz: self.rate_hz, names, channels, onset_s: self.onset_s })
+        Ok(Recording {
+            rate_hz: self.rate_hz,
+            names,
+            channels,
+            onset_s: self.onset_s,
+            condition: self.condition.clone(),
+            drops: self.drops.clone(),
+        })
+    }
+}
+
+/// The sidecar's `drops`, each read on its own so that an error names the drop.
+fn drops(value: &serde_json::Value, origin: &str) -> Result<Vec<DropRecord>, RecordingError> {
+    match value.get("drops") {
+        None | Some(serde_json::Value::Null) => Ok(Vec::new()),
+        Some(serde_json::Value::Array(list)) => list
+            .iter()
+            .enumerate()
+            .map(|(i, d)| serde_json::from_value(d.clone()).map_err(|e| error(origin, format!("drops[{i}]: {e}"))))
+            .collect(),
+        Some(other) => Err(error(origin, format!("drops is {other}, expected a list of drops"))),
     }
 }

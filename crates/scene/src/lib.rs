@@ -11,6 +11,7 @@ use raw::*;
 use std::path::Path;
 use validate::{check_name, count, other, pair, validate, Invalid};
 
+pub mod drops;
 mod ensemble;
 pub mod limits;
 mod raw;

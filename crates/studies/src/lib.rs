@@ -40,6 +40,7 @@
 pub mod channel;
 pub mod columns;
 pub mod comparison;
+pub mod drops;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;

@@ -100,9 +100,10 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let plate = validate_plate(&raw.plate)?;
     let (length_mm, width_mm) = (raw.plate.length_mm, raw.plate.width_mm);
     let analyses = validate_analyses(&raw.analyses)?;
-    // Every analysis but identification strikes the scene's bodies at its points; the
-    // identification study draws its own from [ensemble].
-    let needs_bodies = analyses.iter().any(|a| *a != Analysis::Identify);
+    // Every analysis but identification and the drops strikes the scene's bodies at its
+    // points; the identification study draws its own from [ensemble], the drops come with
+    // their recording.
+    let needs_bodies = analyses.iter().any(|a| !matches!(a, Analysis::Identify | Analysis::Drops));
     if raw.bodies.is_empty() && needs_bodies {
         return Err(other("bodies", "at least one [[bodies]] entry is required"));
     }
@@ -172,7 +173,8 @@ fn chain_and_stream(
     conditions: usize,
     ensemble: Option<&identify::Study>,
 ) -> Result<(Option<identify::measurement::ChainSpec>, Option<identify::stream::StreamStudy>, Vec<LawKind>), Invalid> {
-    let measurement = match (&raw.measurement, analyses.contains(&Analysis::Identify)) {
+    let reads_chain = analyses.iter().any(|a| matches!(a, Analysis::Identify | Analysis::Drops));
+    let measurement = match (&raw.measurement, reads_chain) {
         (None, _) => None,
         (Some(m), true) => {
             Some(measurement::validate_measurement(m, signals.rate_hz, signals.window * signals.rate_hz)?)
@@ -180,7 +182,7 @@ fn chain_and_stream(
         (Some(_), false) => {
             return Err(other(
                 "measurement",
-                "is read only by the \"identify\" analysis; add \"identify\" to analyses or remove the table",
+                "is read only by the \"identify\" and \"drops\" analyses; add one to analyses or remove the table",
             ))
         }
     };

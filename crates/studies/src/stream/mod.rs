@@ -232,6 +232,6 @@ pub fn check(scene: &Scene) -> Result<(), Failure> {
 }
 
 /// "acceleration at (229.2, 180) mm (m/s^2)".
-fn channel_name(info: &ChannelInfo) -> String {
+pub(crate) fn channel_name(info: &ChannelInfo) -> String {
     format!("{} ({})", info.label(), info.unit)
 }
