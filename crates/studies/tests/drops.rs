@@ -158,9 +158,12 @@ impl Target for Sensing<'_, '_> {
     }
 }
 
+/// What the full model made of a drop: the sensors' accelerations, P_max and t_c.
+type FullRun = (Vec<Vec<f64>>, f64, f64);
+
 /// The acceleration at every sensor at the model's rate from the touch over the window, by
 /// the full model; and the first contact's peak force and duration.
-fn full_model(scene: &Scene, model: &plate_fem::Model, d: &Made) -> (Vec<Vec<f64>>, f64, f64) {
+fn full_model(scene: &Scene, model: &plate_fem::Model, d: &Made) -> FullRun {
     let sphere = Sphere::new(
         "lump",
         d.density,
@@ -207,7 +210,7 @@ fn record(scene: &Scene, stated: &[f64], dir: &std::path::Path) -> std::path::Pa
     let mut rng = chain.stream(3 << 44);
     let mut columns = vec![Vec::new(); scene.signals.sensors.len()];
     let mut meta = Vec::new();
-    static MADE: OnceLock<Vec<(Vec<Vec<f64>>, f64, f64)>> = OnceLock::new();
+    static MADE: OnceLock<Vec<FullRun>> = OnceLock::new();
     let made = MADE.get_or_init(|| DROPS.iter().map(|d| full_model(scene, &model, d)).collect());
     for ((d, h), (accelerations, force, contact_time)) in DROPS.iter().zip(stated).zip(made) {
         let touch = (columns[0].len() + PRE) as f64 / 1e4;
@@ -224,8 +227,8 @@ fn record(scene: &Scene, stated: &[f64], dir: &std::path::Path) -> std::path::Pa
         }));
     }
     let mut csv = String::from("t_s,a1,a2\n");
-    for k in 0..columns[0].len() {
-        csv += &format!("{},{},{}\n", k as f64 / 1e4, columns[0][k], columns[1][k]);
+    for (k, (a1, a2)) in columns[0].iter().zip(&columns[1]).enumerate() {
+        csv += &format!("{},{a1},{a2}\n", k as f64 / 1e4);
     }
     std::fs::write(dir.join("signal.csv"), csv).unwrap();
     let sidecar = serde_json::json!({
