@@ -252,6 +252,29 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Compare recorded drop tests with the model: every drop a recording's sidecar lists
+    /// (touch time, point, lump, height; docs/guide.md) thrown on the scene's reduced model of
+    /// the same support set through its measurement chain, each channel's peak and spectral
+    /// centroid, and P_max and t_c where measured, beside the prediction and its error bar,
+    /// into DIR/drops.csv and DIR/drops.json (default impact-out/<scene name>-drops).
+    Drops {
+        /// Scene file with "drops" among its analyses: the plate, support sets, sensors and
+        /// measurement chain of the rig.
+        #[arg(long, value_name = "FILE")]
+        scene: PathBuf,
+        /// The recording's sidecar (JSON, format impact-signal/1, with "drops"); its CSV is
+        /// read from the sidecar's folder.
+        #[arg(long, value_name = "FILE")]
+        signal: PathBuf,
+        /// Directory for the files, written whole or not at all (an existing one only if empty or
+        /// an earlier output of impact); default
+        /// impact-out/<scene name>-<command>.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Print the results as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Reproduce the paper's Tables 2-12 and Figures 8-19 into DIR.
     Paper {
         /// Directory for the files, written whole or not at all (an existing one only if empty or

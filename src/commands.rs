@@ -44,6 +44,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
         Command::Identify { scene, out, json, no_features_csv } => identify(&scene, out, json, no_features_csv),
         Command::Stream { scene, out, json } => stream(&scene, out, json),
         Command::Detect { detector, signal, out, json } => detect(&detector, &signal, out, json),
+        Command::Drops { scene, signal, out, json } => drops(&scene, &signal, out, json),
         Command::Report { out, json } => {
             let mut target = OutputDir::prepare(&out)?;
             let scene = Scene::default_scene();
@@ -161,6 +162,32 @@ fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> R
     out(&format!("{}\n", impact::report::detect::summary_table(&data).to_text()))
 }
 
+/// `impact drops`: a drop-test recording against the scene's model, the scene and every
+/// file read and checked before the output folder is prepared.
+fn drops(path: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
+    let scene = Scene::load(path)?;
+    if !scene.analyses.contains(&scene::Analysis::Drops) {
+        return Err(format!(
+            "scene {}: impact drops compares recordings with the rig a scene describes; add \"drops\" to its analyses",
+            path.display()
+        )
+        .into());
+    }
+    let origin = signal.display().to_string();
+    let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
+    let csv = sidecar.data_path(signal);
+    let recording = sidecar.read(&read_text(&csv, "the recording's data")?, &csv.display().to_string())?;
+    studies::drops::check(&scene, &recording, &origin)?;
+    let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "drops")))?;
+    let (mut artifacts, data) = impact::report::drops::drops(&scene, &recording, &origin, &Terminal::new())?;
+    Provenance::of(&scene).stamp(&mut artifacts);
+    commit(target, &artifacts)?;
+    if json {
+        return print_json(&scene, &data);
+    }
+    out(&format!("{}\n", impact::report::drops::summary_table(&data).to_text()))
+}
+
 /// `impact fem-bench`: the plate FE compliance map timed on the mesh that reaches the
 /// tolerance.
 fn fem_bench(args: &FemBenchArgs) -> Result<(), Failure> {
@@ -193,7 +220,7 @@ fn load_bodies(path: &Option<PathBuf>, command: &str) -> Result<Scene, Failure> 
     let scene = load(path)?;
     if scene.bodies.is_empty() || scene.points.is_empty() {
         return Err(format!(
-            "scene {}: impact {command} strikes the scene's [[bodies]] at its [points], and it has none (a scene whose only analysis is \"identify\" is for impact identify)",
+            "scene {}: impact {command} strikes the scene's [[bodies]] at its [points], and it has none (a scene of only \"identify\" or \"drops\" is for impact identify, stream or drops)",
             scene.name
         )
         .into());

@@ -9,6 +9,7 @@ pub mod provenance;
 
 pub mod comparison;
 pub mod detect;
+pub mod drops;
 pub mod fem_bench;
 pub mod fem_verification;
 pub mod field;

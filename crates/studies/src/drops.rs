@@ -115,6 +115,18 @@ pub struct Compared {
     pub disagrees: bool,
 }
 
+/// Whether `recording` (read from `origin`) can be compared with `scene`, before any model
+/// is built: it lists drops, names one of the scene's support sets (or the scene has one),
+/// and every drop is in range.
+pub fn check(scene: &Scene, recording: &Recording, origin: &str) -> Result<(), Failure> {
+    if recording.drops.is_empty() {
+        return Err(format!("{origin}: lists no drops (the sidecar's \"drops\", docs/guide.md)").into());
+    }
+    scene::drops::condition(scene, recording.condition.as_deref(), origin)?;
+    scene::drops::drops(scene, &recording.drops, origin)?;
+    Ok(())
+}
+
 /// The comparison of `recording` (read from `origin`) with `scene`'s model.
 pub fn compute(
     scene: &Scene,
@@ -122,9 +134,7 @@ pub fn compute(
     origin: &str,
     progress: &dyn Progress,
 ) -> Result<DropsData, Failure> {
-    if recording.drops.is_empty() {
-        return Err(format!("{origin}: lists no drops (the sidecar's \"drops\", docs/guide.md)").into());
-    }
+    check(scene, recording, origin)?;
     let set_index = scene::drops::condition(scene, recording.condition.as_deref(), origin)?;
     let drops = scene::drops::drops(scene, &recording.drops, origin)?;
     let set = &scene.conditions[set_index];

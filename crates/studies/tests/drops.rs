@@ -14,56 +14,14 @@ use identify::measurement::{Chain, Measurand};
 use identify::recording::Sidecar;
 use plate_fem::dynamics::{Newmark, PlateEnergy};
 use scene::{Scene, SceneSource};
-use studies::drops::compute;
 use std::sync::OnceLock;
+use studies::drops::compute;
 use studies::progress::Silent;
 
-/// The paper's plate on Con 1 with two accelerometers, Rayleigh damping shared by both
-/// models, and a chain with a 12 kHz sensor, an 8th-order 4 kHz anti-aliasing filter, 10 kHz
-/// 16-bit ADCs and a pink background of 2 m/s² rms with two motor lines.
-const SCENE: &str = r#"
-name = "drop-rig"
-description = "drop tests on the paper's plate"
-restitution = 0.65
-contact_law = "thornton"
-analyses = ["drops"]
-
-[plate]
-length_mm = 458.4
-width_mm = 360.0
-thickness_mm = 8.0
-youngs_modulus_gpa = 210.0
-poisson_ratio = 0.3
-density_kg_m3 = 7850.0
-
-[plate_damping]
-ratio = 0.005
-frequencies_hz = [300.0, 4000.0]
-
-[[conditions]]
-name = "Con 1"
-supports = "both-fixed"
-
-[signals]
-window_ms = 20.0
-rate_hz = 40000.0
-modes = 160
-sensors_mm = [[229.2, 180.0], [458.4, 180.0]]
-
-[measurement]
-rate_hz = 10000.0
-seed = 7
-sensor = { resonance_hz = 12000.0, resonance_damping = 0.05, high_pass_hz = 0.5 }
-anti_alias = { order = 8, corner_hz = 4000.0 }
-
-[measurement.acceleration]
-adc_range_m_s2 = 5000.0
-adc_bits = 16
-noise = "pink"
-noise_rms_m_s2 = 2.0
-pink_flat_below_hz = 10.0
-tones_m_s2 = [[24.7, 0.5], [49.3, 0.3]]
-"#;
+/// The shipped drop rig: the paper's plate on Con 1 with two accelerometers, Rayleigh damping
+/// shared by both models, and a chain with a 12 kHz sensor, an 8th-order 4 kHz anti-aliasing
+/// filter, 10 kHz 16-bit ADCs and a pink background of 2 m/s² rms with two motor lines.
+const SCENE: &str = include_str!("../../../scenes/drop-rig.toml");
 
 /// Newmark steps per model sample: Δt = 1.5625 µs, a period error (ωΔt)²/12 of 1.2e-4 at
 /// the anti-aliasing corner and 200-430 steps per contact. At 8 the measured peaks sit up to
