@@ -8,11 +8,13 @@
 //! The known answers: with the drops stated as made, no row of any drop leaves its bar; with
 //! one drop's height stated as half the real one, that drop disagrees and no other does.
 
+mod full_model;
+
 use analytic::{Elastic, RockStrength, Sphere};
-use coupled::transient::{simulate_with, PlateFacts, Striker, Target};
+use coupled::transient::Striker;
+use full_model::{plate_model, strike, FullRun};
 use identify::measurement::{Chain, Measurand};
 use identify::recording::Sidecar;
-use plate_fem::dynamics::{Newmark, PlateEnergy};
 use scene::{Scene, SceneSource};
 use std::sync::OnceLock;
 use studies::drops::compute;
@@ -73,54 +75,7 @@ const DROPS: [Made; 3] = [
     },
 ];
 
-/// A Newmark plate that keeps the acceleration at the sensors every `SUBSTEPS` commits.
-struct Sensing<'a, 'm> {
-    plate: &'a mut Newmark<'m>,
-    model: &'m plate_fem::Model,
-    sensors: Vec<(f64, f64)>,
-    commits: usize,
-    samples: Vec<Vec<f64>>,
-}
-
-impl Sensing<'_, '_> {
-    fn sample(&mut self) {
-        for (s, &(x, z)) in self.sensors.iter().enumerate() {
-            let a = self.model.evaluate(self.plate.acceleration_field(), x, z).unwrap();
-            self.samples[s].push(a);
-        }
-    }
-}
-
-impl Target for Sensing<'_, '_> {
-    fn point_flexibility(&self) -> f64 {
-        self.plate.point_flexibility()
-    }
-    fn predict(&mut self) -> (f64, f64) {
-        self.plate.predict()
-    }
-    fn commit(&mut self, f: f64) {
-        self.plate.commit(f);
-        self.commits += 1;
-        if self.commits % SUBSTEPS == 0 {
-            self.sample();
-        }
-    }
-    fn point_state(&self) -> (f64, f64) {
-        self.plate.point_state()
-    }
-    fn energy(&self) -> PlateEnergy {
-        self.plate.energy()
-    }
-    fn corner_displacements(&self) -> [f64; 4] {
-        self.plate.corner_displacements()
-    }
-}
-
-/// What the full model made of a drop: the sensors' accelerations, P_max and t_c.
-type FullRun = (Vec<Vec<f64>>, f64, f64);
-
-/// The acceleration at every sensor at the model's rate from the touch over the window, by
-/// the full model; and the first contact's peak force and duration.
+/// The full model's run of a drop as made.
 fn full_model(scene: &Scene, model: &plate_fem::Model, d: &Made) -> FullRun {
     let sphere = Sphere::new(
         "lump",
@@ -138,31 +93,15 @@ fn full_model(scene: &Scene, model: &plate_fem::Model, d: &Made) -> FullRun {
         law: scene.contact_law.law_for(&sphere),
         gravity: scene.gravity,
     };
-    let samples = (scene.signals.window * scene.signals.rate_hz).round() as usize;
-    let dt = 1.0 / (scene.signals.rate_hz * SUBSTEPS as f64);
-    let (x, z) = (d.point_mm.0 * 1e-3, d.point_mm.1 * 1e-3);
-    let supports = scene.conditions[0].supports;
-    let mut nm = Newmark::damped(model, supports, dt, (x, z), scene.plate_damping).unwrap();
-    let sensors = scene.signals.sensors.clone();
-    let mut rec = Sensing { plate: &mut nm, model, samples: vec![vec![0.0]; sensors.len()], sensors, commits: 0 };
-    let facts = PlateFacts { static_compliance: None, corner_springs: None, follow_unbounded: true };
-    let t_max = (samples - 1) as f64 / scene.signals.rate_hz + 0.5 * dt;
-    let o = simulate_with(&striker, Some(&mut rec), facts, dt, t_max);
-    while rec.samples[0].len() < samples {
-        rec.plate.predict();
-        rec.commit(0.0);
-    }
-    let force = o.force_max_interpolated.max(o.force_max);
-    (rec.samples, force, o.contact_time.expect("the first contact ends"))
+    let point = (d.point_mm.0 * 1e-3, d.point_mm.1 * 1e-3);
+    strike(scene, model, scene.conditions[0].supports, &striker, point, SUBSTEPS)
 }
 
 /// The recording of `drops` (each captured with `PRE` samples of background before its
 /// touch, one after the other), written as CSV and sidecar into `dir`, the sidecar stating
 /// `stated` heights; returns the sidecar's path.
 fn record(scene: &Scene, stated: &[f64], dir: &std::path::Path) -> std::path::PathBuf {
-    let props = coupled::discretisation::plate_properties(&scene.plate);
-    let elements = coupled::reduced::ReducedSettings::default().elements;
-    let model = plate_fem::Model::new(props, coupled::discretisation::mesh_for(&props, elements).unwrap()).unwrap();
+    let model = plate_model(scene);
     let chain = Chain::new(scene.measurement.clone().unwrap(), scene.signals.rate_hz).unwrap();
     // A background stream no prediction draws (those start at 2⁴⁰).
     let mut rng = chain.stream(3 << 44);
@@ -170,9 +109,9 @@ fn record(scene: &Scene, stated: &[f64], dir: &std::path::Path) -> std::path::Pa
     let mut meta = Vec::new();
     static MADE: OnceLock<Vec<FullRun>> = OnceLock::new();
     let made = MADE.get_or_init(|| DROPS.iter().map(|d| full_model(scene, &model, d)).collect());
-    for ((d, h), (accelerations, force, contact_time)) in DROPS.iter().zip(stated).zip(made) {
+    for ((d, h), run) in DROPS.iter().zip(stated).zip(made) {
         let touch = (columns[0].len() + PRE) as f64 / 1e4;
-        for (column, a) in columns.iter_mut().zip(accelerations) {
+        for (column, a) in columns.iter_mut().zip(&run.accelerations) {
             let mut y = vec![0.0; PRE * chain.decimation()];
             y.extend(a);
             column.extend(chain.measure(Measurand::Acceleration, &y, 1.0, &mut rng).unwrap().samples);
@@ -181,7 +120,8 @@ fn record(scene: &Scene, stated: &[f64], dir: &std::path::Path) -> std::path::Pa
             "touch_s": touch, "point_mm": [d.point_mm.0, d.point_mm.1], "radius_mm": d.radius_mm,
             "density_kg_m3": d.density, "youngs_modulus_gpa": d.modulus_gpa, "poisson_ratio": 0.28,
             "cohesion_mpa": d.cohesion_mpa, "friction_angle_deg": d.friction_deg, "fall_height_m": h,
-            "force_max_kn": force * 1e-3, "contact_time_ms": contact_time * 1e3,
+            "force_max_kn": run.force_max * 1e-3,
+            "contact_time_ms": run.contact_time.expect("the first contact ends") * 1e3,
         }));
     }
     let mut csv = String::from("t_s,a1,a2\n");
