@@ -137,7 +137,7 @@ impl Detector {
 }
 
 /// The recording whose sidecar is `signal`, its CSV read from the sidecar's folder.
-fn recording(signal: &Path) -> PyResult<Recording> {
+pub(crate) fn recording(signal: &Path) -> PyResult<Recording> {
     let origin = signal.display().to_string();
     let sidecar =
         Sidecar::parse(&read(signal, "signal")?, &origin).map_err(|e| argument_message("signal", e.to_string()))?;

@@ -13,6 +13,7 @@
 mod columns;
 mod detector;
 mod dict;
+mod drops;
 mod errors;
 mod identify;
 mod scene;
@@ -212,6 +213,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add_function(wrap_pyfunction!(stream::stream, m)?)?;
     m.add_function(wrap_pyfunction!(detector::read_signal, m)?)?;
+    m.add_function(wrap_pyfunction!(drops::drops, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The Python layer documents these from here rather than repeat the numbers.
     let t = limits::TRANSIENT_TOLERANCE;
