@@ -288,3 +288,43 @@ fn a_named_sensor_on_the_grid_is_ranked_once() {
         assert!(out.join(format!("c1-map-{q}.svg")).is_file(), "{q} map");
     }
 }
+
+/// The sensor design ([ensemble.placement] design_sensors): its budget is checked, and a run
+/// chooses that many distinct grid points, the first where its own first map peaks, each
+/// step's map leaving the points already chosen out.
+#[test]
+fn the_sensor_design_chooses_distinct_points_its_maps_rank_first() {
+    expect(
+        &with("x_count = 3, z_count = 2", "x_count = 3, z_count = 2, design_sensors = 9"),
+        &["ensemble.placement.design_sensors = 9", "[1, 8]"],
+    );
+    let dir = tmp();
+    let scene =
+        dir.write("design.toml", with("x_count = 3, z_count = 2", "x_count = 3, z_count = 2, design_sensors = 2"));
+    let out = run(&dir.join("out"), &scene, "2").success();
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for c in summary["conditions"].as_array().unwrap() {
+        let d = &c["design"];
+        let steps = d["steps"].as_array().unwrap_or_else(|| panic!("no design in {c}"));
+        assert_eq!(steps.len(), 2);
+        assert_ne!(steps[0]["at_mm"], steps[1]["at_mm"]);
+        let x: Vec<f64> = d["x_mm"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let z: Vec<f64> = d["z_mm"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let map = |s: &serde_json::Value, i: usize, j: usize| s["map"][i][j].as_f64();
+        let first = &steps[0];
+        let best = (0..x.len())
+            .flat_map(|i| (0..z.len()).map(move |j| (i, j)))
+            .filter_map(|(i, j)| map(first, i, j))
+            .fold(f64::MIN, f64::max);
+        assert_eq!(first["auc"]["auc"].as_f64().unwrap(), best);
+        let at = |s: &serde_json::Value| (s["at_mm"][0].as_f64().unwrap(), s["at_mm"][1].as_f64().unwrap());
+        let (i, j) =
+            (x.iter().position(|&v| v == at(first).0).unwrap(), z.iter().position(|&v| v == at(first).1).unwrap());
+        assert_eq!(map(first, i, j), Some(best));
+        assert_eq!(map(&steps[1], i, j), None, "a chosen point is not offered again");
+        let gain = steps[1]["gain"].as_f64().unwrap();
+        assert!((steps[1]["auc"]["auc"].as_f64().unwrap() - best - gain).abs() < 1e-12);
+    }
+    let page = std::fs::read_to_string(dir.join("out").join("index.md")).unwrap();
+    assert!(page.contains("#### Sensor design: 2"), "the page shows the design");
+}

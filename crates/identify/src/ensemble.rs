@@ -180,6 +180,9 @@ pub struct Study {
     pub candidates_z: Vec<f64>,
     /// Variables held at their medians, one per extra run.
     pub hold: Vec<Variable>,
+    /// Sensors the design chooses among the candidates, one at a time ([`crate::design`]);
+    /// 0: no design.
+    pub design_sensors: usize,
 }
 
 impl Study {

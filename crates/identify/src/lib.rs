@@ -78,6 +78,7 @@
 #![warn(missing_docs)]
 
 pub mod classify;
+pub mod design;
 pub mod detect;
 pub mod detector;
 pub mod distribution;

@@ -27,6 +27,10 @@ pub const MAX_IMPACTS: usize = 1_000_000;
 pub const MAX_CANDIDATES_PER_SIDE: usize = 41;
 /// Candidate sensor points along each side of a placement grid: two reach both edges.
 pub const CANDIDATES_PER_SIDE: Range = Range::closed(2.0, MAX_CANDIDATES_PER_SIDE as f64);
+/// Sensors a design chooses: each step fits a cross-validated classifier for every candidate
+/// left, on every feature of the sensors chosen so far, so the cost grows with the square of
+/// the budget; eight sensors of one kind on one support are beyond any rig.
+pub const DESIGN_SENSORS: Range = Range::closed(1.0, 8.0);
 /// Impacts of one family.
 pub const FAMILY_COUNT: Range = Range::closed(1.0, MAX_IMPACTS as f64);
 /// Fall heights, m: up to 1 km (a free fall of 140 m/s, far beyond any caving).
@@ -61,6 +65,8 @@ pub(super) struct RawRegion {
 pub(super) struct RawPlacement {
     x_count: f64,
     z_count: f64,
+    #[serde(default)]
+    design_sensors: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -203,16 +209,21 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
     };
     let families = families(&raw.families)?;
     let hold = hold(raw.hold.as_deref())?;
-    let (candidates_x, candidates_z) = match &raw.placement {
-        None => (vec![], vec![]),
+    let (candidates_x, candidates_z, design_sensors) = match &raw.placement {
+        None => (vec![], vec![], 0),
         Some(p) => {
             // A map needs two points a side: the grid runs from edge to edge.
             let nx = count("ensemble.placement.x_count", p.x_count, CANDIDATES_PER_SIDE)?;
             let nz = count("ensemble.placement.z_count", p.z_count, CANDIDATES_PER_SIDE)?;
-            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz))
+            let design = match p.design_sensors {
+                None => 0,
+                Some(b) => count("ensemble.placement.design_sensors", b, DESIGN_SENSORS)?.min(nx * nz),
+            };
+            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz), design)
         }
     };
-    Ok(Study { ensemble: Ensemble { region, speed, families, seed: raw.seed }, candidates_x, candidates_z, hold })
+    let ensemble = Ensemble { region, speed, families, seed: raw.seed };
+    Ok(Study { ensemble, candidates_x, candidates_z, hold, design_sensors })
 }
 
 /// `ensemble.region`: where the lumps strike, inside the plate; the whole plate by default.

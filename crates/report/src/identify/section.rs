@@ -158,11 +158,14 @@ pub(super) fn section(
         render("identify/law-plastic.md", LAW_PLASTIC, &[("law", law.key().to_string())])?
     };
     let v = &r.validity;
-    let maps = if maps.is_empty() {
+    let mut maps = if maps.is_empty() {
         "No candidate grid in the scene ([ensemble.placement]).\n".into()
     } else {
         maps.to_string()
     };
+    if let Some(d) = &r.design {
+        maps.push_str(&super::design::markdown(d, r.measurement.is_some())?);
+    }
     Ok(render(
         "identify/condition.md",
         CONDITION,

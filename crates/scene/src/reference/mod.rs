@@ -445,6 +445,12 @@ fn ensemble() -> Vec<Section> {
             keys: vec![
                 whole("x_count", CANDIDATES_PER_SIDE, REQUIRED, "Candidate sensor points along the length, edge to edge"),
                 whole("z_count", CANDIDATES_PER_SIDE, REQUIRED, "Candidate sensor points across the width, edge to edge"),
+                whole(
+                    "design_sensors",
+                    crate::ensemble::DESIGN_SENSORS,
+                    "none",
+                    "Sensors of the quantity with the best placement map chosen one at a time among the candidates (greedy, by cross-validated AUC), each with its gain",
+                ),
             ],
         },
     ]

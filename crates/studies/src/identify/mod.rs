@@ -154,6 +154,10 @@ pub struct ConditionResult {
     /// "chain"`); left out otherwise, when the scene's count holds.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub chain_modes: Option<usize>,
+    /// The sensor design, where the scene asks for one (`[ensemble.placement]
+    /// design_sensors`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<SensorDesign>,
 }
 
 impl ConditionResult {
@@ -207,6 +211,34 @@ pub struct PlacementMap {
     pub z_mm: Vec<f64>,
     /// max(AUC, 1 - AUC) at each grid point, `[x][z]`.
     pub separability: Vec<Vec<f64>>,
+}
+
+/// The sensor design of one support set: sensors of one quantity chosen one at a time among
+/// the candidate grid by the cross-validated AUC of the logistic classifier on every feature
+/// of the sensors chosen ([`identify::design`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct SensorDesign {
+    /// The quantity ("acceleration", ...): that of the placement map peaking highest.
+    pub quantity: &'static str,
+    /// The grid's x, mm.
+    pub x_mm: Vec<f64>,
+    /// The grid's z, mm.
+    pub z_mm: Vec<f64>,
+    /// Every step, in the order the sensors were added.
+    pub steps: Vec<DesignStep>,
+}
+
+/// One sensor added.
+#[derive(Debug, Clone, Serialize)]
+pub struct DesignStep {
+    /// Where, (x, z) mm.
+    pub at_mm: (f64, f64),
+    /// The cross-validated AUC of the sensors so far, with DeLong's standard error.
+    pub auc: identify::Auc,
+    /// Its gain over the step before (the first's over chance, 0.5).
+    pub gain: f64,
+    /// The AUC had each grid point been added instead, `[x][z]` (None: already chosen).
+    pub map: Vec<Vec<Option<f64>>>,
 }
 
 /// The values of one column split by class, for a histogram.

@@ -3,10 +3,10 @@
 //! value is highest.
 
 use super::sensors::quantity_name;
-use super::PlacementMap;
+use super::{DesignStep, PlacementMap, SensorDesign};
 use crate::channel::ChannelInfo;
 use coupled::reduced::Quantity;
-use identify::placement::{best, map, Separability};
+use identify::placement::{best, map, FeatureTable, Separability};
 use identify::Study;
 
 /// The placement maps of a run: `grid` gives the sensor recording each candidate point (in
@@ -22,11 +22,7 @@ pub fn maps(study: &Study, grid: &[usize], infos: &[ChannelInfo], all: &[Separab
         .chain([Quantity::Strain])
         .filter_map(|q| {
             let quantity = quantity_name(q);
-            // One channel per grid point, in grid order: a point at a named sensor is its channel.
-            let chans = grid
-                .iter()
-                .map(|&s| infos.iter().position(|i| i.sensor == Some(s) && i.quantity == quantity))
-                .collect::<Option<Vec<usize>>>()?;
+            let chans = grid_channels(grid, infos, quantity)?;
             let top = best(all, &chans)?;
             let values = map(all, &chans, top.feature);
             Some(PlacementMap {
@@ -40,4 +36,47 @@ pub fn maps(study: &Study, grid: &[usize], infos: &[ChannelInfo], all: &[Separab
             })
         })
         .collect()
+}
+
+/// One channel of `quantity` per grid point, in grid order (a point at a named sensor is its
+/// channel); None if some grid point does not record it.
+fn grid_channels(grid: &[usize], infos: &[ChannelInfo], quantity: &str) -> Option<Vec<usize>> {
+    grid.iter().map(|&s| infos.iter().position(|i| i.sensor == Some(s) && i.quantity == quantity)).collect()
+}
+
+/// The sensor design of a run ([`identify::design::greedy`]): `study.design_sensors` sensors
+/// of the quantity whose placement map (`maps`) peaks highest, chosen among the grid's points
+/// on the features of `table`; None without a budget or a map.
+pub fn design(
+    study: &Study,
+    grid: &[usize],
+    infos: &[ChannelInfo],
+    maps: &[PlacementMap],
+    table: &FeatureTable,
+    seed: u64,
+) -> Result<Option<SensorDesign>, crate::Failure> {
+    let peak = |m: &PlacementMap| m.separability.iter().flatten().fold(0.0f64, |a, &b| a.max(b));
+    let top = maps.iter().fold(None, |b: Option<&PlacementMap>, m| match b {
+        Some(b) if peak(b) >= peak(m) => Some(b),
+        _ => Some(m),
+    });
+    let (Some(map), true) = (top, study.design_sensors > 0) else { return Ok(None) };
+    let Some(chans) = grid_channels(grid, infos, map.quantity) else { return Ok(None) };
+    let steps = identify::design::greedy(table, &chans, study.design_sensors, seed)?;
+    let nz = study.candidates_z.len();
+    let at = |k: usize| (study.candidates_x[k / nz] * 1e3, study.candidates_z[k % nz] * 1e3);
+    Ok(Some(SensorDesign {
+        quantity: map.quantity,
+        x_mm: map.x_mm.clone(),
+        z_mm: map.z_mm.clone(),
+        steps: steps
+            .into_iter()
+            .map(|s| DesignStep {
+                at_mm: at(s.added),
+                auc: s.auc,
+                gain: s.gain,
+                map: (0..study.candidates_x.len()).map(|i| (0..nz).map(|j| s.map[i * nz + j]).collect()).collect(),
+            })
+            .collect(),
+    }))
 }

@@ -65,8 +65,10 @@ pub(super) fn run_set(
     let top = best(&sep.all, &[]).map(|s| s.channel);
     let measurement = measured::of_set(scene, study, set, &instrument, &main, &main_run, top, seed, progress)?;
     let (fc, fg) = split(&main.force_max, main.table.classes());
+    let maps = placement::maps(study, &grid, &infos, &sep.all);
+    let design = placement::design(study, &grid, &infos, &maps, &main.table, seed ^ 400)?;
     let detail = ConditionDetail {
-        maps: placement::maps(study, &grid, &infos, &sep.all),
+        maps,
         best: sep.best_values(),
         force_max: ClassValues { label: "P_max (N)".into(), coal: fc, gangue: fg, scale: true },
         reference,
@@ -99,6 +101,7 @@ pub(super) fn run_set(
         full_model,
         measurement,
         chain_modes: settings.modes_from_chain.then(|| model.settings().modes),
+        design,
     };
     Ok((result, detail))
 }

@@ -1,0 +1,65 @@
+//! A support set's sensor design ([`studies::identify::SensorDesign`]) as a table of steps
+//! and the first step's map.
+
+use crate::present::table::{sig, Cell, Table};
+use crate::template::render;
+use crate::Failure;
+use studies::identify::SensorDesign;
+
+const DESIGN: &str = include_str!("../templates/identify/design.md");
+
+/// The design's Markdown; `measured` says whether the features were read through the
+/// scene's measurement chain.
+pub(super) fn markdown(d: &SensorDesign, measured: bool) -> Result<String, Failure> {
+    let noise = if measured {
+        "The features are read through the scene's measurement chain, at its background level."
+    } else {
+        "The scene has no measurement chain: the features are the model's exact ones, so the design says where the signals differ most, not what survives a mine's noise."
+    };
+    let candidates = d.x_mm.len() * d.z_mm.len();
+    Ok(render(
+        "identify/design.md",
+        DESIGN,
+        &[
+            ("count", d.steps.len().to_string()),
+            ("quantity", d.quantity.to_string()),
+            ("candidates", candidates.to_string()),
+            ("noise", noise.to_string()),
+            ("steps", steps(d).to_markdown()),
+            ("first", first_map(d).to_markdown()),
+        ],
+    )?)
+}
+
+/// One row per step: where, the AUC so far and the gain.
+fn steps(d: &SensorDesign) -> Table {
+    let mut t = Table::new("", &["sensors", "added at (x, z) (mm)", "AUC (cross-validated)", "gain"]);
+    for (k, s) in d.steps.iter().enumerate() {
+        t.push(vec![
+            Cell::Int(k as u64 + 1),
+            format!("({}, {})", sig(s.at_mm.0, 4), sig(s.at_mm.1, 4)).into(),
+            format!("{} ± {}", sig(s.auc.auc, 3), sig(s.auc.standard_error, 2)).into(),
+            format!("{:+.3}", s.gain).into(),
+        ]);
+    }
+    t
+}
+
+/// The first step's map: a row per z, a column per x, the chosen point marked.
+fn first_map(d: &SensorDesign) -> Table {
+    let mut headers = vec!["z \\ x (mm)".to_string()];
+    headers.extend(d.x_mm.iter().map(|x| sig(*x, 4)));
+    let refs: Vec<&str> = headers.iter().map(String::as_str).collect();
+    let mut t = Table::new("", &refs);
+    let Some(first) = d.steps.first() else { return t };
+    for (j, z) in d.z_mm.iter().enumerate() {
+        let mut row = vec![Cell::from(sig(*z, 4))];
+        for (i, x) in d.x_mm.iter().enumerate() {
+            let chosen = first.at_mm == (*x, *z);
+            let v = first.map[i][j].map_or("-".to_string(), |a| sig(a, 3));
+            row.push(if chosen { format!("**{v}** ●") } else { v }.into());
+        }
+        t.push(row);
+    }
+    t
+}
