@@ -79,7 +79,7 @@ fn bad_chains_name_the_key_the_value_and_the_range() {
     let start = CHAIN.find("[measurement.acceleration]").unwrap();
     expect(&with_chain(&CHAIN[..start]), &["measurement", "records nothing"]);
     let text = format!("{}\n{CHAIN}", impact::scene::DEFAULT_SCENE);
-    expect(&text, &["measurement", "is read only by the \"identify\" analysis"]);
+    expect(&text, &["measurement", "is read only by the \"identify\" and \"drops\" analyses"]);
 }
 
 /// The features of `dir/features.csv`'s acceleration rows: (condition, impact, channel) → the
