@@ -163,16 +163,10 @@ fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> R
 }
 
 /// `impact drops`: a drop-test recording against the scene's model, the scene and every
-/// file read and checked before the output folder is prepared.
+/// file read and checked before the output folder is prepared (the channel count once the
+/// model is built, before anything is written).
 fn drops(path: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
     let scene = Scene::load(path)?;
-    if !scene.analyses.contains(&scene::Analysis::Drops) {
-        return Err(format!(
-            "scene {}: impact drops compares recordings with the rig a scene describes; add \"drops\" to its analyses",
-            path.display()
-        )
-        .into());
-    }
     let origin = signal.display().to_string();
     let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
     let csv = sidecar.data_path(signal);

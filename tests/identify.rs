@@ -298,6 +298,10 @@ fn the_sensor_design_chooses_distinct_points_its_maps_rank_first() {
         &with("x_count = 3, z_count = 2", "x_count = 3, z_count = 2, design_sensors = 9"),
         &["ensemble.placement.design_sensors = 9", "[1, 8]"],
     );
+    expect(
+        &with("x_count = 3, z_count = 2", "x_count = 3, z_count = 2, design_sensors = 7"),
+        &["ensemble.placement.design_sensors", "7 sensors among 6 candidate points", "at most 6"],
+    );
     let dir = tmp();
     let scene =
         dir.write("design.toml", with("x_count = 3, z_count = 2", "x_count = 3, z_count = 2, design_sensors = 2"));

@@ -17,15 +17,6 @@ pub fn drops<'py>(
     signal: std::path::PathBuf,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &scene.scene;
-    if !s.analyses.contains(&scene::Analysis::Drops) {
-        return Err(argument_message(
-            "scene",
-            format!(
-                "{}: impact.drops compares recordings with the rig a scene describes; add \"drops\" to its analyses",
-                s.name
-            ),
-        ));
-    }
     let origin = signal.display().to_string();
     let recording = crate::detector::recording(&signal)?;
     studies::drops::check(s, &recording, &origin).map_err(|e| argument_message("signal", e.to_string()))?;
@@ -58,6 +49,7 @@ fn rows(d: &DropsData) -> Table {
             t.num("chain", row, r.chain);
             t.num("noise_sd", row, r.noise_sd);
             t.flag("disagrees", row, r.disagrees);
+            t.text("note", row, &r.note);
             row += 1;
         }
     }

@@ -16,7 +16,7 @@
 //! the number of contacts.
 
 use crate::error::ModelError;
-use crate::reduced::{ChannelKind, ReducedModel, SignalSpec};
+use crate::reduced::{ChannelKind, ReducedModel, SignalSpec, Signals};
 use crate::scene::Scene;
 use crate::transient::{LawKind, Striker};
 use analytic::{contact_stiffness, DruckerPrager, Plate};
@@ -209,47 +209,91 @@ impl<'a> Instrument<'a> {
 
     /// Throws the sphere of `draw` (of family `family_name`) and reduces its signals.
     pub fn impact(&self, draw: Draw, family_name: &str) -> Result<ImpactRecord, ModelError> {
-        let (sphere, striker) = self.striker(&draw, family_name)?;
-        let k = striker.k;
-        let hit = self.model.impact(&striker, draw.x, draw.z, &self.probes)?;
+        let (sphere, striker, hit) = self.simulate(&draw, family_name)?;
+        let measured = self.measure(&hit.signals, draw.index, 0)?;
         let o = &hit.outcome;
-        let delta_my = DruckerPrager::of(&sphere).yield_compression(sphere.radius(), k);
-        let mut features = Vec::with_capacity(hit.signals.channels.len() * FEATURES.len());
-        let (mut clean_peaks, mut clipped) = (Vec::new(), 0);
-        match &self.chain {
-            None => {
-                for c in &hit.signals.channels {
-                    self.extractor.push_features(FEATURES, &c.samples, &mut features);
-                }
-            }
-            Some(chain) => {
-                // One stream per impact, its channels drawn in order: the same impact has the
-                // same background on every model of the same channels.
-                let mut rng = chain.stream(draw.index);
-                for c in &hit.signals.channels {
-                    let m =
-                        chain.measure(measurand(c.kind), &c.samples, self.noise_scale, &mut rng).ok_or_else(|| {
-                            ModelError::Missing(format!("the measurement chain does not record {:?}", c.kind))
-                        })?;
-                    self.extractor.push_features(FEATURES, &m.samples, &mut features);
-                    clean_peaks.push(m.clean_peak);
-                    clipped += m.clipped;
-                }
-            }
-        }
+        let delta_my = DruckerPrager::of(&sphere).yield_compression(sphere.radius(), striker.k);
         Ok(ImpactRecord {
-            clean_peaks,
-            clipped,
+            clean_peaks: measured.clean_peaks,
+            clipped: measured.clipped,
             mass: sphere.mass(),
             force_max: o.force_max_interpolated.max(o.force_max),
             contact_time: o.contact_time,
             contacts: o.contacts.len() + usize::from(o.unfinished_contact.is_some()),
             compression_ratio: o.compression_max_interpolated.max(o.compression_max) / delta_my,
             hertz_time_ratio: striker.hertz_time() / self.fundamental_period(),
-            features,
+            features: measured.features,
             draw,
         })
     }
+
+    /// The impact of `draw` on the reduced model: its sphere, striker and outcome with the
+    /// model's signals.
+    pub fn simulate(
+        &self,
+        draw: &Draw,
+        family_name: &str,
+    ) -> Result<(analytic::Sphere, Striker, crate::reduced::ReducedOutcome), ModelError> {
+        let (sphere, striker) = self.striker(draw, family_name)?;
+        let hit = self.model.impact(&striker, draw.x, draw.z, &self.probes)?;
+        Ok((sphere, striker, hit))
+    }
+
+    /// The features of `signals` (an impact's model signals) as the instrument reads them:
+    /// through its chain, if any, with the background of impact `noise_index` (one stream per
+    /// impact, its channels drawn in order: the same impact has the same background on every
+    /// model of the same channels), the touch `delay` model samples after the first sample
+    /// (the window keeps its length: its last `delay` model samples are dropped).
+    pub fn measure(&self, signals: &Signals, noise_index: usize, delay: usize) -> Result<MeasuredFeatures, ModelError> {
+        let mut out = MeasuredFeatures {
+            features: Vec::with_capacity(signals.channels.len() * FEATURES.len()),
+            clean_peaks: Vec::new(),
+            clipped: 0,
+        };
+        match &self.chain {
+            None => {
+                for c in &signals.channels {
+                    self.extractor.push_features(FEATURES, &delayed(&c.samples, delay), &mut out.features);
+                }
+            }
+            Some(chain) => {
+                let mut rng = chain.stream(noise_index);
+                for c in &signals.channels {
+                    let m = chain
+                        .measure(measurand(c.kind), &delayed(&c.samples, delay), self.noise_scale, &mut rng)
+                        .ok_or_else(|| {
+                        ModelError::Missing(format!("the measurement chain does not record {:?}", c.kind))
+                    })?;
+                    self.extractor.push_features(FEATURES, &m.samples, &mut out.features);
+                    out.clean_peaks.push(m.clean_peak);
+                    out.clipped += m.clipped;
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// `samples` with the touch `delay` samples later: as many samples, the first `delay` zero
+/// (the plate at rest before the touch) and the last `delay` dropped.
+fn delayed(samples: &[f64], delay: usize) -> std::borrow::Cow<'_, [f64]> {
+    if delay == 0 {
+        return std::borrow::Cow::Borrowed(samples);
+    }
+    let mut y = vec![0.0; delay.min(samples.len())];
+    y.extend_from_slice(&samples[..samples.len() - y.len()]);
+    std::borrow::Cow::Owned(y)
+}
+
+/// An impact's features as an instrument reads them ([`Instrument::measure`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredFeatures {
+    /// [`FEATURES`] of each channel, channel after channel.
+    pub features: Vec<f64>,
+    /// Each channel's peak before noise and ADC (empty without a chain).
+    pub clean_peaks: Vec<f64>,
+    /// Samples clipped by the ADCs, over every channel.
+    pub clipped: usize,
 }
 
 impl Instrument<'_> {

@@ -123,7 +123,7 @@ fn cholesky_solve(h: &[f64], g: &[f64], n: usize) -> Option<Vec<f64>> {
     Some(x.col(0).iter().copied().collect())
 }
 
-fn check_shape(rows: &[Vec<f64>], labels: &[bool]) -> Result<usize, FitError> {
+pub(crate) fn check_shape(rows: &[Vec<f64>], labels: &[bool]) -> Result<usize, FitError> {
     if rows.is_empty() || rows.len() != labels.len() {
         return Err(FitError::Shape(format!("{} rows and {} labels", rows.len(), labels.len())));
     }

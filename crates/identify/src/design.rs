@@ -7,15 +7,21 @@
 //! comes from the model fitted without its fold, and the AUC of those out-of-fold
 //! probabilities carries DeLong's standard error (which treats them as independent, and so
 //! slightly understates the spread of a cross-validated score). Step k adds the candidate that
-//! maximises the score of S ∪ {c}; its map is that score for every candidate c not yet chosen.
-//! Greedy selection is not guaranteed optimal for B > 1, but the AUC of a set only grows
-//! with it in expectation, and each step's map shows how close the runners-up came.
+//! maximises the score of S ∪ {c}; its map is that score for every candidate c not yet chosen,
+//! and its gain over the step before carries DeLong's paired standard error
+//! ([`crate::roc::paired_difference`]: both sets score the same impacts).
+//!
+//! Two cautions. Greedy selection is not guaranteed to find the best set of more than one
+//! sensor. And each step's AUC is the largest of many scored on the same folds, so it is
+//! biased upward by the choice (the winner's curse): a step's gain means something only well
+//! beyond its standard error, and a cross-validated ridge fit can lose AUC when a sensor adds
+//! only noise.
 
-use crate::classify::{stratified_folds, FitError, Logistic, FOLDS, RIDGE};
+use crate::classify::{check_shape, stratified_folds, FitError, Logistic, FOLDS, RIDGE};
 use crate::ensemble::Class;
 use crate::features::FEATURES;
 use crate::placement::FeatureTable;
-use crate::roc::{auc_with_error, Auc};
+use crate::roc::{auc_with_error, paired_difference, Auc};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -28,6 +34,8 @@ pub struct Step {
     pub auc: Auc,
     /// AUC after this step minus AUC before it (the first step's is over 0.5, chance).
     pub gain: f64,
+    /// DeLong's paired standard error of the gain (the first step's: its AUC's own).
+    pub gain_standard_error: f64,
     /// For each candidate, the set's AUC had it been added instead (None: already chosen).
     pub map: Vec<Option<f64>>,
 }
@@ -51,6 +59,22 @@ pub fn cross_validated_auc(
     k: usize,
     seed: u64,
 ) -> Result<Auc, FitError> {
+    let p = out_of_fold(rows, labels, scale, lambda, k, seed)?;
+    let (coal, gangue) = by_class(&p, labels);
+    Ok(auc_with_error(&coal, &gangue))
+}
+
+/// Each row's probability of gangue from the model fitted without its fold (as
+/// [`cross_validated_auc`]).
+pub fn out_of_fold(
+    rows: &[Vec<f64>],
+    labels: &[bool],
+    scale: &[bool],
+    lambda: f64,
+    k: usize,
+    seed: u64,
+) -> Result<Vec<f64>, FitError> {
+    check_shape(rows, labels)?;
     let k = k.clamp(2, rows.len().max(2));
     let fold = stratified_folds(labels, k, seed);
     let mut probability = vec![0.5; rows.len()];
@@ -66,19 +90,24 @@ pub fn cross_validated_auc(
             probability[i] = model.probability(&rows[i]);
         }
     }
+    Ok(probability)
+}
+
+/// `values` split by `labels` into (coal, gangue), in order.
+pub fn by_class(values: &[f64], labels: &[bool]) -> (Vec<f64>, Vec<f64>) {
     let (mut coal, mut gangue) = (Vec::new(), Vec::new());
-    for (p, &l) in probability.iter().zip(labels) {
+    for (v, &l) in values.iter().zip(labels) {
         if l {
-            gangue.push(*p);
+            gangue.push(*v);
         } else {
-            coal.push(*p);
+            coal.push(*v);
         }
     }
-    Ok(auc_with_error(&coal, &gangue))
+    (coal, gangue)
 }
 
 /// Every feature of `channels` of `table`, one row per impact, and their scale flags.
-fn rows_of(table: &FeatureTable, channels: &[usize]) -> (Vec<Vec<f64>>, Vec<bool>) {
+pub(crate) fn rows_of(table: &FeatureTable, channels: &[usize]) -> (Vec<Vec<f64>>, Vec<bool>) {
     let rows = (0..table.len())
         .map(|i| channels.iter().flat_map(|&c| FEATURES.iter().map(move |&f| table.column(c, f)[i])).collect())
         .collect();
@@ -94,8 +123,9 @@ pub fn greedy(table: &FeatureTable, candidates: &[usize], budget: usize, seed: u
     let labels: Vec<bool> = table.classes().iter().map(|c| *c == Class::Gangue).collect();
     let mut chosen: Vec<usize> = Vec::new();
     let mut steps: Vec<Step> = Vec::new();
+    let mut before: Option<Vec<f64>> = None;
     for _ in 0..budget.min(candidates.len()) {
-        let scores: Vec<Option<Auc>> = candidates
+        let scores: Vec<Option<(Auc, Vec<f64>)>> = candidates
             .par_iter()
             .enumerate()
             .map(|(c, _)| {
@@ -104,22 +134,33 @@ pub fn greedy(table: &FeatureTable, candidates: &[usize], budget: usize, seed: u
                 }
                 let set: Vec<usize> = chosen.iter().chain([&c]).map(|&k| candidates[k]).collect();
                 let (rows, scale) = rows_of(table, &set);
-                cross_validated_auc(&rows, &labels, &scale, RIDGE, FOLDS, seed).map(Some)
+                let p = out_of_fold(&rows, &labels, &scale, RIDGE, FOLDS, seed)?;
+                let (coal, gangue) = by_class(&p, &labels);
+                Ok(Some((auc_with_error(&coal, &gangue), p)))
             })
             .collect::<Result<_, FitError>>()?;
         // The first best: ties go to the earlier candidate.
-        let Some((added, auc)) = scores.iter().enumerate().filter_map(|(c, s)| s.map(|a| (c, a))).fold(
-            None,
-            |b: Option<(usize, Auc)>, (c, a)| match b {
-                Some((_, best)) if best.auc >= a.auc => b,
-                _ => Some((c, a)),
-            },
-        ) else {
+        let Some(added) = (0..scores.len()).filter(|&c| scores[c].is_some()).fold(None, |b: Option<usize>, c| {
+            let auc = |k: usize| scores[k].as_ref().map_or(f64::MIN, |s| s.0.auc);
+            match b {
+                Some(b) if auc(b) >= auc(c) => Some(b),
+                _ => Some(c),
+            }
+        }) else {
             break;
         };
-        let before = steps.last().map_or(0.5, |s| s.auc.auc);
+        let (auc, p) = scores[added].clone().ok_or_else(|| FitError::Shape("no score".into()))?;
+        let (gain, gain_standard_error) = match &before {
+            None => (auc.auc - 0.5, auc.standard_error),
+            Some(q) => {
+                let ((qc, qg), (pc, pg)) = (by_class(q, &labels), by_class(&p, &labels));
+                paired_difference((&qc, &qg), (&pc, &pg))
+            }
+        };
         chosen.push(added);
-        steps.push(Step { added, auc, gain: auc.auc - before, map: scores.iter().map(|s| s.map(|a| a.auc)).collect() });
+        let map = scores.iter().map(|s| s.as_ref().map(|(a, _)| a.auc)).collect();
+        steps.push(Step { added, auc, gain, gain_standard_error, map });
+        before = Some(p);
     }
     Ok(steps)
 }
@@ -127,6 +168,7 @@ pub fn greedy(table: &FeatureTable, candidates: &[usize], budget: usize, seed: u
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::distribution::phi;
     use crate::features::Peak;
     use rand_chacha::rand_core::SeedableRng;
     use rand_distr::{Distribution, Normal};
@@ -134,19 +176,6 @@ mod tests {
     /// Channel features whose peak is `peak`, every other feature 1.
     fn f(peak: f64) -> Vec<f64> {
         FEATURES.iter().map(|f| if f.key() == "peak" { peak } else { 1.0 }).collect()
-    }
-
-    /// Standard normal cdf by the complementary error function's series (Abramowitz & Stegun
-    /// 7.1.26, |error| < 1.5e-7).
-    fn phi(x: f64) -> f64 {
-        let t = 1.0 / (1.0 + 0.3275911 * x.abs() / 2f64.sqrt());
-        let poly = t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
-        let erfc = poly * (-(x * x) / 2.0).exp();
-        if x >= 0.0 {
-            1.0 - 0.5 * erfc
-        } else {
-            0.5 * erfc
-        }
     }
 
     /// Three candidates: 0 carries nothing, 1 the class shifted by d₁ in unit normal noise, 2
@@ -180,8 +209,10 @@ mod tests {
         for (s, expected) in steps.iter().zip([one, two]) {
             assert!((s.auc.auc - expected).abs() < 3.0 * s.auc.standard_error, "{} against {expected}", s.auc.auc);
         }
-        // The uninformative third sensor gains nothing beyond its noise.
-        assert!(steps[2].gain.abs() < 3.0 * steps[2].auc.standard_error, "{:?}", steps[2]);
+        // The second sensor's gain is resolved by the paired error; the uninformative third
+        // gains nothing beyond its own.
+        assert!(steps[1].gain > 3.0 * steps[1].gain_standard_error, "{:?}", steps[1]);
+        assert!(steps[2].gain.abs() < 3.0 * steps[2].gain_standard_error.max(1e-12), "{:?}", steps[2]);
         assert_eq!(steps[1].map[1], None);
         assert!(steps[0].map[0].unwrap() < steps[0].map[2].unwrap());
     }

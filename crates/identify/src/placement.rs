@@ -135,10 +135,7 @@ pub fn map(all: &[Separability], channels: &[usize], feature: &dyn Feature) -> V
 /// The cross-validated accuracy of the logistic classifier on every feature of `channels`
 /// together (e.g. all channels of one sensor), [`FOLDS`] folds, ridge [`RIDGE`].
 pub fn classifier(table: &FeatureTable, channels: &[usize], seed: u64) -> Result<CrossValidated, FitError> {
-    let rows: Vec<Vec<f64>> = (0..table.len())
-        .map(|i| channels.iter().flat_map(|&c| FEATURES.iter().map(move |&f| table.column(c, f)[i])).collect())
-        .collect();
-    let scale: Vec<bool> = channels.iter().flat_map(|_| FEATURES.iter().map(|f| f.is_scale())).collect();
+    let (rows, scale) = crate::design::rows_of(table, channels);
     let labels: Vec<bool> = table.classes().iter().map(|c| *c == Class::Gangue).collect();
     cross_validate(&rows, &labels, &scale, RIDGE, FOLDS, seed)
 }

@@ -30,7 +30,8 @@
 //! ```
 //! The speed is `fall_height_m` (free fall from rest) or `velocity_m_per_s`, exactly one;
 //! `class`, and the impact force's peak and duration where an instrumented lump or a load
-//! cell measured them (`force_max_kn`, `contact_time_ms`), are optional. The scene crate
+//! cell measured them (`force_max_kn`, `contact_time_ms`, each with its standard deviation
+//! `force_max_sd_kn`, `contact_time_sd_ms` where known), are optional. The scene crate
 //! checks every value against its range; this module reads them as written.
 //!
 //! **The CSV**: lines starting with `#` are comments, the first other line is the header
@@ -101,6 +102,12 @@ pub struct DropRecord {
     /// Measured duration of the first contact, ms.
     #[serde(default)]
     pub contact_time_ms: Option<f64>,
+    /// Standard deviation of the measured peak force, kN.
+    #[serde(default)]
+    pub force_max_sd_kn: Option<f64>,
+    /// Standard deviation of the measured contact time, ms.
+    #[serde(default)]
+    pub contact_time_sd_ms: Option<f64>,
 }
 
 /// A recording: channels of samples at one rate.
@@ -227,6 +234,8 @@ fn drops(value: &serde_json::Value, origin: &str) -> Result<Vec<DropRecord>, Rec
             .enumerate()
             .map(|(i, d)| serde_json::from_value(d.clone()).map_err(|e| error(origin, format!("drops[{i}]: {e}"))))
             .collect(),
-        Some(other) => Err(error(origin, format!("drops is {other}, expected a list of drops"))),
+        Some(_) => {
+            Err(error(origin, "drops is not a list: give a list of drops, [ { \"touch_s\": ..., ... } ]".into()))
+        }
     }
 }

@@ -41,6 +41,7 @@ fn rows_table(d: &DropsData) -> Table {
         "chain",
         "noise sd",
         "disagrees",
+        "note",
     ];
     let mut t = Table::new("", &headers);
     for drop in &d.drops {
@@ -59,6 +60,7 @@ fn rows_table(d: &DropsData) -> Table {
                 Cell::Num(r.chain),
                 Cell::Num(r.noise_sd),
                 r.disagrees.into(),
+                r.note.as_str().into(),
             ]);
         }
     }
@@ -77,21 +79,26 @@ pub fn summary_table(d: &DropsData) -> Table {
         sig(d.steps_per_contact.1, 3),
         d.realisations
     );
-    let mut t = Table::new(title, &["drop", "touch (s)", "v (m/s)", "rows outside the bar", "largest |Δ|/bar"]);
+    let mut t =
+        Table::new(title, &["drop", "touch (s)", "v (m/s)", "rows outside the bar", "largest |Δ|/bar", "not compared"]);
     for drop in &d.drops {
         let worst = drop
             .rows
             .iter()
             .filter(|r| r.bar > 0.0)
             .map(|r| ((r.measured - r.predicted).abs() / r.bar, r.quantity.as_str()))
-            .fold((0.0, ""), |a, b| if b.0 > a.0 { b } else { a });
+            .fold(None, |a: Option<(f64, &str)>, b| match a {
+                Some(a) if a.0 >= b.0 => Some(a),
+                _ => Some(b),
+            });
         let outside: Vec<&str> = drop.rows.iter().filter(|r| r.disagrees).map(|r| r.quantity.as_str()).collect();
         t.push(vec![
             Cell::Int(drop.index as u64),
             Cell::Num(drop.touch),
             Cell::Sig(drop.velocity, 4),
             if outside.is_empty() { "none".into() } else { outside.join("; ").into() },
-            format!("{} ({})", sig(worst.0, 3), worst.1).into(),
+            worst.map_or("no row has a bar".into(), |(r, q)| format!("{} ({q})", sig(r, 3)).into()),
+            drop.notes.join("; ").into(),
         ]);
     }
     t

@@ -14,6 +14,10 @@ pub const TOUCH_S: Range = Range::closed(0.0, 86_400.0);
 pub const FORCE_KN: Range = Range::closed(1e-6, 1e6);
 /// Measured contact times, ms (1 ns to 10 s).
 pub const CONTACT_TIME_MS: Range = Range::closed(1e-6, 1e4);
+/// Standard deviations of measured peak forces, kN.
+pub const FORCE_SD_KN: Range = Range::closed(0.0, 1e6);
+/// Standard deviations of measured contact times, ms.
+pub const CONTACT_TIME_SD_MS: Range = Range::closed(0.0, 1e4);
 
 /// One drop in SI: the impact the model throws for it, and what else the recording states.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,6 +34,10 @@ pub struct Drop {
     pub force_max: Option<f64>,
     /// The measured duration of the first contact, s.
     pub contact_time: Option<f64>,
+    /// The standard deviation of the measured peak force, N.
+    pub force_max_sd: Option<f64>,
+    /// The standard deviation of the measured contact time, s.
+    pub contact_time_sd: Option<f64>,
 }
 
 /// The condition of `scene` named `name`; with no name, the scene's only one.
@@ -69,7 +77,11 @@ fn drop(scene: &crate::Scene, index: usize, r: &DropRecord, origin: &str) -> Res
     let x = range("point_mm[0]", r.point_mm[0], Range::closed(0.0, l * 1e3), "mm")? * 1e-3;
     let z = range("point_mm[1]", r.point_mm[1], Range::closed(0.0, b * 1e3), "mm")? * 1e-3;
     let velocity = match (r.fall_height_m, r.velocity_m_per_s) {
-        (Some(h), None) => (2.0 * GRAVITY * range("fall_height_m", h, FALL_HEIGHT_M, "m")?).sqrt(),
+        // Free fall from rest under the scene's gravity (standard gravity where it states 0).
+        (Some(h), None) => {
+            let g = if scene.gravity > 0.0 { scene.gravity } else { GRAVITY };
+            (2.0 * g * range("fall_height_m", h, FALL_HEIGHT_M, "m")?).sqrt()
+        }
         (None, Some(v)) => range("velocity_m_per_s", v, limits::VELOCITY_M_PER_S, "m/s")?,
         _ => {
             return Err(inconsistent(
@@ -100,7 +112,23 @@ fn drop(scene: &crate::Scene, index: usize, r: &DropRecord, origin: &str) -> Res
     let force_max = r.force_max_kn.map(|f| range("force_max_kn", f, FORCE_KN, "kN")).transpose()?.map(|f| f * 1e3);
     let contact_time =
         r.contact_time_ms.map(|t| range("contact_time_ms", t, CONTACT_TIME_MS, "ms")).transpose()?.map(|t| t * 1e-3);
-    Ok(Drop { draw, class_stated: r.class.is_some(), touch, fall_height: r.fall_height_m, force_max, contact_time })
+    let force_max_sd =
+        r.force_max_sd_kn.map(|f| range("force_max_sd_kn", f, FORCE_SD_KN, "kN")).transpose()?.map(|f| f * 1e3);
+    let contact_time_sd = r
+        .contact_time_sd_ms
+        .map(|t| range("contact_time_sd_ms", t, CONTACT_TIME_SD_MS, "ms"))
+        .transpose()?
+        .map(|t| t * 1e-3);
+    Ok(Drop {
+        draw,
+        class_stated: r.class.is_some(),
+        touch,
+        fall_height: r.fall_height_m,
+        force_max,
+        contact_time,
+        force_max_sd,
+        contact_time_sd,
+    })
 }
 
 #[cfg(test)]
@@ -123,6 +151,8 @@ mod tests {
             class: Some("gangue".into()),
             force_max_kn: None,
             contact_time_ms: Some(0.6),
+            force_max_sd_kn: None,
+            contact_time_sd_ms: None,
         }
     }
 

@@ -27,9 +27,10 @@ pub const MAX_IMPACTS: usize = 1_000_000;
 pub const MAX_CANDIDATES_PER_SIDE: usize = 41;
 /// Candidate sensor points along each side of a placement grid: two reach both edges.
 pub const CANDIDATES_PER_SIDE: Range = Range::closed(2.0, MAX_CANDIDATES_PER_SIDE as f64);
-/// Sensors a design chooses: each step fits a cross-validated classifier for every candidate
-/// left, on every feature of the sensors chosen so far, so the cost grows with the square of
-/// the budget; eight sensors of one kind on one support are beyond any rig.
+/// Sensors a design chooses: step k fits a cross-validated classifier for every candidate
+/// left on the 6k features of the k sensors, each fit of cost ~(6k)² per impact, so the whole
+/// design grows as the budget to the fourth; eight sensors of one kind on one support are
+/// beyond any rig.
 pub const DESIGN_SENSORS: Range = Range::closed(1.0, 8.0);
 /// Impacts of one family.
 pub const FAMILY_COUNT: Range = Range::closed(1.0, MAX_IMPACTS as f64);
@@ -217,8 +218,18 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
             let nz = count("ensemble.placement.z_count", p.z_count, CANDIDATES_PER_SIDE)?;
             let design = match p.design_sensors {
                 None => 0,
-                Some(b) => count("ensemble.placement.design_sensors", b, DESIGN_SENSORS)?.min(nx * nz),
+                Some(b) => count("ensemble.placement.design_sensors", b, DESIGN_SENSORS)?,
             };
+            if design > nx * nz {
+                return Err(other(
+                    "ensemble.placement.design_sensors",
+                    format!(
+                        "{design} sensors among {} candidate points ({nx} x {nz}); allowed at most {}",
+                        nx * nz,
+                        nx * nz
+                    ),
+                ));
+            }
             (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz), design)
         }
     };

@@ -6,33 +6,40 @@
 //!
 //! **The prediction and its bar.** A measured feature is one realisation of the chain's
 //! noise, and noise moves a feature's mean as well as its spread (a peak of signal plus noise
-//! is larger than the signal's). So the model's prediction is the mean over
+//! is larger than the signal's). So the model's prediction is the mean over K =
 //! [`REALISATIONS`] realisations of the scene's background on the model's signal, and the bar
 //! is
 //!
-//!   bar = |ȳ_N − ȳ_{N/2}| + |ȳ_Δt − ȳ_{2Δt}| + ε_chain·|ȳ| + 3·s·√(1 + 1/K),
+//!   bar = |ȳ_N − ȳ_{N/2}| + |ȳ_Δt − ȳ_{2Δt}| + ε_chain·|ȳ| + t·s·√(1 + 1/K),
 //!
 //! the modal truncation (the same realisations on the model with half the modes: the
 //! difference overstates the error at N where the feature converges in N), the contact's
 //! time step (the same on the model with half the steps per contact: for a second-order
 //! rule the difference is three times the error at Δt), the realised digital chain's largest
 //! gain deviation from the analog one over the ADC's band taken as a relative error of the
-//! feature (an estimate of a real chain's difference from the modelled one, not a bound; it
-//! is zero where the recording went through the same digital chain), and three standard
-//! deviations s of one realisation about a mean of K. P_max and t_c carry the two model
-//! terms only: the recording's own error of them is not known here. What the bar
-//! leaves out: the mesh's discretisation error (the same mesh carries both models; the
-//! compliance's convergence study bounds it) and any difference between the scene's noise
-//! and the rig's. A drop disagrees where |measured − predicted| exceeds its bar on any row.
+//! feature (an estimate of how far a real, analog chain may be from the modelled one, not a
+//! bound), and the noise: s is one realisation's standard deviation about the mean of K, and
+//! t = [`T_QUANTILE`] is Student's with K − 1 degrees of freedom, so that a row of a drop the
+//! model describes leaves its bar with 0.27 % odds under normal noise (a drop of r rows with
+//! about r times that). P_max and t_c, where the recording states them, carry the two model
+//! terms and three of the standard deviations the recording states for them (none where it
+//! states none, and the row says so). What the bar leaves out: the mesh's discretisation
+//! error (the same mesh carries both models; the compliance's convergence study bounds it)
+//! and any difference between the scene's background and the rig's.
+//!
+//! **The touch between samples.** The recording's window starts at the ADC sample at or
+//! before the touch, and the model's signal is delayed by the touch's fraction of a sample
+//! in model samples (the model runs at a whole multiple of the ADC's rate), so that both are
+//! sampled at the same instants after the touch to 1/(2m) of an ADC interval.
 
 use crate::identify::sensors::{channel_infos, reduced_settings, spec};
 use crate::progress::Progress;
 use crate::Failure;
-use coupled::identification::{ImpactRecord, Instrument};
+use coupled::identification::Instrument;
 use coupled::reduced::{ReducedModel, ReducedSettings};
 use identify::features::{Peak, SpectralCentroid, FEATURES};
 use identify::recording::Recording;
-use identify::{Draw, Feature};
+use identify::Feature;
 use scene::drops::Drop;
 use scene::Scene;
 use serde::Serialize;
@@ -40,10 +47,14 @@ use serde::Serialize;
 /// Realisations of the chain's background per prediction: the bar's s is then known to
 /// about 1/√(2(K − 1)) = 18 % of itself.
 pub const REALISATIONS: usize = 16;
+/// Student's t with [`REALISATIONS`] − 1 = 15 degrees of freedom at 0.99865 (scipy.stats.t.ppf
+/// (0.99865, 15) = 3.5864): the two-sided 0.27 % of three standard deviations of a normal
+/// law, with s estimated from the realisations.
+pub const T_QUANTILE: f64 = 3.5864;
 /// The background streams of predictions start here, apart from every ensemble impact's.
 const PREDICTION_KEY: usize = 1 << 40;
-/// Three standard deviations: a drop the model describes falls outside with 0.3 % odds per
-/// row under normal noise.
+/// Standard deviations of a stated measurement error in the bar: 0.27 % odds per row for a
+/// normal error.
 const SIGMAS: f64 = 3.0;
 
 /// What `impact drops` computed.
@@ -88,6 +99,8 @@ pub struct DropComparison {
     pub rows: Vec<Compared>,
     /// Rows outside their bar.
     pub disagreeing: usize,
+    /// What could not be compared, and why.
+    pub notes: Vec<String>,
 }
 
 /// One quantity of one drop: measured, predicted, and the bar.
@@ -107,24 +120,99 @@ pub struct Compared {
     pub step: f64,
     /// ε_chain·|ȳ_N|.
     pub chain: f64,
-    /// s, one realisation's standard deviation (0 without noise).
+    /// s, one realisation's standard deviation (0 without noise), or the standard deviation
+    /// the recording states for its P_max or t_c.
     pub noise_sd: f64,
     /// The whole bar.
     pub bar: f64,
     /// |measured − predicted| > bar.
     pub disagrees: bool,
+    /// What the bar leaves out for this row, if anything beyond the module's list.
+    pub note: String,
+}
+
+/// A recording checked against a scene, before any model is built: its support set, its
+/// drops in SI and each drop's window.
+#[derive(Debug, Clone)]
+pub struct Checked {
+    /// The support set's position in the scene.
+    pub set: usize,
+    /// The drops.
+    pub drops: Vec<Drop>,
+    /// Each drop's window.
+    pub windows: Vec<Window>,
+}
+
+/// Where a drop's window sits in the recording.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Window {
+    /// Its first sample: the one at or before the touch.
+    pub start: usize,
+    /// Model samples from that sample to the touch (0 to m − 1, m model samples a recorded one).
+    pub delay: usize,
 }
 
 /// Whether `recording` (read from `origin`) can be compared with `scene`, before any model
-/// is built: it lists drops, names one of the scene's support sets (or the scene has one),
-/// and every drop is in range.
-pub fn check(scene: &Scene, recording: &Recording, origin: &str) -> Result<(), Failure> {
+/// is built: the scene describes a rig (\"drops\" among its analyses), the recording lists
+/// drops, names one of the scene's support sets (or the scene has one), is sampled at the
+/// rate the scene's features read, every drop is in range and its window lies inside the
+/// recording. (The channel count needs the model's channels, and is checked once it is built,
+/// still before anything is written.)
+pub fn check(scene: &Scene, recording: &Recording, origin: &str) -> Result<Checked, Failure> {
+    if !scene.analyses.contains(&scene::Analysis::Drops) {
+        return Err(format!(
+            "scene {}: comparing recorded drops needs a scene that describes the rig; add \"drops\" to its analyses",
+            scene.name
+        )
+        .into());
+    }
     if recording.drops.is_empty() {
         return Err(format!("{origin}: lists no drops (the sidecar's \"drops\", docs/guide.md)").into());
     }
-    scene::drops::condition(scene, recording.condition.as_deref(), origin)?;
-    scene::drops::drops(scene, &recording.drops, origin)?;
-    Ok(())
+    let set = scene::drops::condition(scene, recording.condition.as_deref(), origin)?;
+    let drops = scene::drops::drops(scene, &recording.drops, origin)?;
+    let signal_spec = spec(scene, scene.signals.sensors.clone());
+    let (rate, per_sample, n) = match &scene.measurement {
+        None => (signal_spec.rate_hz, 1, signal_spec.samples()),
+        Some(c) => {
+            let chain = identify::measurement::Chain::new(c.clone(), signal_spec.rate_hz)?;
+            (c.rate_hz, chain.decimation(), chain.samples(signal_spec.samples()))
+        }
+    };
+    if recording.rate_hz != rate {
+        return Err(format!(
+            "{origin}: rate_hz = {}, but the scene's features read {rate} Hz (its [measurement] rate_hz)",
+            recording.rate_hz
+        )
+        .into());
+    }
+    let len = recording.channels.first().map_or(0, Vec::len);
+    if len < n {
+        return Err(format!(
+            "{origin}: the recording's {len} samples are fewer than one drop's window of {n} ([signals] window_ms at {rate} Hz)"
+        )
+        .into());
+    }
+    let windows = drops
+        .iter()
+        .map(|d| {
+            let at = d.touch * rate;
+            let (mut start, mut delay) = (at.floor(), ((at - at.floor()) * per_sample as f64).round() as usize);
+            if delay == per_sample {
+                (start, delay) = (start + 1.0, 0);
+            }
+            if start + n as f64 > len as f64 {
+                let latest = (len - n) as f64 / rate;
+                return Err(format!(
+                    "{origin}: drops[{}].touch_s = {}: its window of {n} samples ends after the recording's {len}; allowed [0, {latest}] s",
+                    d.draw.index, d.touch
+                )
+                .into());
+            }
+            Ok(Window { start: start as usize, delay })
+        })
+        .collect::<Result<Vec<_>, Failure>>()?;
+    Ok(Checked { set, drops, windows })
 }
 
 /// The comparison of `recording` (read from `origin`) with `scene`'s model.
@@ -134,51 +222,58 @@ pub fn compute(
     origin: &str,
     progress: &dyn Progress,
 ) -> Result<DropsData, Failure> {
-    check(scene, recording, origin)?;
-    let set_index = scene::drops::condition(scene, recording.condition.as_deref(), origin)?;
-    let drops = scene::drops::drops(scene, &recording.drops, origin)?;
-    let set = &scene.conditions[set_index];
+    let Checked { set, drops, windows } = check(scene, recording, origin)?;
+    let set = &scene.conditions[set];
     let settings = reduced_settings(scene, set)?;
     let half = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings };
     let coarse = ReducedSettings { steps_per_contact: 0.5 * settings.steps_per_contact, ..settings };
     progress.start(3 + drops.len(), &format!("{}: drops", set.name));
+    let signal_spec = spec(scene, scene.signals.sensors.clone());
     let model = ReducedModel::new(&scene.plate, set, settings)?;
-    let full = Instrument::new(&model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), scene)?;
-    let windows = windows(&full, recording, &drops, origin)?;
-    progress.advance(1);
-    let half_model = ReducedModel::new(&scene.plate, set, half)?;
-    let halved = Instrument::new(&half_model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), scene)?;
-    progress.advance(1);
-    let coarse_model = ReducedModel::new(&scene.plate, set, coarse)?;
-    let coarser = Instrument::new(&coarse_model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), scene)?;
-    progress.advance(1);
+    let full = Instrument::new(&model, &scene.plate, &signal_spec, scene)?;
     let channels: Vec<String> =
         channel_infos(&full, &scene.signals.sensors, &scene.plate).iter().map(crate::stream::channel_name).collect();
+    if recording.channels.len() != channels.len() {
+        return Err(format!(
+            "{origin}: columns names {} channels; the scene's sensors and measurement record {}, in this order: {}",
+            recording.channels.len(),
+            channels.len(),
+            channels.join("; ")
+        )
+        .into());
+    }
+    progress.advance(1);
+    let half_model = ReducedModel::new(&scene.plate, set, half)?;
+    let halved = Instrument::new(&half_model, &scene.plate, &signal_spec, scene)?;
+    progress.advance(1);
+    let coarse_model = ReducedModel::new(&scene.plate, set, coarse)?;
+    let coarser = Instrument::new(&coarse_model, &scene.plate, &signal_spec, scene)?;
+    progress.advance(1);
     let realisations = if full.chain().is_some() { REALISATIONS } else { 1 };
     let mut compared = Vec::with_capacity(drops.len());
-    for (d, &start) in drops.iter().zip(&windows) {
-        let rows = drop_rows(d, [&full, &halved, &coarser], (recording, start), &channels, realisations)?;
-        let disagreeing = rows.iter().filter(|r| r.disagrees).count();
+    for (d, &window) in drops.iter().zip(&windows) {
+        let (rows, notes) = drop_rows(d, [&full, &halved, &coarser], (recording, window), &channels, realisations)?;
         compared.push(DropComparison {
             index: d.draw.index,
             touch: d.touch,
             class: d.class_stated.then_some(d.draw.class),
             point: (d.draw.x, d.draw.z),
             velocity: d.draw.velocity,
+            disagreeing: rows.iter().filter(|r| r.disagrees).count(),
             rows,
-            disagreeing,
+            notes,
         });
         progress.advance(1);
     }
     progress.finish();
-    let e = full.extractor();
+    let rate = full.chain().map_or(full.model_rate_hz(), |c| c.spec().rate_hz);
     Ok(DropsData {
         scene: scene.name.clone(),
         condition: set.name.clone(),
         channels,
         recorded_as: recording.names.clone(),
         rate_hz: recording.rate_hz,
-        window: e.samples() as f64 / feature_rate(&full),
+        window: full.extractor().samples() as f64 / rate,
         modes: (settings.modes, half.modes),
         steps_per_contact: (settings.steps_per_contact, coarse.steps_per_contact),
         realisations,
@@ -186,111 +281,69 @@ pub fn compute(
     })
 }
 
-/// The rate the instrument's features read, Hz: the chain's ADC, else the model's.
-fn feature_rate(instrument: &Instrument<'_>) -> f64 {
-    instrument.chain().map_or(instrument.model_rate_hz(), |c| c.spec().rate_hz)
-}
-
-/// The first sample of every drop's window, after checking that the recording is one the
-/// instrument reads (its rate and channels) and that every window lies inside it.
-fn windows(
-    instrument: &Instrument<'_>,
-    recording: &Recording,
-    drops: &[Drop],
-    origin: &str,
-) -> Result<Vec<usize>, Failure> {
-    let rate = feature_rate(instrument);
-    if recording.rate_hz != rate {
-        return Err(format!(
-            "{origin}: rate_hz = {}, but the scene's features read {rate} Hz (its [measurement] rate_hz, else [signals] rate_hz)",
-            recording.rate_hz
-        )
-        .into());
-    }
-    let expected = instrument.channels().len();
-    if recording.channels.len() != expected {
-        return Err(format!(
-            "{origin}: columns names {} channels, the scene's sensors and measurement record {expected}, in the order docs/guide.md gives",
-            recording.channels.len()
-        )
-        .into());
-    }
-    let n = instrument.extractor().samples();
-    let len = recording.channels[0].len();
-    drops
-        .iter()
-        .map(|d| {
-            let start = (d.touch * rate).round();
-            if start + n as f64 > len as f64 {
-                let latest = len.saturating_sub(n) as f64 / rate;
-                return Err(format!(
-                    "{origin}: drops[{}].touch_s = {}: its window of {n} samples ends after the recording's {len}; allowed [0, {latest}] s",
-                    d.draw.index, d.touch
-                )
-                .into());
-            }
-            Ok(start as usize)
-        })
-        .collect()
-}
-
-/// The rows of drop `d`: its measured window (from sample `start` of the recording) against
-/// the model's prediction on `models[0]`, with `models[1]` (half the modes) for the truncation
-/// and `models[2]` (twice the contact step) for the time step.
+/// The rows of drop `d` and what could not be compared: its measured window against the
+/// model's prediction on `models[0]`, with `models[1]` (half the modes) for the truncation and
+/// `models[2]` (twice the contact step) for the time step.
 fn drop_rows(
     d: &Drop,
     models: [&Instrument<'_>; 3],
-    (recording, start): (&Recording, usize),
+    (recording, window): (&Recording, Window),
     channels: &[String],
     realisations: usize,
-) -> Result<Vec<Compared>, Failure> {
+) -> Result<(Vec<Compared>, Vec<String>), Failure> {
     let full = models[0];
-    let name = d.draw.class.key();
     let n = full.extractor().samples();
-    let runs = models.map(|m| predictions(m, &d.draw, name, realisations));
-    let [on_full, on_half, on_coarse] = runs;
-    let ((on_full, record), (on_half, half_record), (on_coarse, coarse_record)) = (on_full?, on_half?, on_coarse?);
+    let [on_full, on_half, on_coarse] = models.map(|m| predictions(m, d, window.delay, realisations));
+    let (on_full, on_half, on_coarse) = (on_full?, on_half?, on_coarse?);
     let eps = full.chain().map_or(0.0, |c| c.realisation_error());
+    let noise_factor = if realisations > 1 { T_QUANTILE * (1.0 + 1.0 / realisations as f64).sqrt() } else { 0.0 };
     let mut rows = Vec::new();
+    let kinds = full.channels();
     for (c, (channel, samples)) in channels.iter().zip(&recording.channels).enumerate() {
-        let measured = full.extractor().features(&samples[start..start + n]);
-        let unit = full.channels()[c].unit();
-        for (feature, unit) in [(&Peak as &dyn Feature, unit.to_string()), (&SpectralCentroid, "Hz".to_string())] {
+        let measured = full.extractor().features(&samples[window.start..window.start + n]);
+        for (feature, unit) in [(&Peak as &dyn Feature, kinds[c].unit()), (&SpectralCentroid, "Hz")] {
             let k = c * FEATURES.len() + feature.index();
-            let (mean, sd) = mean_sd(on_full.iter().map(|f| f[k]));
-            let half_mean = mean_sd(on_half.iter().map(|f| f[k])).0;
-            let coarse_mean = mean_sd(on_coarse.iter().map(|f| f[k])).0;
-            let noise = SIGMAS * sd * (1.0 + 1.0 / realisations as f64).sqrt();
+            let (mean, sd) = mean_sd(on_full.features.iter().map(|f| f[k]));
+            let model = [
+                mean,
+                mean_sd(on_half.features.iter().map(|f| f[k])).0,
+                mean_sd(on_coarse.features.iter().map(|f| f[k])).0,
+            ];
             let quantity = format!("{} of {channel}", feature.name());
-            let model = [mean, half_mean, coarse_mean];
-            rows.push(row(quantity, unit, measured[feature.index()], model, eps * mean.abs(), (sd, noise)));
+            let noise = (sd, noise_factor * sd);
+            rows.push(row((quantity, unit), measured[feature.index()], model, eps * mean.abs(), noise, String::new()));
         }
     }
-    let stated = [
-        (
-            "P_max",
-            "N",
-            d.force_max,
-            [Some(record.force_max), Some(half_record.force_max), Some(coarse_record.force_max)],
-        ),
-        ("t_c", "s", d.contact_time, [record.contact_time, half_record.contact_time, coarse_record.contact_time]),
-    ];
-    for (quantity, unit, measured, model) in stated {
-        if let (Some(m), [Some(p), Some(h), Some(c)]) = (measured, model) {
-            rows.push(row(quantity.into(), unit.into(), m, [p, h, c], 0.0, (0.0, 0.0)));
-        }
+    let mut notes = Vec::new();
+    let force = [&on_full, &on_half, &on_coarse].map(|p| Some(p.force_max));
+    let time = [&on_full, &on_half, &on_coarse].map(|p| p.contact_time);
+    for (quantity, unit, measured, sd, model) in
+        [("P_max", "N", d.force_max, d.force_max_sd, force), ("t_c", "s", d.contact_time, d.contact_time_sd, time)]
+    {
+        let Some(m) = measured else { continue };
+        let [Some(p), Some(h), Some(c)] = model else {
+            notes.push(format!("{quantity}: the model's first contact does not end within the window; not compared"));
+            continue;
+        };
+        let note = if sd.is_some() {
+            String::new()
+        } else {
+            "the recording states no standard deviation for it: the bar is the model's alone".to_string()
+        };
+        let sd = sd.unwrap_or(0.0);
+        rows.push(row((quantity.into(), unit), m, [p, h, c], 0.0, (sd, SIGMAS * sd), note));
     }
-    Ok(rows)
+    Ok((rows, notes))
 }
 
 /// One row: `measured` against the prediction `[ȳ_N, ȳ_{N/2}, ȳ_{2Δt}]` (module docs).
 fn row(
-    quantity: String,
-    unit: String,
+    (quantity, unit): (String, &str),
     measured: f64,
     model: [f64; 3],
     chain: f64,
     (noise_sd, noise): (f64, f64),
+    note: String,
 ) -> Compared {
     let [mean, half_mean, coarse_mean] = model;
     let truncation = (mean - half_mean).abs();
@@ -298,7 +351,7 @@ fn row(
     let bar = truncation + step + chain + noise;
     Compared {
         quantity,
-        unit,
+        unit: unit.to_string(),
         measured,
         predicted: mean,
         truncation,
@@ -307,27 +360,35 @@ fn row(
         noise_sd,
         bar,
         disagrees: (measured - mean).abs() > bar,
+        note,
     }
 }
 
-/// The features of `realisations` throws of `draw` on `instrument`, each with its own
-/// background, and the first throw's record (force and contact time do not depend on it).
+/// A drop thrown once on one model and read several times.
+struct Prediction {
+    /// Each reading's features.
+    features: Vec<Vec<f64>>,
+    /// The first contact's P_max, N, and t_c, s (which do not depend on the reading).
+    force_max: f64,
+    contact_time: Option<f64>,
+}
+
+/// `realisations` readings of drop `d` thrown once on `instrument`, each with its own
+/// background and the touch `delay` model samples into the window.
 fn predictions(
     instrument: &Instrument<'_>,
-    draw: &Draw,
-    family: &str,
+    d: &Drop,
+    delay: usize,
     realisations: usize,
-) -> Result<(Vec<Vec<f64>>, ImpactRecord), Failure> {
-    let mut features = Vec::with_capacity(realisations);
-    let mut first = None;
-    for r in 0..realisations {
-        let index = PREDICTION_KEY + draw.index * REALISATIONS + r;
-        let record = instrument.impact(Draw { index, ..draw.clone() }, family)?;
-        features.push(record.features.clone());
-        first.get_or_insert(record);
-    }
-    let first = first.ok_or("no realisations")?;
-    Ok((features, first))
+) -> Result<Prediction, Failure> {
+    let (_, _, hit) = instrument.simulate(&d.draw, d.draw.class.key())?;
+    let features = (0..realisations)
+        .map(|r| {
+            Ok(instrument.measure(&hit.signals, PREDICTION_KEY + d.draw.index * REALISATIONS + r, delay)?.features)
+        })
+        .collect::<Result<Vec<_>, Failure>>()?;
+    let o = &hit.outcome;
+    Ok(Prediction { features, force_max: o.force_max_interpolated.max(o.force_max), contact_time: o.contact_time })
 }
 
 /// The mean and the sample standard deviation (0 for one value).

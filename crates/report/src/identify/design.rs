@@ -33,13 +33,13 @@ pub(super) fn markdown(d: &SensorDesign, measured: bool) -> Result<String, Failu
 
 /// One row per step: where, the AUC so far and the gain.
 fn steps(d: &SensorDesign) -> Table {
-    let mut t = Table::new("", &["sensors", "added at (x, z) (mm)", "AUC (cross-validated)", "gain"]);
+    let mut t = Table::new("", &["sensors", "added at (x, z) (mm)", "AUC (cross-validated)", "gain (paired error)"]);
     for (k, s) in d.steps.iter().enumerate() {
         t.push(vec![
             Cell::Int(k as u64 + 1),
             format!("({}, {})", sig(s.at_mm.0, 4), sig(s.at_mm.1, 4)).into(),
             format!("{} ± {}", sig(s.auc.auc, 3), sig(s.auc.standard_error, 2)).into(),
-            format!("{:+.3}", s.gain).into(),
+            format!("{:+.4} ± {}", s.gain, sig(s.gain_standard_error, 2)).into(),
         ]);
     }
     t

@@ -116,11 +116,13 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         }
         None => Points::Pairs { pairs: vec![] },
     };
-    // A caving stream's lumps fall onto the plate (its speeds are fall heights), so gravity
-    // acts on them by default there; an ensemble of given velocities is the paper's impact.
+    // A caving stream's lumps fall onto the plate (its speeds are fall heights), and so do a
+    // drop test's, so gravity acts on them by default there; an ensemble of given velocities
+    // is the paper's impact.
+    let falls = raw.ensemble.as_ref().is_some_and(|e| e.fall_height_m.is_some()) || analyses.contains(&Analysis::Drops);
     let gravity = match raw.gravity_m_per_s2 {
         Some(g) => check("gravity_m_per_s2", g, limits::GRAVITY_M_PER_S2, "m/s²")?,
-        None if raw.ensemble.as_ref().is_some_and(|e| e.fall_height_m.is_some()) => identify::ensemble::GRAVITY,
+        None if falls => identify::ensemble::GRAVITY,
         None => 0.0,
     };
     let plate_damping = raw.plate_damping.as_ref().map(damping::validate_plate_damping).transpose()?;
@@ -186,6 +188,12 @@ fn chain_and_stream(
             ))
         }
     };
+    if analyses.contains(&Analysis::Drops) && measurement.is_none() {
+        return Err(other(
+            "measurement",
+            "the \"drops\" analysis reads recordings through the rig's measurement chain, and the scene has no [measurement] table (its sensors' band, ADC and background make the bar's noise term)",
+        ));
+    }
     if signals.modes_from_chain && measurement.is_none() {
         return Err(other(
             "signals.modes",

@@ -237,6 +237,8 @@ pub struct DesignStep {
     pub auc: identify::Auc,
     /// Its gain over the step before (the first's over chance, 0.5).
     pub gain: f64,
+    /// DeLong's paired standard error of the gain.
+    pub gain_standard_error: f64,
     /// The AUC had each grid point been added instead, `[x][z]` (None: already chosen).
     pub map: Vec<Vec<Option<f64>>>,
 }

@@ -75,6 +75,7 @@ pub fn design(
                 at_mm: at(s.added),
                 auc: s.auc,
                 gain: s.gain,
+                gain_standard_error: s.gain_standard_error,
                 map: (0..study.candidates_x.len()).map(|i| (0..nz).map(|j| s.map[i * nz + j]).collect()).collect(),
             })
             .collect(),

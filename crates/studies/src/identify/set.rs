@@ -6,10 +6,12 @@ use super::sensors::{channel_infos, no_channels, run_sensors, spec};
 use super::separability::{contact_quantities, split, Separation};
 use super::{
     baselines, classifiers, full_model, measured, placement, variability, ClassValues, ConditionDetail,
-    ConditionResult, MainImpact, Sink,
+    ConditionResult, MainImpact, SensorDesign, Sink,
 };
+use crate::channel::ChannelInfo;
 use crate::progress::Progress;
 use crate::Failure;
+use coupled::identification::ConditionRun;
 use coupled::identification::{Instrument, CHUNK};
 use coupled::reduced::ReducedModel;
 use identify::features::FEATURES;
@@ -17,6 +19,9 @@ use identify::placement::best;
 use identify::{Held, Study};
 use scene::{Scene, SupportSet};
 use std::time::Instant;
+
+/// The sensor design's folds, apart from every other stream of the set's seed.
+const DESIGN_KEY: u64 = 400;
 
 /// The identification on `set`, the `index`-th support set of `scene`: the main run's
 /// impacts handed to `sink`, the result and what its section shows.
@@ -64,15 +69,7 @@ pub(super) fn run_set(
     let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
     let top = best(&sep.all, &[]).map(|s| s.channel);
     let measurement = measured::of_set(scene, study, set, &instrument, &main, &main_run, top, seed, progress)?;
-    let (fc, fg) = split(&main.force_max, main.table.classes());
-    let maps = placement::maps(study, &grid, &infos, &sep.all);
-    let design = placement::design(study, &grid, &infos, &maps, &main.table, seed ^ 400)?;
-    let detail = ConditionDetail {
-        maps,
-        best: sep.best_values(),
-        force_max: ClassValues { label: "P_max (N)".into(), coal: fc, gangue: fg, scale: true },
-        reference,
-    };
+    let (detail, design) = detail(study, (&grid, &infos), &main, &sep, reference, seed)?;
     let ranking = sep.ranking();
     let baselines = vec![
         baselines::of_ranked("contact time t_c", &contact_time),
@@ -104,4 +101,26 @@ pub(super) fn run_set(
         design,
     };
     Ok((result, detail))
+}
+
+/// What the set's section shows (the placement maps, the histograms' values, the variability
+/// study's reference) and the sensor design, from the main run `main` and its separations.
+fn detail(
+    study: &Study,
+    (grid, infos): (&[usize], &[ChannelInfo]),
+    main: &ConditionRun,
+    sep: &Separation,
+    reference: Option<String>,
+    seed: u64,
+) -> Result<(ConditionDetail, Option<SensorDesign>), Failure> {
+    let (fc, fg) = split(&main.force_max, main.table.classes());
+    let maps = placement::maps(study, grid, infos, &sep.all);
+    let design = placement::design(study, grid, infos, &maps, &main.table, seed ^ DESIGN_KEY)?;
+    let detail = ConditionDetail {
+        maps,
+        best: sep.best_values(),
+        force_max: ClassValues { label: "P_max (N)".into(), coal: fc, gangue: fg, scale: true },
+        reference,
+    };
+    Ok((detail, design))
 }
