@@ -123,7 +123,7 @@ fn cholesky_solve(h: &[f64], g: &[f64], n: usize) -> Option<Vec<f64>> {
     Some(x.col(0).iter().copied().collect())
 }
 
-pub(crate) fn check_shape(rows: &[Vec<f64>], labels: &[bool]) -> Result<usize, FitError> {
+fn check_shape(rows: &[Vec<f64>], labels: &[bool]) -> Result<usize, FitError> {
     if rows.is_empty() || rows.len() != labels.len() {
         return Err(FitError::Shape(format!("{} rows and {} labels", rows.len(), labels.len())));
     }
@@ -247,7 +247,8 @@ pub fn stratified_folds(labels: &[bool], k: usize, seed: u64) -> Vec<usize> {
     fold
 }
 
-/// Stratified `k`-fold cross-validated accuracy of [`Logistic::fit`] with ridge `lambda`.
+/// Stratified `k`-fold cross-validated accuracy of [`Logistic::fit`] with ridge `lambda`:
+/// each row predicted by the model fitted without its fold ([`out_of_fold`]).
 pub fn cross_validate(
     rows: &[Vec<f64>],
     labels: &[bool],
@@ -256,10 +257,46 @@ pub fn cross_validate(
     k: usize,
     seed: u64,
 ) -> Result<CrossValidated, FitError> {
+    let p = fold_probabilities(rows, labels, scale, lambda, k, seed)?;
+    // A row no fold scored (possible only with fewer rows than folds) is not counted right.
+    let correct = p.iter().zip(labels).filter(|(p, &l)| p.is_some_and(|p| (p >= 0.5) == l)).count();
+    let n = rows.len();
+    let a = correct as f64 / n as f64;
+    Ok(CrossValidated {
+        accuracy: a,
+        standard_error: (a * (1.0 - a) / n as f64).sqrt(),
+        n,
+        folds: k.clamp(2, n.max(2)),
+    })
+}
+
+/// Each row's probability of gangue from [`Logistic::fit`] (ridge `lambda`) fitted without
+/// its fold, [`stratified_folds`] of `k` (at least 2) from `seed`; ½ for a row no fold
+/// scores (possible only with fewer rows than folds).
+pub fn out_of_fold(
+    rows: &[Vec<f64>],
+    labels: &[bool],
+    scale: &[bool],
+    lambda: f64,
+    k: usize,
+    seed: u64,
+) -> Result<Vec<f64>, FitError> {
+    Ok(fold_probabilities(rows, labels, scale, lambda, k, seed)?.into_iter().map(|p| p.unwrap_or(0.5)).collect())
+}
+
+/// [`out_of_fold`], a row no fold scores None.
+fn fold_probabilities(
+    rows: &[Vec<f64>],
+    labels: &[bool],
+    scale: &[bool],
+    lambda: f64,
+    k: usize,
+    seed: u64,
+) -> Result<Vec<Option<f64>>, FitError> {
     check_shape(rows, labels)?;
     let k = k.clamp(2, rows.len().max(2));
     let fold = stratified_folds(labels, k, seed);
-    let mut correct = 0usize;
+    let mut probability = vec![None; rows.len()];
     for f in 0..k {
         let train: Vec<usize> = (0..rows.len()).filter(|&i| fold[i] != f).collect();
         let test: Vec<usize> = (0..rows.len()).filter(|&i| fold[i] == f).collect();
@@ -269,11 +306,11 @@ pub fn cross_validate(
         let tr: Vec<Vec<f64>> = train.iter().map(|&i| rows[i].clone()).collect();
         let tl: Vec<bool> = train.iter().map(|&i| labels[i]).collect();
         let model = Logistic::fit(&tr, &tl, scale, lambda)?;
-        correct += test.iter().filter(|&&i| model.predict(&rows[i]) == labels[i]).count();
+        for i in test {
+            probability[i] = Some(model.probability(&rows[i]));
+        }
     }
-    let n = rows.len();
-    let a = correct as f64 / n as f64;
-    Ok(CrossValidated { accuracy: a, standard_error: (a * (1.0 - a) / n as f64).sqrt(), n, folds: k })
+    Ok(probability)
 }
 
 impl Column {

@@ -17,7 +17,8 @@
 //! beyond its standard error, and a cross-validated ridge fit can lose AUC when a sensor adds
 //! only noise.
 
-use crate::classify::{check_shape, stratified_folds, FitError, Logistic, FOLDS, RIDGE};
+pub use crate::classify::out_of_fold;
+use crate::classify::{FitError, FOLDS, RIDGE};
 use crate::ensemble::Class;
 use crate::features::FEATURES;
 use crate::placement::FeatureTable;
@@ -62,35 +63,6 @@ pub fn cross_validated_auc(
     let p = out_of_fold(rows, labels, scale, lambda, k, seed)?;
     let (coal, gangue) = by_class(&p, labels);
     Ok(auc_with_error(&coal, &gangue))
-}
-
-/// Each row's probability of gangue from the model fitted without its fold (as
-/// [`cross_validated_auc`]).
-pub fn out_of_fold(
-    rows: &[Vec<f64>],
-    labels: &[bool],
-    scale: &[bool],
-    lambda: f64,
-    k: usize,
-    seed: u64,
-) -> Result<Vec<f64>, FitError> {
-    check_shape(rows, labels)?;
-    let k = k.clamp(2, rows.len().max(2));
-    let fold = stratified_folds(labels, k, seed);
-    let mut probability = vec![0.5; rows.len()];
-    for f in 0..k {
-        let train: Vec<usize> = (0..rows.len()).filter(|&i| fold[i] != f).collect();
-        if train.len() == rows.len() {
-            continue;
-        }
-        let tr: Vec<Vec<f64>> = train.iter().map(|&i| rows[i].clone()).collect();
-        let tl: Vec<bool> = train.iter().map(|&i| labels[i]).collect();
-        let model = Logistic::fit(&tr, &tl, scale, lambda)?;
-        for i in (0..rows.len()).filter(|&i| fold[i] == f) {
-            probability[i] = model.probability(&rows[i]);
-        }
-    }
-    Ok(probability)
 }
 
 /// `values` split by `labels` into (coal, gangue), in order.
