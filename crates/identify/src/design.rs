@@ -41,8 +41,8 @@ pub struct Step {
     pub map: Vec<Option<f64>>,
 }
 
-/// The cross-validated AUC of the logistic classifier ([`Logistic::fit`], ridge `lambda`) on
-/// `rows` labelled `labels` (true: gangue), [`stratified_folds`] of `k` from `seed`.
+/// The cross-validated AUC of the logistic classifier ([`crate::classify::Logistic::fit`], ridge `lambda`) on
+/// `rows` labelled `labels` (true: gangue), [`crate::classify::stratified_folds`] of `k` from `seed`.
 ///
 /// ```
 /// use identify::design::cross_validated_auc;
