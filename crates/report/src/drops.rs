@@ -91,12 +91,13 @@ pub fn summary_table(d: &DropsData) -> Table {
                 Some(a) if a.0 >= b.0 => Some(a),
                 _ => Some(b),
             });
-        let outside: Vec<&str> = drop.rows.iter().filter(|r| r.disagrees).map(|r| r.quantity.as_str()).collect();
+        // A count here; which rows, with their numbers, is in drops.csv.
+        let outside = drop.rows.iter().filter(|r| r.disagrees).count();
         t.push(vec![
             Cell::Int(drop.index as u64),
             Cell::Num(drop.touch),
             Cell::Sig(drop.velocity, 4),
-            if outside.is_empty() { "none".into() } else { outside.join("; ").into() },
+            format!("{outside} of {}", drop.rows.len()).into(),
             worst.map_or("no row has a bar".into(), |(r, q)| format!("{} ({q})", sig(r, 3)).into()),
             drop.notes.join("; ").into(),
         ]);
