@@ -63,8 +63,10 @@ pub mod corners;
 pub mod dynamics;
 pub mod element;
 pub mod mesh;
+pub mod mindlin;
 pub mod model;
 pub mod modes;
+pub mod patch;
 pub mod supports;
 
 /// faer, re-exported: [`Factorization::solve_in_place`] takes a `faer::Mat<f64>`,
@@ -81,6 +83,7 @@ pub use corners::CornerFamily;
 pub use mesh::Mesh;
 pub use model::{Factorization, Model, PlateProperties, PointResponse};
 pub use modes::{Modes, ResidualFlexibility};
+pub use patch::Patch;
 pub use supports::{Corner, CornerSupport, Edge, EdgeSupport, Supports};
 
 /// Everything that can go wrong, each with what to change.

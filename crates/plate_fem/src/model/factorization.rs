@@ -385,6 +385,18 @@ impl<'m> Factorization<'m> {
         Ok((r, w))
     }
 
+    /// The work-conjugate compliance (1/P²) ∫ p w dA of a unit force spread over `patch`
+    /// (m/N): the Kirchhoff counterpart of [`crate::mindlin::Supported::respond`].
+    pub fn respond_patch(&self, patch: &crate::Patch) -> Result<f64, FemError> {
+        let mut load = self.model.patch_load(patch)?;
+        for &d in &self.held {
+            load[d] = 0.0;
+        }
+        let mut rhs = Mat::<f64>::from_fn(load.len(), 1, |i, _| load[i]);
+        self.solve_in_place(&mut rhs);
+        Ok(load.iter().enumerate().map(|(i, f)| f * rhs[(i, 0)]).sum())
+    }
+
     /// Response at one point.
     pub fn respond(&self, x: f64, z: f64) -> Result<PointResponse, FemError> {
         Ok(self.respond_many(&[(x, z)])?.remove(0))

@@ -22,7 +22,7 @@ use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use serde::Serialize;
 use std::collections::HashMap;
 
-mod cholesky;
+pub(crate) mod cholesky;
 mod factorization;
 mod selected_inverse;
 
@@ -264,6 +264,28 @@ impl Model {
         let loc = self.mesh.locate(x, z)?;
         let (a, b) = self.mesh.element_size(loc.ex, loc.ez);
         Ok((self.mesh.element_dofs(loc.ex, loc.ez), element::shape(a, b, loc.xi, loc.eta)))
+    }
+
+    /// The consistent load of a unit force spread uniformly over `patch`: ∫ p N dA over each
+    /// part of an element it covers, exact by 4 x 4 Gauss points (N is bicubic).
+    pub fn patch_load(&self, patch: &crate::Patch) -> Result<Vec<f64>, FemError> {
+        let mut f = vec![0.0; self.dofs()];
+        let p = patch.pressure();
+        for part in patch.parts(&self.mesh)? {
+            let ((a, b), [x0, x1, z0, z1]) = (part.size, part.local);
+            let dofs = self.mesh.element_dofs(part.ex, part.ez);
+            for &(s, ws) in &assembly::GAUSS {
+                for &(t, wt) in &assembly::GAUSS {
+                    let (x, z) = (x0 + s * (x1 - x0), z0 + t * (z1 - z0));
+                    let n = element::shape(a, b, x / a, z / b);
+                    let weight = p * ws * wt * (x1 - x0) * (z1 - z0);
+                    for (d, v) in dofs.iter().zip(n.iter()) {
+                        f[*d] += v * weight;
+                    }
+                }
+            }
+        }
+        Ok(f)
     }
 
     /// The bending strain along x at (x, z) on the face away from the load, as a functional

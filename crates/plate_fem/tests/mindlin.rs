@@ -1,0 +1,120 @@
+//! The Mindlin plate (MITC4) against its references: the constant-moment patch test on a
+//! graded grid, Navier's series with shear for thick plates (with the observed convergence
+//! rate), and the Bogner-Fox-Schmit Kirchhoff plate in the thin limit, on edges and on the
+//! paper's corner supports.
+
+use plate_fem::convergence::richardson;
+use plate_fem::mindlin::{series, Patch, Plate};
+use plate_fem::{CornerSupport, FemError, Mesh, Model, PlateProperties, Supports};
+
+fn plate(length: f64, width: f64, thickness: f64) -> PlateProperties {
+    PlateProperties { length, width, thickness, youngs_modulus: 210e9, poisson_ratio: 0.3, density: 7850.0 }
+}
+
+/// Patch test: constant moments M_x = M₀ on the edges x = 0, L of a plate held at three
+/// corners (statically determinate, so the reactions vanish) give the constant curvature
+/// κ = D_b⁻¹ (M₀, 0, 0) everywhere. The FE field must be the exact quadratic w (less the
+/// plane through the supports) at every node, with θ = ∇w, on a graded grid, thick or thin.
+#[test]
+fn constant_moment_patch_test_on_a_graded_grid() -> Result<(), FemError> {
+    let (l, b) = (0.6, 0.4);
+    let mesh = Mesh::from_lines(vec![0.0, 0.07, 0.2, 0.33, 0.41, 0.6], vec![0.0, 0.05, 0.22, 0.31, 0.4])?;
+    for h in [0.002, 0.05] {
+        let props = plate(l, b, h);
+        let p = Plate::new(props, mesh.clone())?;
+        use CornerSupport::{Fixed, Free};
+        let supported = p.factorize(&Supports::corners([Fixed, Fixed, Fixed, Free]))?;
+        // Consistent nodal moments: ∫ M₀ θ_x dz on each edge side, ±M₀ℓ/2 to its two nodes.
+        let m0 = 1.0e3;
+        let mut f = vec![0.0; p.dofs()];
+        let (xs, zs) = (mesh.xs(), mesh.zs());
+        for (i, sign) in [(0, -1.0), (mesh.nx(), 1.0)] {
+            for j in 0..mesh.nz() {
+                let half = sign * m0 * (zs[j + 1] - zs[j]) / 2.0;
+                f[3 * mesh.node(i, j) + 1] += half;
+                f[3 * mesh.node(i, j + 1) + 1] += half;
+            }
+        }
+        let u = supported.solve(&f);
+        // κ from M = D_b κ: κ_x = M₀/(D(1-ν²)), κ_z = -ν κ_x.
+        let (d, nu) = (props.rigidity(), props.poisson_ratio);
+        let (kx, kz) = (m0 / (d * (1.0 - nu * nu)), -nu * m0 / (d * (1.0 - nu * nu)));
+        let w = |x: f64, z: f64| 0.5 * kx * x * (x - l) + 0.5 * kz * z * (z - b);
+        let scale = kx * l * l;
+        for (j, &z) in zs.iter().enumerate() {
+            for (i, &x) in xs.iter().enumerate() {
+                let n = 3 * mesh.node(i, j);
+                let exact = [w(x, z), kx * (x - l / 2.0), kz * (z - b / 2.0)];
+                for q in 0..3 {
+                    let s = if q == 0 { scale } else { scale / l };
+                    assert!(
+                        (u[n + q] - exact[q]).abs() < 1e-10 * s,
+                        "h = {h}, node ({i}, {j}), dof {q}: {} against {}",
+                        u[n + q],
+                        exact[q]
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Thick plates (h/L = 0.1 and 0.2) simply supported on all edges under a centred patch of
+/// a quarter of the side: the FE compliance converges to Navier's series with shear at the
+/// observed rate 2 (the energy error of a bilinear element under a load smooth on each
+/// element), and its Richardson estimate bounds the finest mesh's distance from the series.
+#[test]
+fn thick_plates_converge_to_the_mindlin_series() -> Result<(), FemError> {
+    for h in [0.1, 0.2] {
+        let props = plate(1.0, 1.0, h);
+        let patch = Patch { x: 0.5, z: 0.5, side_x: 0.25, side_z: 0.25 };
+        let reference = series::navier_patch(&props, &patch);
+        assert!(reference.truncation < 1e-9 * reference.compliance);
+        let share = reference.shear / reference.compliance;
+        let mut values = Vec::new();
+        for n in [8, 16, 32, 64] {
+            let p = Plate::new(props, Mesh::uniform(1.0, 1.0, n, n)?)?;
+            let r = p.factorize(&Supports::all_edges_simple())?.respond(&patch)?;
+            values.push(r.compliance);
+            // The FE shear share tracks the series' (to the discretisation error).
+            assert!((r.shear / r.compliance - share).abs() < 0.02, "h = {h}, n = {n}");
+        }
+        let e = richardson(&values).expect("four meshes");
+        let rate = e.observed_rate.expect("three or more meshes");
+        assert!((1.8..2.2).contains(&rate), "h = {h}: observed rate {rate}");
+        let error = (e.finest - reference.compliance).abs();
+        assert!(
+            error <= e.error_estimate * 1.5,
+            "h = {h}: |FE - series| = {error:e} against the estimate {:e}",
+            e.error_estimate
+        );
+        println!("h = {h}: shear share {share:.4}, FE {values:?}, rate {rate:.3}, series {:e}", reference.compliance);
+        assert!(
+            (e.extrapolated / reference.compliance - 1.0).abs() < 1e-4,
+            "h = {h}: extrapolated {:e} against {:e}",
+            e.extrapolated,
+            reference.compliance
+        );
+    }
+    Ok(())
+}
+
+/// The thin limit on edges: at h/L = 1e-3 the Mindlin and Kirchhoff compliances of the
+/// simply supported plate under a patch agree to the meshes' discretisation error (the
+/// shear share is 1e-5 there), and both meet Kirchhoff's series; MITC4 does not lock.
+#[test]
+fn thin_limit_is_kirchhoff_on_edges() -> Result<(), FemError> {
+    let props = plate(1.0, 0.8, 1e-3);
+    let patch = Patch { x: 0.4, z: 0.3, side_x: 0.1, side_z: 0.1 };
+    let reference = series::navier_patch(&props, &patch);
+    assert!(reference.shear / reference.compliance < 2e-5);
+    let model = Model::new(props, Mesh::uniform(1.0, 0.8, 20, 16)?)?;
+    let bfs = model.factorize(&Supports::all_edges_simple())?.respond_patch(&patch)?;
+    assert!((bfs / reference.kirchhoff - 1.0).abs() < 1e-3, "BFS {bfs:e} against series {:e}", reference.kirchhoff);
+    let p = Plate::new(props, Mesh::uniform(1.0, 0.8, 80, 64)?)?;
+    let mindlin = p.factorize(&Supports::all_edges_simple())?.respond(&patch)?.compliance;
+    // Bilinear elements of 1/80 of the side: about 1e-3 (from the thick plates' rate).
+    assert!((mindlin / bfs - 1.0).abs() < 3e-3, "Mindlin {mindlin:e} against BFS {bfs:e}");
+    Ok(())
+}
