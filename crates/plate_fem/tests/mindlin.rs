@@ -4,7 +4,7 @@
 //! paper's corner supports.
 
 use plate_fem::convergence::richardson;
-use plate_fem::mindlin::{series, Patch, Plate};
+use plate_fem::mindlin::{self, series, Patch, Plate};
 use plate_fem::{CornerSupport, FemError, Mesh, Model, PlateProperties, Supports};
 
 fn plate(length: f64, width: f64, thickness: f64) -> PlateProperties {
@@ -116,5 +116,56 @@ fn thin_limit_is_kirchhoff_on_edges() -> Result<(), FemError> {
     let mindlin = p.factorize(&Supports::all_edges_simple())?.respond(&patch)?.compliance;
     // Bilinear elements of 1/80 of the side: about 1e-3 (from the thick plates' rate).
     assert!((mindlin / bfs - 1.0).abs() < 3e-3, "Mindlin {mindlin:e} against BFS {bfs:e}");
+    Ok(())
+}
+
+/// Corner supports on nodes and on pads, on a thick square plate (h/L = 0.1) with its four
+/// corners fixed and a centred patch. On nodes the compliance grows by a constant per halving
+/// of the mesh, the quarter plane's ln 2 · Σ R² (2/π)/(k_s G h) with R = 1/4 at each corner
+/// (plate_fem::mindlin::node_support_growth): the increments fall toward it (5 % above it
+/// from 128 to 256 elements a side, 1.3 % from 256 to 512, measured; the rest is the
+/// discretisation error, falling as n⁻²). On pads of side h the sequence converges at the observed rate 2.
+#[test]
+fn node_supports_grow_logarithmically_and_pads_converge() -> Result<(), FemError> {
+    let h = 0.1;
+    let props = plate(1.0, 1.0, h);
+    let patch = Patch { x: 0.5, z: 0.5, side_x: 0.125, side_z: 0.125 };
+    let (mut nodes, mut pads) = (Vec::new(), Vec::new());
+    let mut growth = 0.0;
+    for n in [32, 64, 128, 256] {
+        let p = Plate::new(props, Mesh::uniform(1.0, 1.0, n, n)?)?;
+        growth = mindlin::node_support_growth(&[0.25; 4], p.shear_rigidity());
+        nodes.push(p.factorize(&Supports::con1())?.respond(&patch)?.compliance);
+        let padded = p.with_pad(h)?;
+        pads.push(padded.factorize(&Supports::con1())?.respond(&patch)?.compliance);
+    }
+    let last = nodes[3] - nodes[2];
+    assert!((last / growth - 1.0).abs() < 0.07, "increment {last:e} against {growth:e}");
+    assert!(nodes[2] - nodes[1] > last && last > growth, "the increments fall toward the constant: {nodes:?}");
+    let e = richardson(&pads).expect("four meshes");
+    let rate = e.observed_rate.expect("four meshes");
+    assert!((1.8..2.2).contains(&rate), "pads: rate {rate}, {pads:?}");
+    Ok(())
+}
+
+/// A spring corner's pad is carried by its spring: on the paper's plate (458.4 x 360 x 8 mm)
+/// under Con 2 (four springs of k_T) and a centred load, by symmetry each spring takes a
+/// quarter of the load, so each pad's mean deflection is 1/(4 k_T) per unit load; with node
+/// supports the corner node's deflection is the same.
+#[test]
+fn spring_pads_carry_a_quarter_each_under_con2() -> Result<(), FemError> {
+    let (l, b, k) = (0.4584, 0.36, 5.11545e8);
+    let props = plate(l, b, 0.008);
+    let patch = Patch { x: l / 2.0, z: b / 2.0, side_x: 0.008, side_z: 0.008 };
+    for pad in [None, Some(0.008)] {
+        let mut p = Plate::new(props, Mesh::uniform(l, b, 40, 40)?)?;
+        if let Some(side) = pad {
+            p = p.with_pad(side)?;
+        }
+        let r = p.factorize(&Supports::con2(k))?.respond(&patch)?;
+        for w in r.corner_deflection {
+            assert!((w * 4.0 * k - 1.0).abs() < 1e-9, "pad {pad:?}: {w:e} against {:e}", 0.25 / k);
+        }
+    }
     Ok(())
 }
