@@ -34,8 +34,9 @@ pub struct Common {
     /// Also write CSV and JSON files into DIR.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Which model answers: the paper's beam, the plate finite elements (quasi-static), the
-    /// transient plate, or all three.
+    /// Which model answers: the paper's beam, the Kirchhoff plate finite elements
+    /// (quasi-static), the transient plate, the Reissner-Mindlin plate finite elements
+    /// (quasi-static, with transverse shear), or all four.
     #[arg(long, value_enum, default_value_t = ModelChoice::Beam)]
     pub model: ModelChoice,
     #[command(flatten)]
@@ -138,6 +139,7 @@ pub enum ModelChoice {
     Beam,
     Plate,
     Transient,
+    Mindlin,
     All,
 }
 
@@ -147,6 +149,7 @@ impl ModelChoice {
             ModelChoice::Beam => vec![ModelKind::Beam],
             ModelChoice::Plate => vec![ModelKind::Plate],
             ModelChoice::Transient => vec![ModelKind::Transient],
+            ModelChoice::Mindlin => vec![ModelKind::Mindlin],
             ModelChoice::All => ModelKind::ALL.to_vec(),
         }
     }

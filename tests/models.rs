@@ -29,7 +29,7 @@ fn json_of(args: &[&str], scene: &str) -> serde_json::Value {
 #[test]
 fn each_model_behind_each_command() {
     let small = two_sets();
-    for model in ["beam", "plate", "transient"] {
+    for model in ["beam", "plate", "transient", "mindlin"] {
         // A loose tolerance keeps each transient case on the starting discretisation.
         let v = json_of(&["solve", "--model", model, "--tolerance", "1e-2"], &small);
         let rows = v["results"]["responses"].as_array().unwrap();
@@ -50,10 +50,27 @@ fn each_model_behind_each_command() {
     // yield: beam and plate agree in kind, the beam not applicable to the general set.
     let v = json_of(&["yield", "--model", "all", "--tolerance", "1e-2"], &edit(&small, CON_1, ""));
     let rows = v["results"]["yields"].as_array().unwrap();
-    assert_eq!(rows.len(), 3);
+    assert_eq!(rows.len(), 4);
     for r in rows {
         let applicable = r["model"] != "beam";
         assert_eq!(r["applicable"], applicable, "{r}");
+    }
+}
+
+/// Each plate theory is judged against its own range: a 30 mm plate (h/B = 0.083) is beyond
+/// Kirchhoff's (0.05) and inside Reissner-Mindlin's (0.2), and Mindlin's compliance is above
+/// Kirchhoff's there (shear).
+#[test]
+fn mindlin_is_judged_against_its_own_range() {
+    let thick = edit(&two_sets(), "thickness_mm = 8.0", "thickness_mm = 30.0");
+    let flag = "beyond the plate theory's range";
+    let rows = |model: &str| json_of(&["solve", "--model", model], &thick)["results"]["responses"].clone();
+    let (plate, mindlin) = (rows("plate"), rows("mindlin"));
+    for (k, m) in plate.as_array().unwrap().iter().zip(mindlin.as_array().unwrap()) {
+        let flags = |r: &serde_json::Value| r["validity_flags"].to_string();
+        assert!(flags(k).contains(flag), "{k}");
+        assert!(!flags(m).contains(flag), "{m}");
+        assert!(m["compliance_m_per_N"].as_f64() > k["compliance_m_per_N"].as_f64(), "{k} {m}");
     }
 }
 

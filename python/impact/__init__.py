@@ -92,8 +92,9 @@ Columns = dict[str, np.ndarray]
 #: What the functions accept as a scene: a Scene, a path to a scene file, or a dict with the
 #: layout of a scene file.
 SceneLike = Union[Scene, str, "os.PathLike[str]", Mapping[str, Any]]
-#: The models that answer: the paper's beam, the plate FE (quasi-static), the transient plate, or all.
-Model = Literal["beam", "plate", "transient", "all"]
+#: The models that answer: the paper's beam, the Kirchhoff plate FE (quasi-static), the transient
+#: plate, the Reissner-Mindlin plate FE (quasi-static, with transverse shear), or all.
+Model = Literal["beam", "plate", "transient", "mindlin", "all"]
 
 
 def load_scene(scene: SceneLike) -> Scene:
@@ -162,7 +163,9 @@ def solve(
         scene: a :class:`Scene`, a scene-file path or a dict (see :func:`load_scene`).
         model: "beam" (the paper's closed forms), "plate" (Kirchhoff plate finite elements,
             quasi-static, Richardson-extrapolated with an error estimate), "transient" (the
-            plate in time, each response with its discretisation error) or "all".
+            plate in time, each response with its discretisation error), "mindlin"
+            (Reissner-Mindlin plate finite elements: Kirchhoff's plate with transverse shear,
+            the contact spread over a square of side h) or "all".
         tolerance: the transient model's relative tolerance on the forces and the contact
             time, for which each case's mesh and step are chosen (within
             :data:`TRANSIENT_TOLERANCE`; default :data:`DEFAULT_TOLERANCE`, ``impact solve

@@ -42,6 +42,11 @@ use serde::Serialize;
 pub const QUASI_STATIC_MIN_RATIO: f64 = 0.2;
 /// Largest h/min(L, B) of the thin-plate range.
 pub const THIN_PLATE_MAX_RATIO: f64 = 0.05;
+/// Largest h/min(L, B) of the moderately thick range of Reissner-Mindlin (first-order shear)
+/// theory: side-to-thickness ratios down to 5, where it stays within a few per cent of
+/// three-dimensional elasticity for the deflection (Reddy, *Theory and Analysis of Elastic
+/// Plates and Shells*, 2nd ed., §10.2).
+pub const MINDLIN_PLATE_MAX_RATIO: f64 = 0.2;
 
 /// One criterion: a measured ratio against its limit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -141,8 +146,9 @@ fn flag_of(name: &str) -> &'static str {
 pub const FLAG_ELASTIC: &str = "beyond elastic range";
 /// The flag of a quasi-static result whose contact is short against T₁.
 pub const FLAG_QUASI_STATIC: &str = "not quasi-static";
-/// The flag of a plate too thick for Kirchhoff theory.
-pub const FLAG_THIN_PLATE: &str = "beyond thin-plate range";
+/// The flag of a plate too thick for its plate theory (Kirchhoff's or the beam's, or
+/// Reissner-Mindlin's).
+pub const FLAG_THIN_PLATE: &str = "beyond the plate theory's range";
 /// The flag of a quasi-static result the regime rule does not trust.
 pub const FLAG_REGIME: &str = "outside the quasi-static regime rule";
 /// The flag of a transient impact with more than one contact.
@@ -167,6 +173,11 @@ pub fn discretisation(estimate: f64, tolerance: f64) -> Criterion {
 /// The thin-plate criterion for a plate of thickness `h`, length `l` and width `b`.
 pub fn thin_plate(h: f64, l: f64, b: f64) -> Criterion {
     Criterion::at_most("h/min(L, B)", h / l.min(b), THIN_PLATE_MAX_RATIO)
+}
+
+/// The Reissner-Mindlin range for a plate of thickness `h`, length `l` and width `b`.
+pub fn moderately_thick_plate(h: f64, l: f64, b: f64) -> Criterion {
+    Criterion::at_most("h/min(L, B)", h / l.min(b), MINDLIN_PLATE_MAX_RATIO)
 }
 
 /// The quasi-static criterion for a contact time `t_c` and fundamental period `t1`.

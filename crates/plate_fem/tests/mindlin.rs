@@ -135,7 +135,10 @@ fn node_supports_grow_logarithmically_and_pads_converge() -> Result<(), FemError
     for n in [32, 64, 128, 256] {
         let p = Plate::new(props, Mesh::uniform(1.0, 1.0, n, n)?)?;
         growth = mindlin::node_support_growth(&[0.25; 4], p.shear_rigidity());
-        nodes.push(p.factorize(&Supports::con1())?.respond(&patch)?.compliance);
+        let r = p.factorize(&Supports::con1())?.respond(&patch)?;
+        // Equilibrium: the four corners carry the load, a quarter each by symmetry.
+        assert!(r.corner_reaction.iter().all(|&q| (q - 0.25).abs() < 1e-9), "{:?}", r.corner_reaction);
+        nodes.push(r.compliance);
         let padded = p.with_pad(h)?;
         pads.push(padded.factorize(&Supports::con1())?.respond(&patch)?.compliance);
     }
@@ -163,8 +166,14 @@ fn spring_pads_carry_a_quarter_each_under_con2() -> Result<(), FemError> {
             p = p.with_pad(side)?;
         }
         let r = p.factorize(&Supports::con2(k))?.respond(&patch)?;
-        for w in r.corner_deflection {
+        for (w, reaction) in r.corner_deflection.iter().zip(r.corner_reaction) {
             assert!((w * 4.0 * k - 1.0).abs() < 1e-9, "pad {pad:?}: {w:e} against {:e}", 0.25 / k);
+            // The pad's reaction from the residual f - Ku is the spring's force k w̄.
+            assert!(
+                (reaction / (k * w) - 1.0).abs() < 1e-8,
+                "pad {pad:?}: reaction {reaction} against k w = {}",
+                k * w
+            );
         }
     }
     Ok(())

@@ -5,6 +5,8 @@
 use crate::progress::Progress;
 use crate::settings::{BASE_MESH, LEVELS};
 use crate::Failure;
+use coupled::compliance::mindlin::{MINDLIN_BASE_MESH, MINDLIN_LEVELS};
+use coupled::compliance::MindlinModel;
 use coupled::plan::{fundamental_periods, run, run_transient_observed, transient_case_count, ModelKind, Results};
 use coupled::{BeamModel, PlateModel};
 use scene::{Analysis, Scene};
@@ -27,7 +29,7 @@ pub const BYTES_PER_ROW: f64 = 4096.0;
 /// What one request may hold in memory: a sixth of this machine's 24 GiB.
 pub const MEMORY_BUDGET_BYTES: f64 = 4.0 * 1024.0 * 1024.0 * 1024.0;
 
-/// The model named `key` ("beam", "plate", "transient"), or every model for "all".
+/// The model named `key` ("beam", "plate", "transient", "mindlin"), or every model for "all".
 pub fn model_kinds(key: &str) -> Option<Vec<ModelKind>> {
     if key == "all" {
         return Some(ModelKind::ALL.to_vec());
@@ -118,6 +120,16 @@ pub fn results(scene: &Scene, models: &[ModelKind], progress: &dyn Progress) -> 
                     PlateModel::compute(&scene.plate, &scene.conditions, &scene.point_pairs(), BASE_MESH, LEVELS)?;
                 run(scene, &model, kind, &periods)?
             }
+            ModelKind::Mindlin => {
+                let model = MindlinModel::compute(
+                    &scene.plate,
+                    &scene.conditions,
+                    &scene.point_pairs(),
+                    MINDLIN_BASE_MESH,
+                    MINDLIN_LEVELS,
+                )?;
+                run(scene, &model, kind, &periods)?
+            }
             ModelKind::Transient => {
                 progress.start(transient_case_count(scene), "transient cases");
                 let r = run_transient_observed(scene, &mut || progress.advance(1))?;
@@ -138,7 +150,7 @@ pub fn status_line(results: &Results) -> String {
         (s.beyond_elastic, "beyond the elastic range (v above the yield velocity of the same model)"),
         (s.not_quasi_static, "not quasi-static (t_c/T₁ < 0.2)"),
         (s.outside_regime_rule, "outside the quasi-static regime rule (closed-form bound on the force error > 3 %)"),
-        (s.beyond_thin_plate, "beyond the thin-plate range (h/min(L, B) > 0.05)"),
+        (s.beyond_thin_plate, "beyond the plate theory's range (h/min(L, B) > 0.05 for the beam and Kirchhoff's plate, > 0.2 for Mindlin's)"),
         (s.recontact, "with a second contact to follow"),
         (s.unfinished, "with the impact unfinished at the end of the window (a later contact may follow)"),
         (s.above_tolerance, "with a discretisation error estimate above the tolerance (the budget ran out)"),
@@ -158,7 +170,8 @@ mod tests {
     #[test]
     fn model_names_are_the_command_line_ones() {
         assert_eq!(model_kinds("beam"), Some(vec![ModelKind::Beam]));
-        assert_eq!(model_kinds("all").map(|m| m.len()), Some(3));
+        assert_eq!(model_kinds("mindlin"), Some(vec![ModelKind::Mindlin]));
+        assert_eq!(model_kinds("all").map(|m| m.len()), Some(4));
         assert_eq!(model_kinds("fem"), None);
     }
 }

@@ -3,6 +3,7 @@
 //! estimate. The energy balance, the responses and the yield model (crate `analytic`)
 //! see only that, so they cannot tell which model produced it.
 
+pub mod mindlin;
 pub mod plate;
 
 use crate::error::ModelError;
@@ -10,6 +11,7 @@ use crate::supports::SupportSet;
 use analytic::{beam_compliance, PointCompliance};
 use serde::Serialize;
 
+pub use mindlin::MindlinModel;
 pub use plate::PlateModel;
 
 /// A compliance with the estimate of its discretisation error.

@@ -86,7 +86,7 @@ fn to_analytic(
 }
 
 /// Richardson-extrapolates each component of two analytic compliances (same layout).
-fn extrapolate(
+pub(crate) fn extrapolate(
     coarse: &PointCompliance,
     fine: &PointCompliance,
     finer_of: &[PointCompliance],

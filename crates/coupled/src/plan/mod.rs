@@ -50,11 +50,14 @@ pub enum ModelKind {
     Plate,
     /// The plate finite elements in time with the Flores contact: no quasi-static assumption.
     Transient,
+    /// Reissner-Mindlin plate finite elements (MITC4): Kirchhoff's plate with transverse
+    /// shear, quasi-static, Richardson-extrapolated.
+    Mindlin,
 }
 
 impl ModelKind {
     /// Every model, in the order tables list them.
-    pub const ALL: [ModelKind; 3] = [ModelKind::Beam, ModelKind::Plate, ModelKind::Transient];
+    pub const ALL: [ModelKind; 4] = [ModelKind::Beam, ModelKind::Plate, ModelKind::Transient, ModelKind::Mindlin];
 
     /// The name in tables and files.
     pub fn key(self) -> &'static str {
@@ -62,6 +65,7 @@ impl ModelKind {
             ModelKind::Beam => "beam",
             ModelKind::Plate => "plate",
             ModelKind::Transient => "transient",
+            ModelKind::Mindlin => "mindlin",
         }
     }
 }
@@ -106,4 +110,14 @@ fn regime_rule(scene: &Scene, set: &SupportSet, imp: &Impact, c: f64) -> validit
 fn thin_plate(scene: &Scene) -> validity::Criterion {
     let p = &scene.plate;
     validity::thin_plate(p.thickness(), p.length(), p.width())
+}
+
+/// The range of the plate theory of `kind`: thin for the beam and Kirchhoff's plate,
+/// moderately thick for Reissner-Mindlin's.
+fn plate_theory(scene: &Scene, kind: ModelKind) -> validity::Criterion {
+    let p = &scene.plate;
+    match kind {
+        ModelKind::Mindlin => validity::moderately_thick_plate(p.thickness(), p.length(), p.width()),
+        ModelKind::Beam | ModelKind::Plate | ModelKind::Transient => thin_plate(scene),
+    }
 }

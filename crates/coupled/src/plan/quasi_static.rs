@@ -3,7 +3,7 @@
 //! from the compliance's error estimate.
 
 use super::rows::{Evidence, ResponseRow, ResponseValues, Results, RowOutcome, YieldRow, YieldValues};
-use super::{hertz_time, impact_of, regime_rule, thin_plate, ModelKind};
+use super::{hertz_time, impact_of, plate_theory, regime_rule, ModelKind};
 use crate::compliance::{ComplianceModel, Estimate};
 use crate::error::ModelError;
 use crate::scene::{Analysis, Scene};
@@ -20,6 +20,7 @@ fn quasi_static_values(
     estimate: &Estimate,
     delta_my: f64,
     period: f64,
+    kind: ModelKind,
 ) -> Result<(Response, ResponseValues), analytic::NotConverged> {
     let r = respond(imp, &estimate.compliance, scene.solver)?;
     // The energy identity of eq. 14: the rock's and the plate's shares of E₀ sum to one
@@ -40,7 +41,7 @@ fn quasi_static_values(
     let validity = Validity {
         elastic: Some(validity::elastic(r.compression, delta_my)),
         quasi_static: Some(validity::quasi_static(hertz_time(imp), period)),
-        thin_plate: thin_plate(scene),
+        thin_plate: plate_theory(scene, kind),
         recontact: None,
         regime: Some(regime_rule(scene, set, imp, estimate.compliance.total())),
         finished: None,
@@ -104,22 +105,21 @@ pub fn run(
                 if scene.wants(Analysis::Responses) {
                     for &v in &scene.velocities {
                         let imp = impact_of(scene, body, v);
-                        let outcome =
-                            match &estimate {
-                                Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
-                                Ok(est) => {
-                                    let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
-                                    let (_, values) = quasi_static_values(scene, set, &imp, est, d_my, period)
-                                        .map_err(|source| ModelError::NotConverged {
-                                            context: format!(
-                                                "{} on {} at (x, z) = ({x}, {z}) m, v = {v} m/s",
-                                                body.name, set.name
-                                            ),
-                                            source,
-                                        })?;
-                                    RowOutcome::Computed(values)
-                                }
-                            };
+                        let outcome = match &estimate {
+                            Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
+                            Ok(est) => {
+                                let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
+                                let (_, values) = quasi_static_values(scene, set, &imp, est, d_my, period, kind)
+                                    .map_err(|source| ModelError::NotConverged {
+                                        context: format!(
+                                            "{} on {} at (x, z) = ({x}, {z}) m, v = {v} m/s",
+                                            body.name, set.name
+                                        ),
+                                        source,
+                                    })?;
+                                RowOutcome::Computed(values)
+                            }
+                        };
                         responses.push(ResponseRow {
                             model: kind,
                             body: body.name.clone(),
@@ -134,7 +134,7 @@ pub fn run(
                 if scene.wants(Analysis::YieldVelocity) {
                     let outcome = match &estimate {
                         Err(reason) => RowOutcome::NotApplicable { reason: reason.clone() },
-                        Ok(est) => RowOutcome::Computed(yield_values(scene, set, body, &dp, est, period)),
+                        Ok(est) => RowOutcome::Computed(yield_values(scene, set, body, &dp, est, period, kind)),
                     };
                     yields.push(YieldRow {
                         model: kind,
@@ -160,6 +160,7 @@ fn yield_values(
     dp: &DruckerPrager,
     est: &Estimate,
     period: f64,
+    kind: ModelKind,
 ) -> YieldValues {
     // The velocity does not enter v_y; any positive value builds the balance.
     let imp = impact_of(scene, body, 1.0);
@@ -181,7 +182,7 @@ fn yield_values(
         validity: Validity {
             elastic: None,
             quasi_static: Some(validity::quasi_static(hertz_time(&at_yield), period)),
-            thin_plate: thin_plate(scene),
+            thin_plate: plate_theory(scene, kind),
             recontact: None,
             regime: Some(regime_rule(scene, set, &at_yield, c)),
             finished: None,

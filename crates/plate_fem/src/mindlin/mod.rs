@@ -94,6 +94,9 @@ pub struct PatchResponse {
     /// The deflection of each corner's pad per unit force, in [`Corner::ALL`] order (0 where
     /// the corner is fixed or free; a spring's force per unit force is k times it).
     pub corner_deflection: [f64; 4],
+    /// The force each corner's support carries per unit force, positive against the load
+    /// (0 where the corner is free or an edge holds it): Σ (f - K u) over its pad's w DOFs.
+    pub corner_reaction: [f64; 4],
     /// Work-conjugate compliance (1/P²) ∫ p w dA: the pressure-weighted mean deflection per
     /// unit force (m/N).
     pub compliance: f64,
@@ -360,12 +363,27 @@ impl Supported<'_> {
         let compliance = f.iter().zip(&u).map(|(a, b)| a * b).sum();
         let mut shear = 0.0;
         let mesh = self.plate.mesh();
+        // (K u) at the pads' DOFs, from the elements that touch them.
+        let mut on_pad = vec![usize::MAX; self.plate.dofs()];
+        for (c, pad) in self.numbering.pads.iter().enumerate() {
+            pad.iter().for_each(|&d| on_pad[d] = c);
+        }
+        let mut corner_reaction = [0.0; 4];
         for ez in 0..mesh.nz() {
             for ex in 0..mesh.nx() {
                 let d = self.plate.element_dofs(ex, ez);
                 let ue = Vec12::from_fn(|k, _| u[d[k]]);
                 shear += ue.dot(&(self.plate.element_shear(ex, ez) * ue));
+                if d.iter().any(|&g| on_pad[g] != usize::MAX) {
+                    let ku = self.plate.element_stiffness(ex, ez) * ue;
+                    for (k, &g) in d.iter().enumerate().filter(|(_, &g)| on_pad[g] != usize::MAX) {
+                        corner_reaction[on_pad[g]] -= ku[k];
+                    }
+                }
             }
+        }
+        for (c, pad) in self.numbering.pads.iter().enumerate() {
+            corner_reaction[c] += pad.iter().map(|&g| f[g]).sum::<f64>();
         }
         // A spring pad's mean deflection is the spring's unknown; a fixed pad's is zero.
         let corner_deflection = self.numbering.springs.map(|s| s.map_or(0.0, |(i, _)| x[(i, 0)]));
@@ -374,6 +392,7 @@ impl Supported<'_> {
             shear,
             centre_deflection: self.deflection(&u, patch.x, patch.z)?,
             corner_deflection,
+            corner_reaction,
         })
     }
 }

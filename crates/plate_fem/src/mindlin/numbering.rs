@@ -27,6 +27,9 @@ pub(crate) struct Numbering {
     pub(crate) unknowns: usize,
     /// Each corner's spring unknown and stiffness, where the corner is a spring.
     pub(crate) springs: [Option<(usize, f64)>; 4],
+    /// Each supported corner's pad: its w DOFs (empty where the corner is free or an edge
+    /// holds its node).
+    pub(crate) pads: [Vec<usize>; 4],
 }
 
 impl Numbering {
@@ -58,8 +61,10 @@ impl Numbering {
             }
         }
         let mut springs = [None; 4];
+        let mut pad_dofs: [Vec<usize>; 4] = Default::default();
         let mut expressions: Vec<(usize, Vec<(usize, f64)>)> = Vec::new();
         for (c, s, corner_w, weights) in pads {
+            pad_dofs[c.index()] = weights.iter().map(|w| w.0).collect();
             let g0 = weights.iter().find(|(d, _)| *d == corner_w).map_or(0.0, |w| w.1);
             if g0 <= 0.0 {
                 return Err(FemError::Support(format!("the pad of {} carries no weight at its corner node", c.name())));
@@ -87,7 +92,7 @@ impl Numbering {
             }
         }
         start.push(terms.len());
-        Ok(Self { start, terms, unknowns, springs })
+        Ok(Self { start, terms, unknowns, springs, pads: pad_dofs })
     }
 }
 
