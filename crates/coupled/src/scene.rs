@@ -46,6 +46,8 @@ analyses! {
     ErrorVsTime => "error-vs-time",
     /// Both models at extreme compliances, velocities and moduli.
     ExtremeCases => "extreme-cases",
+    /// The Reissner-Mindlin plate (transverse shear) against Kirchhoff's at the scene's points.
+    TransverseShear => "transverse-shear",
     /// The plate FE and transient models against their classical references.
     Verification => "verification",
     /// Transient against quasi-static at the scene's points.

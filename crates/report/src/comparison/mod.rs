@@ -6,6 +6,7 @@
 //! `findings.json` and `results.json`.
 
 mod map_figures;
+mod shear;
 mod tables;
 
 pub use studies::comparison::{
@@ -289,6 +290,9 @@ fn study_sections(
                 ("table", xt.to_markdown()),
             ],
         )?);
+    }
+    if let Some(sh) = &d.shear {
+        studies.push_str(&shear::section(scene, sh, a, findings)?);
     }
     if let Some(ev) = &d.error_vs_time {
         error_vs_time_page(scene, ev, d.seconds, a)?;

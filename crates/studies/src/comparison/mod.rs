@@ -6,7 +6,8 @@
 //! * [`maps`](mod@maps): both models' compliance over the plate, and its statistics away from the ends
 //!   (where the beam's C falls to 0 and the ratio diverges);
 //! * [`extra`]: the width study (the plate tends to the beam as B/L → 0), both models on
-//!   extreme inputs, and the plate model's error against run time.
+//!   extreme inputs, and the plate model's error against run time;
+//! * [`shear`](mod@shear): the Reissner-Mindlin plate against Kirchhoff's at the scene's points.
 //!
 //! The beam describes only Con 1-3; the plate every support set. One plate model (one
 //! factorization per mesh) holds the scene's points and the map grid.
@@ -14,6 +15,7 @@
 pub mod extra;
 pub mod findings;
 pub mod maps;
+pub mod shear;
 
 pub use extra::{
     error_vs_time, extreme_cases, width_dependence, ErrorVsTime, ExtremeCase, ExtremeRow, MeshRun, Recommendation,
@@ -21,6 +23,7 @@ pub use extra::{
 };
 pub use findings::{point_findings, PointFinding};
 pub use maps::{map_findings, map_points, maps, maps_from, MapFinding, Maps, INNER};
+pub use shear::{Shear, ShearRow};
 
 use crate::progress::Progress;
 use crate::settings::{BASE_MESH, LEVELS};
@@ -123,6 +126,8 @@ pub struct ComparisonData {
     pub extremes: Option<Vec<ExtremeRow>>,
     /// The error against run time.
     pub error_vs_time: Option<ErrorVsTime>,
+    /// Mindlin against Kirchhoff at the scene's points.
+    pub shear: Option<Shear>,
     /// Seconds the comparison took.
     pub seconds: f64,
 }
@@ -167,6 +172,8 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<ComparisonData,
     progress.advance(1);
     let extremes = if scene.wants(Analysis::ExtremeCases) { Some(extreme_cases(scene)?) } else { None };
     let error_vs_time = if scene.wants(Analysis::ErrorVsTime) { Some(error_vs_time(scene)?) } else { None };
+    let shear =
+        if scene.wants(Analysis::TransverseShear) { Some(shear::shear(scene, &pr.model, &pr.plate)?) } else { None };
     progress.advance(1);
     progress.finish();
     let peak = if scene.wants(Analysis::Responses) { peak_case(scene, &pr.plate) } else { None };
@@ -181,6 +188,7 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<ComparisonData,
         width,
         extremes,
         error_vs_time,
+        shear,
         seconds: t0.elapsed().as_secs_f64(),
     })
 }

@@ -1,0 +1,102 @@
+//! Transverse shear: the Reissner-Mindlin plate against Kirchhoff's at the scene's points.
+//!
+//! Both plates through the same energy balance; only the compliance differs, by the shear
+//! deflection Kirchhoff leaves out (and, at an edge point, by where the Mindlin model's contact
+//! patch lies: clipped to the plate, its centroid h/4 inside; [`coupled::compliance::mindlin`]).
+
+use crate::Failure;
+use coupled::compliance::mindlin::{MINDLIN_BASE_MESH, MINDLIN_LEVELS};
+use coupled::compliance::{ComplianceModel, MindlinModel};
+use coupled::plan::{fundamental_periods, run, ModelKind, ResponseRow, Results};
+use coupled::PlateModel;
+use scene::{Analysis, Scene};
+use serde::Serialize;
+use std::time::Instant;
+
+use super::{same_case, MeshLevel};
+
+/// Both plates at one (support set, point).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ShearRow {
+    /// The support set.
+    pub condition: String,
+    /// The point, m.
+    pub x: f64,
+    /// The point, m.
+    pub z: f64,
+    /// Kirchhoff's compliance (BFS, extrapolated), m/N.
+    pub kirchhoff: f64,
+    /// Its error estimate, m/N.
+    pub kirchhoff_error: f64,
+    /// Mindlin's compliance (MITC4, extrapolated, the contact over a square of side h), m/N.
+    pub mindlin: f64,
+    /// Its error estimate, m/N.
+    pub mindlin_error: f64,
+    /// The part of Mindlin's compliance stored as shear energy, m/N.
+    pub shear: f64,
+    /// P_max of the scene's first body at its first velocity: Kirchhoff's, then Mindlin's, N
+    /// (none without responses or where a row is not computed).
+    pub p_max: Option<(f64, f64)>,
+}
+
+/// The shear study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Shear {
+    /// h/min(L, B) of the scene's plate.
+    pub thickness_ratio: f64,
+    /// One row per support set and point.
+    pub rows: Vec<ShearRow>,
+    /// The Mindlin model's meshes.
+    pub levels: Vec<MeshLevel>,
+    /// Seconds the Mindlin model took.
+    pub seconds: f64,
+}
+
+/// Mindlin's plate at the scene's points beside the Kirchhoff model `kirchhoff` and its rows.
+pub fn shear(scene: &Scene, kirchhoff: &PlateModel, kirchhoff_rows: &Results) -> Result<Shear, Failure> {
+    let t = Instant::now();
+    let points = scene.point_pairs();
+    let model = MindlinModel::compute(&scene.plate, &scene.conditions, &points, MINDLIN_BASE_MESH, MINDLIN_LEVELS)?;
+    let seconds = t.elapsed().as_secs_f64();
+    let mindlin_rows = if scene.wants(Analysis::Responses) {
+        Some(run(scene, &model, ModelKind::Mindlin, &fundamental_periods(scene)?)?)
+    } else {
+        None
+    };
+    let mut rows = Vec::new();
+    for set in &scene.conditions {
+        for &(x, z) in &points {
+            let (k, m) = (kirchhoff.compliance(set, x, z)?, model.compliance(set, x, z)?);
+            let shear = m.compliance.stores().iter().filter(|s| s.name == "plate shear").map(|s| s.compliance).sum();
+            let p_max = mindlin_rows.as_ref().and_then(|mr| {
+                let row = first_case(scene, kirchhoff_rows, &set.name, (x, z))?;
+                let pm = same_case(mr, row)?.values()?.contact_force;
+                Some((row.values()?.contact_force, pm))
+            });
+            rows.push(ShearRow {
+                condition: set.name.clone(),
+                x,
+                z,
+                kirchhoff: k.compliance.total(),
+                kirchhoff_error: k.error_estimate,
+                mindlin: m.compliance.total(),
+                mindlin_error: m.error_estimate,
+                shear,
+                p_max,
+            });
+        }
+    }
+    let p = &scene.plate;
+    Ok(Shear {
+        thickness_ratio: p.thickness() / p.length().min(p.width()),
+        rows,
+        levels: model.levels.iter().map(|c| MeshLevel { nx: c.nx, nz: c.nz, dofs: c.dofs }).collect(),
+        seconds,
+    })
+}
+
+/// The row of `rows` for the scene's first body at its first velocity, under `set` at `at`.
+fn first_case<'a>(scene: &Scene, rows: &'a Results, set: &str, at: (f64, f64)) -> Option<&'a ResponseRow> {
+    let (body, v) = (scene.bodies.first()?, *scene.velocities.first()?);
+    rows.responses.iter().find(|r| r.condition == set && r.body == body.name && r.velocity == v && (r.x, r.z) == at)
+}
