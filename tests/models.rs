@@ -216,6 +216,9 @@ fn oversized_requests_are_refused_with_their_size() {
     let o = impact(["sweep", "--count", "100000"]).fails_with(1);
     let err = o.stderr;
     assert!(err.contains("100000 points") && err.contains("GB") && err.contains("at most"), "{err}");
+    // The Mindlin plate's patch responses have their own budget: 3 sets x 1001 points.
+    let err = impact(["sweep", "--count", "1001", "--model", "mindlin"]).fails_with(1).stderr;
+    assert!(err.contains("3003 patch responses") && err.contains("2000"), "{err}");
 }
 
 /// `--json` on the report commands: the run's provenance and every file written, each

@@ -123,3 +123,20 @@ def test_transient_identical_at_the_default_tolerance(tmp_path):
     assert compare(doc["results"]["responses"], r.responses) >= 25
     row = doc["results"]["responses"][0]
     assert (r.responses["elements"][0], r.responses["steps_per_contact"][0]) == (row["elements"], row["steps_per_contact"])
+
+
+def test_mindlin_identical_from_a_dict_scene(tmp_path, paper_dict):
+    d = paper_dict
+    del d["transient"]
+    d["bodies"] = d["bodies"][:1]
+    d["conditions"] = d["conditions"][:1]
+    d["points"] = {"pairs_mm": [[114.6, 90.0]]}
+    d["velocities"] = {"m_per_s": [0.008]}
+    d["analyses"] = ["responses", "yield-velocity"]
+    scene = impact.Scene.from_dict(d)
+    path = tmp_path / "scene.toml"
+    path.write_text(scene.to_toml_str())
+    doc = cli(path, "mindlin")
+    r = impact.solve(scene, model="mindlin")
+    assert (r.responses["model"] == "mindlin").all()
+    assert compare(doc["results"]["responses"], r.responses) + compare(doc["results"]["yields"], r.yields) > 20

@@ -23,6 +23,11 @@ use scene::{Analysis, Scene};
 /// again and again by a thin plate costs up to a few times a single contact's run.
 pub const MAX_TRANSIENT_RUNS: usize = 2000;
 
+/// Most Mindlin patch responses one request may ask for (support sets x points): each is a
+/// solve and an energy pass on each of the ladder's three meshes, about 0.1 s together on the
+/// paper's plate, so the limit is a few minutes.
+pub const MAX_MINDLIN_POINTS: usize = 2000;
+
 /// Memory a result row takes, bytes, through to its JSON: measured 3.7 KB on a 10,000-point
 /// sweep of the default scene (240,000 rows in 0.9 GB).
 pub const BYTES_PER_ROW: f64 = 4096.0;
@@ -62,6 +67,13 @@ pub fn check_budget(scene: &Scene, models: &[ModelKind]) -> Result<(), Failure> 
     let yields = scene.wants(Analysis::YieldVelocity);
     if let Some(why) = scene::limits::quasi_static_excess(sets, points, bodies, responses, yields) {
         return Err(why.into());
+    }
+    if models.contains(&ModelKind::Mindlin) && sets * points > MAX_MINDLIN_POINTS {
+        return Err(format!(
+            "--model mindlin: the scene asks for {} patch responses ({sets} [[conditions]] x {points} points), more than the {MAX_MINDLIN_POINTS} one command computes (each about 0.1 s on three meshes); use fewer points or the plate model for the sweep",
+            sets * points
+        )
+        .into());
     }
     if models.contains(&ModelKind::Transient) {
         let cases = scene.bodies.len() * scene.conditions.len() * scene.points.len();

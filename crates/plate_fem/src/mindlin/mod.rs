@@ -83,6 +83,7 @@ use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 use numbering::Numbering;
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// Reissner's shear correction factor k_s = 5/6 (the parabolic shear stress through the
 /// thickness; Mindlin's π²/12 differs by 1.3 %).
@@ -112,6 +113,9 @@ pub struct Plate {
     mesh: Mesh,
     shear_rigidity: f64,
     pad: Option<f64>,
+    /// Each element size's stiffness and its shear part, integrated once: a tensor grid
+    /// repeats a few sizes.
+    matrices: HashMap<(u64, u64), (Mat12, Mat12)>,
 }
 
 impl Plate {
@@ -130,7 +134,17 @@ impl Plate {
         }
         let shear_rigidity =
             element::shear_rigidity(props.youngs_modulus, props.poisson_ratio, props.thickness, SHEAR_CORRECTION);
-        Ok(Self { props, mesh, shear_rigidity, pad: None })
+        let mut matrices = HashMap::new();
+        for ez in 0..mesh.nz() {
+            for ex in 0..mesh.nx() {
+                let (a, b) = mesh.element_size(ex, ez);
+                matrices.entry((a.to_bits(), b.to_bits())).or_insert_with(|| {
+                    let (d, nu) = (props.rigidity(), props.poisson_ratio);
+                    (element::stiffness(a, b, d, nu, shear_rigidity), element::stiffness(a, b, 0.0, nu, shear_rigidity))
+                });
+            }
+        }
+        Ok(Self { props, mesh, shear_rigidity, pad: None, matrices })
     }
 
     /// The same plate with corner supports acting on pads of side `side` (m), in
@@ -178,21 +192,16 @@ impl Plate {
         d
     }
 
-    /// Element (ex, ez)'s MITC4 stiffness.
-    fn element_stiffness(&self, ex: usize, ez: usize) -> Mat12 {
+    /// Element (ex, ez)'s MITC4 stiffness and its shear part alone (the stiffness with D = 0).
+    fn element_matrices(&self, ex: usize, ez: usize) -> &(Mat12, Mat12) {
         let (a, b) = self.mesh.element_size(ex, ez);
-        element::stiffness(a, b, self.props.rigidity(), self.props.poisson_ratio, self.shear_rigidity)
-    }
-
-    /// Element (ex, ez)'s shear part alone (the stiffness with D = 0).
-    fn element_shear(&self, ex: usize, ez: usize) -> Mat12 {
-        let (a, b) = self.mesh.element_size(ex, ez);
-        element::stiffness(a, b, 0.0, self.props.poisson_ratio, self.shear_rigidity)
+        // Plate::new integrated every size of the mesh.
+        &self.matrices[&(a.to_bits(), b.to_bits())]
     }
 
     /// Applies the supports and factorizes the stiffness of the DOFs they leave free.
     pub fn factorize(&self, supports: &Supports) -> Result<Supported<'_>, FemError> {
-        self.factorize_with(supports, |ex, ez| self.element_stiffness(ex, ez))
+        self.factorize_with(supports, |ex, ez| self.element_matrices(ex, ez).0)
     }
 
     /// [`Self::factorize`] with the element stiffness given (the tests' locking element).
@@ -373,9 +382,10 @@ impl Supported<'_> {
             for ex in 0..mesh.nx() {
                 let d = self.plate.element_dofs(ex, ez);
                 let ue = Vec12::from_fn(|k, _| u[d[k]]);
-                shear += ue.dot(&(self.plate.element_shear(ex, ez) * ue));
+                let (k, ks) = self.plate.element_matrices(ex, ez);
+                shear += ue.dot(&(ks * ue));
                 if d.iter().any(|&g| on_pad[g] != usize::MAX) {
-                    let ku = self.plate.element_stiffness(ex, ez) * ue;
+                    let ku = k * ue;
                     for (k, &g) in d.iter().enumerate().filter(|(_, &g)| on_pad[g] != usize::MAX) {
                         corner_reaction[on_pad[g]] -= ku[k];
                     }

@@ -18,12 +18,14 @@ use studies::progress::{Progress, Silent};
 use studies::settings::Settings;
 use studies::study::{FemVerification, Study};
 use tables::{
-    convergence_table, extreme_table, levy_table, mesh, narrow_table, paper_table, skfem_table, timing_table,
-    update_table,
+    convergence_table, extreme_table, levy_table, mesh, mindlin_growth_table, mindlin_thick_table, narrow_table,
+    paper_table, skfem_table, timing_table, update_table,
 };
 
 /// The report's prose: every section runs every time, so one template holds them all.
 const TEMPLATE: &str = include_str!("../templates/fem_verification.md");
+/// The Reissner-Mindlin section's prose.
+const MINDLIN: &str = include_str!("../templates/fem_verification_mindlin.md");
 
 /// The centre deflection coefficient of the simply supported square plate under a point
 /// load as Timoshenko & Woinowsky-Krieger print it (Table 23), beside our summed series.
@@ -140,6 +142,29 @@ fn check_values(d: &FemVerificationData) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// The placeholders of the Reissner-Mindlin section.
+fn mindlin_values(m: &studies::fem_verification::mindlin::MindlinVerification) -> Vec<(&'static str, String)> {
+    use crate::present::table::percent;
+    use studies::fem_verification::mindlin::{REDDY_UNIFORM, THIN};
+    let rates: Vec<String> = m.thick.iter().map(|l| format!("{} (h/L = {})", rate(l.rate), l.ratio)).collect();
+    let worst = m.thick.iter().map(|l| l.extrapolated_error.abs()).fold(0.0, f64::max);
+    let (_, (mx, mz), (bx, bz)) = THIN;
+    vec![
+        ("uniform", format!("{:.4e}", m.uniform)),
+        ("reddy", format!("{REDDY_UNIFORM:.3e}")),
+        ("thick_table", mindlin_thick_table(m).to_markdown()),
+        ("rates", rates.join(" and ")),
+        ("extrapolated", format!("{worst:.1e}")),
+        ("thin_ratio", format!("{:e}", m.thin.ratio)),
+        ("thin_mindlin_mesh", mesh((mx, mz))),
+        ("thin_mindlin", percent(m.thin.mindlin / m.thin.series - 1.0)),
+        ("thin_bfs_mesh", mesh((bx, bz))),
+        ("thin_bfs", percent(m.thin.bfs / m.thin.series - 1.0)),
+        ("predicted", format!("{:.4e}", m.growth.predicted)),
+        ("growth_table", mindlin_growth_table(m).to_markdown()),
+    ]
+}
+
 /// The verification's files from its data.
 pub fn files(d: &FemVerificationData) -> Result<Artifacts, Failure> {
     let mut a = Artifacts::new();
@@ -161,7 +186,11 @@ pub fn files(d: &FemVerificationData) -> Result<Artifacts, Failure> {
     a.add("skfem-comparison.csv", skfem_table(&d.skfem).to_csv());
     let mut values = plate_values(d);
     values.extend(check_values(d));
-    a.add("index.md", render("fem_verification.md", TEMPLATE, &values)?);
+    a.add("mindlin-series.csv", mindlin_thick_table(&d.mindlin).to_csv());
+    a.add("mindlin-node-supports.csv", mindlin_growth_table(&d.mindlin).to_csv());
+    let page = render("fem_verification.md", TEMPLATE, &values)?;
+    let mindlin = render("fem_verification_mindlin.md", MINDLIN, &mindlin_values(&d.mindlin))?;
+    a.add("index.md", page + &mindlin);
     Ok(a)
 }
 

@@ -1,6 +1,7 @@
 //! The verification's tables, from [`studies::fem_verification`]'s data.
 
 use crate::present::table::{Cell, Table};
+use studies::fem_verification::mindlin::MindlinVerification;
 use studies::fem_verification::{
     Convergence, CornerUpdate, ExtremeCase, ExtremeReference, ExtremeRow, LevyRow, NarrowRow, PaperPlate,
     SkfemComparison,
@@ -227,6 +228,42 @@ pub(super) fn timing_table(s: &SkfemComparison) -> Table {
     };
     for c in &s.timing {
         t.push(vec![c[0].clone().into(), c[1].clone().into(), c[2].clone().into(), num(&c[3]), num(&c[4]), num(&c[5])]);
+    }
+    t
+}
+
+/// The thick ladders of the Mindlin plate against Navier's series with shear.
+pub fn mindlin_thick_table(d: &MindlinVerification) -> Table {
+    let mut t = Table::new(
+        "",
+        &["h/L", "elements a side", "C FE (m/N)", "C series (m/N)", "FE/series - 1", "shear share (series)"],
+    );
+    for l in &d.thick {
+        for &(n, c) in &l.values {
+            t.push(vec![
+                Cell::Given(l.ratio),
+                Cell::Int(n as u64),
+                Cell::Num(c),
+                Cell::Num(l.series.0),
+                Cell::Rel(c / l.series.0 - 1.0),
+                Cell::Rel(l.shear_share),
+            ]);
+        }
+    }
+    t
+}
+
+/// The node supports' compliance per mesh, each increment against the predicted growth.
+pub fn mindlin_growth_table(d: &MindlinVerification) -> Table {
+    let mut t = Table::new("", &["elements a side", "C FE (m/N)", "increment (m/N)", "increment / predicted"]);
+    let mut previous: Option<f64> = None;
+    for &(n, c) in &d.growth.values {
+        let (inc, ratio) = match previous {
+            Some(p) => (Cell::Num(c - p), Cell::Sig((c - p) / d.growth.predicted, 4)),
+            None => (Cell::Empty, Cell::Empty),
+        };
+        t.push(vec![Cell::Int(n as u64), Cell::Num(c), inc, ratio]);
+        previous = Some(c);
     }
     t
 }

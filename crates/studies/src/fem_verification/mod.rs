@@ -7,13 +7,16 @@
 //! * [`paper_plate`]: the paper's plate under Con 1-3, the rank-4 corner update against fresh
 //!   factorizations over 15 decades of k_T, and extreme geometry and load points;
 //! * [`reference`](mod@reference): the same plate against the independent scikit-fem elements (Argyris,
-//!   Morley) of `reference/data`.
+//!   Morley) of `reference/data`;
+//! * [`mindlin`](mod@mindlin): the Reissner-Mindlin plate (MITC4) against Navier's series with
+//!   shear, the thin limit and the node supports' logarithmic growth.
 //!
 //! Every point load's compliance converges as O(h²) on the conforming BFS element (the
 //! r² ln r singularity of the point-load Green's function), so each ladder halves h and the
 //! observed rate, the Richardson value and its error are the verification's numbers.
 
 pub mod classical;
+pub mod mindlin;
 pub mod paper_plate;
 pub mod reference;
 
@@ -75,12 +78,14 @@ pub struct FemVerificationData {
     pub extremes: Vec<ExtremeRow>,
     /// Against scikit-fem.
     pub skfem: SkfemComparison,
+    /// The Reissner-Mindlin plate's checks.
+    pub mindlin: mindlin::MindlinVerification,
 }
 
 /// Runs every check on `scene`'s plate (and the fixed classical plates), against the
 /// scikit-fem data in `reference`.
 pub fn compute(scene: &Scene, reference: &Reference, progress: &dyn Progress) -> Result<FemVerificationData, Failure> {
-    progress.start(6, "plate FE verification");
+    progress.start(7, "plate FE verification");
     let (navier, navier_coefficient, navier_richardson) = classical::navier_square()?;
     let off_centre = classical::off_centre()?;
     progress.advance(1);
@@ -96,6 +101,8 @@ pub fn compute(scene: &Scene, reference: &Reference, progress: &dyn Progress) ->
     let extremes = paper_plate::extremes(props, &model, k_t)?;
     progress.advance(1);
     let skfem = reference::compare(reference)?;
+    progress.advance(1);
+    let mindlin = mindlin::verify()?;
     progress.advance(1);
     progress.finish();
     Ok(FemVerificationData {
@@ -118,5 +125,6 @@ pub fn compute(scene: &Scene, reference: &Reference, progress: &dyn Progress) ->
         update,
         extremes,
         skfem,
+        mindlin,
     })
 }
