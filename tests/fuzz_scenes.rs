@@ -116,7 +116,7 @@ fn with(from: &str, to: &str) -> String {
 }
 
 /// The analyses and velocities of the default scene.
-const ANALYSES: &str = "analyses = [\n    \"responses\", \"yield-velocity\", \"width-maps\", \"aspect-ratio\", \"error-vs-time\", \"extreme-cases\",\n    \"verification\", \"transient\", \"contact-laws\", \"size-map\", \"regime-maps\", \"paper-studies\",\n]";
+const ANALYSES: &str = "analyses = [\n    \"responses\", \"yield-velocity\", \"width-maps\", \"aspect-ratio\", \"error-vs-time\", \"extreme-cases\", \"transverse-shear\",\n    \"verification\", \"transient\", \"contact-laws\", \"size-map\", \"regime-maps\", \"paper-studies\",\n]";
 const VELOCITIES: &str =
     "[velocities]\n# 0.008 m/s: Table 3, Fig. 10; 0.0025 m/s: Tables 6-12, Fig. 17.\nm_per_s = [0.008, 0.0025]";
 /// The points line of the default scene, for replacing the points.

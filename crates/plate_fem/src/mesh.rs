@@ -78,6 +78,21 @@ impl Mesh {
     pub fn nx(&self) -> usize {
         self.xs.len() - 1
     }
+    /// Checks that the mesh spans a plate of `length` x `width` (m), to 1e-9 of its size.
+    pub fn check_spans(&self, length: f64, width: f64) -> Result<(), FemError> {
+        let tol = 1e-9 * length.max(width);
+        if (self.length() - length).abs() > tol || (self.width() - width).abs() > tol {
+            return Err(FemError::Mesh(format!(
+                "mesh spans {} x {} m but the plate is {} x {} m",
+                self.length(),
+                self.width(),
+                length,
+                width
+            )));
+        }
+        Ok(())
+    }
+
     /// Elements along z.
     pub fn nz(&self) -> usize {
         self.zs.len() - 1

@@ -24,6 +24,7 @@
 //! is 0.7 % above Kirchhoff's point value, against 2.8 % one element inward.
 
 use super::plate::{corner_weights, extrapolate, LevelCost};
+use super::table::PointValues;
 use super::{ComplianceModel, Estimate};
 use crate::discretisation::{ladder_meshes, plate_properties};
 use crate::error::ModelError;
@@ -31,7 +32,6 @@ use crate::supports::SupportSet;
 use analytic::{Plate, PointCompliance, SpringReaction, Store, StoreKind};
 use plate_fem::mindlin::{self, Patch, PatchResponse};
 use plate_fem::{Corner, CornerSupport, PlateProperties};
-use std::collections::HashMap;
 use std::time::Instant;
 
 /// Elements along the longer side of the coarsest mesh: bilinear elements need about four
@@ -43,15 +43,9 @@ pub const MINDLIN_LEVELS: u32 = 3;
 /// Precomputed Mindlin compliances for every (condition, x, z) a scene needs.
 pub struct MindlinModel {
     name: String,
-    values: HashMap<(String, i64, i64), Estimate>,
-    length: f64,
-    width: f64,
+    values: PointValues,
     /// The meshes used, coarse to fine, with their costs.
     pub levels: Vec<LevelCost>,
-}
-
-fn key(v: f64, scale: f64) -> i64 {
-    (v / scale * 1e9).round() as i64
 }
 
 /// The contact patch at (x, z): a square of side h centred there, clipped to the plate.
@@ -139,23 +133,17 @@ impl MindlinModel {
             per_level.push(per_cond);
         }
         let n = per_level.len();
-        let mut values = HashMap::new();
+        let mut values = PointValues::new(props.length, props.width);
         for (ci, c) in conditions.iter().enumerate() {
             for (pi, &(x, z)) in points.iter().enumerate() {
                 let seq: Vec<PointCompliance> = per_level.iter().map(|lv| lv[ci][pi].clone()).collect();
                 let mut e = extrapolate(&seq[n - 2], &seq[n - 1], &seq)?;
                 e.error_estimate += growth[ci][pi];
-                values.insert((c.name.clone(), key(x, props.length), key(z, props.width)), e);
+                values.insert(&c.name, x, z, e);
             }
         }
         let finest = costs.last().map(|c| format!("{} x {}", c.nx, c.nz)).unwrap_or_default();
-        Ok(Self {
-            name: format!("Mindlin plate FE (MITC4, extrapolated from {finest})"),
-            values,
-            length: props.length,
-            width: props.width,
-            levels: costs,
-        })
+        Ok(Self { name: format!("Mindlin plate FE (MITC4, extrapolated from {finest})"), values, levels: costs })
     }
 }
 
@@ -167,8 +155,6 @@ impl ComplianceModel for MindlinModel {
         true
     }
     fn compliance(&self, set: &SupportSet, x: f64, z: f64) -> Result<Estimate, ModelError> {
-        self.values.get(&(set.name.clone(), key(x, self.length), key(z, self.width))).cloned().ok_or_else(|| {
-            ModelError::Missing(format!("Mindlin compliance at ({x}, {z}) m for {} was not computed", set.name))
-        })
+        self.values.require("Mindlin", set, x, z)
     }
 }

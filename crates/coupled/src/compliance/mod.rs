@@ -5,6 +5,7 @@
 
 pub mod mindlin;
 pub mod plate;
+pub mod table;
 
 use crate::error::ModelError;
 use crate::supports::SupportSet;

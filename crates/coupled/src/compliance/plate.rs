@@ -7,6 +7,7 @@
 //! the error estimate it carries. Downstream code sees an `analytic::PointCompliance`, as
 //! it does for the beam.
 
+use super::table::PointValues;
 use super::{ComplianceModel, Estimate};
 use crate::discretisation::{ladder_meshes, plate_properties};
 use crate::error::ModelError;
@@ -15,7 +16,6 @@ use analytic::compliance::InvalidCompliance;
 use analytic::{Plate, PointCompliance, SpringReaction, Store, StoreKind};
 use plate_fem::convergence::richardson;
 use plate_fem::{Corner, CornerFamily, CornerSupport, Model, PointResponse};
-use std::collections::HashMap;
 use std::time::Instant;
 
 /// The plate model's value at one point: a compliance with its discretisation error.
@@ -37,15 +37,9 @@ pub struct LevelCost {
 /// Precomputed plate compliances for every (condition, x, z) a scene needs.
 pub struct PlateModel {
     name: String,
-    values: HashMap<(String, i64, i64), FeCompliance>,
-    length: f64,
-    width: f64,
+    values: PointValues,
     /// The meshes used, coarse to fine, with their costs.
     pub levels: Vec<LevelCost>,
-}
-
-fn key(v: f64, scale: f64) -> i64 {
-    (v / scale * 1e9).round() as i64
 }
 
 /// Bilinear weights of the four corners at (x, z).
@@ -188,7 +182,7 @@ impl PlateModel {
             per_level.push(per_cond);
         }
         let n = per_level.len();
-        let mut values = HashMap::new();
+        let mut values = PointValues::new(l, b);
         for (ci, c) in conditions.iter().enumerate() {
             for (pi, &(x, z)) in points.iter().enumerate() {
                 let seq: Vec<PointCompliance> = per_level.iter().map(|lv| lv[ci][pi].clone()).collect();
@@ -199,18 +193,18 @@ impl PlateModel {
                     // than a number that looks like one.
                     FeCompliance { compliance: seq[0].clone(), error_estimate: f64::INFINITY, asymptotic: false }
                 };
-                values.insert((c.name.clone(), key(x, l), key(z, b)), fe);
+                values.insert(&c.name, x, z, fe);
             }
         }
         let finest = costs.last().map(|c| format!("{} x {}", c.nx, c.nz)).unwrap_or_default();
         let name =
             if n >= 2 { format!("plate FE (extrapolated from {finest})") } else { format!("plate FE ({finest})") };
-        Ok(Self { name, values, length: l, width: b, levels: costs })
+        Ok(Self { name, values, levels: costs })
     }
 
     /// The FE value at (condition, x, z), if computed.
     pub fn get(&self, condition: &str, x: f64, z: f64) -> Option<&FeCompliance> {
-        self.values.get(&(condition.to_string(), key(x, self.length), key(z, self.width)))
+        self.values.get(condition, x, z)
     }
 }
 
@@ -222,8 +216,6 @@ impl ComplianceModel for PlateModel {
         true
     }
     fn compliance(&self, set: &SupportSet, x: f64, z: f64) -> Result<Estimate, ModelError> {
-        self.get(&set.name, x, z).cloned().ok_or_else(|| {
-            ModelError::Missing(format!("plate compliance at ({x}, {z}) m for {} was not computed", set.name))
-        })
+        self.values.require("plate", set, x, z)
     }
 }

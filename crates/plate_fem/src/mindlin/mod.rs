@@ -122,16 +122,7 @@ impl Plate {
     /// The plate on `mesh` (which must span it).
     pub fn new(props: PlateProperties, mesh: Mesh) -> Result<Self, FemError> {
         props.validate()?;
-        let tol = 1e-9 * props.length.max(props.width);
-        if (mesh.length() - props.length).abs() > tol || (mesh.width() - props.width).abs() > tol {
-            return Err(FemError::Mesh(format!(
-                "mesh spans {} x {} m but the plate is {} x {} m",
-                mesh.length(),
-                mesh.width(),
-                props.length,
-                props.width
-            )));
-        }
+        mesh.check_spans(props.length, props.width)?;
         let shear_rigidity =
             element::shear_rigidity(props.youngs_modulus, props.poisson_ratio, props.thickness, SHEAR_CORRECTION);
         let mut matrices = HashMap::new();

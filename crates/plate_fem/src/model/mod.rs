@@ -121,16 +121,7 @@ impl Model {
     /// Assembles the plate on `mesh` and analyses the sparsity pattern.
     pub fn new(props: PlateProperties, mesh: Mesh) -> Result<Self, FemError> {
         props.validate()?;
-        let tol = 1e-9 * props.length.max(props.width);
-        if (mesh.length() - props.length).abs() > tol || (mesh.width() - props.width).abs() > tol {
-            return Err(FemError::Mesh(format!(
-                "mesh spans {} x {} m but the plate is {} x {} m",
-                mesh.length(),
-                mesh.width(),
-                props.length,
-                props.width
-            )));
-        }
+        mesh.check_spans(props.length, props.width)?;
         let n = mesh.dofs();
         let bending = assembly::bending(props.rigidity(), props.poisson_ratio);
         let inertia = assembly::inertia(props.density * props.thickness);

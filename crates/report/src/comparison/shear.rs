@@ -20,7 +20,7 @@ pub fn table(d: &Shear) -> Table {
     let mut t = Table::new(
         "",
         &[
-            "support set",
+            "condition",
             "x (mm)",
             "z (mm)",
             "C Kirchhoff (m/N)",
