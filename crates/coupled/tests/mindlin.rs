@@ -13,8 +13,9 @@ use plate_fem::Supports;
 
 /// A 1 m x 0.8 m plate, h = 0.1 m (h/B = 0.125, a shear share near 10 %), all edges simply
 /// supported: the model's extrapolated compliance at two points meets Navier's series for the
-/// same patch within the model's own error estimate, which is below 1e-3 of it (measured: 5e-7
-/// and 8e-7 from the series against estimates of 3e-4 and 5e-4).
+/// same patch within the model's own error estimate, which is below 1e-3 of it, and the
+/// extrapolated value and its shear store within 1e-5 of the series' (measured: 5e-7 and 8e-7,
+/// against estimates of 3e-4 and 5e-4).
 #[test]
 fn thick_plate_meets_navier_within_its_estimate() -> Result<(), Box<dyn std::error::Error>> {
     let plate = Plate::new(1.0, 0.8, 0.1, 7850.0, Elastic::new(210e9, 0.3)?)?;
@@ -33,12 +34,16 @@ fn thick_plate_meets_navier_within_its_estimate() -> Result<(), Box<dyn std::err
             reference.compliance,
             e.error_estimate
         );
-        println!("({x}, {z}): miss {:e}, estimate {:e}", miss / c, e.relative_error());
+        // The estimate is conservative here (the three meshes' observed rate is outside
+        // [1.5, 2.5], so it is the last difference); the extrapolated value itself is far
+        // closer, 5e-7 and 8e-7 (measured), held to 1e-5.
+        assert!(miss < 1e-5 * c, "({x}, {z}): miss {:e}", miss / c);
         assert!(e.relative_error() < 1e-3, "({x}, {z}): estimate {:e}", e.relative_error());
-        // The shear store is the series' shear part, to the same estimate.
+        // The shear store is the series' shear part: extrapolated like the total, 1.3e-6 and
+        // 1.5e-6 of it from the series (measured), held to 1e-5.
         let shear = e.compliance.stores().iter().find(|s| s.name == "plate shear").map_or(0.0, |s| s.compliance);
         assert!(
-            (shear - reference.shear).abs() <= e.error_estimate,
+            (shear - reference.shear).abs() <= 1e-5 * reference.shear,
             "({x}, {z}): shear {shear:e} against {:e}",
             reference.shear
         );
@@ -61,8 +66,10 @@ fn con2_centre_springs_carry_a_quarter_each() -> Result<(), Box<dyn std::error::
     }
     let springs = c.of_kind(StoreKind::Spring);
     assert!((springs * 16.0 * k / 4.0 - 1.0).abs() < 1e-9, "{springs:e}");
-    let sum: f64 = c.stores().iter().map(|s| s.compliance).sum();
-    assert!((sum / c.total() - 1.0).abs() < 1e-12);
-    assert!((c.deflection_per_unit_load() - (c.total() - 0.25 / k)).abs() < 1e-9 * c.total());
+    // The deflection is the patch centre's less the springs' drop 1/(4k_T): at least the
+    // patch's mean (w peaks under a centred load), and close to it on a patch of side h
+    // (measured 1.0e-3 above it; 5e-3 allowed).
+    let centre = c.deflection_per_unit_load() + 0.25 / k;
+    assert!(centre >= c.total() && centre < 1.005 * c.total(), "centre {centre:e} against the mean {:e}", c.total());
     Ok(())
 }

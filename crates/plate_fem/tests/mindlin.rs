@@ -77,19 +77,21 @@ fn thick_plates_converge_to_the_mindlin_series() -> Result<(), FemError> {
             let p = Plate::new(props, Mesh::uniform(1.0, 1.0, n, n)?)?;
             let r = p.factorize(&Supports::all_edges_simple())?.respond(&patch)?;
             values.push(r.compliance);
-            // The FE shear share tracks the series' (to the discretisation error).
-            assert!((r.shear / r.compliance - share).abs() < 0.02, "h = {h}, n = {n}");
+            // The FE shear share tracks the series', its relative error falling as n⁻² like
+            // the compliance's (measured 0.52/n² at h/L = 0.1 and 0.44/n² at 0.2).
+            let miss = (r.shear / r.compliance / share - 1.0).abs();
+            assert!(miss < 0.6 / (n * n) as f64, "h = {h}, n = {n}: shear share off by {miss:e}");
         }
         let e = richardson(&values).expect("four meshes");
         let rate = e.observed_rate.expect("three or more meshes");
         assert!((1.8..2.2).contains(&rate), "h = {h}: observed rate {rate}");
         let error = (e.finest - reference.compliance).abs();
+        // Richardson's estimate assumes the rate 2; at the observed 1.99 it falls 0.2 % short.
         assert!(
-            error <= e.error_estimate * 1.5,
+            error <= e.error_estimate * 1.01,
             "h = {h}: |FE - series| = {error:e} against the estimate {:e}",
             e.error_estimate
         );
-        println!("h = {h}: shear share {share:.4}, FE {values:?}, rate {rate:.3}, series {:e}", reference.compliance);
         assert!(
             (e.extrapolated / reference.compliance - 1.0).abs() < 1e-4,
             "h = {h}: extrapolated {:e} against {:e}",
@@ -175,6 +177,79 @@ fn spring_pads_carry_a_quarter_each_under_con2() -> Result<(), FemError> {
                 k * w
             );
         }
+    }
+    Ok(())
+}
+
+/// Mindlin's frequency of the hard simply supported plate in its (1, 1) mode: with
+/// w = W sin αx sin βz, θ_x = X cos αx sin βz, θ_z = Z sin αx cos βz each harmonic decouples
+/// into a 3 x 3 problem K v = ω² M v (Mindlin 1951; the energies written out here):
+/// K = [[S k², -Sα, -Sβ], [-Sα, Dα² + D(1-ν)β²/2 + S, D(1+ν)αβ/2], [-Sβ, ·, Dβ² + D(1-ν)α²/2 + S]],
+/// M = diag(ρh, ρh³/12, ρh³/12), S = k_s G h; the lowest root is the flexural one.
+fn mindlin_frequency(props: &PlateProperties) -> f64 {
+    use plate_fem::nalgebra::Matrix3;
+    let (alpha, beta) = (std::f64::consts::PI / props.length, std::f64::consts::PI / props.width);
+    let (d, nu) = (props.rigidity(), props.poisson_ratio);
+    let s = mindlin::element::shear_rigidity(props.youngs_modulus, nu, props.thickness, mindlin::SHEAR_CORRECTION);
+    let k = Matrix3::new(
+        s * (alpha * alpha + beta * beta),
+        -s * alpha,
+        -s * beta,
+        -s * alpha,
+        d * alpha * alpha + d * (1.0 - nu) / 2.0 * beta * beta + s,
+        d * (1.0 + nu) / 2.0 * alpha * beta,
+        -s * beta,
+        d * (1.0 + nu) / 2.0 * alpha * beta,
+        d * beta * beta + d * (1.0 - nu) / 2.0 * alpha * alpha + s,
+    );
+    let m = [
+        props.density * props.thickness,
+        props.density * props.thickness.powi(3) / 12.0,
+        props.density * props.thickness.powi(3) / 12.0,
+    ];
+    // M^{-1/2} K M^{-1/2}: symmetric, same eigenvalues as the pencil.
+    let scaled = Matrix3::from_fn(|i, j| k[(i, j)] / (m[i] * m[j]).sqrt());
+    let lowest = scaled.symmetric_eigenvalues().iter().copied().fold(f64::INFINITY, f64::min);
+    lowest.sqrt()
+}
+
+/// The fundamental frequency of the hard simply supported plate against Mindlin's closed
+/// form, thick (h/L = 0.1, 0.2: shear and rotary inertia lower it by 4.6 % and 15.0 % against
+/// Kirchhoff's π²(1/a² + 1/b²)√(D/ρh)) and thin (h/L = 1e-3, where it is Kirchhoff's): the FE
+/// frequency converges from above at the observed rate 2, within 1e-3 on 64 x 48 elements.
+#[test]
+fn fundamental_frequency_meets_mindlins_closed_form() -> Result<(), FemError> {
+    for h in [1e-3, 0.1, 0.2] {
+        let props = plate(1.0, 0.75, h);
+        let exact = mindlin_frequency(&props);
+        let kirchhoff = std::f64::consts::PI.powi(2)
+            * (1.0 + 1.0 / 0.75f64.powi(2))
+            * (props.rigidity() / (props.density * h)).sqrt();
+        let mut values = Vec::new();
+        for n in [16, 32, 64] {
+            let p = Plate::new(props, Mesh::uniform(1.0, 0.75, n, 3 * n / 4)?)?;
+            let f = p.factorize(&Supports::all_edges_simple())?.fundamental()?;
+            assert!(f.omega > exact, "h = {h}, n = {n}: from above ({} against {exact})", f.omega);
+            values.push(f.omega);
+        }
+        let rate = plate_fem::convergence::observed_rate(values[0], values[1], values[2]).expect("monotone");
+        assert!((1.8..2.2).contains(&rate), "h = {h}: rate {rate}");
+        assert!((values[2] / exact - 1.0) < 1e-3, "h = {h}: {} against {exact}", values[2]);
+        if h < 0.01 {
+            assert!((exact / kirchhoff - 1.0).abs() < 1e-5, "thin: {exact} against {kirchhoff}");
+        }
+    }
+    Ok(())
+}
+
+/// Pads that would share nodes are refused before any assembly, naming both corners.
+#[test]
+fn overlapping_pads_are_refused() -> Result<(), FemError> {
+    let p = Plate::new(plate(1.0, 1.0, 0.01), Mesh::uniform(1.0, 1.0, 2, 2)?)?.with_pad(0.5)?;
+    match p.factorize(&Supports::con1()) {
+        Err(FemError::Support(why)) => assert!(why.contains("share nodes") && why.contains("corner"), "{why}"),
+        Err(e) => panic!("wrong error: {e}"),
+        Ok(_) => panic!("overlapping pads accepted"),
     }
     Ok(())
 }

@@ -122,7 +122,8 @@ pub fn check_transient_comparison(scene: &Scene) -> Result<(), Failure> {
 pub fn results(scene: &Scene, models: &[ModelKind], progress: &dyn Progress) -> Result<Results, Failure> {
     check_budget(scene, models)?;
     let mut all = Results { scene: scene.name.clone(), responses: vec![], yields: vec![] };
-    let quasi_static = models.iter().any(|m| *m != ModelKind::Transient);
+    // The Mindlin model finds its own periods (with shear and rotary inertia).
+    let quasi_static = models.iter().any(|m| matches!(m, ModelKind::Beam | ModelKind::Plate));
     let periods = if quasi_static { fundamental_periods(scene)? } else { vec![] };
     for &kind in models {
         let r = match kind {
@@ -140,7 +141,7 @@ pub fn results(scene: &Scene, models: &[ModelKind], progress: &dyn Progress) -> 
                     MINDLIN_BASE_MESH,
                     MINDLIN_LEVELS,
                 )?;
-                run(scene, &model, kind, &periods)?
+                run(scene, &model, kind, &model.periods)?
             }
             ModelKind::Transient => {
                 progress.start(transient_case_count(scene), "transient cases");

@@ -113,6 +113,24 @@ pub fn stiffness(a: f64, b: f64, d: f64, nu: f64, shear: f64) -> Mat12 {
     })
 }
 
+/// Element consistent mass M_e = ∫ [ρh N_wᵀN_w + (ρh³/12)(N_θxᵀN_θx + N_θzᵀN_θz)] dA for mass
+/// per area `rho_h` (kg/m²) and rotary inertia per area `rho_i` = ρh³/12 (kg): translation
+/// and the rotation of the sections (Mindlin 1951); 2 x 2 Gauss points, exact (the integrand is
+/// biquadratic).
+pub fn mass(a: f64, b: f64, rho_h: f64, rho_i: f64) -> Mat12 {
+    integrate(a, b, |xi, eta| {
+        let n = bilinear(a, b, xi, eta);
+        Mat12::from_fn(|p, q| {
+            let (np, nq) = (n[p / 3][0], n[q / 3][0]);
+            match (p % 3, q % 3) {
+                (0, 0) => rho_h * np * nq,
+                (1, 1) | (2, 2) => rho_i * np * nq,
+                _ => 0.0,
+            }
+        })
+    })
+}
+
 /// ∫ f(ξ, η) dA over the a x b element by 2 x 2 Gauss points, symmetrised.
 pub(crate) fn integrate(a: f64, b: f64, f: impl Fn(f64, f64) -> Mat12) -> Mat12 {
     let mut k = Mat12::zeros();

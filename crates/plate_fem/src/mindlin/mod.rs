@@ -71,8 +71,11 @@ pub fn node_support_growth(reactions: &[f64], shear_rigidity: f64) -> f64 {
 }
 
 pub mod element;
+mod modes;
 mod numbering;
 pub mod series;
+
+pub use modes::Fundamental;
 
 use crate::model::cholesky::{Cholesky, Symbolic};
 pub use crate::patch::Patch;
@@ -204,29 +207,9 @@ impl Plate {
         supports.validate(self.props.length, self.props.width)?;
         let numbering = Numbering::new(self, supports, &self.held(supports))?;
         let n = numbering.unknowns;
-        let mut triplets = Vec::with_capacity(self.mesh.elements() * 78 + 64);
-        // (Tᵀ K T)_ab = Σ_ij T_ia K_ij T_jb over every entry (i, j), kept where a ≤ b.
-        let mut push = |i: usize, j: usize, v: f64| {
-            for &(a, ca) in numbering.terms(i) {
-                for &(b, cb) in numbering.terms(j) {
-                    if a <= b {
-                        triplets.push(Triplet::new(a, b, v * ca * cb));
-                    }
-                }
-            }
-        };
-        for ez in 0..self.mesh.nz() {
-            for ex in 0..self.mesh.nx() {
-                let (k, dofs) = (stiffness(ex, ez), self.element_dofs(ex, ez));
-                for p in 0..12 {
-                    for q in 0..12 {
-                        push(dofs[p], dofs[q], k[(p, q)]);
-                    }
-                }
-            }
-        }
+        let mut triplets = self.reduced(&numbering, stiffness);
         for (i, j, v) in self.winkler(supports) {
-            push(i, j, v);
+            push_reduced(&numbering, &mut triplets, (i, j), v);
         }
         for &(s, k) in numbering.springs.iter().flatten() {
             triplets.push(Triplet::new(s, s, k));
@@ -236,6 +219,26 @@ impl Plate {
         let symbolic = Symbolic::new(upper.symbolic(), n)?;
         let factor = Cholesky::new(&symbolic, upper.as_ref())?;
         Ok(Supported { plate: self, supports: *supports, numbering, factor })
+    }
+
+    /// The upper triangle of Tᵀ A T, A assembled from the element matrices `element`.
+    pub(crate) fn reduced(
+        &self,
+        numbering: &Numbering,
+        element: impl Fn(usize, usize) -> Mat12,
+    ) -> Vec<Triplet<usize, usize, f64>> {
+        let mut triplets = Vec::with_capacity(self.mesh.elements() * 78 + 64);
+        for ez in 0..self.mesh.nz() {
+            for ex in 0..self.mesh.nx() {
+                let (k, dofs) = (element(ex, ez), self.element_dofs(ex, ez));
+                for p in 0..12 {
+                    for q in 0..12 {
+                        push_reduced(numbering, &mut triplets, (dofs[p], dofs[q]), k[(p, q)]);
+                    }
+                }
+            }
+        }
+        triplets
     }
 
     /// Which DOFs the edge supports hold at zero (the corners act through their pads).
@@ -303,6 +306,18 @@ impl Plate {
             }
         }
         Ok(f)
+    }
+}
+
+/// Adds the entry `v` at DOFs (i, j) of A to the upper triangle of Tᵀ A T:
+/// (Tᵀ A T)_ab = Σ_ij T_ia A_ij T_jb over every entry (i, j) of both triangles, kept where a ≤ b.
+fn push_reduced(numbering: &Numbering, out: &mut Vec<Triplet<usize, usize, f64>>, (i, j): (usize, usize), v: f64) {
+    for &(a, ca) in numbering.terms(i) {
+        for &(b, cb) in numbering.terms(j) {
+            if a <= b {
+                out.push(Triplet::new(a, b, v * ca * cb));
+            }
+        }
     }
 }
 
@@ -381,6 +396,12 @@ impl Supported<'_> {
                         corner_reaction[on_pad[g]] -= ku[k];
                     }
                 }
+            }
+        }
+        // The elastic edges' springs act on the same DOFs (Ku includes them).
+        for (i, j, v) in self.plate.winkler(&self.supports) {
+            if on_pad[i] != usize::MAX {
+                corner_reaction[on_pad[i]] -= v * u[j];
             }
         }
         for (c, pad) in self.numbering.pads.iter().enumerate() {

@@ -50,6 +50,21 @@ impl Numbering {
             }
             pads.push((*c, *s, corner_w, pad_weights(plate, *c)?));
         }
+        // Pads that share a node would share a constraint row: refused, before any assembly.
+        let mut owner: Vec<Option<Corner>> = vec![None; dofs];
+        for (c, _, _, weights) in &pads {
+            for &(d, _) in weights {
+                if let Some(other) = owner[d] {
+                    return Err(FemError::Support(format!(
+                        "the corner pads of side {:?} m at {} and {} share nodes on this mesh; use a smaller pad",
+                        plate.pad(),
+                        other.name(),
+                        c.name()
+                    )));
+                }
+                owner[d] = Some(*c);
+            }
+        }
         let mut dependent = vec![false; dofs];
         pads.iter().for_each(|p| dependent[p.2] = true);
         let mut index = vec![usize::MAX; dofs];

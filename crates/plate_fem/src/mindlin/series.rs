@@ -123,7 +123,6 @@ mod tests {
         let d = props.rigidity();
         // q = P/a² with P = 1 and a = 1: w D/(q a⁴) = w D.
         let mindlin = whole.centre_deflection * d;
-        println!("{mindlin:e}");
         assert!((mindlin / 4.273e-3 - 1.0).abs() < 2e-4, "{mindlin:e}");
         let thin = navier_patch(&square(1e-4), &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 });
         let kirchhoff = thin.centre_deflection * square(1e-4).rigidity();

@@ -27,6 +27,8 @@ pub fn table(d: &Shear) -> Table {
             "C Mindlin (m/N)",
             "Mindlin/Kirchhoff - 1",
             "estimates (rel.)",
+            "C Kirchhoff same patch (m/N)",
+            "shear alone",
             "shear share",
             "P_max Kirchhoff (N)",
             "P_max Mindlin (N)",
@@ -44,6 +46,8 @@ pub fn table(d: &Shear) -> Table {
             Cell::Measured { value: r.mindlin, error: r.mindlin_error },
             Cell::Rel(excess(r)),
             Cell::Sig(r.kirchhoff_error / r.kirchhoff + r.mindlin_error / r.mindlin, 2),
+            Cell::Num(r.kirchhoff_patch),
+            Cell::Rel(r.mindlin / r.kirchhoff_patch - 1.0),
             Cell::Rel(r.shear / r.mindlin),
             pk,
             pm,
@@ -81,6 +85,7 @@ pub fn section(scene: &Scene, d: &Shear, a: &mut Artifacts, findings: &mut Vec<S
     let range = |v: Vec<f64>| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
     let (low, high) = range(d.rows.iter().map(excess).collect());
     let (share_low, share_high) = range(d.rows.iter().map(|r| r.shear / r.mindlin).collect());
+    let (alone_low, alone_high) = range(d.rows.iter().map(|r| r.mindlin / r.kirchhoff_patch - 1.0).collect());
     let (p_low, p_high) = range(d.rows.iter().filter_map(|r| r.p_max.map(|(k, m)| m / k - 1.0)).collect());
     let (cx, cz) = (scene.plate.length() / 2.0, scene.plate.width() / 2.0);
     let centre = d.rows.iter().min_by(|a, b| (a.x - cx).hypot(a.z - cz).total_cmp(&(b.x - cx).hypot(b.z - cz)));
@@ -97,6 +102,8 @@ pub fn section(scene: &Scene, d: &Shear, a: &mut Artifacts, findings: &mut Vec<S
             ("high", percent(high)),
             ("centre", centre.map_or_else(String::new, |r| percent(excess(r)))),
             ("resolved", if resolved { "beyond" } else { "not everywhere beyond" }.into()),
+            ("alone_low", percent(alone_low)),
+            ("alone_high", percent(alone_high)),
             ("share_low", percent(share_low)),
             ("share_high", percent(share_high)),
             ("p_low", if p_low.is_finite() { percent(p_low) } else { "-".into() }),

@@ -1,14 +1,20 @@
 //! Transverse shear: the Reissner-Mindlin plate against Kirchhoff's at the scene's points.
 //!
-//! Both plates through the same energy balance; only the compliance differs, by the shear
-//! deflection Kirchhoff leaves out (and, at an edge point, by where the Mindlin model's contact
-//! patch lies: clipped to the plate, its centroid h/4 inside; [`coupled::compliance::mindlin`]).
+//! Both plates through the same energy balance; only the compliance differs. Against
+//! Kirchhoff's point value (what changing `--model` changes) the difference mixes the shear
+//! deflection with the contact's spreading over the Mindlin model's patch (clipped at an edge,
+//! its centroid h/4 inside; [`coupled::compliance::mindlin`]). Kirchhoff's plate under the
+//! same patch (BFS, the ladder's finest mesh) separates them: Mindlin against it is shear
+//! alone.
 
+use crate::settings::{BASE_MESH, LEVELS};
 use crate::Failure;
-use coupled::compliance::mindlin::{MINDLIN_BASE_MESH, MINDLIN_LEVELS};
+use coupled::compliance::mindlin::{contact_patch, MINDLIN_BASE_MESH, MINDLIN_LEVELS};
 use coupled::compliance::{ComplianceModel, MindlinModel};
-use coupled::plan::{fundamental_periods, run, ModelKind, ResponseRow, Results};
+use coupled::discretisation::{ladder_meshes, plate_properties};
+use coupled::plan::{run, ModelKind, ResponseRow, Results};
 use coupled::PlateModel;
+use plate_fem::Model;
 use scene::{Analysis, Scene};
 use serde::Serialize;
 use std::time::Instant;
@@ -34,6 +40,9 @@ pub struct ShearRow {
     pub mindlin_error: f64,
     /// The part of Mindlin's compliance stored as shear energy, m/N.
     pub shear: f64,
+    /// Kirchhoff's compliance under Mindlin's contact patch (BFS on the ladder's finest
+    /// mesh), m/N.
+    pub kirchhoff_patch: f64,
     /// P_max of the scene's first body at its first velocity: Kirchhoff's, then Mindlin's, N
     /// (none without responses or where a row is not computed).
     pub p_max: Option<(f64, f64)>,
@@ -59,13 +68,17 @@ pub fn shear(scene: &Scene, kirchhoff: &PlateModel, kirchhoff_rows: &Results) ->
     let model = MindlinModel::compute(&scene.plate, &scene.conditions, &points, MINDLIN_BASE_MESH, MINDLIN_LEVELS)?;
     let seconds = t.elapsed().as_secs_f64();
     let mindlin_rows = if scene.wants(Analysis::Responses) {
-        Some(run(scene, &model, ModelKind::Mindlin, &fundamental_periods(scene)?)?)
+        Some(run(scene, &model, ModelKind::Mindlin, &model.periods)?)
     } else {
         None
     };
+    let props = plate_properties(&scene.plate);
+    let bfs = Model::new(props, ladder_meshes(&props, BASE_MESH, LEVELS)?.pop().ok_or("the ladder has meshes")?)?;
     let mut rows = Vec::new();
     for set in &scene.conditions {
+        let factor = bfs.factorize(&set.supports)?;
         for &(x, z) in &points {
+            let kirchhoff_patch = factor.respond_patch(&contact_patch(&props, x, z))?;
             let (k, m) = (kirchhoff.compliance(set, x, z)?, model.compliance(set, x, z)?);
             let shear = m.compliance.stores().iter().filter(|s| s.name == "plate shear").map(|s| s.compliance).sum();
             let p_max = mindlin_rows.as_ref().and_then(|mr| {
@@ -82,6 +95,7 @@ pub fn shear(scene: &Scene, kirchhoff: &PlateModel, kirchhoff_rows: &Results) ->
                 mindlin: m.compliance.total(),
                 mindlin_error: m.error_estimate,
                 shear,
+                kirchhoff_patch,
                 p_max,
             });
         }
