@@ -25,7 +25,7 @@
 //! direction, and its error estimated as the change from [`TERMS`]/2 (reported).
 
 use super::{Patch, SHEAR_CORRECTION};
-use crate::PlateProperties;
+use crate::{FemError, PlateProperties};
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -52,8 +52,11 @@ fn mean_sine(k: f64, centre: f64, side: f64) -> f64 {
     2.0 * (k * centre).sin() * (k * side / 2.0).sin() / (k * side)
 }
 
-/// Navier's series for a unit force spread over `patch` on the hard simply supported plate.
-pub fn navier_patch(props: &PlateProperties, patch: &Patch) -> SeriesCompliance {
+/// Navier's series for a unit force spread over `patch` on the hard simply supported plate;
+/// the plate and the patch (positive sides, on the plate) are checked first.
+pub fn navier_patch(props: &PlateProperties, patch: &Patch) -> Result<SeriesCompliance, FemError> {
+    props.validate()?;
+    patch.validate(props.length, props.width)?;
     let (a, b) = (props.length, props.width);
     let d = props.rigidity();
     let gh =
@@ -88,13 +91,13 @@ pub fn navier_patch(props: &PlateProperties, patch: &Patch) -> SeriesCompliance 
     let (kirchhoff, shear, centre_deflection) = sum(TERMS);
     let (k_half, s_half, _) = sum(TERMS / 2);
     let compliance = kirchhoff + shear;
-    SeriesCompliance {
+    Ok(SeriesCompliance {
         compliance,
         kirchhoff,
         shear,
         centre_deflection,
         truncation: (compliance - (k_half + s_half)).abs(),
-    }
+    })
 }
 
 #[cfg(test)]
@@ -119,12 +122,12 @@ mod tests {
     #[test]
     fn uniform_load_matches_the_tabulated_centre_deflections() {
         let props = square(0.1);
-        let whole = navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 });
+        let whole = navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 }).unwrap();
         let d = props.rigidity();
         // q = P/a² with P = 1 and a = 1: w D/(q a⁴) = w D.
         let mindlin = whole.centre_deflection * d;
         assert!((mindlin / 4.273e-3 - 1.0).abs() < 2e-4, "{mindlin:e}");
-        let thin = navier_patch(&square(1e-4), &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 });
+        let thin = navier_patch(&square(1e-4), &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 }).unwrap();
         let kirchhoff = thin.centre_deflection * square(1e-4).rigidity();
         assert!((kirchhoff / 4.062e-3 - 1.0).abs() < 2e-4, "{kirchhoff:e}");
     }
@@ -136,7 +139,7 @@ mod tests {
     fn kirchhoff_part_tends_to_the_point_value_and_shear_part_diverges_logarithmically() {
         let props = square(0.05);
         let d = props.rigidity();
-        let at = |c: f64| navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: c, side_z: c });
+        let at = |c: f64| navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: c, side_z: c }).unwrap();
         let small = at(0.005);
         assert!((small.kirchhoff * d / 0.011_601 - 1.0).abs() < 2e-3, "{}", small.kirchhoff * d);
         let gh = super::super::element::shear_rigidity(210e9, 0.3, 0.05, SHEAR_CORRECTION);
@@ -146,5 +149,16 @@ mod tests {
         let expected = 2f64.ln() / (2.0 * PI * gh);
         assert!((step / expected - 1.0).abs() < 0.02, "{step:e} against {expected:e}");
         assert!(small.truncation < 1e-4 * small.compliance, "{:e}", small.truncation / small.compliance);
+    }
+
+    /// A patch of zero side, or off the plate, is refused with the field named, not summed
+    /// into NaN or a silently wrong value.
+    #[test]
+    fn bad_patches_are_refused() {
+        let props = square(0.05);
+        let zero = navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: 0.0, side_z: 0.1 });
+        assert!(matches!(zero, Err(crate::FemError::Property { name: "patch side_x", .. })), "{zero:?}");
+        let off = navier_patch(&props, &Patch { x: 0.98, z: 0.5, side_x: 0.1, side_z: 0.1 });
+        assert!(matches!(off, Err(crate::FemError::OutsidePlate { .. })), "{off:?}");
     }
 }

@@ -86,7 +86,7 @@ fn steel(length: f64, width: f64, thickness: f64) -> PlateProperties {
 fn thick_ladder(ratio: f64) -> Result<ThickLadder, Failure> {
     let props = steel(1.0, 1.0, ratio);
     let patch = Patch { x: 0.5, z: 0.5, side_x: 0.25, side_z: 0.25 };
-    let s = series::navier_patch(&props, &patch);
+    let s = series::navier_patch(&props, &patch)?;
     let mut values = Vec::new();
     for n in THICK_MESHES {
         let p = Plate::new(props, Mesh::uniform(1.0, 1.0, n, n)?)?;
@@ -114,7 +114,7 @@ fn thin_limit() -> Result<ThinLimit, Failure> {
     let supports = Supports::all_edges_simple();
     let mindlin = Plate::new(props, Mesh::uniform(1.0, 0.8, mx, mz)?)?.factorize(&supports)?.respond(&patch)?;
     let bfs = Model::new(props, Mesh::uniform(1.0, 0.8, bx, bz)?)?.factorize(&supports)?.respond_patch(&patch)?;
-    Ok(ThinLimit { ratio, mindlin: mindlin.compliance, bfs, series: series::navier_patch(&props, &patch).kirchhoff })
+    Ok(ThinLimit { ratio, mindlin: mindlin.compliance, bfs, series: series::navier_patch(&props, &patch)?.kirchhoff })
 }
 
 /// Four fixed corners on nodes, h/L = 0.1, a centred patch of 1/8 the side.
@@ -134,7 +134,7 @@ fn node_growth() -> Result<NodeGrowth, Failure> {
 /// Every check of the Mindlin plate.
 pub fn verify() -> Result<MindlinVerification, Failure> {
     let props = steel(1.0, 1.0, 0.1);
-    let whole = series::navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 });
+    let whole = series::navier_patch(&props, &Patch { x: 0.5, z: 0.5, side_x: 1.0, side_z: 1.0 })?;
     Ok(MindlinVerification {
         uniform: whole.centre_deflection * props.rigidity(),
         thick: THICK_RATIOS.iter().map(|&r| thick_ladder(r)).collect::<Result<_, _>>()?,
