@@ -23,15 +23,15 @@
 //! the Kirchhoff point value: at the free-end midpoints of the paper's plate the Mindlin value
 //! is 0.7 % above Kirchhoff's point value, against 2.8 % at x = 13.75 mm (0.03 L).
 
-use super::plate::{corner_weights, extrapolate, LevelCost};
+use super::plate::{extrapolate, spring_parts, LevelCost};
 use super::table::PointValues;
 use super::{ComplianceModel, Estimate};
 use crate::discretisation::{ladder_meshes, plate_properties};
 use crate::error::ModelError;
 use crate::supports::SupportSet;
-use analytic::{Plate, PointCompliance, SpringReaction, Store, StoreKind};
+use analytic::{Plate, PointCompliance, Store, StoreKind};
 use plate_fem::mindlin::{self, Patch, PatchResponse};
-use plate_fem::{Corner, CornerSupport, PlateProperties};
+use plate_fem::{CornerSupport, PlateProperties};
 use std::time::Instant;
 
 /// Elements along the longer side of the coarsest mesh: bilinear elements need about four
@@ -68,18 +68,11 @@ fn to_analytic(
     at: (f64, f64),
     props: &PlateProperties,
 ) -> Result<PointCompliance, ModelError> {
-    let weights = corner_weights(at.0, at.1, props.length, props.width);
-    let (mut stores, mut springs, mut spring_energy, mut plane) = (Vec::new(), Vec::new(), 0.0, 0.0);
-    for c in Corner::ALL {
-        if let CornerSupport::Spring(k) = corners[c.index()] {
-            let w = r.corner_deflection[c.index()];
-            let name = format!("spring at {}", c.name());
-            stores.push(Store { name: name.clone(), kind: StoreKind::Spring, compliance: k * w * w });
-            springs.push(SpringReaction { name, per_unit_load: k * w });
-            spring_energy += k * w * w;
-            plane += weights[c.index()] * w;
-        }
-    }
+    let (mut stores, springs, plane) = spring_parts(corners, at, props.length, props.width, |i, k| {
+        let w = r.corner_deflection[i];
+        (k * w * w, k * w, w)
+    });
+    let spring_energy: f64 = stores.iter().map(|s| s.compliance).sum();
     let bending = (r.compliance - r.shear - spring_energy).max(0.0);
     stores.insert(0, Store { name: "plate shear".into(), kind: StoreKind::Plate, compliance: r.shear.max(0.0) });
     stores.insert(0, Store { name: "plate bending".into(), kind: StoreKind::Plate, compliance: bending });

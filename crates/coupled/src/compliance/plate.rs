@@ -48,6 +48,33 @@ pub(crate) fn corner_weights(x: f64, z: f64, l: f64, b: f64) -> [f64; 4] {
     [(1.0 - s) * (1.0 - t), s * (1.0 - t), (1.0 - s) * t, s * t]
 }
 
+/// The spring corners' part of a compliance at `at` on an `l` x `b` plate: a store and a
+/// reaction per spring, and the plane through the spring corners' deflections at `at` (the
+/// rigid motion on the springs, which the bending deflection leaves out). `part` gives, for
+/// corner index i of stiffness k, its store (m/N), its force per unit load and its deflection
+/// per unit load (m/N).
+pub(crate) fn spring_parts(
+    corners: [CornerSupport; 4],
+    at: (f64, f64),
+    l: f64,
+    b: f64,
+    part: impl Fn(usize, f64) -> (f64, f64, f64),
+) -> (Vec<Store>, Vec<SpringReaction>, f64) {
+    let weights = corner_weights(at.0, at.1, l, b);
+    let (mut stores, mut springs, mut plane) = (Vec::new(), Vec::new(), 0.0);
+    for c in Corner::ALL {
+        let i = c.index();
+        if let CornerSupport::Spring(k) = corners[i] {
+            let (store, reaction, deflection) = part(i, k);
+            let name = format!("spring at {}", c.name());
+            stores.push(Store { name: name.clone(), kind: StoreKind::Spring, compliance: store });
+            springs.push(SpringReaction { name, per_unit_load: reaction });
+            plane += weights[i] * deflection;
+        }
+    }
+    (stores, springs, plane)
+}
+
 /// The analytic compliance of one FE response: plate store, one store per spring, spring
 /// reactions, and the bending deflection (w at the point minus the bilinear plane through
 /// the corner deflections, the plate's analogue of eq. 11, which leaves out the rigid
@@ -58,24 +85,14 @@ fn to_analytic(
     l: f64,
     b: f64,
 ) -> Result<PointCompliance, InvalidCompliance> {
-    let mut stores =
-        vec![Store { name: "plate bending".into(), kind: StoreKind::Plate, compliance: r.plate_compliance.max(0.0) }];
-    let mut springs = Vec::new();
-    let weights = corner_weights(r.x, r.z, l, b);
-    let mut support_plane = 0.0;
-    for c in Corner::ALL {
-        let i = c.index();
-        if let CornerSupport::Spring(k) = corners[i] {
-            stores.push(Store {
-                name: format!("spring at {}", c.name()),
-                kind: StoreKind::Spring,
-                compliance: r.corners[i].spring_compliance,
-            });
-            springs
-                .push(SpringReaction { name: format!("spring at {}", c.name()), per_unit_load: r.corners[i].reaction });
-            support_plane += weights[i] * r.corners[i].reaction / k;
-        }
-    }
+    let (mut stores, springs, support_plane) = spring_parts(corners, (r.x, r.z), l, b, |i, k| {
+        let c = &r.corners[i];
+        (c.spring_compliance, c.reaction, c.reaction / k)
+    });
+    stores.insert(
+        0,
+        Store { name: "plate bending".into(), kind: StoreKind::Plate, compliance: r.plate_compliance.max(0.0) },
+    );
     PointCompliance::new(stores, springs, r.compliance - support_plane)
 }
 
