@@ -67,6 +67,7 @@ pub mod mindlin;
 pub mod model;
 pub mod modes;
 pub mod patch;
+pub mod shell;
 pub mod supports;
 
 /// faer, re-exported: [`Factorization::solve_in_place`] takes a `faer::Mat<f64>`,

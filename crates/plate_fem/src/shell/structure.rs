@@ -1,0 +1,431 @@
+//! Assembly of flat shell rectangles in space, restraints, one factorization, patch responses.
+
+use super::element::{self, Mat24, Parts, Vec24, DOFS_PER_NODE};
+use crate::mindlin::SHEAR_CORRECTION;
+use crate::model::cholesky::{Cholesky, Symbolic};
+use crate::patch::Patch;
+use crate::{FemError, Mesh};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Mat;
+use nalgebra::{Matrix3, Vector3};
+use serde::Serialize;
+use std::collections::HashMap;
+
+/// A rectangular wall meshed as a tensor grid: its corner `origin`, two orthogonal unit axes,
+/// the grid lines along each (m, from the origin, increasing from 0) and its thickness. Its
+/// normal is e₁ x e₂; a patch on it is placed by (x, z) = (along e₁, along e₂).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    origin: Vector3<f64>,
+    axes: Matrix3<f64>,
+    mesh: Mesh,
+    thickness: f64,
+}
+
+impl Face {
+    /// A wall from its corner, axes (unit and orthogonal, to 1e-9), lines and thickness (m).
+    pub fn new(
+        origin: [f64; 3],
+        e1: [f64; 3],
+        e2: [f64; 3],
+        lines1: Vec<f64>,
+        lines2: Vec<f64>,
+        thickness: f64,
+    ) -> Result<Self, FemError> {
+        let (e1, e2) = (Vector3::from(e1), Vector3::from(e2));
+        let unit = |v: &Vector3<f64>| (v.norm() - 1.0).abs() < 1e-9;
+        if !(unit(&e1) && unit(&e2) && e1.dot(&e2).abs() < 1e-9) {
+            return Err(FemError::Mesh(format!("a face's axes must be orthogonal unit vectors, not {e1:?} and {e2:?}")));
+        }
+        if !(thickness.is_finite() && thickness > 0.0) {
+            return Err(FemError::Property { name: "shell thickness", value: thickness, allowed: "(0, inf) m" });
+        }
+        let mesh = Mesh::from_lines(lines1, lines2)?;
+        let e3 = e1.cross(&e2);
+        Ok(Self { origin: Vector3::from(origin), axes: Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e3.transpose()]), mesh, thickness })
+    }
+
+    /// The point (m) at face coordinates (x, z).
+    pub fn point(&self, x: f64, z: f64) -> Vector3<f64> {
+        self.origin + self.axes.row(0).transpose() * x + self.axes.row(1).transpose() * z
+    }
+
+    /// The unit normal e₁ x e₂.
+    pub fn normal(&self) -> Vector3<f64> {
+        self.axes.row(2).transpose()
+    }
+
+    /// The face's grid.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// Thickness (m).
+    pub fn thickness(&self) -> f64 {
+        self.thickness
+    }
+}
+
+/// A face of a [`Structure`]: its index in the order added.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FaceId(usize);
+
+/// One flat rectangle: nodes in the order (0,0), (1,0), (0,1), (1,1) of its sides a along e₁
+/// and b along e₂.
+#[derive(Debug, Clone)]
+struct Element {
+    nodes: [usize; 4],
+    /// Rows e₁, e₂, e₃.
+    axes: Matrix3<f64>,
+    key: (u64, u64, u64),
+}
+
+/// Flat shell rectangles in space with their shared nodes.
+#[derive(Debug, Clone)]
+pub struct Structure {
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    drilling: f64,
+    nodes: Vec<Vector3<f64>>,
+    index: HashMap<[i64; 3], usize>,
+    elements: Vec<Element>,
+    /// Element matrices per (a, b, h): a structure of walls repeats a few sizes.
+    parts: HashMap<(u64, u64, u64), Parts>,
+    /// Each face with its elements, row-major over its grid (ez, ex).
+    faces: Vec<(Face, Vec<usize>)>,
+}
+
+/// Positions closer than this (m) are one node.
+const MERGE: f64 = 1e-9;
+
+impl Structure {
+    /// An empty structure of one isotropic material.
+    pub fn new(youngs_modulus: f64, poisson_ratio: f64) -> Result<Self, FemError> {
+        if !(youngs_modulus.is_finite() && youngs_modulus > 0.0) {
+            return Err(FemError::Property { name: "Young's modulus", value: youngs_modulus, allowed: "(0, inf) Pa" });
+        }
+        if !(poisson_ratio.is_finite() && (0.0..0.5).contains(&poisson_ratio)) {
+            return Err(FemError::Property { name: "Poisson ratio", value: poisson_ratio, allowed: "[0, 0.5)" });
+        }
+        Ok(Self {
+            youngs_modulus,
+            poisson_ratio,
+            drilling: element::DRILLING_FACTOR,
+            nodes: Vec::new(),
+            index: HashMap::new(),
+            elements: Vec::new(),
+            parts: HashMap::new(),
+            faces: Vec::new(),
+        })
+    }
+
+    /// The same empty structure with the drilling penalty's factor α instead of
+    /// [`element::DRILLING_FACTOR`]: for the test that the results do not depend on it.
+    pub fn with_drilling_factor(mut self, alpha: f64) -> Result<Self, FemError> {
+        if !(alpha.is_finite() && alpha > 0.0 && self.elements.is_empty()) {
+            return Err(FemError::Property { name: "drilling factor", value: alpha, allowed: "(0, inf), before any element" });
+        }
+        self.drilling = alpha;
+        Ok(self)
+    }
+
+    fn node(&mut self, p: Vector3<f64>) -> usize {
+        let key = [p.x, p.y, p.z].map(|v| (v / MERGE).round() as i64);
+        let next = self.nodes.len();
+        *self.index.entry(key).or_insert_with(|| {
+            self.nodes.push(p);
+            next
+        })
+    }
+
+    /// Adds the rectangle with corner `origin`, unit axes `axes` (rows e₁, e₂, e₃), sides a x b
+    /// and thickness h; returns its element index.
+    fn add_rectangle(&mut self, origin: Vector3<f64>, axes: Matrix3<f64>, a: f64, b: f64, h: f64) -> usize {
+        let (e1, e2) = (axes.row(0).transpose(), axes.row(1).transpose());
+        let nodes = [origin, origin + e1 * a, origin + e2 * b, origin + e1 * a + e2 * b].map(|p| self.node(p));
+        let key = (a.to_bits(), b.to_bits(), h.to_bits());
+        let (e, nu, alpha) = (self.youngs_modulus, self.poisson_ratio, self.drilling);
+        self.parts.entry(key).or_insert_with(|| Parts::new(a, b, e, nu, h, SHEAR_CORRECTION, alpha));
+        self.elements.push(Element { nodes, axes, key });
+        self.elements.len() - 1
+    }
+
+    /// Adds a wall, merging its nodes with those already at the same positions.
+    pub fn add_face(&mut self, face: &Face) -> Result<FaceId, FemError> {
+        let (xs, zs) = (face.mesh.xs().to_vec(), face.mesh.zs().to_vec());
+        let mut ids = Vec::with_capacity(face.mesh.elements());
+        for ez in 0..face.mesh.nz() {
+            for ex in 0..face.mesh.nx() {
+                let (a, b) = face.mesh.element_size(ex, ez);
+                ids.push(self.add_rectangle(face.point(xs[ex], zs[ez]), face.axes, a, b, face.thickness));
+            }
+        }
+        self.faces.push((face.clone(), ids));
+        Ok(FaceId(self.faces.len() - 1))
+    }
+
+    /// Adds a single rectangle from its four corners in the order (0,0), (1,0), (0,1), (1,1)
+    /// (a facet of a curved shell), which must form a rectangle to 1e-9 of its size.
+    pub fn add_facet(&mut self, corners: [[f64; 3]; 4], thickness: f64) -> Result<usize, FemError> {
+        let [p0, p1, p2, p3] = corners.map(Vector3::from);
+        let (s1, s2) = (p1 - p0, p2 - p0);
+        let (a, b) = (s1.norm(), s2.norm());
+        let size = a.max(b);
+        if !(a > 0.0 && b > 0.0 && s1.dot(&s2).abs() < 1e-9 * size * size && (p3 - p1 - s2).norm() < 1e-9 * size) {
+            return Err(FemError::Mesh(format!("facet {corners:?} is not a rectangle")));
+        }
+        if !(thickness.is_finite() && thickness > 0.0) {
+            return Err(FemError::Property { name: "shell thickness", value: thickness, allowed: "(0, inf) m" });
+        }
+        let (e1, e2) = (s1 / a, s2 / b);
+        let axes = Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e1.cross(&e2).transpose()]);
+        Ok(self.add_rectangle(p0, axes, a, b, thickness))
+    }
+
+    /// Node positions (m).
+    pub fn nodes(&self) -> &[Vector3<f64>] {
+        &self.nodes
+    }
+
+    /// The nodes whose position satisfies `keep`.
+    pub fn nodes_where(&self, keep: impl Fn([f64; 3]) -> bool) -> Vec<usize> {
+        (0..self.nodes.len()).filter(|&n| keep(self.nodes[n].into())).collect()
+    }
+
+    /// The node nearest to `p` and its distance (m).
+    pub fn nearest_node(&self, p: [f64; 3]) -> Option<(usize, f64)> {
+        let p = Vector3::from(p);
+        (0..self.nodes.len()).map(|n| (n, (self.nodes[n] - p).norm())).min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// Number of elements.
+    pub fn elements(&self) -> usize {
+        self.elements.len()
+    }
+
+    /// A face added by [`Self::add_face`].
+    pub fn face(&self, id: FaceId) -> &Face {
+        &self.faces[id.0].0
+    }
+
+    /// DOFs before restraints: six per node.
+    pub fn dofs(&self) -> usize {
+        DOFS_PER_NODE * self.nodes.len()
+    }
+
+    fn element_dofs(&self, e: &Element) -> [usize; 24] {
+        std::array::from_fn(|k| DOFS_PER_NODE * e.nodes[k / 6] + k % 6)
+    }
+
+    /// An element matrix in the global frame: Tᵀ K T, T = diag(Λ) over the eight 3-blocks.
+    fn global(e: &Element, local: &Mat24) -> Mat24 {
+        let mut t = Mat24::zeros();
+        for block in 0..8 {
+            t.fixed_view_mut::<3, 3>(3 * block, 3 * block).copy_from(&e.axes);
+        }
+        t.transpose() * local * t
+    }
+
+    /// The consistent load of a uniform traction `q` (Pa, a global vector) on every element:
+    /// the structure's own weight as a load, or the benchmarks' gravity load.
+    pub fn area_load(&self, q: [f64; 3]) -> Vec<f64> {
+        let mut f = vec![0.0; self.dofs()];
+        for e in &self.elements {
+            let area = f64::from_bits(e.key.0) * f64::from_bits(e.key.1);
+            for &n in &e.nodes {
+                for (i, qi) in q.iter().enumerate() {
+                    // ∫ N_k dA = A/4 for a bilinear rectangle.
+                    f[DOFS_PER_NODE * n + i] += qi * area / 4.0;
+                }
+            }
+        }
+        f
+    }
+
+    /// The consistent load of a unit force spread over `patch` on face `id`, pressing along
+    /// -normal (into a closed box whose face normals point outward).
+    pub fn patch_load(&self, id: FaceId, patch: &Patch) -> Result<Vec<f64>, FemError> {
+        let (face, ids) = &self.faces[id.0];
+        let mut f = vec![0.0; self.dofs()];
+        for part in patch.parts(&face.mesh)? {
+            let e = &self.elements[ids[part.ez * face.mesh.nx() + part.ex]];
+            let local: Vec24 = -element::pressure_load(part.size.0, part.size.1, part.local, patch.pressure());
+            let dofs = self.element_dofs(e);
+            for node in 0..4 {
+                let global = e.axes.transpose() * local.fixed_rows::<3>(6 * node);
+                for i in 0..3 {
+                    f[dofs[6 * node + i]] += global[i];
+                }
+            }
+        }
+        Ok(f)
+    }
+
+    /// Restrains the structure and factorizes its stiffness.
+    pub fn factorize(&self, restraints: &Restraints) -> Result<Factorized<'_>, FemError> {
+        let n_dofs = self.dofs();
+        let mut free = vec![0usize; n_dofs];
+        let mut held = vec![false; n_dofs];
+        for &(node, dof) in &restraints.held {
+            if node >= self.nodes.len() || dof >= DOFS_PER_NODE {
+                return Err(FemError::Support(format!("restraint on node {node}, DOF {dof}: no such DOF")));
+            }
+            held[DOFS_PER_NODE * node + dof] = true;
+        }
+        let mut unknowns = 0;
+        for (d, slot) in free.iter_mut().enumerate() {
+            *slot = if held[d] { usize::MAX } else { unknowns };
+            unknowns += usize::from(!held[d]);
+        }
+        let mut triplets = Vec::with_capacity(self.elements.len() * 300);
+        for e in &self.elements {
+            let k = Self::global(e, &self.parts[&e.key].total());
+            let dofs = self.element_dofs(e);
+            for p in 0..24 {
+                for q in 0..24 {
+                    let (a, b) = (free[dofs[p]], free[dofs[q]]);
+                    if a != usize::MAX && b != usize::MAX && a <= b {
+                        triplets.push(Triplet::new(a, b, k[(p, q)]));
+                    }
+                }
+            }
+        }
+        for s in &restraints.springs {
+            s.check(self.nodes.len())?;
+            let d = Vector3::from(s.direction).normalize();
+            for i in 0..3 {
+                for j in 0..3 {
+                    let (a, b) = (free[DOFS_PER_NODE * s.node + i], free[DOFS_PER_NODE * s.node + j]);
+                    if a != usize::MAX && b != usize::MAX && a <= b {
+                        triplets.push(Triplet::new(a, b, s.stiffness * d[i] * d[j]));
+                    }
+                }
+            }
+        }
+        let upper = SparseColMat::try_new_from_triplets(unknowns, unknowns, &triplets)
+            .map_err(|e| FemError::sparse("sparsity pattern", unknowns, e))?;
+        let symbolic = Symbolic::new(upper.symbolic(), unknowns)?;
+        let factor = Cholesky::new(&symbolic, upper.as_ref()).map_err(|_| {
+            FemError::Singular("the restraints leave the structure a rigid-body motion (or a mechanism)".into())
+        })?;
+        Ok(Factorized { structure: self, restraints: restraints.clone(), free, unknowns, factor })
+    }
+}
+
+/// A translational spring from a node to ground: a jack, a pad, a foundation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Spring {
+    /// The node.
+    pub node: usize,
+    /// The line of action (any length; normalised).
+    pub direction: [f64; 3],
+    /// Stiffness along it (N/m).
+    pub stiffness: f64,
+}
+
+impl Spring {
+    fn check(&self, nodes: usize) -> Result<(), FemError> {
+        let norm = Vector3::from(self.direction).norm();
+        if self.node >= nodes || !(norm.is_finite() && norm > 0.0) || !(self.stiffness.is_finite() && self.stiffness > 0.0)
+        {
+            return Err(FemError::Support(format!(
+                "spring on node {} along {:?} with k = {} N/m: needs an existing node, a direction and 0 < k < inf",
+                self.node, self.direction, self.stiffness
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// What holds a structure: DOFs held at zero and springs to ground.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Restraints {
+    /// (node, DOF) pairs held at zero; DOFs 0-2 translations, 3-5 rotations, global axes.
+    pub held: Vec<(usize, usize)>,
+    /// Springs to ground.
+    pub springs: Vec<Spring>,
+}
+
+impl Restraints {
+    /// Holds the given DOFs of `node`.
+    pub fn hold(&mut self, node: usize, dofs: &[usize]) {
+        self.held.extend(dofs.iter().map(|&d| (node, d)));
+    }
+}
+
+/// A patch's response per unit force, with the energy split.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ShellResponse {
+    /// Work-conjugate compliance: the pressure-weighted mean displacement along the load
+    /// per unit force (m/N).
+    pub compliance: f64,
+    /// Membrane strain energy x 2/P² (m/N).
+    pub membrane: f64,
+    /// Bending strain energy x 2/P² (m/N).
+    pub bending: f64,
+    /// Transverse shear strain energy x 2/P² (m/N).
+    pub shear: f64,
+    /// Drilling penalty energy x 2/P² (m/N): a measure of the penalty's intrusion.
+    pub drilling: f64,
+    /// The springs' energy x 2/P² (m/N).
+    pub springs: f64,
+}
+
+/// A restrained structure with its factorized stiffness.
+pub struct Factorized<'s> {
+    structure: &'s Structure,
+    restraints: Restraints,
+    free: Vec<usize>,
+    unknowns: usize,
+    factor: Cholesky,
+}
+
+impl Factorized<'_> {
+    /// Unknowns after the restraints.
+    pub fn unknowns(&self) -> usize {
+        self.unknowns
+    }
+
+    /// The displacements (all DOFs, held ones 0) under the load `f` (all DOFs; loads on held
+    /// DOFs go to the supports).
+    pub fn solve(&self, f: &[f64]) -> Vec<f64> {
+        let mut rhs = Mat::<f64>::zeros(self.unknowns, 1);
+        for (d, &slot) in self.free.iter().enumerate() {
+            if slot != usize::MAX {
+                rhs[(slot, 0)] += f[d];
+            }
+        }
+        self.factor.solve_in_place(rhs.as_mut());
+        self.free.iter().map(|&slot| if slot == usize::MAX { 0.0 } else { rhs[(slot, 0)] }).collect()
+    }
+
+    /// The response to a unit force spread over `patch` on face `id`.
+    pub fn respond(&self, id: FaceId, patch: &Patch) -> Result<ShellResponse, FemError> {
+        let f = self.structure.patch_load(id, patch)?;
+        let u = self.solve(&f);
+        let compliance = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+        let (mut membrane, mut bending, mut shear, mut drilling) = (0.0, 0.0, 0.0, 0.0);
+        for e in &self.structure.elements {
+            let dofs = self.structure.element_dofs(e);
+            let ue = Vec24::from_fn(|k, _| u[dofs[k]]);
+            let parts = &self.structure.parts[&e.key];
+            let energy = |k: &Mat24| ue.dot(&(Structure::global(e, k) * ue));
+            membrane += energy(&parts.membrane);
+            bending += energy(&parts.bending);
+            shear += energy(&parts.shear);
+            drilling += energy(&parts.drilling);
+        }
+        let springs = self
+            .restraints
+            .springs
+            .iter()
+            .map(|s| {
+                let d = Vector3::from(s.direction).normalize();
+                let n = DOFS_PER_NODE * s.node;
+                let stretch = d.dot(&Vector3::new(u[n], u[n + 1], u[n + 2]));
+                s.stiffness * stretch * stretch
+            })
+            .sum();
+        Ok(ShellResponse { compliance, membrane, bending, shear, drilling, springs })
+    }
+}
