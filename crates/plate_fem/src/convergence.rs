@@ -35,15 +35,25 @@ pub fn observed_rate(q1: f64, q2: f64, q3: f64) -> Option<f64> {
 /// The extrapolation uses the nominal rate 2 (the theory for point loads); the observed
 /// rate is reported beside it, so a user sees when the asymptotic regime is not reached.
 pub fn richardson(values: &[f64]) -> Option<Extrapolation> {
+    richardson_at_rate(values, 2.0)
+}
+
+/// [`richardson`] at the nominal rate p that the theory gives for the problem: the
+/// extrapolated value q₂ + (q₂ - q₁)/(2ᵖ - 1), the sequence asymptotic where the observed
+/// rate lies within ±0.5 of p. A rigid line support inside a membrane (a hinge pin's line on
+/// a shell wall) has stress singularities at its ends like a crack's, r^(-1/2), under which the
+/// energy, and so a compliance, converges at p = 1.
+pub fn richardson_at_rate(values: &[f64], rate: f64) -> Option<Extrapolation> {
     let n = values.len();
     if n < 2 {
         return None;
     }
     let (q1, q2) = (values[n - 2], values[n - 1]);
-    let extrapolated = q2 + (q2 - q1) / 3.0;
+    let extrapolated = q2 + (q2 - q1) / (2f64.powf(rate) - 1.0);
     let observed_rate = if n >= 3 { observed_rate(values[n - 3], q1, q2) } else { None };
-    let asymptotic = observed_rate.is_none_or(|p| (1.5..=2.5).contains(&p));
-    let error_estimate = if asymptotic { (q2 - extrapolated).abs() } else { (q2 - q1).abs() };
+    let asymptotic = observed_rate.is_none_or(|p| (rate - 0.5..=rate + 0.5).contains(&p));
+    let error_estimate =
+        if asymptotic { (q2 - extrapolated).abs() } else { (q2 - q1).abs().max((q2 - extrapolated).abs()) };
     Some(Extrapolation { finest: q2, extrapolated, error_estimate, observed_rate, asymptotic })
 }
 
@@ -60,6 +70,17 @@ mod tests {
         assert_relative_eq!(e.extrapolated, exact, max_relative = 1e-14);
         assert_relative_eq!(e.observed_rate.unwrap(), 2.0, max_relative = 1e-12);
         assert!(e.asymptotic);
+    }
+
+    /// At rate 1 the extrapolation is exact for an error c·h, and a rate-2 sequence is not
+    /// asymptotic for it.
+    #[test]
+    fn exact_for_pure_h1_error_at_rate_one() {
+        let v: Vec<f64> = [1.0, 0.5, 0.25].iter().map(|h| 3.0 - 0.7 * h).collect();
+        let e = richardson_at_rate(&v, 1.0).unwrap();
+        assert_relative_eq!(e.extrapolated, 3.0, max_relative = 1e-14);
+        assert!(e.asymptotic);
+        assert!(!richardson(&v).unwrap().asymptotic);
     }
 
     /// Outside the asymptotic range the estimate falls back to the last difference.

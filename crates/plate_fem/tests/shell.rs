@@ -86,7 +86,8 @@ fn flat_plate(h: f64, n: usize) -> (f64, f64, f64) {
     }
     let patch = Patch { x: 0.5, z: 0.5, side_x: 0.25, side_z: 0.25 };
     let fe = s.factorize(&r).unwrap().respond(face, &patch).unwrap();
-    let props = PlateProperties { length: a, width: a, thickness: h, youngs_modulus: e, poisson_ratio: nu, density: 7850.0 };
+    let props =
+        PlateProperties { length: a, width: a, thickness: h, youngs_modulus: e, poisson_ratio: nu, density: 7850.0 };
     let navier = series::navier_patch(&props, &patch).unwrap();
     (fe.compliance, navier.compliance, fe.membrane)
 }
@@ -116,7 +117,8 @@ fn box_cantilever(n: usize, alpha: f64) -> f64 {
     let (l, b, hgt, t) = (3.0, 0.3, 0.2, 0.005);
     let mut s = Structure::new(210e9, 0.3).unwrap().with_drilling_factor(alpha).unwrap();
     let (xs, zs, ys) = (lines(l, 10 * n), lines(b, n), lines(hgt, n));
-    let wall = |o: [f64; 3], e2: [f64; 3], l2: &Vec<f64>, t: f64| Face::new(o, [1.0, 0.0, 0.0], e2, xs.clone(), l2.clone(), t);
+    let wall =
+        |o: [f64; 3], e2: [f64; 3], l2: &Vec<f64>, t: f64| Face::new(o, [1.0, 0.0, 0.0], e2, xs.clone(), l2.clone(), t);
     for y in [0.0, hgt] {
         s.add_face(&wall([0.0, y, 0.0], [0.0, 0.0, 1.0], &zs, t).unwrap()).unwrap();
     }
@@ -157,7 +159,8 @@ fn box_cantilever_meets_timoshenko() {
 #[test]
 fn a_free_structure_is_refused() {
     let mut s = Structure::new(210e9, 0.3).unwrap();
-    s.add_face(&Face::new([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], lines(1.0, 4), lines(1.0, 4), 0.01).unwrap()).unwrap();
+    s.add_face(&Face::new([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], lines(1.0, 4), lines(1.0, 4), 0.01).unwrap())
+        .unwrap();
     let mut r = Restraints::default();
     r.hold(0, &[0, 1, 2]);
     assert!(s.factorize(&r).is_err());

@@ -6,6 +6,7 @@
 pub mod mindlin;
 pub mod plate;
 pub mod table;
+pub mod tail_beam;
 
 use crate::error::ModelError;
 use crate::supports::SupportSet;
@@ -14,6 +15,7 @@ use serde::Serialize;
 
 pub use mindlin::MindlinModel;
 pub use plate::PlateModel;
+pub use tail_beam::TailBeamModel;
 
 /// A compliance with the estimate of its discretisation error.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -14,7 +14,7 @@ use crate::error::ModelError;
 use crate::supports::SupportSet;
 use analytic::compliance::InvalidCompliance;
 use analytic::{Plate, PointCompliance, SpringReaction, Store, StoreKind};
-use plate_fem::convergence::richardson;
+use plate_fem::convergence::richardson_at_rate;
 use plate_fem::{Corner, CornerFamily, CornerSupport, Model, PointResponse};
 use std::time::Instant;
 
@@ -102,7 +102,17 @@ pub(crate) fn extrapolate(
     fine: &PointCompliance,
     finer_of: &[PointCompliance],
 ) -> Result<FeCompliance, ModelError> {
-    let ext = |a: f64, b: f64| richardson(&[a, b]).map_or(b, |e| e.extrapolated);
+    extrapolate_at_rate(2.0, coarse, fine, finer_of)
+}
+
+/// [`extrapolate`] at the nominal convergence rate `rate` ([`richardson_at_rate`]).
+pub(crate) fn extrapolate_at_rate(
+    rate: f64,
+    coarse: &PointCompliance,
+    fine: &PointCompliance,
+    finer_of: &[PointCompliance],
+) -> Result<FeCompliance, ModelError> {
+    let ext = |a: f64, b: f64| richardson_at_rate(&[a, b], rate).map_or(b, |e| e.extrapolated);
     let stores = coarse
         .stores()
         .iter()
@@ -122,8 +132,8 @@ pub(crate) fn extrapolate(
     let deflection = ext(coarse.deflection_per_unit_load(), fine.deflection_per_unit_load());
     let compliance = PointCompliance::new(stores, springs, deflection)?;
     let totals: Vec<f64> = finer_of.iter().map(|c| c.total()).collect();
-    let e =
-        richardson(&totals).ok_or_else(|| ModelError::Missing("Richardson extrapolation needs two meshes".into()))?;
+    let e = richardson_at_rate(&totals, rate)
+        .ok_or_else(|| ModelError::Missing("Richardson extrapolation needs two meshes".into()))?;
     Ok(FeCompliance { compliance, error_estimate: e.error_estimate, asymptotic: e.asymptotic })
 }
 

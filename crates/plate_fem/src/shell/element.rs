@@ -145,7 +145,8 @@ impl Parts {
         let shear_rigidity = plate::shear_rigidity(e, nu, h, ks);
         let full = plate::stiffness(a, b, d, nu, shear_rigidity);
         let shear = plate::stiffness(a, b, 0.0, nu, shear_rigidity);
-        let mut out = Self { membrane: Mat24::zeros(), bending: Mat24::zeros(), shear: Mat24::zeros(), drilling: Mat24::zeros() };
+        let mut out =
+            Self { membrane: Mat24::zeros(), bending: Mat24::zeros(), shear: Mat24::zeros(), drilling: Mat24::zeros() };
         for p in 0..12 {
             let (i, si) = plate_dof(p);
             for q in 0..12 {

@@ -14,8 +14,10 @@
 //!   as a tensor grid, where loads and sensors are placed by the wall's own coordinates);
 //! - [`Restraints`]: held DOFs (pins, clamps, symmetry) and translational springs to ground
 //!   (a jack);
-//! - [`Factorized`]: the restrained stiffness, factorized once (faer's sparse Cholesky), and
-//!   the response to a patch pressure with its energy split.
+//! - [`Factorized`]: the restrained stiffness, factorized once (faer's sparse Cholesky), the
+//!   response to a patch pressure with its energy split, and the fundamental frequency with a
+//!   lumped mass;
+//! - [`tail_beam`]: a hydraulic support's tail beam, a welded box on hinge pins and jacks.
 //!
 //! Every element is a rectangle: walls of boxes are, and so are the facets of a cylinder
 //! meshed along its axis and around it, which is how the curved benchmarks are built.
@@ -48,5 +50,6 @@
 
 pub mod element;
 mod structure;
+pub mod tail_beam;
 
 pub use structure::{Face, FaceId, Factorized, Restraints, ShellResponse, Spring, Structure};
