@@ -213,7 +213,7 @@ fn the_report_writes_what_identify_writes() {
     out.commit(&files).unwrap();
     let sub = nested.join("identify/small-identify");
     // The index page links the report where it is and opens with its answer.
-    let index = impact::report::index_page(&[("small.toml", scene.clone(), summary)], &[]).unwrap();
+    let index = impact::report::index_page(&[("small.toml", scene.clone(), summary)], &[], "").unwrap();
     assert!(index.contains("](identify/small-identify/index.md)"), "{index}");
     assert!(
         index.contains("scenes/small.toml") && index.contains("| Con 1 |") && index.contains("| Con 2 |"),

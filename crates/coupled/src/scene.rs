@@ -48,6 +48,9 @@ analyses! {
     ExtremeCases => "extreme-cases",
     /// The Reissner-Mindlin plate (transverse shear) against Kirchhoff's at the scene's points.
     TransverseShear => "transverse-shear",
+    /// The scene's bodies and velocities on a box-section tail beam (`[tail_beam]`, flat shell
+    /// elements) beside the paper's beam and Kirchhoff plate.
+    TailBeam => "tail-beam",
     /// The plate FE and transient models against their classical references.
     Verification => "verification",
     /// Transient against quasi-static at the scene's points.
@@ -187,6 +190,10 @@ pub struct Scene {
     /// contacts; the others are micro-contacts (chatter), counted with their total impulse
     /// ([`crate::transient::chatter`]).
     pub main_contact_share: f64,
+    /// The tail beam (`[tail_beam]`); present exactly when the scene asks for
+    /// [`Analysis::TailBeam`]. Left out of the serialised scene when None.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tail_beam: Option<crate::compliance::tail_beam::TailBeamScene>,
 }
 
 impl Scene {

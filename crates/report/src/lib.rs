@@ -23,6 +23,7 @@ pub mod regimes;
 pub mod signals;
 pub mod skfem;
 pub mod stream;
+pub mod tail_beam;
 pub mod template;
 pub mod transient;
 pub mod yield_models;
@@ -112,6 +113,10 @@ pub const IDENTIFY_SCENES: [(&str, &str); 3] = [
 pub const STREAM_SCENES: [(&str, &str); 1] =
     [("caving-stream-detect.toml", include_str!("../../../scenes/caving-stream-detect.toml"))];
 
+/// The tail-beam scenes `impact report` runs (the "tail-beam" study), shipped in `scenes/` and
+/// embedded: file name and text.
+pub const TAIL_BEAM_SCENES: [(&str, &str); 1] = [("tail-beam.toml", include_str!("../../../scenes/tail-beam.toml"))];
+
 const INDEX: &str = include_str!("templates/index/index.md");
 const INDEX_STREAM: &str = include_str!("templates/index/stream.md");
 const INDEX_STREAM_ROW: &str = include_str!("templates/index/stream-row.md");
@@ -140,7 +145,17 @@ pub fn full_report(scene: &Scene, out: &mut OutputDir, progress: &dyn Progress) 
         all.nest(&format!("stream/{}", slug(&s.name)), files);
         streamed.push((file, s, data));
     }
-    all.add("index.md", index_page(&identified, &streamed)?);
+    let mut tail_beam = String::new();
+    for (file, text) in TAIL_BEAM_SCENES {
+        let s = Scene::parse(text, &format!("scenes/{file} (embedded)"))?;
+        let data = studies::tail_beam::compute(&s)?;
+        let (mut files, finding) = tail_beam::report(&s, &data)?;
+        Provenance::of(&s).stamp(&mut files);
+        let dir = format!("tail-beam/{}", slug(&s.name));
+        all.nest(&dir, files);
+        tail_beam.push_str(&format!("{finding}  ([{dir}/]({dir}/index.md), `scenes/{file}`)\n"));
+    }
+    all.add("index.md", index_page(&identified, &streamed, &tail_beam)?);
     Ok(all)
 }
 
@@ -149,6 +164,7 @@ pub fn full_report(scene: &Scene, out: &mut OutputDir, progress: &dyn Progress) 
 pub fn index_page(
     identified: &[(&str, Scene, identify::Summary)],
     streamed: &[(&str, Scene, studies::stream::StreamData)],
+    tail_beam: &str,
 ) -> Result<String, Failure> {
     let (mut sections, mut rows) = (String::new(), String::new());
     for (file, s, summary) in identified {
@@ -215,6 +231,12 @@ pub fn index_page(
     Ok(render(
         "index/index.md",
         INDEX,
-        &[("identify", sections), ("identify_rows", rows), ("stream", stream_sections), ("stream_rows", stream_rows)],
+        &[
+            ("identify", sections),
+            ("identify_rows", rows),
+            ("stream", stream_sections),
+            ("stream_rows", stream_rows),
+            ("tail_beam", tail_beam.to_string()),
+        ],
     )?)
 }

@@ -66,7 +66,8 @@ pub trait NestedStudy: Sync {
 }
 
 /// Every nested study, in the order the scene report runs them and its page shows them.
-pub const NESTED: [&dyn NestedStudy; 4] = [&PaperStudiesPage, &ThreeModelYield, &TransientPage, &RegimePage];
+pub const NESTED: [&dyn NestedStudy; 5] =
+    [&PaperStudiesPage, &ThreeModelYield, &TransientPage, &RegimePage, &TailBeamPage];
 
 /// The paper's conclusions, tables and figures under both models, on the paper's scene.
 struct PaperStudiesPage;
@@ -172,8 +173,27 @@ impl NestedStudy for RegimePage {
     }
 }
 
+/// The scene's impacts on its box-section tail beam, beside the paper's beam and plate.
+struct TailBeamPage;
+
+impl NestedStudy for TailBeamPage {
+    fn folder(&self) -> &'static str {
+        "tail-beam"
+    }
+    fn wanted(&self, scene: &Scene) -> bool {
+        scene.wants(Analysis::TailBeam)
+    }
+    fn run(&self, scene: &Scene, _progress: &dyn Progress) -> Result<Nested, Failure> {
+        let data = studies::tail_beam::compute(scene)?;
+        let (files, finding) = crate::tail_beam::report(scene, &data)?;
+        let section = render("comparison/tail-beam.md", TAIL_BEAM, &[])?;
+        Ok(Nested { files, of: scene.clone(), findings: vec![finding], section })
+    }
+}
+
 // The main report's sections on the studies nested beside the comparison.
 const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
 const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
 const REGIMES: &str = include_str!("templates/comparison/regimes.md");
+const TAIL_BEAM: &str = include_str!("templates/comparison/tail-beam.md");
 const FINDING_TRANSIENT: &str = include_str!("templates/comparison/finding-transient.md");

@@ -190,3 +190,12 @@ pub const FIELD_ELEMENTS: Range = Range::closed(2.0, 200.0);
 /// and a stress 6M/h² ≤ 1e13 Pa/N at the scene limits, times 1e12 are far below f64::MAX ≈
 /// 1.8e308), and the writer still refuses any value that is not finite.
 pub const FORCE_N: Range = Range::closed(1e-9, 1e12);
+
+/// The tail beam's jack angle to its length axis, degrees.
+pub const JACK_ANGLE_DEG: Range = Range::open_closed(-180.0, 180.0);
+/// Most unknowns of the tail beam's finest mesh (six a node): a sparse factorization of 600,000
+/// shell unknowns takes about 15 s and 2 GB here (measured 494,169 in 9 s).
+pub const MAX_TAIL_BEAM_DOFS: usize = 600_000;
+/// Most struck points on the tail beam (one solve per point and mesh, three balances per body
+/// and velocity).
+pub const MAX_TAIL_BEAM_POINTS: usize = 1000;

@@ -40,6 +40,41 @@ pub(crate) struct RawScene {
     pub(crate) measurement: Option<crate::validate::measurement::RawMeasurement>,
     #[serde(default)]
     pub(crate) stream: Option<crate::validate::stream::RawStream>,
+    #[serde(default)]
+    pub(crate) tail_beam: Option<RawTailBeam>,
+}
+
+/// `[tail_beam]`: a box-section tail beam of flat shell walls.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawTailBeam {
+    pub(crate) length_mm: f64,
+    pub(crate) width_mm: f64,
+    pub(crate) height_mm: f64,
+    pub(crate) top_mm: f64,
+    pub(crate) bottom_mm: f64,
+    pub(crate) webs_mm: f64,
+    pub(crate) ends_mm: f64,
+    #[serde(default)]
+    pub(crate) ribs_z_mm: Vec<f64>,
+    #[serde(default)]
+    pub(crate) rib_mm: Option<f64>,
+    pub(crate) pin_height_mm: f64,
+    pub(crate) pins_z_mm: Vec<Vec<f64>>,
+    pub(crate) element_mm: f64,
+    pub(crate) points_mm: Vec<Vec<f64>>,
+    pub(crate) jacks: Vec<RawJack>,
+}
+
+/// `[[tail_beam.jacks]]`: a jack on a pad of the bottom plate.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawJack {
+    pub(crate) x_mm: f64,
+    pub(crate) z_mm: f64,
+    pub(crate) pad_mm: f64,
+    pub(crate) stiffness_n_per_m: f64,
+    pub(crate) angle_deg: f64,
 }
 
 /// The plate's Rayleigh damping: a ratio reached at two frequencies.

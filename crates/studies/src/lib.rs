@@ -22,6 +22,8 @@
 //! * [`identify`]: coal-gangue identification over a random-impact ensemble (`impact identify`);
 //! * [`transient`]: the transient model against the quasi-static ones, the contact laws,
 //!   the size map and the model's verification (`impact dynamic`);
+//! * [`tail_beam`]: the scene's impacts on a box-section tail beam beside the paper's beam and
+//!   Kirchhoff plate;
 //! * [`field_series`]: the plate's deflection recorded during one contact;
 //! * [`verdict`]: a statement's verdict under one model, to the model's resolution;
 //! * [`columns`]: one schema for the result rows (key with unit, header, kind, getter);
@@ -55,6 +57,7 @@ pub mod settings;
 pub mod signals;
 pub mod stream;
 pub mod study;
+pub mod tail_beam;
 pub mod transient;
 pub mod verdict;
 pub mod yield_models;

@@ -165,10 +165,10 @@ impl Structure {
     pub fn add_face(&mut self, face: &Face) -> Result<FaceId, FemError> {
         let (xs, zs) = (face.mesh.xs().to_vec(), face.mesh.zs().to_vec());
         let mut ids = Vec::with_capacity(face.mesh.elements());
-        for ez in 0..face.mesh.nz() {
-            for ex in 0..face.mesh.nx() {
+        for (ez, &z) in zs.iter().take(face.mesh.nz()).enumerate() {
+            for (ex, &x) in xs.iter().take(face.mesh.nx()).enumerate() {
                 let (a, b) = face.mesh.element_size(ex, ez);
-                ids.push(self.add_rectangle(face.point(xs[ex], zs[ez]), face.axes, a, b, face.thickness));
+                ids.push(self.add_rectangle(face.point(x, z), face.axes, a, b, face.thickness));
             }
         }
         self.faces.push((face.clone(), ids));
@@ -450,7 +450,9 @@ impl Factorized<'_> {
             let y = self.solve(&mx);
             let (ymx, ymy) =
                 y.iter().zip(&mx).zip(mass).fold((0.0, 0.0), |(p, q), ((yi, mxi), m)| (p + yi * mxi, q + yi * yi * m));
-            if !(ymy > 0.0) {
+            // A zero or NaN norm: the field has left every mass (cannot happen for a
+            // positive definite K and positive masses).
+            if ymy.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                 break;
             }
             let next = ymx / ymy;

@@ -17,6 +17,7 @@ use serde::Serialize;
 
 mod measurement;
 mod stream;
+mod tail_beam;
 
 /// One key of a table.
 struct Key {
@@ -162,7 +163,7 @@ fn tables() -> Vec<Key> {
             "velocities",
             TABLE,
             "[velocities]",
-            "required with \"responses\", \"transient\", \"size-map\" or \"regime-maps\"",
+            "required with \"responses\", \"transient\", \"size-map\", \"regime-maps\" or \"tail-beam\"",
             "The impact velocities",
         ),
         table("solver", TABLE, "[solver]", "its keys' defaults", "The energy-balance solver"),
@@ -201,6 +202,13 @@ fn tables() -> Vec<Key> {
             "[stream]",
             "none: no stream study",
             "A caving-stream detection study on the ensemble (\"identify\" only; `impact stream`)",
+        ),
+        table(
+            "tail_beam",
+            TABLE,
+            "[tail_beam]",
+            "required with \"tail-beam\", refused without",
+            "A box-section tail beam struck by the scene's bodies (\"tail-beam\" only)",
         ),
     ]
 }
@@ -493,6 +501,7 @@ fn sections() -> Vec<Section> {
     all.push(families());
     all.extend(measurement::sections());
     all.extend(stream::sections());
+    all.extend(tail_beam::sections());
     all
 }
 

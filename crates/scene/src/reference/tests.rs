@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::ensemble::{RawEnsemble, RawFamily, RawPlacement, RawRegion};
+use crate::raw::{RawJack, RawTailBeam};
 use crate::validate::measurement::{
     RawAcceleration, RawAntiAlias, RawMeasurement, RawSensor, RawStrain, RawSupportForce,
 };
@@ -72,6 +73,8 @@ fn every_key_of_every_table_is_described_and_nothing_else() {
         ("[measurement.strain]", fields::<RawStrain>()),
         ("[measurement.support_force]", fields::<RawSupportForce>()),
         ("[stream]", fields::<RawStream>()),
+        ("[tail_beam]", fields::<RawTailBeam>()),
+        ("[[tail_beam.jacks]]", fields::<RawJack>()),
     ];
     let sections = sections();
     let titles: Vec<&str> = sections.iter().map(|s| s.title).collect();

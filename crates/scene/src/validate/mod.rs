@@ -17,6 +17,7 @@ mod psd_file;
 mod signals;
 pub(crate) mod stream;
 mod supports;
+mod tail_beam;
 
 use crate::{ensemble, slug, MAX_NAME_CHARS};
 use points::{transient_points, validate_points};
@@ -140,6 +141,17 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?;
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
+    let tail_beam = match (&raw.tail_beam, analyses.contains(&Analysis::TailBeam)) {
+        (Some(t), true) => Some(tail_beam::validate_tail_beam(t)?),
+        (None, false) => None,
+        (None, true) => return Err(other("tail_beam", "the \"tail-beam\" analysis needs a [tail_beam] table")),
+        (Some(_), false) => {
+            return Err(other(
+                "tail_beam",
+                "is read only by the \"tail-beam\" analysis; add it to analyses or remove the table",
+            ))
+        }
+    };
     Ok(Scene {
         velocities,
         signals,
@@ -162,6 +174,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         analyses,
         transient_discretisation: coupled::transient::Discretisation::default(),
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
+        tail_beam,
     })
 }
 
@@ -325,9 +338,12 @@ fn validate_conditions(raw: &[RawCondition], plate: &Plate) -> Result<Vec<Suppor
 
 /// `[velocities]`: required by the analyses that strike at a velocity, each in range.
 fn validate_velocities(raw: Option<&RawVelocities>, analyses: &[Analysis]) -> Result<Vec<f64>, Invalid> {
-    let needs_velocity = analyses
-        .iter()
-        .any(|a| matches!(a, Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps));
+    let needs_velocity = analyses.iter().any(|a| {
+        matches!(
+            a,
+            Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps | Analysis::TailBeam
+        )
+    });
     match raw {
         Some(v) => {
             if v.m_per_s.is_empty() {
@@ -341,7 +357,7 @@ fn validate_velocities(raw: Option<&RawVelocities>, analyses: &[Analysis]) -> Re
         }
         None if needs_velocity => Err(other(
             "velocities.m_per_s",
-            "is required when analyses include \"responses\", \"transient\", \"size-map\" or \"regime-maps\"",
+            "is required when analyses include \"responses\", \"transient\", \"size-map\", \"regime-maps\" or \"tail-beam\"",
         )),
         None => Ok(vec![]),
     }

@@ -1,0 +1,237 @@
+//! The tail-beam page: the structure's compliances, the impacts' three forces, and the paper's
+//! plate beside it ([`studies::tail_beam`]).
+
+use crate::present::table::{percent, sig, Cell, Table};
+use crate::template::render;
+use crate::Failure;
+use output::Artifacts;
+use scene::Scene;
+use studies::tail_beam::{TailBeamData, TailBeamRow};
+
+const INDEX: &str = include_str!("templates/tail_beam/index.md");
+const FINDING: &str = include_str!("templates/tail_beam/finding.md");
+
+/// The rigid box's jack compliance at x (m): (x/a)²/Σk where every jack shares one x and
+/// angle (a = y_pin cos θ + x_jack sin θ, the jacks' arm about the pins); None otherwise.
+fn rigid_jacks(d: &TailBeamData, x: f64) -> Option<f64> {
+    let b = &d.scene.beam;
+    let first = b.jacks.first()?;
+    if b.jacks.iter().any(|j| j.x != first.x || j.angle != first.angle) {
+        return None;
+    }
+    let arm = b.pin_height * first.angle.cos() + first.x * first.angle.sin();
+    let k: f64 = b.jacks.iter().map(|j| j.stiffness).sum();
+    Some((x / arm).powi(2) / k)
+}
+
+/// The first row at each point (the compliance does not depend on the body or velocity).
+fn per_point(d: &TailBeamData) -> Vec<&TailBeamRow> {
+    d.scene.points.iter().filter_map(|&(x, z)| d.rows.iter().find(|r| (r.x, r.z) == (x, z))).collect()
+}
+
+/// The structure's table: compliance, its split, and the jacks against the rigid box.
+fn structure(d: &TailBeamData) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "x (mm)",
+            "z (mm)",
+            "C (m/N)",
+            "membrane share",
+            "bending share",
+            "shear share",
+            "jacks share",
+            "jacks, rigid box (m/N)",
+            "jacks/rigid box - 1",
+        ],
+    );
+    for r in per_point(d) {
+        let rigid = rigid_jacks(d, r.x);
+        let jacks = r.shares[3] * r.compliance;
+        t.push(vec![
+            Cell::Given(r.x * 1e3),
+            Cell::Given(r.z * 1e3),
+            Cell::Measured { value: r.compliance, error: r.compliance_error },
+            Cell::Rel(r.shares[0]),
+            Cell::Rel(r.shares[1]),
+            Cell::Rel(r.shares[2]),
+            Cell::Rel(r.shares[3]),
+            rigid.map_or(Cell::Empty, |c| Cell::Sig(c, 4)),
+            rigid.map_or(Cell::Empty, |c| Cell::Rel(jacks / c - 1.0)),
+        ]);
+    }
+    t
+}
+
+/// Every impact's three forces and validity.
+fn impacts(d: &TailBeamData) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "body",
+            "v (m/s)",
+            "x (mm)",
+            "z (mm)",
+            "P_max wave-controlled (N)",
+            "P_max quasi-static (N)",
+            "P_H rigid (N)",
+            "wave/rigid - 1",
+            "quasi-static/wave - 1",
+            "jacks' force (N)",
+            "t_c/T_1",
+            "M_i/M_p",
+            "lambda",
+            "zeta",
+            "regime",
+            "delta_max/delta_my",
+            "v_y (m/s)",
+        ],
+    );
+    for r in &d.rows {
+        t.push(vec![
+            Cell::Text(r.body.clone()),
+            Cell::Given(r.velocity),
+            Cell::Given(r.x * 1e3),
+            Cell::Given(r.z * 1e3),
+            Cell::Sig(r.p_wave, 5),
+            Cell::Sig(r.p_quasi_static, 5),
+            Cell::Sig(r.p_half_space, 5),
+            Cell::Rel(r.p_wave / r.p_half_space - 1.0),
+            Cell::Rel(r.p_quasi_static / r.p_wave - 1.0),
+            Cell::Sig(r.jack_force, 4),
+            Cell::Sig(r.quasi_static.value, 3),
+            Cell::Sig(r.mass_ratio, 3),
+            Cell::Sig(r.lambda, 3),
+            Cell::Sig(r.zeta, 3),
+            Cell::Text(r.regime.key().into()),
+            Cell::Sig(r.elastic.value, 3),
+            Cell::Sig(r.yield_velocity, 4),
+        ]);
+    }
+    t
+}
+
+/// The paper's beam and plate beside the tail beam at its first point.
+fn paper(d: &TailBeamData) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "body",
+            "v (m/s)",
+            "condition",
+            "P_max beam (N)",
+            "P_max Kirchhoff plate (N)",
+            "P_max tail beam (N)",
+            "tail beam/plate",
+        ],
+    );
+    let first = d.scene.points.first().copied();
+    for p in &d.paper {
+        let tail = d.rows.iter().find(|r| r.body == p.body && r.velocity == p.velocity && Some((r.x, r.z)) == first);
+        t.push(vec![
+            Cell::Text(p.body.clone()),
+            Cell::Given(p.velocity),
+            Cell::Text(p.condition.clone()),
+            Cell::Sig(p.beam, 5),
+            Cell::Sig(p.plate, 5),
+            tail.map_or(Cell::Empty, |r| Cell::Sig(r.p_wave, 5)),
+            tail.map_or(Cell::Empty, |r| Cell::Sig(r.p_wave / p.plate, 3)),
+        ]);
+    }
+    t
+}
+
+/// (min, max) of `v`.
+fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
+    v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
+}
+
+/// The page's files and the finding for the comparison's list.
+pub fn report(scene: &Scene, d: &TailBeamData) -> Result<(Artifacts, String), Failure> {
+    let (st, im, pa) = (structure(d), impacts(d), paper(d));
+    let mut a = Artifacts::new();
+    a.add("structure.csv", st.to_csv());
+    a.add("impacts.csv", im.to_csv());
+    a.add("paper-plate.csv", pa.to_csv());
+    let b = &d.scene.beam;
+    let mm = scene::mm_label;
+    let box_text = format!(
+        "{} x {} x {} mm (length, width, depth), top plate {} mm, bottom {} mm, webs {} mm, end plates {} mm, {} rib(s) of {} mm, pins at {} mm height over {} span(s), {} jack(s)",
+        mm(b.length), mm(b.width), mm(b.height), mm(b.top), mm(b.bottom), mm(b.webs), mm(b.ends),
+        b.ribs.len(), mm(b.rib), mm(b.pin_height), b.pins.len(), b.jacks.len()
+    );
+    let finding = finding(scene, d)?;
+    let first = d.scene.points.first().map_or_else(String::new, |&(x, z)| format!("{}, {}", mm(x), mm(z)));
+    let levels: Vec<String> = d.levels.iter().map(|l| format!("{} x {} ({}, {:.1} s)", l.0, l.1, l.2, l.3)).collect();
+    let description = scene.description.trim().trim_end_matches('.');
+    let page = render(
+        "tail_beam/index.md",
+        INDEX,
+        &[
+            ("scene", scene.name.clone()),
+            ("description", if description.is_empty() { String::new() } else { format!("{description}.") }),
+            ("box", box_text),
+            ("top_mm", mm(b.top)),
+            ("levels", levels.join(", ")),
+            ("finest_mm", sig(d.finest_element * 1e3, 3)),
+            ("resolution", if d.resolution.valid { "within" } else { "**larger than**" }.into()),
+            ("thickness", sig(d.thickness_range.value, 3)),
+            ("thickness_ok", if d.thickness_range.valid { "inside" } else { "**beyond**" }.into()),
+            ("mass", sig(d.mass, 4)),
+            ("frequency", sig(d.frequency.0, 4)),
+            ("frequency_change", percent(d.frequency.1)),
+            ("seconds", format!("{:.1}", d.seconds)),
+            ("structure", st.to_markdown()),
+            ("findings", finding.clone()),
+            ("impacts", im.to_markdown()),
+            ("plate", plate_text(scene)),
+            ("condition", d.paper.first().map_or_else(|| "no support set".into(), |p| p.condition.clone())),
+            ("first_point", first),
+            ("paper", pa.to_markdown()),
+        ],
+    )?;
+    a.add("index.md", page);
+    Ok((a, finding))
+}
+
+/// "458.4 x 360 x 8 mm".
+fn plate_text(scene: &Scene) -> String {
+    let p = &scene.plate;
+    format!("{} x {} x {} mm", scene::mm_label(p.length()), scene::mm_label(p.width()), scene::mm_label(p.thickness()))
+}
+
+/// The finding line: the regimes, the three forces' spread, and the paper's plate beside.
+fn finding(scene: &Scene, d: &TailBeamData) -> Result<String, Failure> {
+    let (_, mass_ratio) = range(d.rows.iter().map(|r| r.mass_ratio));
+    let (_, t_ratio) = range(d.rows.iter().map(|r| r.quasi_static.value));
+    let (wave_low, wave_high) = range(d.rows.iter().map(|r| r.p_wave / r.p_half_space));
+    let (qs_low, qs_high) = range(d.rows.iter().map(|r| 1.0 - r.p_quasi_static / r.p_wave));
+    let (jack_low, jack_high) = range(d.rows.iter().map(|r| r.shares[3]));
+    let first = d.scene.points.first().copied();
+    let (paper_low, paper_high) = range(d.paper.iter().filter_map(|p| {
+        d.rows
+            .iter()
+            .find(|r| r.body == p.body && r.velocity == p.velocity && Some((r.x, r.z)) == first)
+            .map(|r| r.p_wave / p.plate)
+    }));
+    let share = |v: f64| format!("{} %", sig(100.0 * v, 3));
+    render(
+        "tail_beam/finding.md",
+        FINDING,
+        &[
+            ("scene", scene.name.clone()),
+            ("mass_ratio", sig(mass_ratio, 2)),
+            ("t_ratio", sig(t_ratio, 2)),
+            ("wave_low", share(wave_low)),
+            ("wave_high", share(wave_high)),
+            ("qs_low", share(qs_low)),
+            ("qs_high", share(qs_high)),
+            ("jack_low", share(jack_low)),
+            ("jack_high", share(jack_high)),
+            ("plate", plate_text(scene)),
+            ("paper_low", sig(paper_low, 3)),
+            ("paper_high", sig(paper_high, 3)),
+        ],
+    )
+    .map_err(Into::into)
+}

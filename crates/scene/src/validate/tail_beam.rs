@@ -1,0 +1,139 @@
+//! `[tail_beam]`: the box, its pins and jacks, the mesh and the struck points, checked in the
+//! file's units, converted to SI, and the finest mesh's size budgeted before anything is built.
+
+use super::{other, pair, Invalid, MM};
+use crate::limits;
+use crate::raw::{RawJack, RawTailBeam};
+use analytic::params::check;
+use coupled::compliance::tail_beam::{TailBeamScene, TAIL_BEAM_LEVELS};
+use plate_fem::shell::element::DOFS_PER_NODE;
+use plate_fem::shell::tail_beam::{Jack, TailBeam};
+
+/// `[tail_beam]` into a [`TailBeamScene`].
+pub(super) fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Invalid> {
+    let size = |name: &str, v: f64| check(&format!("tail_beam.{name}"), v, limits::PLATE_SIZE_MM, "mm");
+    let (l, b, h) =
+        (size("length_mm", raw.length_mm)?, size("width_mm", raw.width_mm)?, size("height_mm", raw.height_mm)?);
+    let thick = |name: &str, v: f64| -> Result<f64, Invalid> {
+        let t = check(&format!("tail_beam.{name}"), v, limits::THICKNESS_MM, "mm")?;
+        if t >= h.min(b).min(l) {
+            return Err(other(
+                format!("tail_beam.{name}"),
+                format!("{v} mm is not below the box's smallest side, {} mm: the walls are plates", h.min(b).min(l)),
+            ));
+        }
+        Ok(t * MM)
+    };
+    let (top, bottom, webs, ends) = (
+        thick("top_mm", raw.top_mm)?,
+        thick("bottom_mm", raw.bottom_mm)?,
+        thick("webs_mm", raw.webs_mm)?,
+        thick("ends_mm", raw.ends_mm)?,
+    );
+    let rib = match raw.rib_mm {
+        Some(v) => thick("rib_mm", v)?,
+        None if raw.ribs_z_mm.is_empty() => webs,
+        None => return Err(other("tail_beam.rib_mm", "is required with ribs_z_mm (the ribs' thickness)")),
+    };
+    let mut ribs = Vec::with_capacity(raw.ribs_z_mm.len());
+    for (i, &z) in raw.ribs_z_mm.iter().enumerate() {
+        if !(z > 0.0 && z < b) {
+            return Err(other(
+                format!("tail_beam.ribs_z_mm[{i}]"),
+                format!("{z} mm is not inside the width, (0, {b}) mm"),
+            ));
+        }
+        ribs.push(z * MM);
+    }
+    let pin_height = raw.pin_height_mm;
+    if !(0.0..=h).contains(&pin_height) {
+        return Err(other("tail_beam.pin_height_mm", format!("{pin_height} mm is not on the end plate, [0, {h}] mm")));
+    }
+    if raw.pins_z_mm.is_empty() {
+        return Err(other("tail_beam.pins_z_mm", "needs at least one pin span [z0, z1] in mm"));
+    }
+    let mut pins = Vec::with_capacity(raw.pins_z_mm.len());
+    for (i, span) in raw.pins_z_mm.iter().enumerate() {
+        let field = format!("tail_beam.pins_z_mm[{i}]");
+        let (z0, z1) = pair(&field, span, "[z0, z1]")?;
+        if !(z0 >= 0.0 && z1 > z0 && z1 <= b) {
+            return Err(other(field, format!("[{z0}, {z1}] mm must satisfy 0 <= z0 < z1 <= {b} mm (the width)")));
+        }
+        pins.push([z0 * MM, z1 * MM]);
+    }
+    if raw.jacks.is_empty() {
+        return Err(other(
+            "tail_beam.jacks",
+            "needs at least one [[tail_beam.jacks]]: the pins alone leave the beam free to turn",
+        ));
+    }
+    let jacks = raw.jacks.iter().enumerate().map(|(i, j)| jack(i, j, l, b)).collect::<Result<Vec<_>, _>>()?;
+    let beam = TailBeam {
+        length: l * MM,
+        width: b * MM,
+        height: h * MM,
+        top,
+        bottom,
+        webs,
+        ends,
+        ribs,
+        rib,
+        pin_height: pin_height * MM,
+        pins,
+        jacks,
+    };
+    beam.validate().map_err(|e| other("tail_beam", e.to_string()))?;
+    let element = check("tail_beam.element_mm", raw.element_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let dofs = DOFS_PER_NODE * beam.nodes_bound(element * MM, TAIL_BEAM_LEVELS - 1);
+    if dofs > limits::MAX_TAIL_BEAM_DOFS {
+        return Err(other(
+            "tail_beam.element_mm",
+            format!(
+                "{element} mm gives about {dofs} unknowns on the finest of the {TAIL_BEAM_LEVELS} meshes (element {} mm); the budget is {}: give a larger element",
+                element / 4.0,
+                limits::MAX_TAIL_BEAM_DOFS
+            ),
+        ));
+    }
+    Ok(TailBeamScene { beam, element: element * MM, points: points(&raw.points_mm, l, b)? })
+}
+
+/// One `[[tail_beam.jacks]]` entry, its pad on the bottom plate of an `l` x `b` mm box.
+fn jack(i: usize, j: &RawJack, l: f64, b: f64) -> Result<Jack, Invalid> {
+    let field = |k: &str| format!("tail_beam.jacks[{i}].{k}");
+    let pad = check(&field("pad_mm"), j.pad_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let (x, z, half) = (j.x_mm, j.z_mm, pad / 2.0);
+    if !(x - half >= 0.0 && x + half <= l && z - half >= 0.0 && z + half <= b) {
+        return Err(other(
+            format!("tail_beam.jacks[{i}]"),
+            format!("a pad of {pad} mm at (x_mm, z_mm) = ({x}, {z}) does not lie on the bottom plate, [0, {l}] x [0, {b}] mm"),
+        ));
+    }
+    Ok(Jack {
+        x: x * MM,
+        z: z * MM,
+        pad: pad * MM,
+        stiffness: check(&field("stiffness_n_per_m"), j.stiffness_n_per_m, limits::SPRING_N_PER_M, "N/m")?,
+        angle: check(&field("angle_deg"), j.angle_deg, limits::JACK_ANGLE_DEG, "°")?.to_radians(),
+    })
+}
+
+/// `tail_beam.points_mm`: at least one [x, z] on the top plate, at most the budget.
+fn points(raw: &[Vec<f64>], l: f64, b: f64) -> Result<Vec<(f64, f64)>, Invalid> {
+    if raw.is_empty() || raw.len() > limits::MAX_TAIL_BEAM_POINTS {
+        return Err(other(
+            "tail_beam.points_mm",
+            format!("has {} points; give 1 to {} [x, z] pairs", raw.len(), limits::MAX_TAIL_BEAM_POINTS),
+        ));
+    }
+    let mut out = Vec::with_capacity(raw.len());
+    for (i, p) in raw.iter().enumerate() {
+        let field = format!("tail_beam.points_mm[{i}]");
+        let (x, z) = pair(&field, p, "[x, z]")?;
+        if !((0.0..=l).contains(&x) && (0.0..=b).contains(&z)) {
+            return Err(other(field, format!("[{x}, {z}] mm is not on the top plate, [0, {l}] x [0, {b}] mm")));
+        }
+        out.push((x * MM, z * MM));
+    }
+    Ok(out)
+}

@@ -1,0 +1,81 @@
+//! The tail-beam study on the shipped scene, against what statics and the regime limits say
+//! independently of the shell model; and the `[tail_beam]` table's refusals.
+
+use scene::SceneSource;
+use test_scenes::{edit, expect_refused as expect};
+
+const SCENE: &str = include_str!("../../../scenes/tail-beam.toml");
+
+/// The shipped tail beam: the jacks' share of each compliance meets the rigid box turning about
+/// the pins on its jacks, (x/a)²/Σk (statics and the jacks' stiffness alone; measured within
+/// 0.14 %: the pads and the box's own deformation move the jacks' line of action slightly);
+/// every impact is wave controlled by Olsson's mass ratio and far from quasi-static; the three
+/// forces are ordered P_qs < P_wave ≤ P_H; the compliance's error estimate is within 5 %
+/// (measured 1.4-3.1 % of C, the most near the pins).
+#[test]
+fn the_shipped_tail_beam_meets_statics_and_its_regime() {
+    let scene = scene::Scene::parse(SCENE, "scenes/tail-beam.toml").unwrap();
+    let d = studies::tail_beam::compute(&scene).unwrap();
+    let b = &d.scene.beam;
+    let j = b.jacks[0];
+    let arm = b.pin_height * j.angle.cos() + j.x * j.angle.sin();
+    let k: f64 = b.jacks.iter().map(|j| j.stiffness).sum();
+    for r in &d.rows {
+        let rigid = (r.x / arm).powi(2) / k;
+        let jacks = r.shares[3] * r.compliance;
+        assert!(
+            (jacks / rigid - 1.0).abs() < 5e-3,
+            "({}, {}): jacks {jacks:e} against the rigid box {rigid:e}",
+            r.x,
+            r.z
+        );
+        assert!(r.compliance_error < 5e-2 * r.compliance, "{r:?}");
+        assert_eq!(r.regime, coupled::regimes::OlssonRegime::WaveControlled);
+        assert!(!r.quasi_static.valid && r.quasi_static.value < 0.05);
+        assert!(r.p_quasi_static < r.p_wave && r.p_wave <= r.p_half_space, "{r:?}");
+        let share_sum: f64 = r.shares.iter().sum();
+        assert!((share_sum - 1.0).abs() < 1e-9, "{r:?}");
+    }
+    assert!(d.resolution.valid && d.thickness_range.valid);
+    assert_eq!(d.paper.len(), scene.bodies.len() * scene.velocities.len());
+}
+
+fn with(from: &str, to: &str) -> String {
+    edit(SCENE, from, to)
+}
+
+#[test]
+fn a_bad_tail_beam_is_refused_naming_its_field() {
+    expect(
+        &with("analyses = [\"tail-beam\"]", "analyses = [\"responses\"]"),
+        &["tail_beam", "read only by the \"tail-beam\""],
+    );
+    expect(&with("top_mm = 30.0", "top_mm = 300.0"), &["tail_beam.top_mm", "300 mm", "smallest side"]);
+    expect(&with("top_mm = 30.0", "top_mm = nan"), &["tail_beam.top_mm"]);
+    expect(&with("element_mm = 100.0", "element_mm = 5.0"), &["tail_beam.element_mm", "unknowns", "budget"]);
+    expect(
+        &with("pins_z_mm = [[100.0, 300.0], [1100.0, 1300.0]]", "pins_z_mm = [[300.0, 100.0]]"),
+        &["tail_beam.pins_z_mm[0]", "[300, 100]"],
+    );
+    expect(
+        &with("pins_z_mm = [[100.0, 300.0], [1100.0, 1300.0]]", "pins_z_mm = []"),
+        &["tail_beam.pins_z_mm", "at least one"],
+    );
+    expect(&with("ribs_z_mm = [466.7, 933.3]", "ribs_z_mm = [466.7, 1400.0]"), &["tail_beam.ribs_z_mm[1]", "1400"]);
+    expect(&with("pin_height_mm = 125.0", "pin_height_mm = 260.0"), &["tail_beam.pin_height_mm", "260"]);
+    expect(
+        &with("x_mm = 600.0\nz_mm = 350.0", "x_mm = 1590.0\nz_mm = 350.0"),
+        &["tail_beam.jacks[0]", "1590", "bottom plate"],
+    );
+    expect(
+        &with("stiffness_n_per_m = 4.3e7\nangle_deg = 60.0\n\n", "stiffness_n_per_m = -1.0\nangle_deg = 60.0\n\n"),
+        &["tail_beam.jacks[0].stiffness_n_per_m", "-1"],
+    );
+    expect(&with("[800.0, 700.0], ", "[1800.0, 700.0], "), &["tail_beam.points_mm[0]", "[1800, 700]", "top plate"]);
+    expect(&with("[800.0, 700.0], ", "[800.0], "), &["tail_beam.points_mm[0]", "exactly two"]);
+    // A jack whose axis passes through the pins holds nothing.
+    let through = with("pin_height_mm = 125.0", "pin_height_mm = 0.0").replace("angle_deg = 60.0", "angle_deg = 0.0");
+    expect(&through, &["tail_beam", "holds nothing"]);
+    let no_table = SCENE.split("\n[tail_beam]").next().unwrap().to_string();
+    expect(&no_table, &["tail_beam", "needs a [tail_beam] table"]);
+}
