@@ -66,6 +66,7 @@ __all__ = [
     "StreamCondition",
     "StreamResults",
     "TRANSIENT_TOLERANCE",
+    "TailBeamResults",
     "Transient",
     "drops",
     "ensemble_size",
@@ -75,6 +76,7 @@ __all__ = [
     "solve",
     "stream",
     "sweep",
+    "tail_beam",
     "transient",
     "yield_velocity",
 ]
@@ -422,6 +424,36 @@ def drops(scene: SceneLike, signal: Union[str, "os.PathLike[str]"]) -> DropResul
 
     raw = _impact.drops(load_scene(scene), os.fspath(signal))
     return DropResults(results=json.loads(raw["results"]), rows=_columns(raw["rows"]))
+
+
+@dataclass(frozen=True)
+class TailBeamResults:
+    """The scene's lumps on its box-section tail beam (``[tail_beam]``).
+
+    Attributes:
+        results: the whole study as JSON (the box, its meshes, frequency, mass, validity of the
+            shell model, every impact, and the paper's beam and plate under the same lumps).
+        rows: one row per body, velocity and struck point: the compliance ``C_m_per_N`` with
+            its error and its shares (membrane, bending, shear, jacks), the three forces
+            ``P_max_wave_controlled_N`` (the answer), ``P_max_quasi_static_N`` and
+            ``P_H_rigid_N``, the jacks' force, ``t_c_per_T_1``, Olsson's ``M_i_per_M_p`` and
+            ``regime``, Christoforou and Yigit's ``lambda`` and ``zeta``,
+            ``delta_max_per_delta_my`` and the yield velocities; keyed as
+            ``tail-beam/impacts.csv``.
+    """
+
+    results: dict[str, Any]
+    rows: Columns
+
+
+def tail_beam(scene: SceneLike) -> TailBeamResults:
+    """The scene's bodies at its velocities on its ``[tail_beam]``: a welded box of shell walls
+    on hinge pins and jacks (docs/guide.md, "The tail beam"). The scene needs ``"tail-beam"``
+    among its analyses. Numbers are the command line's (``impact compare``), bit for bit."""
+    import json
+
+    raw = _impact.tail_beam(load_scene(scene))
+    return TailBeamResults(results=json.loads(raw["results"]), rows=_columns(raw["rows"]))
 
 
 def ensemble_size(scene: SceneLike) -> int:

@@ -18,6 +18,7 @@ mod errors;
 mod identify;
 mod scene;
 mod stream;
+mod tail_beam;
 
 use ::scene::{limits, Analysis};
 use analytic::params::{check, Range};
@@ -214,6 +215,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(stream::stream, m)?)?;
     m.add_function(wrap_pyfunction!(detector::read_signal, m)?)?;
     m.add_function(wrap_pyfunction!(drops::drops, m)?)?;
+    m.add_function(wrap_pyfunction!(tail_beam::tail_beam, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The Python layer documents these from here rather than repeat the numbers.
     let t = limits::TRANSIENT_TOLERANCE;
