@@ -436,7 +436,7 @@ class TailBeamResults:
         rows: one row per body, velocity and struck point: the compliance ``C_m_per_N`` with
             its error and its shares (membrane, bending, shear, jacks), the three forces
             ``P_max_wave_controlled_N`` (the answer), ``P_max_quasi_static_N`` and
-            ``P_H_rigid_N``, the jacks' force, ``t_c_per_T_1``, Olsson's ``M_i_per_M_p`` and
+            ``P_max_rigid_target_N``, the jacks' force, ``t_c_per_T_1``, Olsson's ``M_i_per_M_p`` and
             ``regime``, Christoforou and Yigit's ``lambda`` and ``zeta``,
             ``delta_max_per_delta_my`` and the yield velocities; keyed as
             ``tail-beam/impacts.csv``.

@@ -40,7 +40,7 @@ fn rows(d: &TailBeamData) -> Table {
         }
         t.num("P_max_wave_controlled_N", i, r.p_wave);
         t.num("P_max_quasi_static_N", i, r.p_quasi_static);
-        t.num("P_H_rigid_N", i, r.p_half_space);
+        t.num("P_max_rigid_target_N", i, r.p_rigid);
         t.num("jacks_force_N", i, r.jack_force);
         t.num("t_c_s", i, r.contact_time);
         t.num("t_c_per_T_1", i, r.quasi_static.value);

@@ -1,6 +1,6 @@
 //! The flat shell structure against its references: Navier's plate with shear (the membrane
-//! decoupled), the Scordelis-Lo roof (MacNeal & Harder 1985), and a thin-walled box cantilever
-//! against Timoshenko's beam.
+//! decoupled), the Scordelis-Lo roof and the pinched cylinder (MacNeal & Harder 1985), and a
+//! thin-walled box cantilever against Timoshenko's beam.
 
 use plate_fem::mindlin::{series, Patch};
 use plate_fem::shell::{Face, Restraints, Structure};
@@ -166,4 +166,53 @@ fn a_free_structure_is_refused() {
     assert!(s.factorize(&r).is_err());
     assert!(Face::new([0.0; 3], [1.0, 0.0, 0.0], [1.0, 0.0, 0.0], lines(1.0, 2), lines(1.0, 2), 0.01).is_err());
     assert!(s.add_facet([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.2, 0.0]], 0.01).is_err());
+}
+
+/// The pinched cylinder with rigid end diaphragms (MacNeal & Harder 1985): radius 300, length
+/// 600, t = 3, E = 3e6, ν = 0.3, two opposite unit forces at mid-length; an octant on `n` x `n`
+/// facets with its three symmetry planes. The deflection under the load.
+fn pinched_cylinder(n: usize) -> f64 {
+    let (r, l, t) = (300.0_f64, 600.0, 3.0);
+    let mut s = Structure::new(3e6, 0.3).unwrap();
+    let point = |x: f64, th: f64| [x, r * th.cos(), r * th.sin()];
+    let q = std::f64::consts::FRAC_PI_2;
+    for j in 0..n {
+        for i in 0..n {
+            let (x0, x1) = (0.5 * l * i as f64 / n as f64, 0.5 * l * (i + 1) as f64 / n as f64);
+            let (a0, a1) = (q * j as f64 / n as f64, q * (j + 1) as f64 / n as f64);
+            s.add_facet([point(x0, a0), point(x1, a0), point(x0, a1), point(x1, a1)], t).unwrap();
+        }
+    }
+    let mut rest = Restraints::default();
+    let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    for node in s.nodes_where(|p| near(p[0], 0.0)) {
+        rest.hold(node, &[1, 2]); // the diaphragm holds the section's shape
+    }
+    for node in s.nodes_where(|p| near(p[0], l / 2.0)) {
+        rest.hold(node, &[0, 4, 5]); // mirror plane x = L/2
+    }
+    for node in s.nodes_where(|p| near(p[2], 0.0)) {
+        rest.hold(node, &[2, 3, 4]); // mirror plane z = 0
+    }
+    for node in s.nodes_where(|p| near(p[1], 0.0)) {
+        rest.hold(node, &[1, 3, 5]); // mirror plane y = 0
+    }
+    let (load, d) = s.nearest_node([l / 2.0, r, 0.0]).unwrap();
+    assert!(d < 1e-9);
+    let mut f = vec![0.0; s.dofs()];
+    f[6 * load + 1] = -0.25; // a quarter of the unit force on the octant
+    let u = s.factorize(&rest).unwrap().solve(&f);
+    -u[6 * load + 1]
+}
+
+/// Against the reference 1.8248e-5 (MacNeal & Harder's, from thin-shell theory). Measured
+/// 0.754, 0.932, 0.989 and 1.007 of it on 8, 16, 32 and 64 facets a side of the octant (16 x 16:
+/// 0.932, as MITC4's published 0.93); a shear-deformable shell under a point force has a
+/// logarithmic term and so no mesh limit, which at t/R = 0.01 shows as the slight overshoot at
+/// 64. Held: within 2 % on 32 (MacNeal and Harder's grade A), 8 % on 16, rising.
+#[test]
+fn pinched_cylinder_meets_macneal_harder() {
+    let [a, b, c] = [8, 16, 32].map(|n| pinched_cylinder(n) / 1.8248e-5);
+    assert!(a < b && b < c, "{a} {b} {c}");
+    assert!((b - 1.0).abs() < 8e-2 && (c - 1.0).abs() < 2e-2, "{b} {c}");
 }

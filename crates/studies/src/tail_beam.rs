@@ -6,11 +6,13 @@
 //! - **quasi-static**: the paper's energy balance (eqs. 14-20) with the whole structure's
 //!   compliance at the struck point (walls, box, jacks). Valid for slow contacts, t_c/T₁ ≥ 0.2;
 //! - **wave controlled**: Christoforou and Yigit's infinite-plate asymptote for the top plate,
-//!   F̄_∞(ζ)·P_H ([`coupled::regimes::ChristoforouYigit`]): the contact is over before the
+//!   F̄_∞(ζ)·P_rigid ([`coupled::regimes::ChristoforouYigit`], the contact linearised to
+//!   the spring that gives P_rigid): the contact is over before the
 //!   flexural waves reach a support, so only the plate's impedance 8√(Dρh) matters. Olsson's
 //!   mass criterion puts an impact here when the lump is light against the structure
 //!   (M_i/M_p < 0.23);
-//! - **half-space**: Hertz's force on a rigid target, P_H, an upper bound of both.
+//! - **rigid target**: the balance with C = 0 under the same contact law, an upper bound of
+//!   both, and the unit of the other two (so that the law's restitution enters all alike).
 //!
 //! A lump on a tail beam is light against a box of hundreds of kilograms and its contact
 //! lasts a fraction of a millisecond against a fundamental period set by the jacks: the
@@ -19,13 +21,16 @@
 
 use crate::settings::{BASE_MESH, LEVELS};
 use crate::Failure;
-use analytic::{respond, yield_velocity, DruckerPrager, Plate};
+use analytic::{respond, yield_velocity, DruckerPrager, Plate, PointCompliance};
 use coupled::compliance::tail_beam::{contact_patch, TailBeamModel, TailBeamScene, TAIL_BEAM_LEVELS};
 use coupled::compliance::{BeamModel, ComplianceModel, PlateModel};
-use coupled::plan::impact_of;
+use coupled::plan::{impact_of, transient_response};
 use coupled::regimes::{ChristoforouYigit, OlssonRegime};
 use coupled::transient::{law::Flores, ContactLaw, Striker};
+use coupled::transient::{Discretisation, Ladder};
 use coupled::validity::{self, Criterion, MINDLIN_PLATE_MAX_RATIO};
+use coupled::SupportSet;
+use plate_fem::{EdgeSupport, Supports};
 use scene::Scene;
 use serde::Serialize;
 use std::time::Instant;
@@ -52,10 +57,10 @@ pub struct TailBeamRow {
     pub p_quasi_static: f64,
     /// The jacks' force then, N (their sum).
     pub jack_force: f64,
-    /// P_max in the wave-controlled limit, F̄_∞(ζ)·P_H, N.
+    /// P_max in the wave-controlled limit, F̄_∞(ζ)·P_rigid, N.
     pub p_wave: f64,
-    /// Hertz's P_max on a rigid target, N.
-    pub p_half_space: f64,
+    /// P_max on a rigid target under the same law (the balance with C = 0), N.
+    pub p_rigid: f64,
     /// Hertz's contact time on a rigid target, s.
     pub contact_time: f64,
     /// Christoforou and Yigit's relative stiffness λ = k_α C with the whole compliance.
@@ -92,6 +97,39 @@ pub struct PaperRow {
     pub plate: f64,
 }
 
+/// The transient model (Kirchhoff plate, Newmark, the scene's contact law) on the top plate's
+/// panel that holds the first struck point, under clamped and under simply supported edges:
+/// where the impact is wave controlled the edges do not matter, and the force is the
+/// wave-controlled one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PanelCheck {
+    /// The body.
+    pub body: String,
+    /// Impact velocity, m/s.
+    pub velocity: f64,
+    /// P_max with the panel's edges clamped, and its error estimate, N.
+    pub clamped: (f64, Option<f64>),
+    /// P_max with the panel's edges simply supported, and its error estimate, N.
+    pub simple: (f64, Option<f64>),
+    /// The wave-controlled P_max of the same impact at the first point, N.
+    pub wave: Option<f64>,
+}
+
+/// The panel of the transient check: its width (m) and the point in its coordinates (m).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Panel {
+    /// Length along x (the beam's length), m.
+    pub length: f64,
+    /// Width between its walls, m.
+    pub width: f64,
+    /// The struck point in the panel, (x, z), m.
+    pub at: (f64, f64),
+}
+
+/// The transient check's relative tolerance on P_max and the contact time: its estimate is
+/// reported beside each force.
+pub const PANEL_TOLERANCE: f64 = 1e-3;
+
 /// The study's data.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TailBeamData {
@@ -114,6 +152,10 @@ pub struct TailBeamData {
     pub rows: Vec<TailBeamRow>,
     /// The paper's plate under the same impacts.
     pub paper: Vec<PaperRow>,
+    /// The transient check's panel; None where the first point lies on a wall's line.
+    pub panel: Option<Panel>,
+    /// The transient check at the first point, per body and velocity.
+    pub panel_checks: Vec<PanelCheck>,
     /// Seconds the shell model took.
     pub seconds: f64,
 }
@@ -140,7 +182,14 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
             }
         }
     }
+    let panel = panel(tb);
+    let panel_checks = match panel {
+        Some(p) => panel_checks(scene, &top, p, &rows)?,
+        None => Vec::new(),
+    };
     Ok(TailBeamData {
+        panel,
+        panel_checks,
         scene: tb.clone(),
         levels: model.levels.iter().map(|l| (l.nx, l.nz, l.dofs, l.seconds)).collect(),
         finest_element: model.finest_element,
@@ -152,6 +201,21 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         paper: paper_rows(scene)?,
         seconds,
     })
+}
+
+/// Christoforou and Yigit's parameters with the contact linearised to the spring k_α that
+/// gives the rigid-target force `p_rigid` of a mass `m` at `v` (k_α = P²/(m v²), as they fit it
+/// to Hertz's), against the top plate's impedance and the compliance `c`.
+fn christoforou_yigit(top: &Plate, m: f64, v: f64, p_rigid: f64, c: f64) -> ChristoforouYigit {
+    let k_alpha = p_rigid * p_rigid / (m * v * v);
+    let h = top.thickness();
+    let e = top.material();
+    let d = e.youngs_modulus() * h.powi(3) / (12.0 * (1.0 - e.poisson_ratio().powi(2)));
+    ChristoforouYigit {
+        contact_stiffness: k_alpha,
+        relative_stiffness: k_alpha * c,
+        loss_factor: (m * k_alpha).sqrt() / (16.0 * (top.density() * h * d).sqrt()),
+    }
 }
 
 /// One impact of `body` at `v` on the tail beam at `at`.
@@ -167,6 +231,11 @@ fn row(
     let c = est.compliance.total();
     let imp = impact_of(scene, body, v);
     let r = respond(&imp, &est.compliance, scene.solver)?;
+    // The rigid target under the same law: the balance with C = 0. Every force below is
+    // measured against it, so that the restitution of the paper's law (which lowers the peak
+    // against Hertz's elastic one by e^0.6) enters all three alike.
+    let p_rigid = respond(&imp, &PointCompliance::new(Vec::new(), Vec::new(), 0.0)?, scene.solver)?.contact_force;
+    let cy = christoforou_yigit(top, imp.mass, v, p_rigid, c);
     let striker = Striker {
         k: imp.contact_stiffness,
         restitution: imp.restitution,
@@ -175,8 +244,6 @@ fn row(
         law: ContactLaw::Flores(Flores),
         gravity: 0.0,
     };
-    let cy = ChristoforouYigit::of(&striker, top, c);
-    let p_half_space = striker.hertz_force();
     let share = |name: &str| -> f64 {
         let s: f64 = est.compliance.stores().iter().filter(|s| s.name.starts_with(name)).map(|s| s.compliance).sum();
         if c > 0.0 {
@@ -200,8 +267,8 @@ fn row(
         shares: [share("walls membrane"), share("walls bending"), share("walls shear"), share("jack")],
         p_quasi_static: r.contact_force,
         jack_force,
-        p_wave: cy.infinite_plate_force() * p_half_space,
-        p_half_space,
+        p_wave: cy.infinite_plate_force() * p_rigid,
+        p_rigid,
         contact_time: t_c,
         lambda: cy.relative_stiffness,
         zeta: cy.loss_factor,
@@ -250,6 +317,52 @@ fn paper_rows(scene: &Scene) -> Result<Vec<PaperRow>, Failure> {
                 condition: set.name.clone(),
                 beam: respond(&imp, &cb.compliance, scene.solver)?.contact_force,
                 plate: respond(&imp, &cp.compliance, scene.solver)?.contact_force,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The top plate's panel between walls (webs and ribs) that holds the first struck point
+/// strictly inside; None where it lies on a wall's line or there is no point.
+fn panel(tb: &TailBeamScene) -> Option<Panel> {
+    let &(x, z) = tb.points.first()?;
+    let b = &tb.beam;
+    let mut walls = vec![0.0, b.width];
+    walls.extend(b.ribs.iter().copied());
+    walls.sort_by(f64::total_cmp);
+    let w = walls.windows(2).find(|w| w[0] < z && z < w[1])?;
+    (x > 0.0 && x < b.length).then_some(Panel { length: b.length, width: w[1] - w[0], at: (x, z - w[0]) })
+}
+
+/// The transient model on `panel` (the top plate `top`'s thickness and steel) under clamped
+/// and simply supported edges, for every body and velocity, beside the wave-controlled force of
+/// the same impact at the first point (from `rows`).
+fn panel_checks(scene: &Scene, top: &Plate, panel: Panel, rows: &[TailBeamRow]) -> Result<Vec<PanelCheck>, Failure> {
+    let plate = Plate::new(panel.length, panel.width, top.thickness(), top.density(), top.material())?;
+    let on_panel = Scene { plate, conditions: Vec::new(), ..scene.clone() };
+    let disc = Discretisation::tolerance(PANEL_TOLERANCE);
+    let ladder = Ladder::new(&on_panel.plate, disc.start())?;
+    let edges = |e: EdgeSupport| SupportSet::new("panel", Supports { edges: [e; 4], ..Supports::all_edges_simple() });
+    let (clamped, simple) = (edges(EdgeSupport::Clamped), edges(EdgeSupport::Simple));
+    let first = scene.tail_beam.as_ref().and_then(|t| t.points.first().copied());
+    let mut out = Vec::new();
+    for body in &scene.bodies {
+        for &v in &scene.velocities {
+            let force = |set: &SupportSet| -> Result<(f64, Option<f64>), Failure> {
+                let (values, _) = transient_response(&on_panel, disc, &ladder, set, body, panel.at, v)?;
+                Ok((values.contact_force, values.contact_force_error))
+            };
+            let wave = rows
+                .iter()
+                .find(|r| r.body == body.name && r.velocity == v && Some((r.x, r.z)) == first)
+                .map(|r| r.p_wave);
+            out.push(PanelCheck {
+                body: body.name.clone(),
+                velocity: v,
+                clamped: force(&clamped)?,
+                simple: force(&simple)?,
+                wave,
             });
         }
     }

@@ -10,7 +10,7 @@ const SCENE: &str = include_str!("../../../scenes/tail-beam.toml");
 /// the pins on its jacks, (x/a)²/Σk (statics and the jacks' stiffness alone; measured within
 /// 0.14 %: the pads and the box's own deformation move the jacks' line of action slightly);
 /// every impact is wave controlled by Olsson's mass ratio and far from quasi-static; the three
-/// forces are ordered P_qs < P_wave ≤ P_H; the compliance's error estimate is within 5 %
+/// forces lie at or below the rigid target's; the compliance's error estimate is within 5 %
 /// (measured 1.4-3.1 % of C, the most near the pins).
 #[test]
 fn the_shipped_tail_beam_meets_statics_and_its_regime() {
@@ -32,11 +32,21 @@ fn the_shipped_tail_beam_meets_statics_and_its_regime() {
         assert!(r.compliance_error < 5e-2 * r.compliance, "{r:?}");
         assert_eq!(r.regime, coupled::regimes::OlssonRegime::WaveControlled);
         assert!(!r.quasi_static.valid && r.quasi_static.value < 0.05);
-        assert!(r.p_quasi_static < r.p_wave && r.p_wave <= r.p_half_space, "{r:?}");
+        assert!(r.p_quasi_static <= r.p_rigid && r.p_wave <= r.p_rigid, "{r:?}");
         let share_sum: f64 = r.shares.iter().sum();
         assert!((share_sum - 1.0).abs() < 1e-9, "{r:?}");
     }
     assert!(d.resolution.valid && d.thickness_range.valid);
+    // The wave-controlled answer against an independent model: the transient Kirchhoff plate
+    // (Newmark, the same contact law) on the top panel holding the first point. Measured: the
+    // clamped and simply supported panels within 0.025 % of each other (the edges do not matter,
+    // which is what wave controlled means), and 0.34-0.95 % below Christoforou and Yigit's
+    // asymptote (its contact is linearised); held to 0.1 % and 1.5 %.
+    assert_eq!(d.panel_checks.len(), scene.bodies.len() * scene.velocities.len());
+    for c in &d.panel_checks {
+        assert!((c.clamped.0 / c.simple.0 - 1.0).abs() < 1e-3, "{c:?}");
+        assert!((c.clamped.0 / c.wave.unwrap() - 1.0).abs() < 1.5e-2, "{c:?}");
+    }
     assert_eq!(d.paper.len(), scene.bodies.len() * scene.velocities.len());
 }
 
