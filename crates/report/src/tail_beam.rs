@@ -213,6 +213,7 @@ pub fn report(scene: &Scene, d: &TailBeamData) -> Result<(Artifacts, String), Fa
             ("mass", sig(d.mass, 4)),
             ("frequency", sig(d.frequency.0, 4)),
             ("frequency_change", percent(d.frequency.1)),
+            ("rigid_frequency", sig(d.rigid_frequency, 4)),
             ("seconds", format!("{:.1}", d.seconds)),
             ("structure", st.to_markdown()),
             ("findings", finding.clone()),

@@ -143,6 +143,9 @@ pub struct TailBeamData {
     pub frequency: (f64, f64),
     /// The walls' mass, kg.
     pub mass: f64,
+    /// The fundamental frequency of the box as a rigid body turning about the pins on its jacks,
+    /// Hz ([`rigid_frequency`]): an upper bound of the shell model's.
+    pub rigid_frequency: f64,
     /// The walls' largest thickness over the shortest span of their panel, against the
     /// Reissner-Mindlin range.
     pub thickness_range: Criterion,
@@ -195,6 +198,7 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         finest_element: model.finest_element,
         frequency: (model.frequency, model.frequency_change),
         mass: model.mass,
+        rigid_frequency: rigid_frequency(&tb.beam, scene.plate.density()),
         thickness_range: thickness_range(tb),
         resolution: Criterion::at_most("element/patch side", model.finest_element / tb.beam.top, 1.0),
         rows,
@@ -279,6 +283,22 @@ fn row(
         elastic: validity::elastic(r.compression, d_my),
         quasi_static: validity::quasi_static(t_c, 1.0 / model.frequency),
     })
+}
+
+/// The box as a rigid body turning about the pins' line on its jacks, f = √(k_θ/I)/2π (Hz):
+/// k_θ = Σ k_j a_j² (a_j = y_pin cos θ_j + x_j sin θ_j, the jack's arm about the pins) and I the
+/// walls' moment of inertia about the pins' line (thin plates on their mid-surfaces, density
+/// `rho`). Rayleigh's quotient of the rigid mode: the shell model's f₁ lies below it.
+pub fn rigid_frequency(b: &plate_fem::shell::tail_beam::TailBeam, rho: f64) -> f64 {
+    let (l, h, w, yp) = (b.length, b.height, b.width, b.pin_height);
+    // ∫ (y - y_p)² dy / H over the depth: what a vertical wall adds per unit mass.
+    let depth = h * h / 3.0 - h * yp + yp * yp;
+    let long = l * l / 3.0;
+    let flanges = rho * l * w * (b.top * (long + (h - yp).powi(2)) + b.bottom * (long + yp * yp));
+    let walls = rho * l * h * (2.0 * b.webs + b.ribs.len() as f64 * b.rib) * (long + depth);
+    let ends = rho * w * h * b.ends * (depth + (l * l + depth));
+    let k: f64 = b.jacks.iter().map(|j| j.stiffness * (yp * j.angle.cos() + j.x * j.angle.sin()).powi(2)).sum();
+    (k / (flanges + walls + ends)).sqrt() / (2.0 * std::f64::consts::PI)
 }
 
 /// The walls' largest t/(shortest span of the panel): the top and bottom plates between webs
