@@ -14,53 +14,8 @@ pub(super) fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Inv
     let size = |name: &str, v: f64| check(&format!("tail_beam.{name}"), v, limits::PLATE_SIZE_MM, "mm");
     let (l, b, h) =
         (size("length_mm", raw.length_mm)?, size("width_mm", raw.width_mm)?, size("height_mm", raw.height_mm)?);
-    let thick = |name: &str, v: f64| -> Result<f64, Invalid> {
-        let t = check(&format!("tail_beam.{name}"), v, limits::THICKNESS_MM, "mm")?;
-        if t >= h.min(b).min(l) {
-            return Err(other(
-                format!("tail_beam.{name}"),
-                format!("{v} mm is not below the box's smallest side, {} mm: the walls are plates", h.min(b).min(l)),
-            ));
-        }
-        Ok(t * MM)
-    };
-    let (top, bottom, webs, ends) = (
-        thick("top_mm", raw.top_mm)?,
-        thick("bottom_mm", raw.bottom_mm)?,
-        thick("webs_mm", raw.webs_mm)?,
-        thick("ends_mm", raw.ends_mm)?,
-    );
-    let rib = match raw.rib_mm {
-        Some(v) => thick("rib_mm", v)?,
-        None if raw.ribs_z_mm.is_empty() => webs,
-        None => return Err(other("tail_beam.rib_mm", "is required with ribs_z_mm (the ribs' thickness)")),
-    };
-    let mut ribs = Vec::with_capacity(raw.ribs_z_mm.len());
-    for (i, &z) in raw.ribs_z_mm.iter().enumerate() {
-        if !(z > 0.0 && z < b) {
-            return Err(other(
-                format!("tail_beam.ribs_z_mm[{i}]"),
-                format!("{z} mm is not inside the width, (0, {b}) mm"),
-            ));
-        }
-        ribs.push(z * MM);
-    }
-    let pin_height = raw.pin_height_mm;
-    if !(0.0..=h).contains(&pin_height) {
-        return Err(other("tail_beam.pin_height_mm", format!("{pin_height} mm is not on the end plate, [0, {h}] mm")));
-    }
-    if raw.pins_z_mm.is_empty() {
-        return Err(other("tail_beam.pins_z_mm", "needs at least one pin span [z0, z1] in mm"));
-    }
-    let mut pins = Vec::with_capacity(raw.pins_z_mm.len());
-    for (i, span) in raw.pins_z_mm.iter().enumerate() {
-        let field = format!("tail_beam.pins_z_mm[{i}]");
-        let (z0, z1) = pair(&field, span, "[z0, z1]")?;
-        if !(z0 >= 0.0 && z1 > z0 && z1 <= b) {
-            return Err(other(field, format!("[{z0}, {z1}] mm must satisfy 0 <= z0 < z1 <= {b} mm (the width)")));
-        }
-        pins.push([z0 * MM, z1 * MM]);
-    }
+    let walls = walls(raw, l, b, h)?;
+    let (pin_height, pins) = pins(raw, b, h)?;
     if raw.jacks.is_empty() {
         return Err(other(
             "tail_beam.jacks",
@@ -72,13 +27,13 @@ pub(super) fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Inv
         length: l * MM,
         width: b * MM,
         height: h * MM,
-        top,
-        bottom,
-        webs,
-        ends,
-        ribs,
-        rib,
-        pin_height: pin_height * MM,
+        top: walls.top,
+        bottom: walls.bottom,
+        webs: walls.webs,
+        ends: walls.ends,
+        ribs: walls.ribs,
+        rib: walls.rib,
+        pin_height,
         pins,
         jacks,
     };
@@ -96,6 +51,78 @@ pub(super) fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Inv
         ));
     }
     Ok(TailBeamScene { beam, element: element * MM, points: points(&raw.points_mm, l, b)? })
+}
+
+/// The walls' thicknesses (m) and the ribs' positions (m).
+struct Walls {
+    top: f64,
+    bottom: f64,
+    webs: f64,
+    ends: f64,
+    rib: f64,
+    ribs: Vec<f64>,
+}
+
+/// The walls of an `l` x `b` x `h` mm box: each thickness below its smallest side, the ribs
+/// inside the width.
+fn walls(raw: &RawTailBeam, l: f64, b: f64, h: f64) -> Result<Walls, Invalid> {
+    let smallest = h.min(b).min(l);
+    let thick = |name: &str, v: f64| -> Result<f64, Invalid> {
+        let t = check(&format!("tail_beam.{name}"), v, limits::THICKNESS_MM, "mm")?;
+        if t >= smallest {
+            return Err(other(
+                format!("tail_beam.{name}"),
+                format!("{v} mm is not below the box's smallest side, {smallest} mm: the walls are plates"),
+            ));
+        }
+        Ok(t * MM)
+    };
+    let webs = thick("webs_mm", raw.webs_mm)?;
+    let rib = match raw.rib_mm {
+        Some(v) => thick("rib_mm", v)?,
+        None if raw.ribs_z_mm.is_empty() => webs,
+        None => return Err(other("tail_beam.rib_mm", "is required with ribs_z_mm (the ribs' thickness)")),
+    };
+    let mut ribs = Vec::with_capacity(raw.ribs_z_mm.len());
+    for (i, &z) in raw.ribs_z_mm.iter().enumerate() {
+        if !(z > 0.0 && z < b) {
+            return Err(other(
+                format!("tail_beam.ribs_z_mm[{i}]"),
+                format!("{z} mm is not inside the width, (0, {b}) mm"),
+            ));
+        }
+        ribs.push(z * MM);
+    }
+    Ok(Walls {
+        top: thick("top_mm", raw.top_mm)?,
+        bottom: thick("bottom_mm", raw.bottom_mm)?,
+        webs,
+        ends: thick("ends_mm", raw.ends_mm)?,
+        rib,
+        ribs,
+    })
+}
+
+/// The pins' height on the end plate and their spans across a `b` mm width (m), the end plate
+/// `h` mm deep.
+fn pins(raw: &RawTailBeam, b: f64, h: f64) -> Result<(f64, Vec<[f64; 2]>), Invalid> {
+    let pin_height = raw.pin_height_mm;
+    if !(0.0..=h).contains(&pin_height) {
+        return Err(other("tail_beam.pin_height_mm", format!("{pin_height} mm is not on the end plate, [0, {h}] mm")));
+    }
+    if raw.pins_z_mm.is_empty() {
+        return Err(other("tail_beam.pins_z_mm", "needs at least one pin span [z0, z1] in mm"));
+    }
+    let mut pins = Vec::with_capacity(raw.pins_z_mm.len());
+    for (i, span) in raw.pins_z_mm.iter().enumerate() {
+        let field = format!("tail_beam.pins_z_mm[{i}]");
+        let (z0, z1) = pair(&field, span, "[z0, z1]")?;
+        if !(z0 >= 0.0 && z1 > z0 && z1 <= b) {
+            return Err(other(field, format!("[{z0}, {z1}] mm must satisfy 0 <= z0 < z1 <= {b} mm (the width)")));
+        }
+        pins.push([z0 * MM, z1 * MM]);
+    }
+    Ok((pin_height * MM, pins))
 }
 
 /// One `[[tail_beam.jacks]]` entry, its pad on the bottom plate of an `l` x `b` mm box.
