@@ -47,7 +47,9 @@ fn rows(d: &TailBeamData) -> Table {
         t.num("M_i_per_M_p", i, r.mass_ratio);
         t.num("lambda", i, r.lambda);
         t.num("zeta", i, r.zeta);
-        t.text("regime", i, r.regime.key());
+        let regime = if r.over_wall { format!("{}, over a wall", r.regime.key()) } else { r.regime.key().into() };
+        t.text("regime", i, &regime);
+        t.flag("over_wall", i, r.over_wall);
         t.num("delta_max_per_delta_my", i, r.elastic.value);
         t.num("v_y_m_per_s", i, r.yield_velocity);
         t.num("v_y_rigid_m_per_s", i, r.yield_velocity_rigid);

@@ -76,8 +76,8 @@ fn flat_plate(h: f64, n: usize) -> (f64, f64, f64) {
     let grid = Face::new([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], lines(a, n), lines(a, n), h).unwrap();
     let face = s.add_face(&grid).unwrap();
     let mut r = Restraints::default();
-    // w, the in-plane translations, and the rotation about the edge's own line (the slope
-    // along it) on each edge.
+    // w, the in-plane translations, and the rotation about the edge's normal in the plate's
+    // plane (which is the slope along the edge) on each edge.
     for node in s.nodes_where(|p| p[0] == 0.0 || p[0] == a) {
         r.hold(node, &[0, 1, 2, 3]);
     }

@@ -4,6 +4,7 @@
 use crate::present::table::{percent, sig, Cell, Table};
 use crate::template::render;
 use crate::Failure;
+use coupled::regimes::OlssonRegime;
 use output::Artifacts;
 use scene::Scene;
 use studies::tail_beam::{TailBeamData, TailBeamRow};
@@ -103,7 +104,7 @@ fn impacts(d: &TailBeamData) -> Table {
             Cell::Sig(r.mass_ratio, 3),
             Cell::Sig(r.lambda, 3),
             Cell::Sig(r.zeta, 3),
-            Cell::Text(r.regime.key().into()),
+            Cell::Text(if r.over_wall { format!("{}, over a wall", r.regime.key()) } else { r.regime.key().into() }),
             Cell::Sig(r.elastic.value, 3),
             Cell::Sig(r.yield_velocity, 4),
         ]);
@@ -213,6 +214,14 @@ pub fn report(scene: &Scene, d: &TailBeamData) -> Result<(Artifacts, String), Fa
             ("mass", sig(d.mass, 4)),
             ("frequency", sig(d.frequency.0, 4)),
             ("frequency_change", percent(d.frequency.1)),
+            (
+                "iteration",
+                if d.frequency.2 < 1e-10 {
+                    "converged".into()
+                } else {
+                    format!("**not converged**: last change {}", sig(d.frequency.2, 2))
+                },
+            ),
             ("rigid_frequency", sig(d.rigid_frequency, 4)),
             ("seconds", format!("{:.1}", d.seconds)),
             ("structure", st.to_markdown()),
@@ -241,7 +250,7 @@ fn panel_text(d: &TailBeamData, t: &Table) -> String {
             scene::mm_label(p.at.1),
             t.to_markdown()
         ),
-        None => "No transient check: the first point lies on a wall's line.\n".into(),
+        None => "No transient check: the first point lies on a wall's line, or its panel is not a plate the transient model takes (an aspect ratio beyond 100).\n".into(),
     }
 }
 
@@ -253,10 +262,16 @@ fn plate_text(scene: &Scene) -> String {
 
 /// The finding line: the regimes, the three forces' spread, and the paper's plate beside.
 fn finding(scene: &Scene, d: &TailBeamData) -> Result<String, Failure> {
+    let wave_rows = d.rows.iter().filter(|r| r.regime == OlssonRegime::WaveControlled).count();
+    let regime = if wave_rows == d.rows.len() {
+        "every impact is wave controlled".to_string()
+    } else {
+        format!("{wave_rows} of {} impacts are wave controlled", d.rows.len())
+    };
     let (_, mass_ratio) = range(d.rows.iter().map(|r| r.mass_ratio));
     let (_, t_ratio) = range(d.rows.iter().map(|r| r.quasi_static.value));
-    let (wave_low, wave_high) = range(d.rows.iter().map(|r| r.p_wave / r.p_rigid));
-    let (qs_low, qs_high) = range(d.rows.iter().map(|r| 1.0 - r.p_quasi_static / r.p_wave));
+    let (wave_low, wave_high) = range(d.rows.iter().filter(|r| !r.over_wall).map(|r| r.p_wave / r.p_rigid));
+    let (qs_low, qs_high) = range(d.rows.iter().map(|r| r.p_quasi_static / r.p_wave - 1.0));
     let (jack_low, jack_high) = range(d.rows.iter().map(|r| r.shares[3]));
     let first = d.scene.points.first().copied();
     let (paper_low, paper_high) = range(d.paper.iter().filter_map(|p| {
@@ -283,12 +298,13 @@ fn finding(scene: &Scene, d: &TailBeamData) -> Result<String, Failure> {
         FINDING,
         &[
             ("scene", scene.name.clone()),
+            ("regime", regime),
             ("mass_ratio", sig(mass_ratio, 2)),
             ("t_ratio", sig(t_ratio, 2)),
             ("wave_low", share(wave_low)),
             ("wave_high", share(wave_high)),
-            ("qs_low", share(qs_low)),
-            ("qs_high", share(qs_high)),
+            ("qs_low", percent(qs_low)),
+            ("qs_high", percent(qs_high)),
             ("jack_low", share(jack_low)),
             ("jack_high", share(jack_high)),
             ("plate", plate_text(scene)),

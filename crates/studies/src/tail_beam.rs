@@ -30,6 +30,7 @@ use coupled::transient::{law::Flores, ContactLaw, Striker};
 use coupled::transient::{Discretisation, Ladder};
 use coupled::validity::{self, Criterion, MINDLIN_PLATE_MAX_RATIO};
 use coupled::SupportSet;
+use plate_fem::shell::tail_beam::TailBeam;
 use plate_fem::{EdgeSupport, Supports};
 use scene::Scene;
 use serde::Serialize;
@@ -67,10 +68,15 @@ pub struct TailBeamRow {
     pub lambda: f64,
     /// Their loss factor ζ of the top plate.
     pub zeta: f64,
-    /// The lump's mass over the structure's.
+    /// The lump's mass over the struck panel's (the top plate between the walls that hold
+    /// the point; over a wall, the lighter of the two panels beside it): Olsson's M_i/M_p.
     pub mass_ratio: f64,
     /// Olsson's regime by it.
     pub regime: OlssonRegime,
+    /// Whether the point lies over a wall (a web or a rib): the top plate is held there, and
+    /// the infinite plate of the wave-controlled force is not what it strikes (the rigid
+    /// target's force is the nearer bound).
+    pub over_wall: bool,
     /// The yield velocity (eqs. 51-54) with the whole compliance, m/s.
     pub yield_velocity: f64,
     /// The yield velocity on a rigid target (C = 0), m/s.
@@ -139,8 +145,9 @@ pub struct TailBeamData {
     pub levels: Vec<(usize, usize, usize, f64)>,
     /// The finest element's side, m.
     pub finest_element: f64,
-    /// The fundamental frequency, Hz, and its change from the mesh before (relative).
-    pub frequency: (f64, f64),
+    /// The fundamental frequency, Hz, its change from the mesh before (relative) and the inverse
+    /// iteration's last relative change (converged below 1e-10).
+    pub frequency: (f64, f64, f64),
     /// The walls' mass, kg.
     pub mass: f64,
     /// The fundamental frequency of the box as a rigid body turning about the pins on its jacks,
@@ -185,7 +192,10 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
             }
         }
     }
-    let panel = panel(tb);
+    // The panel as a plate the transient model takes (its aspect ratio within a plate's);
+    // otherwise no check, and the report says why.
+    let panel =
+        panel(tb).filter(|p| Plate::new(p.length, p.width, tb.beam.top, scene.plate.density(), material).is_ok());
     let panel_checks = match panel {
         Some(p) => panel_checks(scene, &top, p, &rows)?,
         None => Vec::new(),
@@ -196,7 +206,7 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         scene: tb.clone(),
         levels: model.levels.iter().map(|l| (l.nx, l.nz, l.dofs, l.seconds)).collect(),
         finest_element: model.finest_element,
-        frequency: (model.frequency, model.frequency_change),
+        frequency: (model.frequency, model.frequency_change, model.frequency_iteration),
         mass: model.mass,
         rigid_frequency: rigid_frequency(&tb.beam, scene.plate.density()),
         thickness_range: thickness_range(tb),
@@ -259,7 +269,9 @@ fn row(
     let jack_force = est.compliance.springs().iter().map(|s| s.per_unit_load).sum::<f64>() * r.contact_force;
     let dp = DruckerPrager::of(body);
     let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
-    let ratio = body.mass() / model.mass;
+    let (panel_width, over_wall) =
+        panel_at(&scene.tail_beam.as_ref().ok_or("the scene has no [tail_beam]")?.beam, at.1);
+    let ratio = body.mass() / (top.density() * top.thickness() * top.length() * panel_width);
     let t_c = striker.hertz_time();
     Ok(TailBeamRow {
         body: body.name.clone(),
@@ -278,6 +290,7 @@ fn row(
         zeta: cy.loss_factor,
         mass_ratio: ratio,
         regime: OlssonRegime::of(ratio),
+        over_wall,
         yield_velocity: yield_velocity(body, &imp, c, d_my),
         yield_velocity_rigid: yield_velocity(body, &imp, 0.0, d_my),
         elastic: validity::elastic(r.compression, d_my),
@@ -288,8 +301,10 @@ fn row(
 /// The box as a rigid body turning about the pins' line on its jacks, f = √(k_θ/I)/2π (Hz):
 /// k_θ = Σ k_j a_j² (a_j = y_pin cos θ_j + x_j sin θ_j, the jack's arm about the pins) and I the
 /// walls' moment of inertia about the pins' line (thin plates on their mid-surfaces, density
-/// `rho`). Rayleigh's quotient of the rigid mode: the shell model's f₁ lies below it.
-pub fn rigid_frequency(b: &plate_fem::shell::tail_beam::TailBeam, rho: f64) -> f64 {
+/// `rho`). Rayleigh's quotient of the rigid mode: the shell model's f₁ lies below it, to within
+/// about 0.2 % (the model spreads each jack over its pad's nodes, whose arms differ from the
+/// pad centre's).
+pub fn rigid_frequency(b: &TailBeam, rho: f64) -> f64 {
     let (l, h, w, yp) = (b.length, b.height, b.width, b.pin_height);
     // ∫ (y - y_p)² dy / H over the depth: what a vertical wall adds per unit mass.
     let depth = h * h / 3.0 - h * yp + yp * yp;
@@ -301,19 +316,34 @@ pub fn rigid_frequency(b: &plate_fem::shell::tail_beam::TailBeam, rho: f64) -> f
     (k / (flanges + walls + ends)).sqrt() / (2.0 * std::f64::consts::PI)
 }
 
+/// The walls' z positions, sorted: the webs and the ribs.
+fn wall_lines(b: &TailBeam) -> Vec<f64> {
+    let mut zs: Vec<f64> = [0.0, b.width].into_iter().chain(b.ribs.iter().copied()).collect();
+    zs.sort_by(f64::total_cmp);
+    zs
+}
+
+/// The width of the top plate's panel at `z` and whether `z` lies over a wall (within 1e-9 m;
+/// there the narrower of the panels beside it).
+fn panel_at(b: &TailBeam, z: f64) -> (f64, bool) {
+    let walls = wall_lines(b);
+    let widths = walls.windows(2).map(|w| (w[1] - w[0], w[0] - 1e-9 <= z && z <= w[1] + 1e-9));
+    let beside: Vec<f64> = widths.filter(|(_, holds)| *holds).map(|(w, _)| w).collect();
+    let on_wall = walls.iter().any(|w| (w - z).abs() <= 1e-9);
+    (beside.into_iter().fold(f64::INFINITY, f64::min).min(b.width), on_wall)
+}
+
 /// The walls' largest t/(shortest span of the panel): the top and bottom plates between webs
-/// and ribs, the webs and ribs over the depth, the end plates over the depth.
+/// and ribs, the webs and ribs over the depth, the end plates between webs and ribs and over
+/// the depth.
 fn thickness_range(tb: &TailBeamScene) -> Criterion {
     let b = &tb.beam;
-    let mut zs = vec![0.0, b.width];
-    zs.extend(b.ribs.iter().copied());
-    zs.sort_by(f64::total_cmp);
-    let panel = zs.windows(2).map(|w| w[1] - w[0]).fold(b.length, f64::min);
+    let panel = wall_lines(b).windows(2).map(|w| w[1] - w[0]).fold(b.length, f64::min);
     let ratios = [
         b.top / panel,
         b.bottom / panel,
         b.webs / b.height.min(b.length),
-        b.ends / b.height.min(b.width),
+        b.ends / b.height.min(panel),
         if b.ribs.is_empty() { 0.0 } else { b.rib / b.height.min(b.length) },
     ];
     Criterion::at_most("t/(shortest panel span)", ratios.into_iter().fold(0.0, f64::max), MINDLIN_PLATE_MAX_RATIO)
@@ -348,9 +378,7 @@ fn paper_rows(scene: &Scene) -> Result<Vec<PaperRow>, Failure> {
 fn panel(tb: &TailBeamScene) -> Option<Panel> {
     let &(x, z) = tb.points.first()?;
     let b = &tb.beam;
-    let mut walls = vec![0.0, b.width];
-    walls.extend(b.ribs.iter().copied());
-    walls.sort_by(f64::total_cmp);
+    let walls = wall_lines(b);
     let w = walls.windows(2).find(|w| w[0] < z && z < w[1])?;
     (x > 0.0 && x < b.length).then_some(Panel { length: b.length, width: w[1] - w[0], at: (x, z - w[0]) })
 }

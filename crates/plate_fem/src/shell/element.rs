@@ -236,10 +236,10 @@ mod tests {
         }
     }
 
-    /// In-plane bending u₁ = κ x₁ x₂, u₂ = -½κ x₁² (constant curvature κ, ν = 0) stores
-    /// ½ E I κ² a with I = h b³/12 about the element's mid-line x₂ = b/2 shifted: with the
-    /// incompatible modes the element is exact, where plain bilinear elements store the
-    /// spurious shear energy too and are stiffer by 1 + (a/b)²/2 (ν = 0).
+    /// In-plane bending u₁ = -κ x₁ y, u₂ = ½κ x₁² (y = x₂ - b/2 from the mid-line; constant
+    /// curvature κ, ν = 0) stores ½ E I κ² a with I = h b³/12: with the incompatible modes the
+    /// element is exact (u₂'s x₁² is a bubble's), where plain bilinear elements would also store
+    /// a spurious shear energy.
     #[test]
     fn membrane_bends_in_plane_exactly() {
         let (a, b, e, h, kappa) = (0.4, 0.1, 2.0e11, 0.01, 1e-3);

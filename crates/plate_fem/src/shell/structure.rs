@@ -480,9 +480,14 @@ impl Factorized<'_> {
         let (mut membrane, mut bending, mut shear, mut drilling) = (0.0, 0.0, 0.0, 0.0);
         for e in &self.structure.elements {
             let dofs = self.structure.element_dofs(e);
-            let ue = Vec24::from_fn(|k, _| u[dofs[k]]);
+            // The element's displacements in its own frame, T u: each part's energy is then a
+            // quadratic form of the local matrix, without forming Tᵀ K T.
+            let ue = Vec24::from_fn(|k, _| {
+                let (block, row) = (k / 3, k % 3);
+                (0..3).map(|c| e.axes[(row, c)] * u[dofs[3 * block + c]]).sum()
+            });
             let parts = &self.structure.parts[&e.key];
-            let energy = |k: &Mat24| ue.dot(&(Structure::global(e, k) * ue));
+            let energy = |k: &Mat24| ue.dot(&(k * ue));
             membrane += energy(&parts.membrane);
             bending += energy(&parts.bending);
             shear += energy(&parts.shear);

@@ -98,6 +98,16 @@ impl TailBeam {
         if let Some(&z) = self.ribs.iter().find(|&&z| !inside(z, self.width)) {
             return Err(FemError::Property { name: "rib position", value: z, allowed: "(0, B) m" });
         }
+        // Walls closer than their thickness would overlap (and coincident ribs would double).
+        let mut walls: Vec<f64> = [0.0, self.width].into_iter().chain(self.ribs.iter().copied()).collect();
+        walls.sort_by(f64::total_cmp);
+        let gap = self.rib.max(self.webs);
+        if let Some(w) = walls.windows(2).find(|w| w[1] - w[0] < gap) {
+            return Err(FemError::Support(format!(
+                "walls at z = {} m and {} m are closer than their thickness, {gap} m: ribs must stand apart from each other and from the webs",
+                w[0], w[1]
+            )));
+        }
         if !(self.pin_height >= 0.0 && self.pin_height <= self.height) {
             return Err(FemError::Property { name: "pin height", value: self.pin_height, allowed: "[0, H] m" });
         }
@@ -143,9 +153,18 @@ impl TailBeam {
             + self.ribs.len() as f64 * l * h * self.rib)
     }
 
-    /// The grid lines along x, y and z for elements of at most `element` (m), refined by 2^level:
-    /// every breakpoint (pin height and spans, ribs, jack pads) on a line.
-    pub fn lines(&self, element: f64, level: u32) -> [Vec<f64>; 3] {
+    /// The grid lines along x, y and z for elements of at most `element` (m, positive), refined
+    /// by 2^level (level at most [`MAX_LEVEL`]): every breakpoint (pin height and spans, ribs,
+    /// jack pads) on a line.
+    pub fn lines(&self, element: f64, level: u32) -> Result<[Vec<f64>; 3], FemError> {
+        let longest = self.length.max(self.width).max(self.height);
+        // Lines per direction before allocating them: at most a million.
+        let per_side = longest / element * f64::from(1u32 << level.min(MAX_LEVEL));
+        if !(element.is_finite() && element > 0.0 && per_side <= 1e6) || level > MAX_LEVEL {
+            return Err(FemError::Mesh(format!(
+                "element {element} m at level {level}: the element must be positive, the level at most {MAX_LEVEL}, and the finest mesh at most a million lines along the box's longest side"
+            )));
+        }
         let mut bx = vec![0.0, self.length];
         let by = vec![0.0, self.height, self.pin_height];
         let mut bz = vec![0.0, self.width];
@@ -155,19 +174,19 @@ impl TailBeam {
             bx.extend([j.x - j.pad / 2.0, j.x + j.pad / 2.0]);
             bz.extend([j.z - j.pad / 2.0, j.z + j.pad / 2.0]);
         }
-        [bx, by, bz].map(|b| subdivide(b, element, level))
+        Ok([bx, by, bz].map(|b| subdivide(b, element, level)))
     }
 
     /// Nodes of the mesh of [`Self::lines`] (an upper bound: walls counted apart).
-    pub fn nodes_bound(&self, element: f64, level: u32) -> usize {
-        let [x, y, z] = self.lines(element, level).map(|l| l.len());
-        2 * x * z + (2 + self.ribs.len()) * x * y + 2 * y * z
+    pub fn nodes_bound(&self, element: f64, level: u32) -> Result<usize, FemError> {
+        let [x, y, z] = self.lines(element, level)?.map(|l| l.len());
+        Ok(2 * x * z + (2 + self.ribs.len()) * x * y + 2 * y * z)
     }
 
     /// Meshes and restrains the box with Young's modulus `e` and Poisson ratio `nu`.
     pub fn build(&self, e: f64, nu: f64, element: f64, level: u32) -> Result<Built, FemError> {
         self.validate()?;
-        let [xs, ys, zs] = self.lines(element, level);
+        let [xs, ys, zs] = self.lines(element, level)?;
         let (l, b, h) = (self.length, self.width, self.height);
         let (ex, ey, ez) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]);
         let mut s = Structure::new(e, nu)?;
@@ -206,11 +225,18 @@ impl TailBeam {
     }
 }
 
+/// The finest refinement of [`TailBeam::lines`]: 2^10 times the coarsest mesh.
+pub const MAX_LEVEL: u32 = 10;
+
+/// Breakpoints closer than this (m) are one line: a micrometre, far below any wall's thickness
+/// and far above the nodes' merging distance.
+const SAME_LINE: f64 = 1e-6;
+
 /// Sorted, deduplicated breakpoints, each interval cut into 2^level · ⌈length/element⌉ equal
 /// parts, so that the levels' meshes nest.
 fn subdivide(mut breaks: Vec<f64>, element: f64, level: u32) -> Vec<f64> {
     breaks.sort_by(f64::total_cmp);
-    breaks.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    breaks.dedup_by(|a, b| (*a - *b).abs() < SAME_LINE);
     let mut lines = vec![breaks[0]];
     for w in breaks.windows(2) {
         // Less a rounding allowance: an interval of exactly k elements stays k.
@@ -245,8 +271,8 @@ mod tests {
     #[test]
     fn lines_nest_and_keep_the_breakpoints() {
         let t = example();
-        let [x0, y0, z0] = t.lines(0.1, 0);
-        let [x1, y1, z1] = t.lines(0.1, 1);
+        let [x0, y0, z0] = t.lines(0.1, 0).unwrap();
+        let [x1, y1, z1] = t.lines(0.1, 1).unwrap();
         for (coarse, fine) in [(&x0, &x1), (&y0, &y1), (&z0, &z1)] {
             assert_eq!(fine.len() - 1, 2 * (coarse.len() - 1));
             assert!(coarse.iter().all(|c| fine.iter().any(|f| (f - c).abs() < 1e-12)));
@@ -268,5 +294,9 @@ mod tests {
         t.jacks[0].x = 1.58;
         assert!(t.validate().is_err());
         assert!(example().validate().is_ok());
+        let mut t = example();
+        t.ribs = vec![0.7, 0.7];
+        assert!(t.validate().is_err(), "coincident ribs");
+        assert!(example().lines(0.0, 0).is_err() && example().lines(0.1, MAX_LEVEL + 1).is_err());
     }
 }

@@ -141,17 +141,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?;
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
-    let tail_beam = match (&raw.tail_beam, analyses.contains(&Analysis::TailBeam)) {
-        (Some(t), true) => Some(tail_beam::validate_tail_beam(t)?),
-        (None, false) => None,
-        (None, true) => return Err(other("tail_beam", "the \"tail-beam\" analysis needs a [tail_beam] table")),
-        (Some(_), false) => {
-            return Err(other(
-                "tail_beam",
-                "is read only by the \"tail-beam\" analysis; add it to analyses or remove the table",
-            ))
-        }
-    };
+    let tail_beam = tail_beam::table(raw.tail_beam.as_ref(), &analyses)?;
     Ok(Scene {
         velocities,
         signals,

@@ -6,11 +6,25 @@ use crate::limits;
 use crate::raw::{RawJack, RawTailBeam};
 use analytic::params::check;
 use coupled::compliance::tail_beam::{TailBeamScene, TAIL_BEAM_LEVELS};
+use coupled::scene::Analysis;
 use plate_fem::shell::element::DOFS_PER_NODE;
 use plate_fem::shell::tail_beam::{Jack, TailBeam};
 
+/// `[tail_beam]`, present exactly when the analyses name "tail-beam".
+pub(super) fn table(raw: Option<&RawTailBeam>, analyses: &[Analysis]) -> Result<Option<TailBeamScene>, Invalid> {
+    match (raw, analyses.contains(&Analysis::TailBeam)) {
+        (Some(t), true) => Ok(Some(validate_tail_beam(t)?)),
+        (None, false) => Ok(None),
+        (None, true) => Err(other("tail_beam", "the \"tail-beam\" analysis needs a [tail_beam] table")),
+        (Some(_), false) => Err(other(
+            "tail_beam",
+            "is read only by the \"tail-beam\" analysis; add it to analyses or remove the table",
+        )),
+    }
+}
+
 /// `[tail_beam]` into a [`TailBeamScene`].
-pub(super) fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Invalid> {
+fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Invalid> {
     let size = |name: &str, v: f64| check(&format!("tail_beam.{name}"), v, limits::PLATE_SIZE_MM, "mm");
     let (l, b, h) =
         (size("length_mm", raw.length_mm)?, size("width_mm", raw.width_mm)?, size("height_mm", raw.height_mm)?);
@@ -39,7 +53,10 @@ pub(super) fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Inv
     };
     beam.validate().map_err(|e| other("tail_beam", e.to_string()))?;
     let element = check("tail_beam.element_mm", raw.element_mm, limits::PLATE_SIZE_MM, "mm")?;
-    let dofs = DOFS_PER_NODE * beam.nodes_bound(element * MM, TAIL_BEAM_LEVELS - 1);
+    let nodes = beam
+        .nodes_bound(element * MM, TAIL_BEAM_LEVELS - 1)
+        .map_err(|e| other("tail_beam.element_mm", e.to_string()))?;
+    let dofs = DOFS_PER_NODE * nodes;
     if dofs > limits::MAX_TAIL_BEAM_DOFS {
         return Err(other(
             "tail_beam.element_mm",
