@@ -121,14 +121,20 @@ pub struct ChristoforouYigit {
 impl ChristoforouYigit {
     /// The parameters of `s` striking `plate` at a point of static compliance `compliance`.
     pub fn of(s: &Striker, plate: &Plate, compliance: f64) -> Self {
-        let p_h = s.hertz_force();
-        let k_alpha = p_h * p_h / (s.mass * s.velocity * s.velocity);
+        Self::with_peak(plate, s.mass, s.velocity, s.hertz_force(), compliance)
+    }
+
+    /// The parameters with the contact linearised to the spring k_α = P²/(m v²) that gives
+    /// the rigid-target peak force `peak` of a mass `mass` at `velocity` (Hertz's for
+    /// [`Self::of`]; another law's where its restitution lowers the peak).
+    pub fn with_peak(plate: &Plate, mass: f64, velocity: f64, peak: f64, compliance: f64) -> Self {
+        let k_alpha = peak * peak / (mass * velocity * velocity);
         let props = plate_properties(plate);
         let rho_h = props.density * props.thickness;
         Self {
             contact_stiffness: k_alpha,
             relative_stiffness: k_alpha * compliance,
-            loss_factor: (s.mass * k_alpha).sqrt() / (16.0 * (rho_h * props.rigidity()).sqrt()),
+            loss_factor: (mass * k_alpha).sqrt() / (16.0 * (rho_h * props.rigidity()).sqrt()),
         }
     }
 

@@ -43,6 +43,15 @@ impl Patch {
         [self.x - hx, self.x + hx, self.z - hz, self.z + hz]
     }
 
+    /// A square of side `side` centred at (x, z), clipped to the plate [0, length] x [0, width]
+    /// (its centre moves inward with the clipping): the contact patch of the shear-deformable
+    /// models.
+    pub fn clipped_square(x: f64, z: f64, side: f64, length: f64, width: f64) -> Self {
+        let (x0, x1) = ((x - side / 2.0).max(0.0), (x + side / 2.0).min(length));
+        let (z0, z1) = ((z - side / 2.0).max(0.0), (z + side / 2.0).min(width));
+        Patch { x: 0.5 * (x0 + x1), z: 0.5 * (z0 + z1), side_x: x1 - x0, side_z: z1 - z0 }
+    }
+
     /// The uniform pressure of a unit force over the patch (Pa/N).
     pub fn pressure(&self) -> f64 {
         1.0 / (self.side_x * self.side_z)

@@ -194,12 +194,14 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
     }
     // The panel as a plate the transient model takes (its aspect ratio within a plate's);
     // otherwise no check, and the report says why.
-    let panel =
-        panel(tb).filter(|p| Plate::new(p.length, p.width, tb.beam.top, scene.plate.density(), material).is_ok());
-    let panel_checks = match panel {
-        Some(p) => panel_checks(scene, &top, p, &rows)?,
+    let on_panel = panel(tb).and_then(|p| {
+        Plate::new(p.length, p.width, tb.beam.top, scene.plate.density(), material).ok().map(|plate| (p, plate))
+    });
+    let panel_checks = match &on_panel {
+        Some((p, plate)) => panel_checks(scene, plate, *p, &rows)?,
         None => Vec::new(),
     };
+    let panel = on_panel.map(|(p, _)| p);
     Ok(TailBeamData {
         panel,
         panel_checks,
@@ -215,21 +217,6 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         paper: paper_rows(scene)?,
         seconds,
     })
-}
-
-/// Christoforou and Yigit's parameters with the contact linearised to the spring k_α that
-/// gives the rigid-target force `p_rigid` of a mass `m` at `v` (k_α = P²/(m v²), as they fit it
-/// to Hertz's), against the top plate's impedance and the compliance `c`.
-fn christoforou_yigit(top: &Plate, m: f64, v: f64, p_rigid: f64, c: f64) -> ChristoforouYigit {
-    let k_alpha = p_rigid * p_rigid / (m * v * v);
-    let h = top.thickness();
-    let e = top.material();
-    let d = e.youngs_modulus() * h.powi(3) / (12.0 * (1.0 - e.poisson_ratio().powi(2)));
-    ChristoforouYigit {
-        contact_stiffness: k_alpha,
-        relative_stiffness: k_alpha * c,
-        loss_factor: (m * k_alpha).sqrt() / (16.0 * (top.density() * h * d).sqrt()),
-    }
 }
 
 /// One impact of `body` at `v` on the tail beam at `at`.
@@ -249,7 +236,7 @@ fn row(
     // measured against it, so that the restitution of the paper's law (which lowers the peak
     // against Hertz's elastic one by e^0.6) enters all three alike.
     let p_rigid = respond(&imp, &PointCompliance::new(Vec::new(), Vec::new(), 0.0)?, scene.solver)?.contact_force;
-    let cy = christoforou_yigit(top, imp.mass, v, p_rigid, c);
+    let cy = ChristoforouYigit::with_peak(top, imp.mass, v, p_rigid, c);
     let striker = Striker {
         k: imp.contact_stiffness,
         restitution: imp.restitution,
@@ -383,12 +370,11 @@ fn panel(tb: &TailBeamScene) -> Option<Panel> {
     (x > 0.0 && x < b.length).then_some(Panel { length: b.length, width: w[1] - w[0], at: (x, z - w[0]) })
 }
 
-/// The transient model on `panel` (the top plate `top`'s thickness and steel) under clamped
+/// The transient model on `panel` (the plate `plate`: the top plate's thickness and steel) under clamped
 /// and simply supported edges, for every body and velocity, beside the wave-controlled force of
 /// the same impact at the first point (from `rows`).
-fn panel_checks(scene: &Scene, top: &Plate, panel: Panel, rows: &[TailBeamRow]) -> Result<Vec<PanelCheck>, Failure> {
-    let plate = Plate::new(panel.length, panel.width, top.thickness(), top.density(), top.material())?;
-    let on_panel = Scene { plate, conditions: Vec::new(), ..scene.clone() };
+fn panel_checks(scene: &Scene, plate: &Plate, panel: Panel, rows: &[TailBeamRow]) -> Result<Vec<PanelCheck>, Failure> {
+    let on_panel = Scene { plate: *plate, conditions: Vec::new(), ..scene.clone() };
     let disc = Discretisation::tolerance(PANEL_TOLERANCE);
     let ladder = Ladder::new(&on_panel.plate, disc.start())?;
     let edges = |e: EdgeSupport| SupportSet::new("panel", Supports { edges: [e; 4], ..Supports::all_edges_simple() });

@@ -53,10 +53,7 @@ pub struct MindlinModel {
 
 /// The contact patch at (x, z): a square of side h centred there, clipped to the plate.
 pub fn contact_patch(props: &PlateProperties, x: f64, z: f64) -> Patch {
-    let s = props.thickness;
-    let (x0, x1) = ((x - s / 2.0).max(0.0), (x + s / 2.0).min(props.length));
-    let (z0, z1) = ((z - s / 2.0).max(0.0), (z + s / 2.0).min(props.width));
-    Patch { x: 0.5 * (x0 + x1), z: 0.5 * (z0 + z1), side_x: x1 - x0, side_z: z1 - z0 }
+    Patch::clipped_square(x, z, props.thickness, props.length, props.width)
 }
 
 /// The analytic compliance of one patch response: bending, shear, one store per spring,

@@ -71,10 +71,7 @@ pub struct TailBeamModel {
 /// The contact patch at (x, z) on the top plate, in the top face's coordinates (z, x): a
 /// square of side t centred there, clipped to the plate.
 pub fn contact_patch(beam: &TailBeam, x: f64, z: f64) -> Patch {
-    let s = beam.top;
-    let (x0, x1) = ((x - s / 2.0).max(0.0), (x + s / 2.0).min(beam.length));
-    let (z0, z1) = ((z - s / 2.0).max(0.0), (z + s / 2.0).min(beam.width));
-    Patch { x: 0.5 * (z0 + z1), z: 0.5 * (x0 + x1), side_x: z1 - z0, side_z: x1 - x0 }
+    Patch::clipped_square(z, x, beam.top, beam.width, beam.length)
 }
 
 impl TailBeamModel {

@@ -39,9 +39,7 @@ impl Face {
                 "a face's axes must be orthogonal unit vectors, not {e1:?} and {e2:?}"
             )));
         }
-        if !(thickness.is_finite() && thickness > 0.0) {
-            return Err(FemError::Property { name: "shell thickness", value: thickness, allowed: "(0, inf) m" });
-        }
+        check_thickness(thickness)?;
         let mesh = Mesh::from_lines(lines1, lines2)?;
         let e3 = e1.cross(&e2);
         Ok(Self {
@@ -70,6 +68,15 @@ impl Face {
     /// Thickness (m).
     pub fn thickness(&self) -> f64 {
         self.thickness
+    }
+}
+
+/// A wall's thickness: positive and finite (m).
+fn check_thickness(thickness: f64) -> Result<(), FemError> {
+    if thickness.is_finite() && thickness > 0.0 {
+        Ok(())
+    } else {
+        Err(FemError::Property { name: "shell thickness", value: thickness, allowed: "(0, inf) m" })
     }
 }
 
@@ -185,9 +192,7 @@ impl Structure {
         if !(a > 0.0 && b > 0.0 && s1.dot(&s2).abs() < 1e-9 * size * size && (p3 - p1 - s2).norm() < 1e-9 * size) {
             return Err(FemError::Mesh(format!("facet {corners:?} is not a rectangle")));
         }
-        if !(thickness.is_finite() && thickness > 0.0) {
-            return Err(FemError::Property { name: "shell thickness", value: thickness, allowed: "(0, inf) m" });
-        }
+        check_thickness(thickness)?;
         let (e1, e2) = (s1 / a, s2 / b);
         let axes = Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e1.cross(&e2).transpose()]);
         Ok(self.add_rectangle(p0, axes, a, b, thickness))
