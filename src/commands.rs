@@ -135,11 +135,17 @@ const MAX_READ_BYTES: u64 = 4_000_000_000;
 
 /// The text of `path`, refused before reading beyond [`MAX_READ_BYTES`].
 fn read_text(path: &Path, what: &str) -> Result<String, Failure> {
+    let bytes = read_bytes(path, what)?;
+    Ok(String::from_utf8(bytes).map_err(|e| format!("{what} {}: not UTF-8 text: {e}", path.display()))?)
+}
+
+/// The bytes of `path`, refused before reading beyond [`MAX_READ_BYTES`].
+fn read_bytes(path: &Path, what: &str) -> Result<Vec<u8>, Failure> {
     let size = std::fs::metadata(path).map_err(|e| format!("{what} {}: {e}", path.display()))?.len();
     if size > MAX_READ_BYTES {
         return Err(format!("{what} {}: {size} bytes, allowed at most {MAX_READ_BYTES}", path.display()).into());
     }
-    Ok(std::fs::read_to_string(path).map_err(|e| format!("{what} {}: {e}", path.display()))?)
+    Ok(std::fs::read(path).map_err(|e| format!("{what} {}: {e}", path.display()))?)
 }
 
 /// `impact detect`: a detector file applied to a recording, every file read and checked and
@@ -149,8 +155,8 @@ fn detect(detector: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> R
         .map_err(|e| format!("--detector {}: {e}", detector.display()))?;
     let origin = signal.display().to_string();
     let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
-    let csv = sidecar.data_path(signal);
-    let recording = sidecar.read(&read_text(&csv, "the recording's data")?, &csv.display().to_string())?;
+    let data = sidecar.data_path(signal);
+    let recording = sidecar.read_data(read_bytes(&data, "the recording's data")?, &data.display().to_string())?;
     let (artifacts, data) = impact::report::detect::detect(&d, &recording, (&detector.display().to_string(), &origin))?;
     let target = OutputDir::prepare(
         dir.unwrap_or_else(|| PathBuf::from("impact-out").join(format!("{}-detect", slug(&d.provenance.scene)))),
@@ -169,8 +175,8 @@ fn drops(path: &Path, signal: &Path, dir: Option<PathBuf>, json: bool) -> Result
     let scene = Scene::load(path)?;
     let origin = signal.display().to_string();
     let sidecar = identify::recording::Sidecar::parse(&read_text(signal, "--signal")?, &origin)?;
-    let csv = sidecar.data_path(signal);
-    let recording = sidecar.read(&read_text(&csv, "the recording's data")?, &csv.display().to_string())?;
+    let data = sidecar.data_path(signal);
+    let recording = sidecar.read_data(read_bytes(&data, "the recording's data")?, &data.display().to_string())?;
     studies::drops::check(&scene, &recording, &origin)?;
     let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "drops")))?;
     let (mut artifacts, data) = impact::report::drops::drops(&scene, &recording, &origin, &Terminal::new())?;

@@ -8,6 +8,7 @@ mod common;
 
 use common::scenes::{edit, expect_refused as expect, ENSEMBLE};
 use common::{impact, tmp};
+use identify::recording::Sidecar;
 use impact::scene::{Scene, SceneSource};
 
 const STREAM: &str = r#"
@@ -82,6 +83,12 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
         .replace("max = 40.0 }", "max = 2000.0 }");
     expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
+    bad("write_signal = true", "signal_format = \"parquet\"", &["stream.signal_format", "write_signal is not true"]);
+    bad(
+        "write_signal = true",
+        "write_signal = true\nsignal_format = \"hdf5\"",
+        &["stream.signal_format", "\"hdf5\" is not a format", "\"csv\", \"parquet\""],
+    );
     bad("duration_s = 6.0", "duration_s = 80000.0", &["stream.duration_s", "MB of signal", "budget"]);
     let crowded =
         STREAM.replace("rate_per_s = 12.0", "rate_per_s = 9000.0").replace("duration_s = 6.0", "duration_s = 10.0");
@@ -240,6 +247,58 @@ fn detect_reads_the_run(run: &std::path::Path, dir: &common::tmp::Tmp) {
         .fails();
     assert!(refused.stderr.contains("\"impact-detector/0\""), "{}", refused.stderr);
     assert!(!dir.join("other").exists());
+}
+
+/// The signal written as Parquet is the CSV's signal to the bit: the same columns under the
+/// same keys, the sidecar's JSON inside the file, and `impact detect` scores both alike.
+#[test]
+fn a_parquet_signal_is_the_csv_signal_to_the_bit() {
+    let dir = tmp();
+    let one = STREAM.replace("streams = 2", "streams = 1").replace("blocks = 4", "blocks = 3");
+    let csv = dir.write("csv.toml", with_stream(&one));
+    let parquet = dir.write("parquet.toml", with_stream(&format!("{one}signal_format = \"parquet\"\n")));
+    for (scene, out) in [(&csv, "csv"), (&parquet, "parquet")] {
+        impact(["stream", "--scene"]).arg(scene).arg("--out").arg(dir.join(out)).within(120).success();
+    }
+    let read = |out: &str| {
+        let path = dir.join(out).join("con-1").join("signal.json");
+        let text = std::fs::read_to_string(&path).unwrap();
+        let sidecar = Sidecar::parse(&text, "signal.json").unwrap();
+        let bytes = std::fs::read(sidecar.data_path(&path)).unwrap();
+        // Every column, the time's first.
+        let all = Sidecar {
+            columns: [vec!["t_s".to_string()], sidecar.columns.clone()].concat(),
+            channels: vec![],
+            ..sidecar.clone()
+        };
+        (sidecar, text, bytes.clone(), all.read_data(bytes, out).unwrap())
+    };
+    let (c, _, _, from_csv) = read("csv");
+    let (p, p_text, p_bytes, from_parquet) = read("parquet");
+    assert_eq!((c.data.as_str(), p.data.as_str()), ("signal.csv", "signal.parquet"));
+    assert_eq!(c.columns, p.columns);
+    assert_eq!(from_csv.channels.len(), 1 + c.columns.len());
+    assert_eq!(from_csv.channels[0].len(), 120_000);
+    for (k, (a, b)) in from_csv.channels.iter().zip(&from_parquet.channels).enumerate() {
+        assert_eq!(a.len(), b.len(), "column {k}");
+        assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()), "column {k} differs");
+    }
+    let (_, inside) = identify::recording::parquet::read(p_bytes, &p.columns, "signal.parquet").unwrap();
+    assert_eq!(inside.as_deref(), Some(p_text.as_str()));
+    let scores = |out: &str| {
+        let run = dir.join(out).join("con-1");
+        let to = dir.join(format!("{out}-detect"));
+        impact(["detect", "--detector"])
+            .arg(run.join("detector.json"))
+            .arg("--signal")
+            .arg(run.join("signal.json"))
+            .arg("--out")
+            .arg(&to)
+            .within(60)
+            .success();
+        rows(&to.join("scores.csv")).1
+    };
+    assert_eq!(scores("csv"), scores("parquet"));
 }
 
 /// A cross-validation that cannot score (one stream cut into two blocks at its change: each

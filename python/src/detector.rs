@@ -20,12 +20,17 @@ pub struct Detector {
 
 /// The text of `path`, a missing file as Python's `FileNotFoundError`.
 fn read(path: &Path, field: &str) -> PyResult<String> {
-    std::fs::read_to_string(path).map_err(|e| match e.kind() {
+    std::fs::read_to_string(path).map_err(|e| io_error(field, path, e))
+}
+
+/// A file that cannot be read: FileNotFoundError where it is missing, else ValueError.
+fn io_error(field: &str, path: &Path, e: std::io::Error) -> PyErr {
+    match e.kind() {
         std::io::ErrorKind::NotFound => {
             pyo3::exceptions::PyFileNotFoundError::new_err(format!("{field}: {}: {e}", path.display()))
         }
         _ => argument_message(field, format!("{}: {e}", path.display())),
-    })
+    }
 }
 
 /// Every window's score as columns.
@@ -141,10 +146,9 @@ pub(crate) fn recording(signal: &Path) -> PyResult<Recording> {
     let origin = signal.display().to_string();
     let sidecar =
         Sidecar::parse(&read(signal, "signal")?, &origin).map_err(|e| argument_message("signal", e.to_string()))?;
-    let csv = sidecar.data_path(signal);
-    sidecar
-        .read(&read(&csv, "signal")?, &csv.display().to_string())
-        .map_err(|e| argument_message("signal", e.to_string()))
+    let data = sidecar.data_path(signal);
+    let bytes = std::fs::read(&data).map_err(|e| io_error("signal", &data, e))?;
+    sidecar.read_data(bytes, &data.display().to_string()).map_err(|e| argument_message("signal", e.to_string()))
 }
 
 /// A recording: its sidecar read and its CSV columns as float64 arrays.

@@ -108,6 +108,37 @@ pub struct StreamStudy {
     pub size_sweep: Vec<f64>,
     /// Whether to write the first stream's continuous signals.
     pub write_signal: bool,
+    /// The file they are written as. Left out of the serialised scene as CSV, so that a
+    /// scene without it keeps its provenance hash.
+    #[serde(skip_serializing_if = "SignalFormat::is_csv")]
+    pub signal_format: SignalFormat,
+}
+
+/// The file a recorded signal is written as, beside its JSON sidecar
+/// ([`crate::recording`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SignalFormat {
+    /// `signal.csv`: text, one line a sample.
+    #[default]
+    Csv,
+    /// `signal.parquet`: columns of doubles ([`crate::recording::parquet`]), for long streams.
+    Parquet,
+}
+
+impl SignalFormat {
+    /// Whether this is [`SignalFormat::Csv`].
+    pub fn is_csv(&self) -> bool {
+        *self == SignalFormat::Csv
+    }
+
+    /// The data file's name.
+    pub fn file_name(&self) -> &'static str {
+        match self {
+            SignalFormat::Csv => "signal.csv",
+            SignalFormat::Parquet => "signal.parquet",
+        }
+    }
 }
 
 /// The stream number of the arrival process (far above any lump's number).

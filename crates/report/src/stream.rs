@@ -7,11 +7,12 @@ use crate::present::table::{sig, Cell, Table};
 use crate::template::render;
 use crate::Failure;
 use analytic::params::compact;
+use identify::stream::SignalFormat;
 use output::Artifacts;
 use scene::Scene;
 use studies::progress::Progress;
 pub use studies::stream::check;
-use studies::stream::{compute, ConditionStream, Score, StreamData};
+use studies::stream::{compute, ConditionStream, RecordedSignal, Score, StreamData};
 
 const PAGE: &str = include_str!("templates/stream/page.md");
 
@@ -30,13 +31,11 @@ pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Stre
         a.add(format!("{dir}/windows.csv"), windows_table(c).to_csv());
         a.add(format!("{dir}/lumps.csv"), lumps_table(c).to_csv());
         if let Some(s) = &c.signal {
-            let csv = signal_table(s).to_csv();
-            // The CSV's column keys, as its header (the first line that is not a comment) has them.
-            let header = csv.lines().find(|l| !l.starts_with('#'));
-            let keys: Vec<&str> = header.map_or_else(Vec::new, |h| h.split(',').collect());
-            let meta = serde_json::json!({
+            let format = data.study.signal_format;
+            let keys = signal_keys(s);
+            let meta = serde_json::to_string_pretty(&serde_json::json!({
                 "format": identify::recording::FORMAT,
-                "data": "signal.csv",
+                "data": format.file_name(),
                 "rate_hz": s.rate_hz,
                 "samples": s.columns.first().map_or(0, Vec::len),
                 "stream": 0,
@@ -45,12 +44,51 @@ pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, Stre
                 "channels": s.names,
                 "onset_s": data.study.spec.profile.onset,
                 "measured": data.measured,
-            });
-            a.add(format!("{dir}/signal.csv"), csv);
-            a.add(format!("{dir}/signal.json"), serde_json::to_string_pretty(&meta)?);
+            }))?;
+            let bytes = match format {
+                SignalFormat::Csv => signal_table(s).to_csv().into_bytes(),
+                // The sidecar inside the file as the sidecar file will read, stamped.
+                SignalFormat::Parquet => {
+                    let stamped = String::from_utf8(stamp.stamp_json(meta.as_bytes())).unwrap_or_else(|_| meta.clone());
+                    signal_parquet(s, &keys, &stamped)?
+                }
+            };
+            a.add(format!("{dir}/{}", format.file_name()), bytes);
+            a.add(format!("{dir}/signal.json"), meta);
         }
     }
     Ok((a, data))
+}
+
+/// The signal file's column keys, the time's first: those of its CSV header.
+fn signal_keys(s: &studies::stream::RecordedSignal) -> Vec<String> {
+    let csv =
+        signal_table(&RecordedSignal { rate_hz: s.rate_hz, names: s.names.clone(), columns: Vec::new() }).to_csv();
+    let header = csv.lines().find(|l| !l.starts_with('#')).unwrap_or_default();
+    header.split(',').map(str::to_string).collect()
+}
+
+/// The signal as Parquet: the CSV's columns under its keys, the same numbers to the bit
+/// (the channels' units are SI already; a column whose header names another unit is
+/// converted as the CSV converts it), with the sidecar `meta` inside.
+fn signal_parquet(s: &studies::stream::RecordedSignal, keys: &[String], meta: &str) -> Result<Vec<u8>, Failure> {
+    let n = s.columns.first().map_or(0, Vec::len);
+    let time: Vec<f64> = (0..n).map(|k| k as f64 / s.rate_hz).collect();
+    let scaled: Vec<Vec<f64>> = s
+        .columns
+        .iter()
+        .zip(&s.names)
+        .map(|(c, h)| match crate::present::table::csv_key(h).1 {
+            1.0 => c.clone(),
+            f => c.iter().map(|v| v * f).collect(),
+        })
+        .collect();
+    let columns: Vec<(&str, &[f64])> = std::iter::once(time.as_slice())
+        .chain(scaled.iter().map(Vec::as_slice))
+        .zip(keys)
+        .map(|(c, k)| (k.as_str(), c))
+        .collect();
+    Ok(identify::recording::parquet::write(&columns, Some(meta))?)
 }
 
 /// The page.

@@ -35,7 +35,8 @@ pub(super) fn sections() -> Vec<Section> {
             key("noise_sweep", "list of numbers", NO_UNIT, "[0, 1e6]; needs `[measurement]`", "none", "Scales of the chain's background, each scored on the same streams"),
             key("size_sweep", "list of numbers", NO_UNIT, limits::STREAM_SIZE_SCALE.to_string(), "none", "Scales of every family's radius law (median and bounds), each a whole study at the main rate, to which each support set's detector is carried"),
             key("law_sweep", "list of strings", NO_UNIT, "keys of `contact_law`", "none", "Other contact laws, each a whole study at the main rate, to which each support set's detector is carried"),
-            key("write_signal", "boolean", NO_UNIT, "true, false", "false", "Write the first stream's recorded signals (`signal.csv` with `signal.json`)"),
+            key("write_signal", "boolean", NO_UNIT, "true, false", "false", "Write the first stream's recorded signals (`signal.csv` or `signal.parquet`, with `signal.json`)"),
+            key("signal_format", "string", NO_UNIT, "\"csv\", \"parquet\"; needs `write_signal = true`", "\"csv\"", "The signal file's format: CSV text, or Parquet columns of doubles (8 bytes a sample, for long streams; pandas, xarray and Dask read it as written)"),
         ],
     }]
 }

@@ -21,6 +21,7 @@
 //! size_sweep = [1.5]        # scales of every family's radius law, for the transfer
 //! law_sweep = ["flores"]    # other contact laws, for the transfer
 //! write_signal = true       # the first stream's continuous signals as a file
+//! signal_format = "parquet" # ... as Parquet (or "csv", the default)
 //! ```
 
 use super::{count, other, Invalid};
@@ -28,7 +29,7 @@ use crate::limits;
 use analytic::params::{check, Range};
 use coupled::reduced::SignalSettings;
 use coupled::transient::LawKind;
-use identify::stream::{Profile, StreamSpec, StreamStudy};
+use identify::stream::{Profile, SignalFormat, StreamSpec, StreamStudy};
 use serde::Deserialize;
 
 /// The stream's table as TOML reads it.
@@ -62,6 +63,8 @@ pub(crate) struct RawStream {
     law_sweep: Vec<String>,
     #[serde(default)]
     write_signal: bool,
+    #[serde(default)]
+    signal_format: Option<String>,
 }
 
 /// Checks `[stream]` against the signals it will be recorded with: `signals` (the model's
@@ -146,6 +149,7 @@ pub(crate) fn validate_stream(
         noise_sweep,
         size_sweep,
         write_signal: raw.write_signal,
+        signal_format: signal_format(raw.signal_format.as_deref(), raw.write_signal)?,
     };
     budgets(&study, signals, conditions, laws.len())?;
     Ok((study, laws))
@@ -154,6 +158,18 @@ pub(crate) fn validate_stream(
 /// The study's streams are held at once (every stream's model signals and their recording),
 /// so together they must fit the memory budget; its lumps (every stream, rate and support
 /// set) and its windows must fit theirs.
+/// `signal_format` as written: "csv" or "parquet", and only where a signal is written.
+fn signal_format(written: Option<&str>, write_signal: bool) -> Result<SignalFormat, Invalid> {
+    let field = "stream.signal_format";
+    match written {
+        None => Ok(SignalFormat::Csv),
+        Some(_) if !write_signal => Err(other(field, "is given but write_signal is not true: no signal is written")),
+        Some("csv") => Ok(SignalFormat::Csv),
+        Some("parquet") => Ok(SignalFormat::Parquet),
+        Some(f) => Err(other(field, format!("\"{f}\" is not a format; allowed \"csv\", \"parquet\""))),
+    }
+}
+
 fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, laws: usize) -> Result<(), Invalid> {
     // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
     // the recording is at most as long again.
