@@ -234,7 +234,7 @@ pub enum Command {
         json: bool,
     },
     /// Apply a window detector (a detector.json written by impact stream) to a recording (a
-    /// signal.json sidecar beside its CSV, docs/guide.md): every window's probability of
+    /// signal.json sidecar beside its CSV or Parquet file, docs/guide.md): every window's probability of
     /// gangue-rich into DIR/scores.csv, and, where the sidecar states onset_s, the delay,
     /// false alarms per hour and AUC into DIR/detect.json (default
     /// impact-out/<detector's scene name>-detect).
@@ -242,8 +242,8 @@ pub enum Command {
         /// The detector (JSON, format impact-detector/1).
         #[arg(long, value_name = "FILE")]
         detector: PathBuf,
-        /// The recording's sidecar (JSON, format impact-signal/1); its CSV is read from the
-        /// sidecar's folder.
+        /// The recording's sidecar (JSON, format impact-signal/1); its data file (CSV, or
+        /// Parquet where the name ends in .parquet) is read from the sidecar's folder.
         #[arg(long, value_name = "FILE")]
         signal: PathBuf,
         /// Directory for the files, written whole or not at all (an existing one only if empty or
@@ -265,8 +265,8 @@ pub enum Command {
         /// measurement chain of the rig.
         #[arg(long, value_name = "FILE")]
         scene: PathBuf,
-        /// The recording's sidecar (JSON, format impact-signal/1, with "drops"); its CSV is
-        /// read from the sidecar's folder.
+        /// The recording's sidecar (JSON, format impact-signal/1, with "drops"); its data file
+        /// (CSV or Parquet) is read from the sidecar's folder.
         #[arg(long, value_name = "FILE")]
         signal: PathBuf,
         /// Directory for the files, written whole or not at all (an existing one only if empty or

@@ -388,7 +388,7 @@ def stream(scene: SceneLike) -> StreamResults:
 
 def read_signal(path: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:
     """A recording as ``impact detect`` reads it: the sidecar ``path`` (JSON, format
-    ``impact-signal/1``) and the CSV it names beside it. Returns ``channels`` (a list of
+    ``impact-signal/1``) and the CSV or Parquet file it names beside it. Returns ``channels`` (a list of
     float64 arrays, in the sidecar's ``columns`` order), ``names``, ``rate_hz`` and
     ``onset_s`` (None where the sidecar states none). A detector scores it with
     ``detector.score(r["channels"], r["rate_hz"])``; ``detector.detect(path)`` does both and

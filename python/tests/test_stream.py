@@ -131,3 +131,69 @@ def test_the_detector_scores_the_same_in_python_and_the_command_line(tmp_path):
         impact.Detector.load(tmp_path / "bad.json")
     with pytest.raises(FileNotFoundError):
         impact.Detector.load(tmp_path / "missing.json")
+
+
+@pytest.mark.skipif(BINARY is None, reason="no impact binary: cargo build --release")
+def test_a_parquet_signal_reads_in_pandas_as_impact_reads_it(tmp_path):
+    """`signal_format = "parquet"`: pandas (through pyarrow) reads `signal.parquet` to the same
+    bits as `impact.read_signal` and as `impact.stream`'s own arrays; the file carries its
+    sidecar in its key-value metadata; a detector scores it as it scores the CSV."""
+    pd = pytest.importorskip("pandas")
+    pq = pytest.importorskip("pyarrow.parquet")
+    d = tiny()
+    d["stream"]["signal_format"] = "parquet"
+    scene = impact.Scene.from_dict(d)
+    path = tmp_path / "stream.toml"
+    path.write_text(scene.to_toml_str())
+    out = tmp_path / "out"
+    subprocess.run([str(BINARY), "stream", "--scene", str(path), "--out", str(out)], check=True, capture_output=True)
+    run = out / "con-2"
+    sidecar = json.loads((run / "signal.json").read_text())
+    assert sidecar["data"] == "signal.parquet"
+    frame = pd.read_parquet(run / "signal.parquet")
+    assert list(frame.columns) == [sidecar["time_column"], *sidecar["columns"]]
+    assert np.array_equal(frame["t_s"].to_numpy(), np.arange(80000) / 20000.0)
+    read = impact.read_signal(run / "signal.json")
+    own = impact.stream(scene).conditions["Con 2"].signal
+    for key, name, mine, theirs in zip(sidecar["columns"], sidecar["channels"], read["channels"], own.values(), strict=True):
+        assert np.array_equal(frame[key].to_numpy(), mine), key
+        assert np.array_equal(mine, theirs), name
+    inside = pq.read_schema(run / "signal.parquet").metadata[b"impact-signal"]
+    assert json.loads(inside) == sidecar
+    detector = impact.Detector.load(run / "detector.json")
+    scored = detector.detect(run / "signal.json")["scores"]["probability_gangue_rich"]
+    assert np.array_equal(scored, detector.score(read["channels"], read["rate_hz"])["probability_gangue_rich"])
+
+
+
+def test_a_recording_pandas_wrote_as_parquet_is_read_as_written(tmp_path):
+    """A recording written by pandas (through pyarrow, not by impact): float32, int64 (an
+    ADC's counts) and optional float64 columns read back as their values; a null sample, a
+    missing column and a CSV under a .parquet name are refused, naming them."""
+    pd = pytest.importorskip("pandas")
+    pytest.importorskip("pyarrow")
+    n = 5000
+    frame = pd.DataFrame(
+        {
+            "a32": (np.sin(np.arange(n) * 0.01) * 3.0).astype(np.float32),
+            "counts": np.arange(n, dtype=np.int64) - 2500,
+            "a64": pd.array(np.cos(np.arange(n) * 0.02), dtype="Float64"),
+        }
+    )
+    frame.to_parquet(tmp_path / "rec.parquet", index=False)
+    sidecar = {"format": "impact-signal/1", "data": "rec.parquet", "rate_hz": 10000.0, "columns": ["counts", "a32", "a64"]}
+    (tmp_path / "rec.json").write_text(json.dumps(sidecar))
+    r = impact.read_signal(tmp_path / "rec.json")
+    assert np.array_equal(r["channels"][0], frame["counts"].to_numpy(dtype=np.float64))
+    assert np.array_equal(r["channels"][1], frame["a32"].to_numpy().astype(np.float64))
+    assert np.array_equal(r["channels"][2], frame["a64"].to_numpy(dtype=np.float64))
+    frame.loc[17, "a64"] = pd.NA
+    frame.to_parquet(tmp_path / "rec.parquet", index=False)
+    with pytest.raises(ValueError, match='column "a64" has empty'):
+        impact.read_signal(tmp_path / "rec.json")
+    (tmp_path / "rec.json").write_text(json.dumps({**sidecar, "columns": ["a32", "nope"]}))
+    with pytest.raises(ValueError, match='no column "nope"'):
+        impact.read_signal(tmp_path / "rec.json")
+    (tmp_path / "rec.parquet").write_text("a32\n1.0\n")
+    with pytest.raises(ValueError, match="not a Parquet file"):
+        impact.read_signal(tmp_path / "rec.json")
