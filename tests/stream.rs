@@ -84,6 +84,8 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
     bad("write_signal = true", "signal_format = \"parquet\"", &["stream.signal_format", "write_signal is not true"]);
+    bad("write_signal = true", "thickness_sweep_mm = [8.0, 400.0]", &["stream.thickness_sweep_mm[1] = 400", "360]"]);
+    bad("write_signal = true", "thickness_sweep_mm = [0.0]", &["stream.thickness_sweep_mm[0] = 0", "[0.001,"]);
     bad(
         "write_signal = true",
         "write_signal = true\nsignal_format = \"hdf5\"",
@@ -94,7 +96,11 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
         STREAM.replace("rate_per_s = 12.0", "rate_per_s = 9000.0").replace("duration_s = 6.0", "duration_s = 10.0");
     expect(
         &with_stream(&crowded.replace("streams = 2", "streams = 64")),
-        &["expect 11520000 lumps", "every stream, rate, size law, contact law and support set", "budget of 10000000"],
+        &[
+            "expect 11520000 lumps",
+            "every stream, rate, size law, plate, contact law and support set",
+            "budget of 10000000",
+        ],
     );
     let fine = STREAM.replace("duration_s = 6.0", "duration_s = 60.0").replace("hop_s = 0.25", "hop_s = 0.00005");
     expect(&with_stream(&fine), &["stream.hop_s", "windows, above the budget of 1000000"]);
@@ -113,8 +119,10 @@ fn rows(path: &std::path::Path) -> (Vec<String>, Vec<Vec<String>>) {
 #[test]
 fn a_stream_run_writes_consistent_truth_and_the_signal() {
     let dir = tmp();
-    let scene =
-        dir.write("stream.toml", with_stream(&format!("{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\n")));
+    let scene = dir.write(
+        "stream.toml",
+        with_stream(&format!("{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\nthickness_sweep_mm = [8.0]\n")),
+    );
     for (out, threads) in [("one", "1"), ("two", "2")] {
         impact(["stream", "--scene"])
             .arg(&scene)
@@ -173,17 +181,18 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     assert_eq!(every["group"], "every channel");
     let auc = every["auc"].as_f64().unwrap();
     assert!((0.0..=1.0).contains(&auc));
-    // Radii scaled by one, and the scene's own contact law (Flores), are the same lumps and
-    // the same signals: the detector carried to them is fitted on the same training blocks
-    // as the matched one and scores the same held-out windows, so the two agree exactly; a
+    // Radii scaled by one, the scene's own contact law (Flores) and its own plate thickness
+    // (8 mm, the plate rebuilt through the sweep's path) are the same lumps and the same
+    // signals: the detector carried to them is fitted on the same training blocks as the
+    // matched one and scores the same held-out windows, so the two agree exactly; a
     // misaligned carry (rows, labels or blocks of another condition) would not.
     let same: Vec<&serde_json::Value> = data["transfer"]
         .as_array()
         .unwrap()
         .iter()
-        .filter(|p| p["shift"] == "radii x 1" || p["shift"] == "flores contact law")
+        .filter(|p| ["radii x 1", "flores contact law", "plate 8 mm thick"].contains(&p["shift"].as_str().unwrap()))
         .collect();
-    assert_eq!(same.len(), 4, "two shifts per support set");
+    assert_eq!(same.len(), 6, "three shifts per support set");
     for p in same {
         assert_eq!(p["transferred"], p["matched"], "{p}");
     }

@@ -207,7 +207,8 @@ fn chain_and_stream(
         (None, _) => (None, Vec::new()),
         (Some(s), true) => {
             let adc = measurement.as_ref().map_or(signals.rate_hz, |m| m.rate_hz);
-            let (study, laws) = stream::validate_stream(s, signals, adc, measurement.is_some(), conditions)?;
+            let side = raw.plate.length_mm.min(raw.plate.width_mm);
+            let (study, laws) = stream::validate_stream(s, signals, (adc, measurement.is_some()), conditions, side)?;
             (Some(study), laws)
         }
         (Some(_), false) => {

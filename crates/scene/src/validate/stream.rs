@@ -20,6 +20,7 @@
 //! noise_sweep = [0.0, 10.0, 100.0]   # scales of [measurement]'s background
 //! size_sweep = [1.5]        # scales of every family's radius law, for the transfer
 //! law_sweep = ["flores"]    # other contact laws, for the transfer
+//! thickness_sweep_mm = [12.0]   # other plate thicknesses, for the transfer
 //! write_signal = true       # the first stream's continuous signals as a file
 //! signal_format = "parquet" # ... as Parquet (or "csv", the default)
 //! ```
@@ -62,20 +63,23 @@ pub(crate) struct RawStream {
     #[serde(default)]
     law_sweep: Vec<String>,
     #[serde(default)]
+    thickness_sweep_mm: Vec<f64>,
+    #[serde(default)]
     write_signal: bool,
     #[serde(default)]
     signal_format: Option<String>,
 }
 
 /// Checks `[stream]` against the signals it will be recorded with: `signals` (the model's
-/// rate and channels) and `adc_rate_hz` (the chain's rate, or the model's without one); the
+/// rate and channels) and `adc_rate_hz` (the chain's rate, or the model's without one), and
+/// against the plate's smaller side `plate_side_mm` (a swept thickness stays a plate); the
 /// study, and the contact laws of its law sweep.
 pub(crate) fn validate_stream(
     raw: &RawStream,
     signals: &SignalSettings,
-    adc_rate_hz: f64,
-    has_chain: bool,
+    (adc_rate_hz, has_chain): (f64, bool),
     conditions: usize,
+    plate_side_mm: f64,
 ) -> Result<(StreamStudy, Vec<LawKind>), Invalid> {
     let rate = check("stream.rate_per_s", raw.rate_per_s, limits::STREAM_RATE_PER_S, "1/s")?;
     let duration = check("stream.duration_s", raw.duration_s, limits::STREAM_DURATION_S, "s")?;
@@ -123,6 +127,12 @@ pub(crate) fn validate_stream(
     for (i, &s) in raw.size_sweep.iter().enumerate() {
         size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
     }
+    let mut thickness_sweep = Vec::new();
+    for (i, &t) in raw.thickness_sweep_mm.iter().enumerate() {
+        let field = format!("stream.thickness_sweep_mm[{i}]");
+        let allowed = Range::closed(limits::THICKNESS_MM.lo, limits::THICKNESS_MM.hi.min(plate_side_mm));
+        thickness_sweep.push(check(&field, t, allowed, "mm")? * 1e-3);
+    }
     let mut laws = Vec::new();
     for (i, k) in raw.law_sweep.iter().enumerate() {
         let field = format!("stream.law_sweep[{i}]");
@@ -148,6 +158,7 @@ pub(crate) fn validate_stream(
         rate_sweep,
         noise_sweep,
         size_sweep,
+        thickness_sweep,
         write_signal: raw.write_signal,
         signal_format: signal_format(raw.signal_format.as_deref(), raw.write_signal)?,
     };
@@ -155,9 +166,6 @@ pub(crate) fn validate_stream(
     Ok((study, laws))
 }
 
-/// The study's streams are held at once (every stream's model signals and their recording),
-/// so together they must fit the memory budget; its lumps (every stream, rate and support
-/// set) and its windows must fit theirs.
 /// `signal_format` as written: "csv" or "parquet", and only where a signal is written.
 fn signal_format(written: Option<&str>, write_signal: bool) -> Result<SignalFormat, Invalid> {
     let field = "stream.signal_format";
@@ -170,6 +178,9 @@ fn signal_format(written: Option<&str>, write_signal: bool) -> Result<SignalForm
     }
 }
 
+/// The study's streams are held at once (every stream's model signals and their recording),
+/// so together they must fit the memory budget; its lumps (every stream, rate and support
+/// set) and its windows must fit theirs.
 fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, laws: usize) -> Result<(), Invalid> {
     // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
     // the recording is at most as long again.
@@ -188,15 +199,15 @@ fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, law
             ),
         ));
     }
-    // The size and law sweeps run whole studies at the main rate.
-    let at_main = 1 + study.size_sweep.len() + laws;
+    // The size, thickness and law sweeps run whole studies at the main rate.
+    let at_main = 1 + study.size_sweep.len() + study.thickness_sweep.len() + laws;
     let rates: f64 = study.spec.rate_per_s * at_main as f64 + study.rate_sweep.iter().sum::<f64>();
     let lumps = rates * study.spec.duration * study.streams as f64 * conditions as f64;
     if lumps > limits::MAX_STREAM_LUMPS {
         return Err(other(
-            "stream.rate_per_s, rate_sweep_per_s, size_sweep, law_sweep, duration_s and streams",
+            "stream.rate_per_s, rate_sweep_per_s, size_sweep, thickness_sweep_mm, law_sweep, duration_s and streams",
             format!(
-                "expect {lumps:.0} lumps over every stream, rate, size law, contact law and support set, above the budget of {:.0}",
+                "expect {lumps:.0} lumps over every stream, rate, size law, plate, contact law and support set, above the budget of {:.0}",
                 limits::MAX_STREAM_LUMPS
             ),
         ));

@@ -47,7 +47,11 @@ pub(super) fn condition(
     let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     let seed = study.spec.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    let runs = 1 + study.rate_sweep.len() + study.size_sweep.len() + scene.stream_law_sweep.len();
+    let runs = 1
+        + study.rate_sweep.len()
+        + study.size_sweep.len()
+        + study.thickness_sweep.len()
+        + scene.stream_law_sweep.len();
     progress.start(study.streams * runs, &format!("{}: streams", set.name));
     let w = window_set(study, seed);
     let main = simulate(&instrument, ensemble, study, study.spec.rate_per_s, progress)?;
@@ -77,6 +81,7 @@ pub(super) fn condition(
         others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
     }
     others.extend(other_lumps(scene, (ensemble, study), (&model, &instrument, &w), progress)?);
+    others.extend(other_plates(scene, (ensemble, study), (set, &w), progress)?);
     progress.finish();
     let names: Vec<String> = infos.iter().map(channel_name).collect();
     let signal = study.write_signal.then(|| RecordedSignal {
@@ -150,6 +155,29 @@ fn other_lumps(
         let striking = Instrument::new(model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), &with_law)?;
         let rows = windowed(&striking, (ensemble, study, study.spec.rate_per_s), w, progress)?.1;
         out.push((format!("{} contact law", law.key()), rows));
+    }
+    Ok(out)
+}
+
+/// The thickness sweep: the main run's streams on the plate made as thick as each swept
+/// thickness (its own reduced model, with the modes the scene's rule gives that plate; the
+/// same supports, sensor points, quantities and chain, so the channels are the detector's),
+/// each with its window features, for the transfer.
+fn other_plates(
+    scene: &Scene,
+    (ensemble, study): (&identify::Study, &StreamStudy),
+    (set, w): (&SupportSet, &Windows),
+    progress: &dyn Progress,
+) -> Result<Vec<Condition>, Failure> {
+    let mut out = Vec::new();
+    for &thickness in &study.thickness_sweep {
+        let p = &scene.plate;
+        let plate = analytic::Plate::new(p.length(), p.width(), thickness, p.density(), p.material())?;
+        let thick = Scene { plate, ..scene.clone() };
+        let model = ReducedModel::new(&thick.plate, set, crate::identify::sensors::reduced_settings(&thick, set)?)?;
+        let instrument = Instrument::new(&model, &thick.plate, &spec(&thick, thick.signals.sensors.clone()), &thick)?;
+        let rows = windowed(&instrument, (ensemble, study, study.spec.rate_per_s), w, progress)?.1;
+        out.push((format!("plate {} mm thick", compact(thickness * 1e3)), rows));
     }
     Ok(out)
 }

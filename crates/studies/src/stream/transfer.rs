@@ -1,9 +1,10 @@
 //! What a detector trained on one condition scores on another, without refitting: a detector
 //! on the sensors' channels fitted on one support set's main run, scored on another support
 //! set's main run (the matrix), and on its own support set with the chain's background scaled,
-//! at other arrival rates, with every lump's radius scaled (another size law) and under other
-//! contact laws. The conditions record the same streams (the same lumps on another plate,
-//! under more noise, larger, or striking under another law; at another rate each stream draws the same lumps, arriving sooner or later), so the carried detector too is fitted and scored by the time
+//! at other arrival rates, with every lump's radius scaled (another size law), under other
+//! contact laws and on the plate made thicker or thinner. The conditions record the same
+//! streams (the same lumps on another support set or another plate, under more noise,
+//! larger, or striking under another law; at another rate each stream draws the same lumps, arriving sooner or later), so the carried detector too is fitted and scored by the time
 //! blocks: fitted on the training blocks under one condition, it scores the held-out block
 //! under the other. With one block per stream (leave-one-stream-out, as the shipped scene)
 //! no lump it was fitted on is in a window it scores; with blocks inside a stream, a rate
