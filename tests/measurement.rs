@@ -264,3 +264,38 @@ fn the_chain_chooses_the_modes() {
     expect(&edit(ENSEMBLE, "modes = 24", "modes = \"chain\""), &["signals.modes", "no [measurement]"]);
     expect(&with_chain(chain).replace("modes = 24", "modes = \"auto\""), &["signals.modes", "'auto'", "\"chain\""]);
 }
+
+/// The sensor design chosen again at other backgrounds (`[ensemble.placement]
+/// design_backgrounds`): refused without a design, without a chain and out of range; at the
+/// stated background (× 1) it is the main design number for number, though made by another
+/// path (a second instrument, the ensemble run again through the chain); where the background
+/// drowns the signals (× 1e4, beyond the ADC's range) the first sensor separates less.
+#[test]
+fn the_design_is_chosen_again_at_other_backgrounds() {
+    let placement = "placement = { x_count = 3, z_count = 2 }";
+    let with = |to: &str, chain: &str| format!("{}\n{chain}", edit(&with_chain(""), placement, to));
+    let design = "placement = { x_count = 3, z_count = 2, design_sensors = 2, design_backgrounds = [1.0, 1e4] }";
+    expect(
+        &with("placement = { x_count = 3, z_count = 2, design_backgrounds = [2.0] }", CHAIN),
+        &["ensemble.placement.design_backgrounds", "give design_sensors"],
+    );
+    expect(&with(design, ""), &["ensemble.placement.design_backgrounds", "no [measurement]"]);
+    expect(
+        &with(&design.replace("[1.0, 1e4]", "[1.0, -1.0]"), CHAIN),
+        &["ensemble.placement.design_backgrounds[1] = -1", "[0, 1000000]"],
+    );
+    let dir = tmp();
+    let scene = dir.write("design.toml", with(design, CHAIN));
+    let run = impact(["identify", "--scene"]).arg(&scene).arg("--out").arg(dir.join("out")).arg("--json").success();
+    let summary: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    for c in summary["conditions"].as_array().unwrap() {
+        let at = c["design_backgrounds"].as_array().unwrap();
+        assert_eq!((at.len(), at[0]["scale"].as_f64(), at[1]["scale"].as_f64()), (2, Some(1.0), Some(1e4)));
+        assert_eq!(at[0]["design"], c["design"], "× 1 is the main design");
+        let first = |d: &serde_json::Value| d["steps"][0]["auc"]["auc"].as_f64().unwrap();
+        assert!(first(&c["design"]) > 0.6, "the stated background leaves the classes apart: {}", c["design"]);
+        assert!(first(&at[1]["design"]) < first(&c["design"]), "{}", at[1]["design"]);
+    }
+    let page = std::fs::read_to_string(dir.join("out").join("index.md")).unwrap();
+    assert!(page.contains("##### The design at other backgrounds"), "the page shows the designs by background");
+}

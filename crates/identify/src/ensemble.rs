@@ -183,6 +183,11 @@ pub struct Study {
     /// Sensors the design chooses among the candidates, one at a time ([`crate::design`]);
     /// 0: no design.
     pub design_sensors: usize,
+    /// Scales of the measurement chain's background at which the design is chosen again
+    /// (besides the background as stated). Left out of the serialised scene when empty, so
+    /// that a scene without it keeps its provenance hash.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub design_backgrounds: Vec<f64>,
 }
 
 impl Study {

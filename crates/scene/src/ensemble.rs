@@ -68,6 +68,8 @@ pub(super) struct RawPlacement {
     z_count: f64,
     #[serde(default)]
     design_sensors: Option<f64>,
+    #[serde(default)]
+    design_backgrounds: Vec<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -210,8 +212,8 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
     };
     let families = families(&raw.families)?;
     let hold = hold(raw.hold.as_deref())?;
-    let (candidates_x, candidates_z, design_sensors) = match &raw.placement {
-        None => (vec![], vec![], 0),
+    let (candidates_x, candidates_z, design_sensors, design_backgrounds) = match &raw.placement {
+        None => (vec![], vec![], 0, vec![]),
         Some(p) => {
             // A map needs two points a side: the grid runs from edge to edge.
             let nx = count("ensemble.placement.x_count", p.x_count, CANDIDATES_PER_SIDE)?;
@@ -230,11 +232,26 @@ pub(super) fn validate_ensemble(raw: &RawEnsemble, length_mm: f64, width_mm: f64
                     ),
                 ));
             }
-            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz), design)
+            let backgrounds = design_backgrounds(&p.design_backgrounds, design)?;
+            (super::even_points(length_mm * MM, nx), super::even_points(width_mm * MM, nz), design, backgrounds)
         }
     };
     let ensemble = Ensemble { region, speed, families, seed: raw.seed };
-    Ok(Study { ensemble, candidates_x, candidates_z, hold, design_sensors })
+    Ok(Study { ensemble, candidates_x, candidates_z, hold, design_sensors, design_backgrounds })
+}
+
+/// `ensemble.placement.design_backgrounds`: scales of the chain's background, each in
+/// [0, 1e6], for a design that exists (`design` sensors). Whether the scene has a chain to
+/// scale is checked where the chain is read.
+fn design_backgrounds(scales: &[f64], design: usize) -> Result<Vec<f64>, Invalid> {
+    if !scales.is_empty() && design == 0 {
+        return Err(other(
+            "ensemble.placement.design_backgrounds",
+            "repeats the sensor design at other backgrounds, and the scene asks for none: give design_sensors",
+        ));
+    }
+    let field = |i: usize| format!("ensemble.placement.design_backgrounds[{i}]");
+    scales.iter().enumerate().map(|(i, &s)| Ok(check(&field(i), s, Range::closed(0.0, 1e6), "")?)).collect()
 }
 
 /// `ensemble.region`: where the lumps strike, inside the plate; the whole plate by default.

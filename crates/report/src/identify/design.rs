@@ -4,9 +4,10 @@
 use crate::present::table::{sig, Cell, Table};
 use crate::template::render;
 use crate::Failure;
-use studies::identify::SensorDesign;
+use studies::identify::{BackgroundDesign, SensorDesign};
 
 const DESIGN: &str = include_str!("../templates/identify/design.md");
+const BACKGROUNDS: &str = include_str!("../templates/identify/design-backgrounds.md");
 
 /// The design's Markdown; `measured` says whether the features were read through the
 /// scene's measurement chain.
@@ -62,4 +63,51 @@ fn first_map(d: &SensorDesign) -> Table {
         t.push(row);
     }
     t
+}
+
+/// The designs at the scene's other backgrounds: a row per level and step (empty: no text).
+pub(super) fn at_backgrounds(designs: &[BackgroundDesign]) -> Result<String, Failure> {
+    if designs.is_empty() {
+        return Ok(String::new());
+    }
+    let mut t = Table::new(
+        "",
+        &[
+            "background",
+            "SNR (dB)",
+            "quantity",
+            "sensors",
+            "added at (x, z) (mm)",
+            "AUC (cross-validated)",
+            "gain (paired error)",
+        ],
+    );
+    for b in designs {
+        let level = format!("× {}", sig(b.scale, 3));
+        let snr = b.snr_db.map_or(Cell::Empty, |v| Cell::Sig(v, 3));
+        let Some(d) = &b.design else {
+            t.push(vec![
+                level.into(),
+                snr,
+                "no placement map".into(),
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+                Cell::Empty,
+            ]);
+            continue;
+        };
+        for (k, s) in d.steps.iter().enumerate() {
+            t.push(vec![
+                level.as_str().into(),
+                if k == 0 { snr.clone() } else { Cell::Empty },
+                d.quantity.into(),
+                Cell::Int(k as u64 + 1),
+                format!("({}, {})", sig(s.at_mm.0, 4), sig(s.at_mm.1, 4)).into(),
+                format!("{} ± {}", sig(s.auc.auc, 3), sig(s.auc.standard_error, 2)).into(),
+                format!("{:+.4} ± {}", s.gain, sig(s.gain_standard_error, 2)).into(),
+            ]);
+        }
+    }
+    Ok(render("identify/design-backgrounds.md", BACKGROUNDS, &[("table", t.to_markdown())])?)
 }

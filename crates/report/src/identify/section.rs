@@ -165,6 +165,7 @@ pub(super) fn section(
     };
     if let Some(d) = &r.design {
         maps.push_str(&super::design::markdown(d, r.measurement.is_some())?);
+        maps.push_str(&super::design::at_backgrounds(&r.design_backgrounds)?);
     }
     Ok(render(
         "identify/condition.md",

@@ -465,6 +465,14 @@ fn ensemble() -> Vec<Section> {
                     "none",
                     "Sensors of the quantity with the best placement map chosen one at a time among the candidates (greedy, by cross-validated AUC), each with its gain",
                 ),
+                key(
+                    "design_backgrounds",
+                    "list of numbers",
+                    NO_UNIT,
+                    "[0, 1e6]; needs `design_sensors` and `[measurement]`",
+                    "none",
+                    "Scales of the chain's background at which the design is chosen again on the whole candidate grid (besides the background as stated): where to put the sensors at another noise level",
+                ),
             ],
         },
     ]

@@ -197,6 +197,12 @@ fn chain_and_stream(
             "the \"drops\" analysis reads recordings through the rig's measurement chain, and the scene has no [measurement] table (its sensors' band, ADC and background make the bar's noise term)",
         ));
     }
+    if ensemble.is_some_and(|e| !e.design_backgrounds.is_empty()) && measurement.is_none() {
+        return Err(other(
+            "ensemble.placement.design_backgrounds",
+            "scales [measurement]'s background; the scene has no [measurement]",
+        ));
+    }
     if signals.modes_from_chain && measurement.is_none() {
         return Err(other(
             "signals.modes",

@@ -101,6 +101,15 @@ pub fn snr_db(peaks: &[f64], classes: &[Class], sigma: f64) -> Option<f64> {
     (median > 0.0).then(|| 20.0 * (median / sigma).log10())
 }
 
+/// The SNR of channel `c` of `run` under `chain` with its background scaled by `scale`:
+/// σ² = (scale σ_b)² + q²/12, σ_b the background's RMS as stated and q the ADC's step.
+pub fn scaled_snr(run: &ConditionRun, c: usize, chain: &Chain, scale: f64) -> Option<f64> {
+    let rec = chain.recording(measurand(run.channels[c]))?;
+    let q2 = rec.step().powi(2) / 12.0;
+    let background = (rec.noise_rms(chain.spec().rate_hz).powi(2) - q2).max(0.0).sqrt();
+    snr_db(&run.clean_peaks(c), run.table.classes(), ((scale * background).powi(2) + q2).sqrt())
+}
+
 /// The SNR of channel `c` of `run` under `chain`.
 fn channel_snr(run: &ConditionRun, c: usize, chain: &Chain) -> Option<f64> {
     let rec = chain.recording(measurand(run.channels[c]))?;

@@ -158,6 +158,10 @@ pub struct ConditionResult {
     /// design_sensors`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub design: Option<SensorDesign>,
+    /// The design chosen again at each of the scene's other backgrounds
+    /// (`[ensemble.placement] design_backgrounds`); empty without them.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub design_backgrounds: Vec<BackgroundDesign>,
 }
 
 impl ConditionResult {
@@ -226,6 +230,19 @@ pub struct SensorDesign {
     pub z_mm: Vec<f64>,
     /// Every step, in the order the sensors were added.
     pub steps: Vec<DesignStep>,
+}
+
+/// The sensor design at one background level.
+#[derive(Debug, Clone, Serialize)]
+pub struct BackgroundDesign {
+    /// The scale of the chain's background (1: as stated, 0: quantisation alone).
+    pub scale: f64,
+    /// The SNR the first sensor chosen ran at, dB: its median coal peak before the
+    /// background over the background's and the quantisation's RMS at this scale (None
+    /// without coal or for a silent channel).
+    pub snr_db: Option<f64>,
+    /// The design (None where no placement map could be drawn).
+    pub design: Option<SensorDesign>,
 }
 
 /// One sensor added.

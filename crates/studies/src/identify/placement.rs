@@ -2,12 +2,16 @@
 //! feature at every point of the candidate grid, that feature being the one whose best grid
 //! value is highest.
 
-use super::sensors::quantity_name;
-use super::{DesignStep, PlacementMap, SensorDesign};
+use super::ensemble::run;
+use super::sensors::{channel_infos, quantity_name, spec};
+use super::{BackgroundDesign, DesignStep, PlacementMap, SensorDesign};
 use crate::channel::ChannelInfo;
-use coupled::reduced::Quantity;
-use identify::placement::{best, map, FeatureTable, Separability};
-use identify::Study;
+use crate::progress::Progress;
+use coupled::identification::Instrument;
+use coupled::reduced::{Quantity, ReducedModel};
+use identify::placement::{best, map, separabilities, FeatureTable, Separability};
+use identify::{Held, Study};
+use scene::{Scene, SupportSet};
 
 /// The placement maps of a run: `grid` gives the sensor recording each candidate point (in
 /// [`Study::candidates`] order), `infos` the run's channels and `all` their separabilities.
@@ -80,4 +84,41 @@ pub fn design(
             })
             .collect(),
     }))
+}
+
+/// The design chosen again with the chain's background scaled by each of
+/// `study.design_backgrounds`: the main run's impacts (`sensors`, the grid among them at
+/// `grid`) on `model` re-recorded at that level, its placement maps and greedy design with
+/// the main design's folds (`seed`), so that at the stated level (1) it is the main design.
+#[allow(clippy::too_many_arguments)]
+pub fn at_backgrounds(
+    scene: &Scene,
+    study: &Study,
+    set: &SupportSet,
+    model: &ReducedModel,
+    (sensors, grid): (&[(f64, f64)], &[usize]),
+    seed: u64,
+    progress: &dyn Progress,
+) -> Result<Vec<BackgroundDesign>, crate::Failure> {
+    if study.design_backgrounds.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut instrument = Instrument::new(model, &scene.plate, &spec(scene, sensors.to_vec()), scene)?;
+    let infos = channel_infos(&instrument, sensors, &scene.plate);
+    let mut out = Vec::with_capacity(study.design_backgrounds.len());
+    for &scale in &study.design_backgrounds {
+        instrument.set_noise_scale(scale);
+        let what = format!("design at background × {}", analytic::params::compact(scale));
+        let r = run(study, Held::NONE, &instrument, &set.name, &what, progress, |_| Ok(()))?;
+        let maps = maps(study, grid, &infos, &separabilities(&r.table));
+        let design = design(study, grid, &infos, &maps, &r.table, seed)?;
+        let snr_db = design.as_ref().and_then(|d| {
+            let first = d.steps.first()?;
+            let k = study.candidates().iter().position(|&(x, z)| (x * 1e3, z * 1e3) == first.at_mm)?;
+            let c = infos.iter().position(|i| i.sensor == Some(grid[k]) && i.quantity == d.quantity)?;
+            super::measured::scaled_snr(&r, c, instrument.chain()?, scale)
+        });
+        out.push(BackgroundDesign { scale, snr_db, design });
+    }
+    Ok(out)
 }

@@ -70,6 +70,8 @@ pub(super) fn run_set(
     let top = best(&sep.all, &[]).map(|s| s.channel);
     let measurement = measured::of_set(scene, study, set, &instrument, &main, &main_run, top, seed, progress)?;
     let (detail, design) = detail(study, (&grid, &infos), &main, &sep, reference, seed)?;
+    let design_backgrounds =
+        placement::at_backgrounds(scene, study, set, &model, (&sensors, &grid), seed ^ DESIGN_KEY, progress)?;
     let ranking = sep.ranking();
     let baselines = vec![
         baselines::of_ranked("contact time t_c", &contact_time),
@@ -99,6 +101,7 @@ pub(super) fn run_set(
         measurement,
         chain_modes: settings.modes_from_chain.then(|| model.settings().modes),
         design,
+        design_backgrounds,
     };
     Ok((result, detail))
 }
