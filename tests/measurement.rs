@@ -280,6 +280,12 @@ fn the_design_is_chosen_again_at_other_backgrounds() {
         &["ensemble.placement.design_backgrounds", "give design_sensors"],
     );
     expect(&with(design, ""), &["ensemble.placement.design_backgrounds", "no [measurement]"]);
+    let quiet = "[measurement]\nrate_hz = 10000.0\n[measurement.acceleration]\nadc_range_m_s2 = 100.0\nadc_bits = 16\n";
+    expect(&with(design, quiet), &["ensemble.placement.design_backgrounds", "state none (no noise, no tones)"]);
+    expect(
+        &with(&design.replace("[1.0, 1e4]", "[0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]"), CHAIN),
+        &["ensemble.placement.design_backgrounds", "9 levels; allowed at most 8"],
+    );
     expect(
         &with(&design.replace("[1.0, 1e4]", "[1.0, -1.0]"), CHAIN),
         &["ensemble.placement.design_backgrounds[1] = -1", "[0, 1000000]"],

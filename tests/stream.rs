@@ -84,7 +84,11 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
     bad("write_signal = true", "signal_format = \"parquet\"", &["stream.signal_format", "write_signal is not true"]);
-    bad("write_signal = true", "thickness_sweep_mm = [8.0, 400.0]", &["stream.thickness_sweep_mm[1] = 400", "360]"]);
+    bad(
+        "write_signal = true",
+        "thickness_sweep_mm = [8.0, 400.0]",
+        &["stream.thickness_sweep_mm[1]", "400 mm is more than the plate's smaller side 360 mm", "[0.001, 360] mm"],
+    );
     bad("write_signal = true", "thickness_sweep_mm = [0.0]", &["stream.thickness_sweep_mm[0] = 0", "[0.001,"]);
     bad(
         "write_signal = true",
@@ -121,7 +125,9 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     let dir = tmp();
     let scene = dir.write(
         "stream.toml",
-        with_stream(&format!("{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\nthickness_sweep_mm = [8.0]\n")),
+        with_stream(&format!(
+            "{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\nthickness_sweep_mm = [8.0, 16.0]\n"
+        )),
     );
     for (out, threads) in [("one", "1"), ("two", "2")] {
         impact(["stream", "--scene"])
@@ -193,6 +199,12 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
         .filter(|p| ["radii x 1", "flores contact law", "plate 8 mm thick"].contains(&p["shift"].as_str().unwrap()))
         .collect();
     assert_eq!(same.len(), 6, "three shifts per support set");
+    // A plate twice as thick is another plate: its detector carried there scores other
+    // windows than the matched one (a sweep that ignored the thickness would score the same).
+    let thick: Vec<&serde_json::Value> =
+        data["transfer"].as_array().unwrap().iter().filter(|p| p["shift"] == "plate 16 mm thick").collect();
+    assert_eq!(thick.len(), 2);
+    assert!(thick.iter().all(|p| p["transferred"] != p["matched"]), "{thick:?}");
     for p in same {
         assert_eq!(p["transferred"], p["matched"], "{p}");
     }

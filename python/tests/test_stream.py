@@ -189,7 +189,7 @@ def test_a_recording_pandas_wrote_as_parquet_is_read_as_written(tmp_path):
     assert np.array_equal(r["channels"][2], frame["a64"].to_numpy(dtype=np.float64))
     frame.loc[17, "a64"] = pd.NA
     frame.to_parquet(tmp_path / "rec.parquet", index=False)
-    with pytest.raises(ValueError, match='column "a64" has empty'):
+    with pytest.raises(ValueError, match='column "a64", row 17: empty'):
         impact.read_signal(tmp_path / "rec.json")
     (tmp_path / "rec.json").write_text(json.dumps({**sidecar, "columns": ["a32", "nope"]}))
     with pytest.raises(ValueError, match='no column "nope"'):

@@ -32,6 +32,10 @@ pub const CANDIDATES_PER_SIDE: Range = Range::closed(2.0, MAX_CANDIDATES_PER_SID
 /// design grows as the budget to the fourth; eight sensors of one kind on one support are
 /// beyond any rig.
 pub const DESIGN_SENSORS: Range = Range::closed(1.0, 8.0);
+/// Most backgrounds the sensor design is chosen again at: each reruns the ensemble on the
+/// whole candidate grid, so eight levels cost eight main runs, about what the variability
+/// study's held runs cost.
+pub const MAX_DESIGN_BACKGROUNDS: usize = 8;
 /// Impacts of one family.
 pub const FAMILY_COUNT: Range = Range::closed(1.0, MAX_IMPACTS as f64);
 /// Fall heights, m: up to 1 km (a free fall of 140 m/s, far beyond any caving).
@@ -248,6 +252,15 @@ fn design_backgrounds(scales: &[f64], design: usize) -> Result<Vec<f64>, Invalid
         return Err(other(
             "ensemble.placement.design_backgrounds",
             "repeats the sensor design at other backgrounds, and the scene asks for none: give design_sensors",
+        ));
+    }
+    if scales.len() > MAX_DESIGN_BACKGROUNDS {
+        return Err(other(
+            "ensemble.placement.design_backgrounds",
+            format!(
+                "{} levels; allowed at most {MAX_DESIGN_BACKGROUNDS} (each reruns the ensemble on the whole grid)",
+                scales.len()
+            ),
         ));
     }
     let field = |i: usize| format!("ensemble.placement.design_backgrounds[{i}]");

@@ -57,7 +57,7 @@ pub struct Sidecar {
     pub data: String,
     /// Samples per second, Hz.
     pub rate_hz: f64,
-    /// The CSV columns to read, in order.
+    /// The data file's columns to read, in order.
     pub columns: Vec<String>,
     /// Their names in words.
     #[serde(default)]

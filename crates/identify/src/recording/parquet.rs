@@ -3,10 +3,10 @@
 //! (`pandas.read_parquet`), xarray, Polars and Dask read as it is.
 //!
 //! **Why Parquet beside CSV.** An hour of caving at 20 kHz is 72 million samples a channel:
-//! about 1.5 GB of CSV text a channel, parsed number by number on reading, against 8 bytes a
-//! sample in Parquet's column chunks, read at the speed of a copy. The values are stored as
-//! written (IEEE doubles, PLAIN encoding), so a signal reads back to the same bits, as the
-//! shortest round-trip CSV does.
+//! about 1.5 GB of CSV text a channel, parsed number by number on reading, against about 8
+//! bytes a sample in Parquet's column chunks (less where Snappy finds repeats), read at the
+//! speed of a copy. The values are stored as written (IEEE doubles, PLAIN encoding), so a
+//! signal reads back to the same bits, as the shortest round-trip CSV does.
 //!
 //! **Layout written.** One REQUIRED DOUBLE column per key, in order; row groups of
 //! [`ROWS_PER_GROUP`] samples (Dask and pyarrow read a file by row groups, so a long signal is
@@ -15,19 +15,22 @@
 //! describes itself where it travels without its sidecar.
 //!
 //! **Layout read.** Any flat file with the sidecar's columns as DOUBLE, FLOAT, INT32 or INT64
-//! (an ADC's counts), REQUIRED or OPTIONAL: what pandas, Polars and acquisition software
-//! write. An empty (null) value is refused, naming its column and row.
+//! (an ADC's counts, signed or unsigned), REQUIRED or OPTIONAL: what pandas, Polars and
+//! acquisition software write. An empty (null) value is refused, naming its column and row;
+//! so are lists, and integers annotated as decimals, dates or times (their scale or unit
+//! would be lost). The footer's row counts are checked against each other and against
+//! [`MAX_VALUES`] before any column is decoded.
 
 use super::{error, RecordingError};
 use bytes::Bytes;
-use parquet::basic::{Compression, Repetition, Type as PhysicalType};
+use parquet::basic::{Compression, ConvertedType, LogicalType, Repetition, Type as PhysicalType};
 use parquet::column::reader::{ColumnReader, ColumnReaderImpl};
 use parquet::data_type::{DataType, DoubleType};
 use parquet::file::metadata::KeyValue;
 use parquet::file::properties::WriterProperties;
 use parquet::file::reader::{FileReader, SerializedFileReader};
 use parquet::file::writer::SerializedFileWriter;
-use parquet::schema::types::Type;
+use parquet::schema::types::{ColumnDescriptor, Type};
 use std::sync::Arc;
 
 /// The key of the sidecar's JSON in a written file's key-value metadata.
@@ -93,67 +96,136 @@ pub fn read(bytes: Vec<u8>, names: &[String], origin: &str) -> Result<(Vec<Vec<f
     let index: Vec<usize> = names
         .iter()
         .map(|name| {
-            (0..schema.num_columns()).find(|&i| schema.column(i).path().string() == *name).ok_or_else(|| {
-                let have: Vec<String> = (0..schema.num_columns()).map(|i| schema.column(i).path().string()).collect();
-                error(origin, format!("no column \"{name}\"; the file has {have:?}"))
-            })
+            let i =
+                (0..schema.num_columns()).find(|&i| schema.column(i).path().string() == *name).ok_or_else(|| {
+                    let have: Vec<String> =
+                        (0..schema.num_columns()).map(|i| schema.column(i).path().string()).collect();
+                    error(origin, format!("no column \"{name}\"; the file has {have:?}"))
+                })?;
+            numeric(&schema.column(i)).map_err(|why| error(origin, format!("column \"{name}\" {why}")))?;
+            Ok(i)
         })
         .collect::<Result<_, _>>()?;
-    let rows = u64::try_from(meta.num_rows()).unwrap_or(0);
-    if rows.saturating_mul(names.len() as u64) > MAX_VALUES {
-        return Err(error(
-            origin,
-            format!(
-                "{rows} rows of {} columns: {} values, allowed at most {MAX_VALUES}",
-                names.len(),
-                rows * names.len() as u64
-            ),
-        ));
-    }
+    let groups = group_rows(&reader, meta.num_rows(), names.len(), origin)?;
     let text = meta
         .key_value_metadata()
         .and_then(|kv| kv.iter().find(|k| k.key == METADATA_KEY))
         .and_then(|k| k.value.clone());
-    let mut columns: Vec<Vec<f64>> = names.iter().map(|_| Vec::with_capacity(rows as usize)).collect();
-    for g in 0..reader.num_row_groups() {
+    let total = groups.iter().sum();
+    let mut columns: Vec<Vec<f64>> = names.iter().map(|_| Vec::with_capacity(total)).collect();
+    let mut first_row = 0;
+    for (g, &rows) in groups.iter().enumerate() {
         let group = reader.get_row_group(g).map_err(fail)?;
-        let group_rows = usize::try_from(group.metadata().num_rows()).unwrap_or(0);
         for ((column, &i), name) in columns.iter_mut().zip(&index).zip(names) {
             let before = column.len();
-            match group.get_column_reader(i).map_err(fail)? {
-                ColumnReader::DoubleColumnReader(r) => values(r, group_rows, column, |v| v),
-                ColumnReader::FloatColumnReader(r) => values(r, group_rows, column, f64::from),
-                ColumnReader::Int32ColumnReader(r) => values(r, group_rows, column, f64::from),
+            let descr = schema.column(i);
+            let (unsigned, d) = (is_unsigned(&descr), descr.max_def_level());
+            let null = match group.get_column_reader(i).map_err(fail)? {
+                ColumnReader::DoubleColumnReader(r) => values((r, d), rows, column, |v| v),
+                ColumnReader::FloatColumnReader(r) => values((r, d), rows, column, f64::from),
+                ColumnReader::Int32ColumnReader(r) if unsigned => values((r, d), rows, column, |v| f64::from(v as u32)),
+                ColumnReader::Int32ColumnReader(r) => values((r, d), rows, column, f64::from),
                 // Counts beyond 2⁵³ round; no ADC comes near.
-                ColumnReader::Int64ColumnReader(r) => values(r, group_rows, column, |v| v as f64),
-                _ => {
-                    let kind = schema.column(i).physical_type();
-                    return Err(error(origin, format!("column \"{name}\" holds {kind}, not numbers")));
-                }
+                ColumnReader::Int64ColumnReader(r) if unsigned => values((r, d), rows, column, |v| v as u64 as f64),
+                ColumnReader::Int64ColumnReader(r) => values((r, d), rows, column, |v| v as f64),
+                _ => return Err(error(origin, format!("column \"{name}\" is not numeric"))),
             }
             .map_err(fail)?;
+            if let Some(k) = null {
+                let row = first_row + k;
+                return Err(error(
+                    origin,
+                    format!("column \"{name}\", row {row}: empty (null); every sample must be given"),
+                ));
+            }
+            if column.len() - before != rows {
+                return Err(error(
+                    origin,
+                    format!("column \"{name}\": row group {g} holds {} of its {rows} rows", column.len() - before),
+                ));
+            }
             if let Some(k) = (before..column.len()).find(|&k| !column[k].is_finite()) {
                 return Err(error(origin, format!("column \"{name}\", row {k}: {} is not a finite number", column[k])));
             }
-            if column.len() - before != group_rows {
-                return Err(error(
-                    origin,
-                    format!("column \"{name}\" has empty (null) values in row group {g}: every sample must be given"),
-                ));
-            }
         }
+        first_row += rows;
     }
     Ok((columns, text))
 }
 
-/// Appends the `rows` values of one column chunk to `out`, each through `to_f64`; nulls
-/// leave their rows out (the caller counts them).
+/// Why a column is not one this reader takes as samples (None: it is): a flat DOUBLE, FLOAT,
+/// INT32 or INT64 column with no annotation but integer width and sign (a decimal's scale, a
+/// date's or time's unit would be lost).
+fn numeric(c: &ColumnDescriptor) -> Result<(), String> {
+    if c.max_rep_level() > 0 {
+        return Err("is a list (repeated): give one value a row".into());
+    }
+    let physical = c.physical_type();
+    if !matches!(physical, PhysicalType::DOUBLE | PhysicalType::FLOAT | PhysicalType::INT32 | PhysicalType::INT64) {
+        return Err(format!("holds {physical}, not numbers; allowed DOUBLE, FLOAT, INT32, INT64"));
+    }
+    let plain = matches!(c.logical_type_ref(), None | Some(LogicalType::Integer { .. }))
+        && matches!(
+            c.converted_type(),
+            ConvertedType::NONE
+                | ConvertedType::INT_8
+                | ConvertedType::INT_16
+                | ConvertedType::INT_32
+                | ConvertedType::INT_64
+                | ConvertedType::UINT_8
+                | ConvertedType::UINT_16
+                | ConvertedType::UINT_32
+                | ConvertedType::UINT_64
+        );
+    if !plain {
+        let what = c.logical_type_ref().map_or_else(|| format!("{}", c.converted_type()), |l| format!("{l:?}"));
+        return Err(format!("is annotated {what} (a decimal, date, time or other value, not a plain number)"));
+    }
+    Ok(())
+}
+
+/// Whether an integer column holds unsigned values.
+fn is_unsigned(c: &ColumnDescriptor) -> bool {
+    matches!(c.logical_type_ref(), Some(LogicalType::Integer { is_signed: false, .. }))
+        || matches!(c.converted_type(), ConvertedType::UINT_32 | ConvertedType::UINT_64)
+}
+
+/// Every row group's row count, checked against the footer's total and, with the columns
+/// read, against [`MAX_VALUES`] before anything is decoded.
+fn group_rows(
+    reader: &SerializedFileReader<Bytes>,
+    footer_rows: i64,
+    columns: usize,
+    origin: &str,
+) -> Result<Vec<usize>, RecordingError> {
+    let groups: Vec<i64> = reader.metadata().row_groups().iter().map(|g| g.num_rows()).collect();
+    let total = groups.iter().try_fold(0i64, |a, &n| if n < 0 { None } else { a.checked_add(n) });
+    if total != Some(footer_rows) {
+        return Err(error(
+            origin,
+            format!("the footer states {footer_rows} rows and its row groups {groups:?}: a damaged file"),
+        ));
+    }
+    let values = (footer_rows as u64).saturating_mul(columns as u64);
+    if values > MAX_VALUES {
+        return Err(error(
+            origin,
+            format!("{footer_rows} rows of {columns} columns: {values} values, allowed at most {MAX_VALUES}"),
+        ));
+    }
+    Ok(groups.into_iter().map(|n| n as usize).collect())
+}
+
+/// Appends the `rows` values of one column chunk (read by `r`, its largest definition level
+/// `max_def`: 0 for a REQUIRED column) to `out`, each through `to_f64`; the first empty (null)
+/// row of the chunk, if any (a null's definition level is below the largest; it leaves no
+/// value).
 fn values<T: DataType>(
-    mut r: ColumnReaderImpl<T>,
+    (mut r, max_def): (ColumnReaderImpl<T>, i16),
     rows: usize,
     out: &mut Vec<f64>,
     to_f64: impl Fn(T::T) -> f64,
-) -> parquet::errors::Result<()>
+) -> parquet::errors::Result<Option<usize>>
 where
     T::T: Copy,
 {
@@ -166,8 +238,13 @@ where
         }
         read += records;
     }
+    if max_def > 0 {
+        if let Some(k) = defs.iter().position(|&d| d < max_def) {
+            return Ok(Some(k));
+        }
+    }
     out.extend(buf.into_iter().map(to_f64));
-    Ok(())
+    Ok(None)
 }
 
 #[cfg(test)]
@@ -183,8 +260,64 @@ mod tests {
         let bytes = write(&[("time_s", &a), ("a1", &b)], Some("{\"x\": 1}")).unwrap();
         let (cols, meta) = read(bytes, &["a1".into(), "time_s".into()], "t.parquet").unwrap();
         assert_eq!(meta.as_deref(), Some("{\"x\": 1}"));
+        assert_eq!((cols[0].len(), cols[1].len()), (n, n));
         assert!(cols[0].iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
         assert!(cols[1].iter().zip(&a).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+
+    /// A file as other writers make it: an optional double, a float, a signed and an
+    /// unsigned count, a date; nulls, dates and wide unsigned counts handled by name.
+    fn foreign_file() -> Vec<u8> {
+        use parquet::basic::LogicalType;
+        use parquet::data_type::{FloatType, Int32Type, Int64Type};
+        let field = |name: &str, t: PhysicalType, rep: Repetition, logical: Option<LogicalType>| {
+            Arc::new(
+                Type::primitive_type_builder(name, t).with_repetition(rep).with_logical_type(logical).build().unwrap(),
+            )
+        };
+        let unsigned = Some(LogicalType::Integer { bit_width: 32, is_signed: false });
+        let fields = vec![
+            field("a", PhysicalType::DOUBLE, Repetition::OPTIONAL, None),
+            field("f", PhysicalType::FLOAT, Repetition::REQUIRED, None),
+            field("n", PhysicalType::INT64, Repetition::REQUIRED, None),
+            field("u", PhysicalType::INT32, Repetition::REQUIRED, unsigned),
+            field("day", PhysicalType::INT32, Repetition::REQUIRED, Some(LogicalType::Date)),
+        ];
+        let schema = Arc::new(Type::group_type_builder("s").with_fields(fields).build().unwrap());
+        let mut w =
+            SerializedFileWriter::new(Vec::new(), schema, Arc::new(WriterProperties::builder().build())).unwrap();
+        let mut g = w.next_row_group().unwrap();
+        let mut c = g.next_column().unwrap().unwrap();
+        c.typed::<DoubleType>().write_batch(&[1.0, 2.0, 4.0], Some(&[1, 1, 0, 1]), None).unwrap();
+        c.close().unwrap();
+        let mut c = g.next_column().unwrap().unwrap();
+        c.typed::<FloatType>().write_batch(&[0.1, -2.5, 3.0, 1e-3], None, None).unwrap();
+        c.close().unwrap();
+        let mut c = g.next_column().unwrap().unwrap();
+        c.typed::<Int64Type>().write_batch(&[-5, 0, 7, 1 << 40], None, None).unwrap();
+        c.close().unwrap();
+        let mut c = g.next_column().unwrap().unwrap();
+        c.typed::<Int32Type>().write_batch(&[3_000_000_000u32 as i32, 1, 2, 3], None, None).unwrap();
+        c.close().unwrap();
+        let mut c = g.next_column().unwrap().unwrap();
+        c.typed::<Int32Type>().write_batch(&[19000, 19001, 19002, 19003], None, None).unwrap();
+        c.close().unwrap();
+        g.close().unwrap();
+        w.into_inner().unwrap()
+    }
+
+    #[test]
+    fn foreign_columns_read_as_their_values() {
+        let names = ["f", "n", "u"].map(String::from);
+        let (cols, meta) = read(foreign_file(), &names, "f.parquet").unwrap();
+        assert_eq!(meta, None);
+        assert_eq!(cols[0], [0.1f32, -2.5, 3.0, 1e-3].map(f64::from));
+        assert_eq!(cols[1], [-5.0, 0.0, 7.0, (1u64 << 40) as f64]);
+        assert_eq!(cols[2], [3e9, 1.0, 2.0, 3.0]);
+        let null = read(foreign_file(), &["a".into()], "f.parquet").unwrap_err().to_string();
+        assert!(null.contains("column \"a\", row 2: empty (null)"), "{null}");
+        let date = read(foreign_file(), &["day".into()], "f.parquet").unwrap_err().to_string();
+        assert!(date.contains("column \"day\" is annotated Date"), "{date}");
     }
 
     #[test]

@@ -469,7 +469,7 @@ fn ensemble() -> Vec<Section> {
                     "design_backgrounds",
                     "list of numbers",
                     NO_UNIT,
-                    "[0, 1e6]; needs `design_sensors` and `[measurement]`",
+                    "[0, 1e6], at most 8 levels; needs `design_sensors` and a `[measurement]` that states a background",
                     "none",
                     "Scales of the chain's background at which the design is chosen again on the whole candidate grid (besides the background as stated): where to put the sensors at another noise level",
                 ),

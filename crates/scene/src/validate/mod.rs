@@ -197,11 +197,17 @@ fn chain_and_stream(
             "the \"drops\" analysis reads recordings through the rig's measurement chain, and the scene has no [measurement] table (its sensors' band, ADC and background make the bar's noise term)",
         ));
     }
-    if ensemble.is_some_and(|e| !e.design_backgrounds.is_empty()) && measurement.is_none() {
-        return Err(other(
-            "ensemble.placement.design_backgrounds",
-            "scales [measurement]'s background; the scene has no [measurement]",
-        ));
+    if ensemble.is_some_and(|e| !e.design_backgrounds.is_empty()) {
+        let stated =
+            measurement.as_ref().map(|m| m.recordings.iter().any(|r| r.background.is_some() || !r.tones.is_empty()));
+        let why = match stated {
+            None => Some("scales [measurement]'s background; the scene has no [measurement]"),
+            Some(false) => Some("scales [measurement]'s background, and its recordings state none (no noise, no tones): every level would be the stated one"),
+            Some(true) => None,
+        };
+        if let Some(why) = why {
+            return Err(other("ensemble.placement.design_backgrounds", why));
+        }
     }
     if signals.modes_from_chain && measurement.is_none() {
         return Err(other(

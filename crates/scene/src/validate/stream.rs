@@ -112,36 +112,7 @@ pub(crate) fn validate_stream(
     let blocks = count("stream.blocks", raw.blocks.unwrap_or(5.0), limits::STREAM_BLOCKS)?;
     let alarm_probability =
         check("stream.alarm_probability", raw.alarm_probability.unwrap_or(0.5), Range::open(0.0, 1.0), "")?;
-    let mut rate_sweep = Vec::new();
-    for (i, &r) in raw.rate_sweep_per_s.iter().enumerate() {
-        rate_sweep.push(check(&format!("stream.rate_sweep_per_s[{i}]"), r, limits::STREAM_RATE_PER_S, "1/s")?);
-    }
-    if !raw.noise_sweep.is_empty() && !has_chain {
-        return Err(other("stream.noise_sweep", "scales [measurement]'s background; the scene has no [measurement]"));
-    }
-    let mut noise_sweep = Vec::new();
-    for (i, &s) in raw.noise_sweep.iter().enumerate() {
-        noise_sweep.push(check(&format!("stream.noise_sweep[{i}]"), s, Range::closed(0.0, 1e6), "")?);
-    }
-    let mut size_sweep = Vec::new();
-    for (i, &s) in raw.size_sweep.iter().enumerate() {
-        size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
-    }
-    let mut thickness_sweep = Vec::new();
-    for (i, &t) in raw.thickness_sweep_mm.iter().enumerate() {
-        let field = format!("stream.thickness_sweep_mm[{i}]");
-        let allowed = Range::closed(limits::THICKNESS_MM.lo, limits::THICKNESS_MM.hi.min(plate_side_mm));
-        thickness_sweep.push(check(&field, t, allowed, "mm")? * 1e-3);
-    }
-    let mut laws = Vec::new();
-    for (i, k) in raw.law_sweep.iter().enumerate() {
-        let field = format!("stream.law_sweep[{i}]");
-        let law = super::law_key(&field, k)?;
-        if laws.contains(&law) {
-            return Err(other(&field, format!("'{k}' is named twice; name each law once")));
-        }
-        laws.push(law);
-    }
+    let Sweeps { rate_sweep, noise_sweep, size_sweep, thickness_sweep, laws } = sweeps(raw, has_chain, plate_side_mm)?;
     let spec = StreamSpec {
         rate_per_s: rate,
         duration,
@@ -164,6 +135,58 @@ pub(crate) fn validate_stream(
     };
     budgets(&study, signals, conditions, laws.len())?;
     Ok((study, laws))
+}
+
+/// The study's sweeps as checked: rates, background scales, size scales, plate thicknesses
+/// (m) and contact laws.
+struct Sweeps {
+    rate_sweep: Vec<f64>,
+    noise_sweep: Vec<f64>,
+    size_sweep: Vec<f64>,
+    thickness_sweep: Vec<f64>,
+    laws: Vec<LawKind>,
+}
+
+/// `[stream]`'s sweeps, each entry in its range; a background scale needs a chain, a swept
+/// thickness stays below the plate's smaller side `plate_side_mm`, a law is named once.
+fn sweeps(raw: &RawStream, has_chain: bool, plate_side_mm: f64) -> Result<Sweeps, Invalid> {
+    let mut rate_sweep = Vec::new();
+    for (i, &r) in raw.rate_sweep_per_s.iter().enumerate() {
+        rate_sweep.push(check(&format!("stream.rate_sweep_per_s[{i}]"), r, limits::STREAM_RATE_PER_S, "1/s")?);
+    }
+    if !raw.noise_sweep.is_empty() && !has_chain {
+        return Err(other("stream.noise_sweep", "scales [measurement]'s background; the scene has no [measurement]"));
+    }
+    let mut noise_sweep = Vec::new();
+    for (i, &s) in raw.noise_sweep.iter().enumerate() {
+        noise_sweep.push(check(&format!("stream.noise_sweep[{i}]"), s, Range::closed(0.0, 1e6), "")?);
+    }
+    let mut size_sweep = Vec::new();
+    for (i, &s) in raw.size_sweep.iter().enumerate() {
+        size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
+    }
+    let mut thickness_sweep = Vec::new();
+    for (i, &t) in raw.thickness_sweep_mm.iter().enumerate() {
+        let field = format!("stream.thickness_sweep_mm[{i}]");
+        let t = check(&field, t, limits::THICKNESS_MM, "mm")?;
+        if t > plate_side_mm {
+            return Err(other(
+                &field,
+                format!("{t} mm is more than the plate's smaller side {plate_side_mm} mm: not a plate; allowed [{}, {plate_side_mm}] mm", limits::THICKNESS_MM.lo),
+            ));
+        }
+        thickness_sweep.push(t * 1e-3);
+    }
+    let mut laws = Vec::new();
+    for (i, k) in raw.law_sweep.iter().enumerate() {
+        let field = format!("stream.law_sweep[{i}]");
+        let law = super::law_key(&field, k)?;
+        if laws.contains(&law) {
+            return Err(other(&field, format!("'{k}' is named twice; name each law once")));
+        }
+        laws.push(law);
+    }
+    Ok(Sweeps { rate_sweep, noise_sweep, size_sweep, thickness_sweep, laws })
 }
 
 /// `signal_format` as written: "csv" or "parquet", and only where a signal is written.

@@ -101,8 +101,9 @@ pub fn snr_db(peaks: &[f64], classes: &[Class], sigma: f64) -> Option<f64> {
     (median > 0.0).then(|| 20.0 * (median / sigma).log10())
 }
 
-/// The SNR of channel `c` of `run` under `chain` with its background scaled by `scale`:
-/// σ² = (scale σ_b)² + q²/12, σ_b the background's RMS as stated and q the ADC's step.
+/// The SNR of channel `c` of `run` under `chain` with its background scaled by `scale` as
+/// the chain scales it (noise and tones, not the quantisation): σ² = (scale σ_b)² + q²/12,
+/// σ_b the background's RMS as stated (noise and tones) and q the ADC's step.
 pub fn scaled_snr(run: &ConditionRun, c: usize, chain: &Chain, scale: f64) -> Option<f64> {
     let rec = chain.recording(measurand(run.channels[c]))?;
     let q2 = rec.step().powi(2) / 12.0;

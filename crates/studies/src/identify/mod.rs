@@ -238,8 +238,8 @@ pub struct BackgroundDesign {
     /// The scale of the chain's background (1: as stated, 0: quantisation alone).
     pub scale: f64,
     /// The SNR the first sensor chosen ran at, dB: its median coal peak before the
-    /// background over the background's and the quantisation's RMS at this scale (None
-    /// without coal or for a silent channel).
+    /// background over the RMS of the background (its noise and tones) at this scale and the
+    /// quantisation (None without coal or for a silent channel). Nominal where the ADC clips.
     pub snr_db: Option<f64>,
     /// The design (None where no placement map could be drawn).
     pub design: Option<SensorDesign>,

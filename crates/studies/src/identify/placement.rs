@@ -7,7 +7,7 @@ use super::sensors::{channel_infos, quantity_name, spec};
 use super::{BackgroundDesign, DesignStep, PlacementMap, SensorDesign};
 use crate::channel::ChannelInfo;
 use crate::progress::Progress;
-use coupled::identification::Instrument;
+use coupled::identification::{ConditionRun, Instrument};
 use coupled::reduced::{Quantity, ReducedModel};
 use identify::placement::{best, map, separabilities, FeatureTable, Separability};
 use identify::{Held, Study};
@@ -89,13 +89,14 @@ pub fn design(
 /// The design chosen again with the chain's background scaled by each of
 /// `study.design_backgrounds`: the main run's impacts (`sensors`, the grid among them at
 /// `grid`) on `model` re-recorded at that level, its placement maps and greedy design with
-/// the main design's folds (`seed`), so that at the stated level (1) it is the main design.
+/// the main design's folds (`seed`). At the stated level (1) that is the main run `main` and
+/// its design `stated`, which are taken as they are.
 #[allow(clippy::too_many_arguments)]
 pub fn at_backgrounds(
     scene: &Scene,
     study: &Study,
     set: &SupportSet,
-    model: &ReducedModel,
+    (model, main, stated): (&ReducedModel, &ConditionRun, Option<&SensorDesign>),
     (sensors, grid): (&[(f64, f64)], &[usize]),
     seed: u64,
     progress: &dyn Progress,
@@ -107,16 +108,21 @@ pub fn at_backgrounds(
     let infos = channel_infos(&instrument, sensors, &scene.plate);
     let mut out = Vec::with_capacity(study.design_backgrounds.len());
     for &scale in &study.design_backgrounds {
-        instrument.set_noise_scale(scale);
-        let what = format!("design at background × {}", analytic::params::compact(scale));
-        let r = run(study, Held::NONE, &instrument, &set.name, &what, progress, |_| Ok(()))?;
-        let maps = maps(study, grid, &infos, &separabilities(&r.table));
-        let design = design(study, grid, &infos, &maps, &r.table, seed)?;
+        let rerun;
+        let (r, design) = if scale == 1.0 {
+            (main, stated.cloned())
+        } else {
+            instrument.set_noise_scale(scale);
+            let what = format!("design at background × {}", analytic::params::compact(scale));
+            rerun = run(study, Held::NONE, &instrument, &set.name, &what, progress, |_| Ok(()))?;
+            let maps = maps(study, grid, &infos, &separabilities(&rerun.table));
+            (&rerun, design(study, grid, &infos, &maps, &rerun.table, seed)?)
+        };
         let snr_db = design.as_ref().and_then(|d| {
             let first = d.steps.first()?;
             let k = study.candidates().iter().position(|&(x, z)| (x * 1e3, z * 1e3) == first.at_mm)?;
             let c = infos.iter().position(|i| i.sensor == Some(grid[k]) && i.quantity == d.quantity)?;
-            super::measured::scaled_snr(&r, c, instrument.chain()?, scale)
+            super::measured::scaled_snr(r, c, instrument.chain()?, scale)
         });
         out.push(BackgroundDesign { scale, snr_db, design });
     }

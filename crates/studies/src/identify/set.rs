@@ -70,8 +70,9 @@ pub(super) fn run_set(
     let top = best(&sep.all, &[]).map(|s| s.channel);
     let measurement = measured::of_set(scene, study, set, &instrument, &main, &main_run, top, seed, progress)?;
     let (detail, design) = detail(study, (&grid, &infos), &main, &sep, reference, seed)?;
+    let stated = (&model, &main, design.as_ref());
     let design_backgrounds =
-        placement::at_backgrounds(scene, study, set, &model, (&sensors, &grid), seed ^ DESIGN_KEY, progress)?;
+        placement::at_backgrounds(scene, study, set, stated, (&sensors, &grid), seed ^ DESIGN_KEY, progress)?;
     let ranking = sep.ranking();
     let baselines = vec![
         baselines::of_ranked("contact time t_c", &contact_time),
