@@ -13,13 +13,15 @@
 //! time over the floor's: what the contacts, the chain and the features add to the
 //! propagation.
 
+mod common;
+
+use common::best_of_five as best;
 use coupled::identification::Instrument;
 use coupled::reduced::ReducedModel;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use identify::Held;
 use impact::scene::{Scene, SceneSource};
 use std::hint::black_box;
-use std::time::Instant;
 use studies::identify::sensors::{reduced_settings, run_sensors, spec};
 
 /// Impacts timed per scene: a fixed prefix of the ensemble (every impact is drawn from its
@@ -28,17 +30,6 @@ const IMPACTS: usize = 128;
 
 /// The measured one-core FP64 peak with FMA, FLOP/s (docs/performance.md).
 const PEAK_FLOPS: f64 = 48e9;
-
-/// The shortest of five runs of `f`, s: on a shared machine the least disturbed.
-fn best(f: &dyn Fn()) -> f64 {
-    (0..5)
-        .map(|_| {
-            let t = Instant::now();
-            f();
-            t.elapsed().as_secs_f64()
-        })
-        .fold(f64::INFINITY, f64::min)
-}
 
 fn identify_scenes(c: &mut Criterion) {
     let mut g = c.benchmark_group("identify");

@@ -6,13 +6,14 @@
 //! products), so the ratio of the two is the cost of the contacts. Before the timed runs the
 //! bench prints both as real-time factors (stream seconds per second of one core).
 
+mod common;
+
 use coupled::identification::Instrument;
 use coupled::reduced::{Quantity, ReducedModel, SignalSpec};
 use criterion::{criterion_group, criterion_main, Criterion};
 use identify::stream::{lumps, StreamSpec};
 use impact::scene::{Scene, SceneSource};
 use std::hint::black_box;
-use std::time::Instant;
 
 /// The detection scene at 20 kHz and 80 modes, without its measurement chain.
 fn scene() -> Scene {
@@ -43,15 +44,7 @@ fn stream(c: &mut Criterion) {
     let duration = 10.0;
     let s = StreamSpec { rate_per_s: 20.0, duration, ..scene.stream.as_ref().unwrap().spec };
     let drawn = lumps(ensemble, &s).unwrap();
-    let best = |f: &dyn Fn()| {
-        (0..5)
-            .map(|_| {
-                let t = Instant::now();
-                f();
-                t.elapsed().as_secs_f64()
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
+    let best = common::best_of_five;
     let with = best(&|| {
         black_box(instrument.stream(&drawn, &names, duration).unwrap());
     });
