@@ -8,7 +8,7 @@ use common::scenes::coal_con1;
 use common::{impact, tmp};
 use coupled::validity::QUASI_STATIC_MIN_RATIO;
 use impact::report::comparison::{pair, report};
-use impact::scene::{Analysis, Points, Scene, DEFAULT_SCENE};
+use impact::scene::{Analysis, Points, Scene, SceneSource, DEFAULT_SCENE};
 
 /// The default scene cut down: one body, only Con 1, one point, responses only.
 fn small_scene() -> Scene {
@@ -200,4 +200,18 @@ fn the_plate_at_p_max_carries_its_cases_validity() {
             assert!(!section.contains(caveat), "{v}");
         }
     }
+}
+
+/// A scene that compares no point (it asks only for a study nested beside the comparison,
+/// here the tail beam) gets no empty detail-table section and no beam-against-plate method;
+/// a scene that compares points keeps both.
+#[test]
+fn a_scene_comparing_no_point_has_no_empty_sections() {
+    let tail_beam =
+        Scene::load(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/tail-beam.toml"))).unwrap();
+    let page = |s: &Scene| String::from_utf8(report(s).unwrap().get("index.md").unwrap().to_vec()).unwrap();
+    let nothing = page(&tail_beam);
+    assert!(!nothing.contains("## Detail tables") && !nothing.contains("## Method"), "{nothing}");
+    let compared = page(&small_scene());
+    assert!(compared.contains("## Detail tables") && compared.contains("## Method"));
 }

@@ -117,7 +117,14 @@ pub fn files(scene: &Scene, d: &ComparisonData, extra: &StudySections) -> Result
             &[("title", t.title.clone()), ("table", t.to_markdown())],
         )?);
     }
-    let tables = render("comparison/detail-tables.md", DETAIL_TABLES, &[("tables", tables)])?;
+    // A scene that compares no point (one that asks only for a nested study, the tail beam
+    // say) has no detail tables and no beam-against-plate method to state.
+    let compared = !tables.is_empty() || !d.points.is_empty();
+    let (tables, method) = if compared {
+        (render("comparison/detail-tables.md", DETAIL_TABLES, &[("tables", tables)])?, method)
+    } else {
+        (String::new(), String::new())
+    };
     if let Some(mp) = &d.maps {
         figures.push_str(&map_figures::section(scene, mp, &d.map_findings, &mut a, &mut findings, &mut numbers)?);
     }
