@@ -64,6 +64,7 @@ __all__ = [
     "SceneError",
     "SceneTypeError",
     "StreamCondition",
+    "StreamRecording",
     "StreamResults",
     "TRANSIENT_TOLERANCE",
     "TailBeamResults",
@@ -75,6 +76,7 @@ __all__ = [
     "read_signal",
     "solve",
     "stream",
+    "stream_recording",
     "sweep",
     "tail_beam",
     "transient",
@@ -384,6 +386,29 @@ def stream(scene: SceneLike) -> StreamResults:
         for name, c in raw["conditions"].items()
     }
     return StreamResults(results=json.loads(raw["results"]), conditions=conditions)
+
+
+@dataclass(frozen=True)
+class StreamRecording:
+    """One stream of a stream study, alone: ``signal`` (one float64 array per channel,
+    named as in the report, as recorded: through ``[measurement]`` if the scene has one),
+    its ``rate_hz``, and its ``lumps`` as columns (the study's lump columns)."""
+
+    signal: dict[str, np.ndarray]
+    rate_hz: float
+    lumps: Columns
+
+
+def stream_recording(scene: SceneLike, condition: str, stream: int = 0) -> StreamRecording:
+    """Stream number ``stream`` of the scene's ``[stream]`` study on the support set
+    ``condition``, computed alone: its lumps drawn with the seed ``seed + stream``, its
+    background from its own stream of random numbers. It is the study's stream of that
+    number bit for bit (``impact stream``'s ``signal.csv`` or ``signal.parquet`` is stream 0),
+    so streams can be computed apart, one task each (``client.map`` on a Dask cluster), and
+    put together. Any number may be asked for, not only the study's ``streams``: each is an
+    independent stream of the same spec."""
+    raw = _impact.stream_recording(load_scene(scene), condition, float(stream))
+    return StreamRecording(signal=raw["signal"], rate_hz=raw["rate_hz"], lumps=_columns(raw["lumps"]))
 
 
 def read_signal(path: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:

@@ -44,6 +44,54 @@ pub fn stream<'py>(py: Python<'py>, scene: &crate::scene::Scene) -> PyResult<Bou
     Ok(out)
 }
 
+/// Largest stream number one call takes (streams are numbered from the study's seed).
+const MAX_STREAM: f64 = 1e9;
+
+/// Stream `stream` of the scene's `[stream]` study on the support set `condition`, alone:
+/// its recorded channels and its lumps, bit for bit the study's stream of that number, so
+/// that streams are computed apart (a task each) and put together.
+#[pyfunction]
+pub fn stream_recording<'py>(
+    py: Python<'py>,
+    scene: &crate::scene::Scene,
+    condition: &str,
+    stream: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = &scene.scene;
+    let (Some(study), Some(ensemble)) = (&s.stream, &s.ensemble) else {
+        return Err(argument_message(
+            "scene",
+            format!(
+                "{} has no [stream] table (see docs/scenes.md); impact.stream_recording runs one of its streams",
+                s.name
+            ),
+        ));
+    };
+    let set = s.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
+        let names: Vec<&str> = s.conditions.iter().map(|c| c.name.as_str()).collect();
+        argument_message("condition", format!("'{condition}' is not in the scene; it has {names:?}"))
+    })?;
+    if !(stream.is_finite() && stream >= 0.0 && stream.fract() == 0.0 && stream <= MAX_STREAM) {
+        return Err(argument_message(
+            "stream",
+            format!("{stream} is not a stream number; allowed whole numbers in [0, {MAX_STREAM}]"),
+        ));
+    }
+    let r = stream as usize;
+    let (signal, rows) = py
+        .detach(|| studies::stream::one_stream(s, (study, ensemble), set, r).map_err(|e| e.to_string()))
+        .map_err(model_error)?;
+    let out = PyDict::new(py);
+    let columns = PyDict::new(py);
+    for (name, samples) in signal.names.iter().zip(&signal.columns) {
+        columns.set_item(name, PyArray1::from_slice(py, samples))?;
+    }
+    out.set_item("signal", columns)?;
+    out.set_item("rate_hz", signal.rate_hz)?;
+    out.set_item("lumps", lump_table(&rows).into_py(py)?)?;
+    Ok(out)
+}
+
 /// Every window of the main run: its stream, span, truth and every-channel score.
 fn windows(c: &ConditionStream) -> Table {
     let mut t = Table::new(c.windows.len(), &[]);
@@ -63,8 +111,13 @@ fn windows(c: &ConditionStream) -> Table {
 
 /// Every lump of the main run.
 fn lumps(c: &ConditionStream) -> Table {
-    let mut t = Table::new(c.lumps.len(), &[]);
-    for (row, l) in c.lumps.iter().enumerate() {
+    lump_table(&c.lumps)
+}
+
+/// The lumps `rows` as columns.
+fn lump_table(rows: &[studies::stream::LumpRow]) -> Table {
+    let mut t = Table::new(rows.len(), &[]);
+    for (row, l) in rows.iter().enumerate() {
         t.int("stream", row, l.stream as i64);
         t.num("time_s", row, l.time);
         t.text("family", row, &l.family);

@@ -197,3 +197,38 @@ def test_a_recording_pandas_wrote_as_parquet_is_read_as_written(tmp_path):
     (tmp_path / "rec.parquet").write_text("a32\n1.0\n")
     with pytest.raises(ValueError, match="not a Parquet file"):
         impact.read_signal(tmp_path / "rec.json")
+
+
+@pytest.mark.skipif(BINARY is None, reason="no impact binary: cargo build --release")
+def test_streams_computed_apart_are_the_studys_streams(tmp_path):
+    """`impact.stream_recording` computes one stream alone: stream 0 is the signal `impact
+    stream` writes, bit for bit, and every stream's lumps are the study's lumps of that
+    stream; streams computed as tasks of a Dask LocalCluster (two worker processes) are the
+    same again; a bad stream number or support set is refused, naming it."""
+    distributed = pytest.importorskip("distributed")
+    scene = impact.Scene.from_dict(tiny())
+    path = tmp_path / "stream.toml"
+    path.write_text(scene.to_toml_str())
+    out = tmp_path / "out"
+    subprocess.run([str(BINARY), "stream", "--scene", str(path), "--out", str(out)], check=True, capture_output=True)
+    written = impact.read_signal(out / "con-2" / "signal.json")
+    alone = [impact.stream_recording(scene, "Con 2", r) for r in range(STREAM["streams"])]
+    assert alone[0].rate_hz == written["rate_hz"]
+    for mine, theirs in zip(alone[0].signal.values(), written["channels"], strict=True):
+        assert np.array_equal(mine, theirs)
+    lumps = impact.stream(scene).conditions["Con 2"].lumps
+    for r, one in enumerate(alone):
+        of_r = lumps["stream"] == r
+        for key in ("time_s", "mass_kg", "x_m", "contact_time_s", "force_max_N"):
+            assert np.array_equal(one.lumps[key], lumps[key][of_r]), (r, key)
+        assert np.all(one.lumps["stream"] == r)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            futures = client.map(impact.stream_recording, [scene] * 2, ["Con 2"] * 2, [0, 1], pure=False)
+            remote = client.gather(futures)
+    for a, b in zip(alone, remote, strict=True):
+        assert all(np.array_equal(x, y) for x, y in zip(a.signal.values(), b.signal.values(), strict=True))
+    with pytest.raises(ValueError, match="stream: -1"):
+        impact.stream_recording(scene, "Con 2", -1)
+    with pytest.raises(ValueError, match="'Con 9' is not in the scene"):
+        impact.stream_recording(scene, "Con 9", 0)

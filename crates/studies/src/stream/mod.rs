@@ -25,6 +25,7 @@ use identify::stream::StreamStudy;
 use scene::Scene;
 use serde::Serialize;
 
+pub use run::one_stream;
 pub use score::Score;
 pub use transfer::TransferPoint;
 

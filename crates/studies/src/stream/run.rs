@@ -277,28 +277,50 @@ fn overlapped_share(sims: &[Simulated]) -> f64 {
 /// Every stream's channels as recorded (through the chain, its background scaled by
 /// `scale`, or as the model gives them without one) and the recording's rate.
 fn record(instrument: &Instrument<'_>, sims: &[Simulated], scale: f64) -> (Vec<Vec<Vec<f64>>>, f64) {
-    let Some(chain) = instrument.chain() else {
-        let rate = instrument.model_rate_hz();
-        let out =
-            sims.iter().map(|s| s.response.signals.channels.iter().map(|c| c.samples.clone()).collect()).collect();
-        return (out, rate);
-    };
-    let out = sims
-        .par_iter()
-        .enumerate()
-        .map(|(r, s)| {
-            let mut rng = chain.stream(RECORDING_KEY + r);
-            s.response
-                .signals
-                .channels
-                .iter()
-                .map(|c| {
-                    chain.measure(measurand(c.kind), &c.samples, scale, &mut rng).map_or_else(Vec::new, |m| m.samples)
-                })
-                .collect()
-        })
-        .collect();
-    (out, chain.spec().rate_hz)
+    let rate = instrument.chain().map_or_else(|| instrument.model_rate_hz(), |c| c.spec().rate_hz);
+    let out = sims.par_iter().enumerate().map(|(r, s)| record_one(instrument, r, s, scale)).collect();
+    (out, rate)
+}
+
+/// Stream `r`'s channels as recorded: through the chain with the background of its own
+/// stream of random numbers (scaled by `scale`), or as the model gives them without one.
+fn record_one(instrument: &Instrument<'_>, r: usize, s: &Simulated, scale: f64) -> Vec<Vec<f64>> {
+    let channels = &s.response.signals.channels;
+    let Some(chain) = instrument.chain() else { return channels.iter().map(|c| c.samples.clone()).collect() };
+    let mut rng = chain.stream(RECORDING_KEY + r);
+    channels
+        .iter()
+        .map(|c| chain.measure(measurand(c.kind), &c.samples, scale, &mut rng).map_or_else(Vec::new, |m| m.samples))
+        .collect()
+}
+
+/// Stream `r` of the scene's study on support set `set` alone, recorded as the study records
+/// it (its lumps drawn with the seed `seed + r`, its background from its own stream of random
+/// numbers): the same numbers, bit for bit, as the study's stream `r`, for any `r`, so that
+/// streams can be computed apart (one per worker) and put together.
+pub fn one_stream(
+    scene: &Scene,
+    (study, ensemble): (&StreamStudy, &identify::Study),
+    set: &SupportSet,
+    r: usize,
+) -> Result<(RecordedSignal, Vec<LumpRow>), Failure> {
+    let plate = &scene.plate;
+    let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
+    let sensors = scene.signals.sensors.clone();
+    let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
+    let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
+    let spec = StreamSpec { seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
+    let lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
+    let response = instrument.stream(&lumps, &names, spec.duration).map_err(|e| format!("stream {r}: {e}"))?;
+    let sim = Simulated { lumps, response, seconds: 0.0 };
+    let columns = record_one(&instrument, r, &sim, 1.0);
+    let rate_hz = instrument.chain().map_or_else(|| instrument.model_rate_hz(), |c| c.spec().rate_hz);
+    let names = channel_infos(&instrument, &sensors, plate).iter().map(channel_name).collect();
+    let mut rows = lump_rows(ensemble, std::slice::from_ref(&sim));
+    for row in &mut rows {
+        row.stream = r;
+    }
+    Ok((RecordedSignal { rate_hz, names, columns }, rows))
 }
 
 /// The windows of every stream on a common time axis (stream r from r(T + W), so that no two
