@@ -214,4 +214,8 @@ fn a_scene_comparing_no_point_has_no_empty_sections() {
     assert!(!nothing.contains("## Detail tables") && !nothing.contains("## Method"), "{nothing}");
     let compared = page(&small_scene());
     assert!(compared.contains("## Detail tables") && compared.contains("## Method"));
+    // A beam-against-plate study without tables (the aspect-ratio study alone) keeps its method.
+    let aspect = Scene { analyses: vec![Analysis::AspectRatio], ..small_scene() };
+    let no_tables = page(&aspect);
+    assert!(!no_tables.contains("## Detail tables") && no_tables.contains("## Method"), "{no_tables}");
 }

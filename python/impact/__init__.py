@@ -403,10 +403,11 @@ def stream_recording(scene: SceneLike, condition: str, stream: int = 0) -> Strea
     """Stream number ``stream`` of the scene's ``[stream]`` study on the support set
     ``condition``, computed alone: its lumps drawn with the seed ``seed + stream``, its
     background from its own stream of random numbers. It is the study's stream of that
-    number bit for bit (``impact stream``'s ``signal.csv`` or ``signal.parquet`` is stream 0),
-    so streams can be computed apart, one task each (``client.map`` on a Dask cluster), and
-    put together. Any number may be asked for, not only the study's ``streams``: each is an
-    independent stream of the same spec."""
+    number bit for bit (with ``write_signal``, ``impact stream``'s ``signal.csv`` or
+    ``signal.parquet`` is stream 0), so streams can be computed apart, one task each
+    (``client.map`` on a Dask cluster of one CPU kind: the FFT picks its SIMD path at run
+    time), and put together. Any whole number in [0, 1e9] may be asked for, not only the
+    study's ``streams``: each is an independent stream of the same spec."""
     raw = _impact.stream_recording(load_scene(scene), condition, float(stream))
     return StreamRecording(signal=raw["signal"], rate_hz=raw["rate_hz"], lumps=_columns(raw["lumps"]))
 

@@ -117,14 +117,23 @@ pub fn files(scene: &Scene, d: &ComparisonData, extra: &StudySections) -> Result
             &[("title", t.title.clone()), ("table", t.to_markdown())],
         )?);
     }
-    // A scene that compares no point (one that asks only for a nested study, the tail beam
-    // say) has no detail tables and no beam-against-plate method to state.
-    let compared = !tables.is_empty() || !d.points.is_empty();
-    let (tables, method) = if compared {
-        (render("comparison/detail-tables.md", DETAIL_TABLES, &[("tables", tables)])?, method)
+    // No detail table without a table; and a scene whose every study is nested beside the
+    // comparison (the tail beam, say) compares nothing of beam against plate, so it has no
+    // method of that comparison to state.
+    let tables = if tables.is_empty() {
+        String::new()
     } else {
-        (String::new(), String::new())
+        render("comparison/detail-tables.md", DETAIL_TABLES, &[("tables", tables)])?
     };
+    let compared = !tables.is_empty()
+        || !d.points.is_empty()
+        || d.peak.is_some()
+        || d.maps.is_some()
+        || d.width.is_some()
+        || d.extremes.is_some()
+        || d.error_vs_time.is_some()
+        || d.shear.is_some();
+    let method = if compared { method } else { String::new() };
     if let Some(mp) = &d.maps {
         figures.push_str(&map_figures::section(scene, mp, &d.map_findings, &mut a, &mut findings, &mut numbers)?);
     }

@@ -304,6 +304,10 @@ pub fn one_stream(
     set: &SupportSet,
     r: usize,
 ) -> Result<(RecordedSignal, Vec<LumpRow>), Failure> {
+    // The recording's stream of random numbers is RECORDING_KEY + r.
+    if r > usize::MAX - RECORDING_KEY {
+        return Err(format!("stream {r}: allowed at most {}", usize::MAX - RECORDING_KEY).into());
+    }
     let plate = &scene.plate;
     let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
     let sensors = scene.signals.sensors.clone();
