@@ -106,9 +106,15 @@ pub fn snr_db(peaks: &[f64], classes: &[Class], sigma: f64) -> Option<f64> {
 /// σ_b the background's RMS as stated (noise and tones) and q the ADC's step.
 pub fn scaled_snr(run: &ConditionRun, c: usize, chain: &Chain, scale: f64) -> Option<f64> {
     let rec = chain.recording(measurand(run.channels[c]))?;
-    let q2 = rec.step().powi(2) / 12.0;
-    let background = (rec.noise_rms(chain.spec().rate_hz).powi(2) - q2).max(0.0).sqrt();
+    let (background, q2) = background_and_quantisation(rec, chain.spec().rate_hz);
     snr_db(&run.clean_peaks(c), run.table.classes(), ((scale * background).powi(2) + q2).sqrt())
+}
+
+/// A recording's background RMS as stated (noise and tones: its RMS at `rate` less the
+/// quantisation's) and the quantisation's variance q²/12, what a background scale leaves alone.
+fn background_and_quantisation(rec: &identify::measurement::Recording, rate: f64) -> (f64, f64) {
+    let (q2, total) = (rec.step().powi(2) / 12.0, rec.noise_rms(rate).powi(2));
+    ((total - q2).max(0.0).sqrt(), q2)
 }
 
 /// The SNR of channel `c` of `run` under `chain`.
@@ -198,8 +204,7 @@ pub fn sweep(
     let peaks = stated.clean_peaks(tracked.channel);
     let classes = stated.table.classes();
     let rate = chain.spec().rate_hz;
-    let (q2, total) = (rec.step().powi(2) / 12.0, rec.noise_rms(rate).powi(2));
-    let background = (total - q2).max(0.0).sqrt();
+    let (background, q2) = background_and_quantisation(rec, rate);
     // The scale that puts the tracked channel at `db`: σ² = (s σ_b)² + q²/12.
     let median_coal = snr_db(&peaks, classes, 1.0).map(|v| 10f64.powf(v / 20.0));
     let mut scales = vec![0.0, 1.0];

@@ -3,15 +3,15 @@
 //! value is highest.
 
 use super::ensemble::run;
-use super::sensors::{channel_infos, quantity_name, spec};
+use super::sensors::quantity_name;
 use super::{BackgroundDesign, DesignStep, PlacementMap, SensorDesign};
 use crate::channel::ChannelInfo;
 use crate::progress::Progress;
 use coupled::identification::{ConditionRun, Instrument};
-use coupled::reduced::{Quantity, ReducedModel};
+use coupled::reduced::Quantity;
 use identify::placement::{best, map, separabilities, FeatureTable, Separability};
 use identify::{Held, Study};
-use scene::{Scene, SupportSet};
+use scene::SupportSet;
 
 /// The placement maps of a run: `grid` gives the sensor recording each candidate point (in
 /// [`Study::candidates`] order), `infos` the run's channels and `all` their separabilities.
@@ -87,25 +87,19 @@ pub fn design(
 }
 
 /// The design chosen again with the chain's background scaled by each of
-/// `study.design_backgrounds`: the main run's impacts (`sensors`, the grid among them at
-/// `grid`) on `model` re-recorded at that level, its placement maps and greedy design with
-/// the main design's folds (`seed`). At the stated level (1) that is the main run `main` and
-/// its design `stated`, which are taken as they are.
-#[allow(clippy::too_many_arguments)]
+/// `study.design_backgrounds`: the main run's impacts re-recorded at that level by the main
+/// run's `instrument` (its channels `infos`, the grid's sensors at `grid`), its placement
+/// maps and greedy design with the main design's folds (`seed`). At the stated level (1) that
+/// is the main run `main` and its design `stated`, which are taken as they are. The
+/// instrument is left at the last level.
 pub fn at_backgrounds(
-    scene: &Scene,
     study: &Study,
     set: &SupportSet,
-    (model, main, stated): (&ReducedModel, &ConditionRun, Option<&SensorDesign>),
-    (sensors, grid): (&[(f64, f64)], &[usize]),
+    (instrument, main, stated): (&mut Instrument<'_>, &ConditionRun, Option<&SensorDesign>),
+    (infos, grid): (&[ChannelInfo], &[usize]),
     seed: u64,
     progress: &dyn Progress,
 ) -> Result<Vec<BackgroundDesign>, crate::Failure> {
-    if study.design_backgrounds.is_empty() {
-        return Ok(Vec::new());
-    }
-    let mut instrument = Instrument::new(model, &scene.plate, &spec(scene, sensors.to_vec()), scene)?;
-    let infos = channel_infos(&instrument, sensors, &scene.plate);
     let mut out = Vec::with_capacity(study.design_backgrounds.len());
     for &scale in &study.design_backgrounds {
         let rerun;
@@ -114,9 +108,9 @@ pub fn at_backgrounds(
         } else {
             instrument.set_noise_scale(scale);
             let what = format!("design at background × {}", analytic::params::compact(scale));
-            rerun = run(study, Held::NONE, &instrument, &set.name, &what, progress, |_| Ok(()))?;
-            let maps = maps(study, grid, &infos, &separabilities(&rerun.table));
-            (&rerun, design(study, grid, &infos, &maps, &rerun.table, seed)?)
+            rerun = run(study, Held::NONE, instrument, &set.name, &what, progress, |_| Ok(()))?;
+            let maps = maps(study, grid, infos, &separabilities(&rerun.table));
+            (&rerun, design(study, grid, infos, &maps, &rerun.table, seed)?)
         };
         let snr_db = design.as_ref().and_then(|d| {
             let first = d.steps.first()?;

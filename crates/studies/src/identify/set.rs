@@ -41,7 +41,7 @@ pub(super) fn run_set(
     // The main run: named sensors, then the candidate grid (less its points at named
     // sensors), every quantity, the corners.
     let (sensors, grid) = run_sensors(&settings.sensors, study, plate);
-    let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
+    let mut instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let infos = channel_infos(&instrument, &sensors, plate);
     if infos.is_empty() {
         return Err(no_channels(&set.name));
@@ -70,9 +70,11 @@ pub(super) fn run_set(
     let top = best(&sep.all, &[]).map(|s| s.channel);
     let measurement = measured::of_set(scene, study, set, &instrument, &main, &main_run, top, seed, progress)?;
     let (detail, design) = detail(study, (&grid, &infos), &main, &sep, reference, seed)?;
-    let stated = (&model, &main, design.as_ref());
+    // The main run's instrument records the design's reruns, its background rescaled: the
+    // last use of it.
+    let stated = (&mut instrument, &main, design.as_ref());
     let design_backgrounds =
-        placement::at_backgrounds(scene, study, set, stated, (&sensors, &grid), seed ^ DESIGN_KEY, progress)?;
+        placement::at_backgrounds(study, set, stated, (&infos, &grid), seed ^ DESIGN_KEY, progress)?;
     let ranking = sep.ranking();
     let baselines = vec![
         baselines::of_ranked("contact time t_c", &contact_time),
