@@ -25,7 +25,7 @@
 //! membrane's own rotation Ω (Hughes & Brezzi 1989), so it holds no rigid rotation; its factor
 //! α ([`DRILLING_FACTOR`]) is small; the tests measure how little the results depend on it.
 
-use crate::mindlin::element::{self as plate, GAUSS2};
+use crate::mindlin::element::{self as plate, Mat12, GAUSS2};
 use nalgebra::{SMatrix, SVector};
 
 /// An element matrix over the 24 local DOFs (four nodes x (u₁, u₂, u₃, ω₁, ω₂, ω₃)).
@@ -57,7 +57,7 @@ fn plate_dof(k: usize) -> (usize, f64) {
 
 /// Plane-stress elasticity of a sheet of thickness h: h E/(1-ν²) [[1, ν, 0], [ν, 1, 0],
 /// [0, 0, (1-ν)/2]] (N/m).
-fn membrane_rigidity(e: f64, nu: f64, h: f64) -> SMatrix<f64, 3, 3> {
+pub(crate) fn membrane_rigidity(e: f64, nu: f64, h: f64) -> SMatrix<f64, 3, 3> {
     let c = e * h / (1.0 - nu * nu);
     SMatrix::<f64, 3, 3>::new(c, c * nu, 0.0, c * nu, c, 0.0, 0.0, 0.0, c * (1.0 - nu) / 2.0)
 }
@@ -94,6 +94,12 @@ pub fn membrane(a: f64, b: f64, e: f64, nu: f64, h: f64) -> SMatrix<f64, 8, 8> {
             k += bm.transpose() * d * bm * (wx * wz * a * b);
         }
     }
+    condense(&k)
+}
+
+/// The membrane stiffness over the 8 bilinear DOFs of one over the 8 bilinear and the 4
+/// incompatible DOFs, the incompatible ones condensed out: K = K_cc - K_ci K_ii⁻¹ K_ic.
+pub(crate) fn condense(k: &SMatrix<f64, 12, 12>) -> SMatrix<f64, 8, 8> {
     let kcc = k.fixed_view::<8, 8>(0, 0).into_owned();
     let kci = k.fixed_view::<8, 4>(0, 8).into_owned();
     let kii = k.fixed_view::<4, 4>(8, 8).into_owned();
@@ -145,6 +151,18 @@ impl Parts {
         let shear_rigidity = plate::shear_rigidity(e, nu, h, ks);
         let full = plate::stiffness(a, b, d, nu, shear_rigidity);
         let shear = plate::stiffness(a, b, 0.0, nu, shear_rigidity);
+        Self::from_local(&membrane(a, b, e, nu, h), &(full - shear), &shear, &drilling(a, b, g, h, alpha))
+    }
+
+    /// The parts from the element's matrices in their own DOF orders: the membrane over
+    /// (u₁, u₂) per node, the plate's bending and shear over (w, θ_x, θ_z) per node, the
+    /// drilling penalty over (u₁, u₂, ω₃) per node.
+    pub(crate) fn from_local(
+        km: &SMatrix<f64, 8, 8>,
+        bending: &Mat12,
+        shear: &Mat12,
+        kd: &SMatrix<f64, 12, 12>,
+    ) -> Self {
         let mut out =
             Self { membrane: Mat24::zeros(), bending: Mat24::zeros(), shear: Mat24::zeros(), drilling: Mat24::zeros() };
         for p in 0..12 {
@@ -152,17 +170,15 @@ impl Parts {
             for q in 0..12 {
                 let (j, sj) = plate_dof(q);
                 out.shear[(i, j)] = si * sj * shear[(p, q)];
-                out.bending[(i, j)] = si * sj * (full[(p, q)] - shear[(p, q)]);
+                out.bending[(i, j)] = si * sj * bending[(p, q)];
             }
         }
-        let km = membrane(a, b, e, nu, h);
         let membrane_dof = |p: usize| 6 * (p / 2) + p % 2;
         for p in 0..8 {
             for q in 0..8 {
                 out.membrane[(membrane_dof(p), membrane_dof(q))] = km[(p, q)];
             }
         }
-        let kd = drilling(a, b, g, h, alpha);
         let drill_dof = |p: usize| 6 * (p / 3) + [0, 1, 5][p % 3];
         for p in 0..12 {
             for q in 0..12 {

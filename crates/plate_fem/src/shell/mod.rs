@@ -1,6 +1,6 @@
-//! # Shell structures from flat rectangles: box beams, panels, faceted cylinders
+//! # Shell structures from flat elements: box beams, panels, faceted cylinders, meshes
 //!
-//! A structure is a set of flat rectangular shell elements ([`element`]) in space, sharing
+//! A structure is a set of flat quadrilateral shell elements ([`element`], [`quad`]) in space, sharing
 //! nodes where they meet, with six DOFs a node in the global frame: translations (u_x, u_y,
 //! u_z) and the rotation vector (ω_x, ω_y, ω_z). Each element's stiffness, integrated in its
 //! own frame, is turned into the global one by the rotation Λ whose rows are its frame's
@@ -10,6 +10,8 @@
 //!
 //! - [`element`]: the flat shell rectangle (membrane with incompatible modes, MITC4 plate,
 //!   drilling penalty);
+//! - [`quad`]: the same element on any convex flat quadrilateral (QM6 membrane, covariant
+//!   MITC4), for meshes that are not tensor grids;
 //! - [`Structure`]: nodes merged by position, elements, and faces (a rectangular wall meshed
 //!   as a tensor grid, where loads and sensors are placed by the wall's own coordinates);
 //! - [`Restraints`]: held DOFs (pins, clamps, symmetry) and translational springs to ground
@@ -19,8 +21,10 @@
 //!   lumped mass;
 //! - [`tail_beam`]: a hydraulic support's tail beam, a welded box on hinge pins and jacks.
 //!
-//! Every element is a rectangle: walls of boxes are, and so are the facets of a cylinder
-//! meshed along its axis and around it, which is how the curved benchmarks are built.
+//! Walls of boxes are rectangles, and so are the facets of a cylinder meshed along its axis and
+//! around it, which is how the curved benchmarks are built; [`Structure::add_quad`] takes any
+//! convex flat quadrilateral (a skewed or graded mesh, a mesher's output), each with its own
+//! element matrices.
 //!
 //! # Example: a flat plate as a shell
 //!
@@ -49,7 +53,8 @@
 //! ```
 
 pub mod element;
+pub mod quad;
 mod structure;
 pub mod tail_beam;
 
-pub use structure::{Face, FaceId, Factorized, Restraints, ShellResponse, Spring, Structure};
+pub use structure::{Face, FaceId, Factorized, Restraints, ShellResponse, Spring, Structure, WARP_LIMIT};

@@ -84,14 +84,36 @@ fn check_thickness(thickness: f64) -> Result<(), FemError> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FaceId(usize);
 
-/// One flat rectangle: nodes in the order (0,0), (1,0), (0,1), (1,1) of its sides a along e₁
-/// and b along e₂.
+/// One flat element: nodes in the order (0,0), (1,0), (0,1), (1,1) of its parameters (for a
+/// rectangle, of its sides a along e₁ and b along e₂).
 #[derive(Debug, Clone)]
 struct Element {
     nodes: [usize; 4],
     /// Rows e₁, e₂, e₃.
     axes: Matrix3<f64>,
-    key: (u64, u64, u64),
+    /// Its parts' index in [`Structure::parts`].
+    parts: usize,
+    shape: Shape,
+    thickness: f64,
+}
+
+/// What a uniform load and a lumped mass need of an element's shape.
+#[derive(Debug, Clone, Copy)]
+enum Shape {
+    /// An a x b rectangle: a quarter of ab at each node.
+    Rectangle { a: f64, b: f64 },
+    /// A general quadrilateral: ∫ N_k dA at node k.
+    Quad { nodal_areas: [f64; 4] },
+}
+
+impl Shape {
+    /// The share of the element's area at each node (m²).
+    fn nodal_areas(&self) -> [f64; 4] {
+        match *self {
+            Shape::Rectangle { a, b } => [a * b / 4.0; 4],
+            Shape::Quad { nodal_areas } => nodal_areas,
+        }
+    }
 }
 
 /// Flat shell rectangles in space with their shared nodes.
@@ -103,14 +125,21 @@ pub struct Structure {
     nodes: Vec<Vector3<f64>>,
     index: HashMap<[i64; 3], usize>,
     elements: Vec<Element>,
-    /// Element matrices per (a, b, h): a structure of walls repeats a few sizes.
-    parts: HashMap<(u64, u64, u64), Parts>,
+    /// Element matrices: one per rectangle size (a, b, h), since a structure of walls repeats
+    /// a few sizes, and one per general quadrilateral.
+    parts: Vec<Parts>,
+    rectangles: HashMap<(u64, u64, u64), usize>,
     /// Each face with its elements, row-major over its grid (ez, ex).
     faces: Vec<(Face, Vec<usize>)>,
 }
 
 /// Positions closer than this (m) are one node.
 const MERGE: f64 = 1e-9;
+
+/// The most a quadrilateral's corners may leave its mean plane, as a fraction of its longer
+/// diagonal: the flat element is built on the corners' projections, an error of the order of
+/// this ratio in the element's geometry.
+pub const WARP_LIMIT: f64 = 1e-3;
 
 impl Structure {
     /// An empty structure of one isotropic material.
@@ -128,7 +157,8 @@ impl Structure {
             nodes: Vec::new(),
             index: HashMap::new(),
             elements: Vec::new(),
-            parts: HashMap::new(),
+            parts: Vec::new(),
+            rectangles: HashMap::new(),
             faces: Vec::new(),
         })
     }
@@ -163,8 +193,11 @@ impl Structure {
         let nodes = [origin, origin + e1 * a, origin + e2 * b, origin + e1 * a + e2 * b].map(|p| self.node(p));
         let key = (a.to_bits(), b.to_bits(), h.to_bits());
         let (e, nu, alpha) = (self.youngs_modulus, self.poisson_ratio, self.drilling);
-        self.parts.entry(key).or_insert_with(|| Parts::new(a, b, e, nu, h, SHEAR_CORRECTION, alpha));
-        self.elements.push(Element { nodes, axes, key });
+        let parts = *self.rectangles.entry(key).or_insert_with(|| {
+            self.parts.push(Parts::new(a, b, e, nu, h, SHEAR_CORRECTION, alpha));
+            self.parts.len() - 1
+        });
+        self.elements.push(Element { nodes, axes, parts, shape: Shape::Rectangle { a, b }, thickness: h });
         self.elements.len() - 1
     }
 
@@ -196,6 +229,49 @@ impl Structure {
         let (e1, e2) = (s1 / a, s2 / b);
         let axes = Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e1.cross(&e2).transpose()]);
         Ok(self.add_rectangle(p0, axes, a, b, thickness))
+    }
+
+    /// Adds a flat quadrilateral ([`super::quad`]) from its four corners in order around its
+    /// boundary (counter-clockwise seen from the side its normal points to, as meshers write
+    /// them), merging its nodes with those already at the same positions; returns its element
+    /// index. Its frame: e₃ the unit normal (p₂ - p₀) x (p₃ - p₁), e₁ along its first side,
+    /// e₂ = e₃ x e₁. Refused if the corners are not finite, the quadrilateral is concave or
+    /// degenerate, or its corners leave its mean plane by more than [`WARP_LIMIT`] of its
+    /// diagonal (a warped element would need a warping correction this element lacks).
+    pub fn add_quad(&mut self, corners: [[f64; 3]; 4], thickness: f64) -> Result<usize, FemError> {
+        check_thickness(thickness)?;
+        let p = corners.map(Vector3::from);
+        let normal = (p[2] - p[0]).cross(&(p[3] - p[1]));
+        let size = (p[2] - p[0]).norm().max((p[3] - p[1]).norm());
+        if !(normal.norm() > 1e-9 * size * size && size.is_finite()) {
+            return Err(FemError::Mesh(format!("quadrilateral {corners:?} is degenerate or not finite")));
+        }
+        let e3 = normal.normalize();
+        let centre = (p[0] + p[1] + p[2] + p[3]) / 4.0;
+        let warp = p.iter().map(|q| (q - centre).dot(&e3).abs()).fold(0.0, f64::max) / size;
+        if warp > WARP_LIMIT {
+            return Err(FemError::Mesh(format!(
+                "quadrilateral {corners:?} is warped: its corners leave its mean plane by {warp:.2e} of its diagonal, above {WARP_LIMIT:e}; split it or refine the mesh"
+            )));
+        }
+        let side = p[1] - p[0];
+        let e1 = (side - e3 * side.dot(&e3)).normalize();
+        let e2 = e3.cross(&e1);
+        // Boundary order 0, 1, 2, 3 is the parameter order 0, 1, 3, 2.
+        let tensor = [p[0], p[1], p[3], p[2]];
+        let xy = tensor.map(|q| [(q - centre).dot(&e1), (q - centre).dot(&e2)]);
+        let quad = super::quad::Quad::new(xy)?;
+        let (e, nu, alpha) = (self.youngs_modulus, self.poisson_ratio, self.drilling);
+        self.parts.push(quad.parts(e, nu, thickness, SHEAR_CORRECTION, alpha));
+        let nodes = tensor.map(|q| self.node(q));
+        if (0..4).any(|i| (i + 1..4).any(|j| nodes[i] == nodes[j])) {
+            self.parts.pop();
+            return Err(FemError::Mesh(format!("quadrilateral {corners:?} has two corners at one node")));
+        }
+        let axes = Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e3.transpose()]);
+        let shape = Shape::Quad { nodal_areas: quad.nodal_areas() };
+        self.elements.push(Element { nodes, axes, parts: self.parts.len() - 1, shape, thickness });
+        Ok(self.elements.len() - 1)
     }
 
     /// Node positions (m).
@@ -247,11 +323,10 @@ impl Structure {
     pub fn area_load(&self, q: [f64; 3]) -> Vec<f64> {
         let mut f = vec![0.0; self.dofs()];
         for e in &self.elements {
-            let area = f64::from_bits(e.key.0) * f64::from_bits(e.key.1);
-            for &n in &e.nodes {
+            for (&n, share) in e.nodes.iter().zip(e.shape.nodal_areas()) {
                 for (i, qi) in q.iter().enumerate() {
-                    // ∫ N_k dA = A/4 for a bilinear rectangle.
-                    f[DOFS_PER_NODE * n + i] += qi * area / 4.0;
+                    // ∫ N_k dA (A/4 for a rectangle).
+                    f[DOFS_PER_NODE * n + i] += qi * share;
                 }
             }
         }
@@ -278,14 +353,18 @@ impl Structure {
     }
 
     /// The lumped (diagonal) mass of steel of density `rho` (kg/m³) over all DOFs: each
-    /// element's ρhA shared equally by its four nodes' translations, and its rotary inertia
-    /// ρh³A/12 by their rotations (the drilling one too, so that no DOF is massless).
+    /// element's ρhA shared by its nodes' translations as ∫ N_k dA (equally on a rectangle),
+    /// and its rotary inertia ρh³A/12 alike by their rotations (the drilling one too, so that
+    /// no DOF is massless).
     pub fn lumped_mass(&self, rho: f64) -> Vec<f64> {
         let mut m = vec![0.0; self.dofs()];
         for e in &self.elements {
-            let (a, b, h) = (f64::from_bits(e.key.0), f64::from_bits(e.key.1), f64::from_bits(e.key.2));
-            let (translation, rotation) = (rho * h * a * b / 4.0, rho * h.powi(3) / 12.0 * a * b / 4.0);
-            for &n in &e.nodes {
+            let h = e.thickness;
+            let shares = match e.shape {
+                Shape::Rectangle { a, b } => [(rho * h * a * b / 4.0, rho * h.powi(3) / 12.0 * a * b / 4.0); 4],
+                Shape::Quad { nodal_areas } => nodal_areas.map(|s| (rho * h * s, rho * h.powi(3) / 12.0 * s)),
+            };
+            for (&n, (translation, rotation)) in e.nodes.iter().zip(shares) {
                 for i in 0..3 {
                     m[DOFS_PER_NODE * n + i] += translation;
                     m[DOFS_PER_NODE * n + 3 + i] += rotation;
@@ -313,7 +392,7 @@ impl Structure {
         }
         let mut triplets = Vec::with_capacity(self.elements.len() * 300);
         for e in &self.elements {
-            let k = Self::global(e, &self.parts[&e.key].total());
+            let k = Self::global(e, &self.parts[e.parts].total());
             let dofs = self.element_dofs(e);
             for p in 0..24 {
                 for q in 0..24 {
@@ -491,7 +570,7 @@ impl Factorized<'_> {
                 let (block, row) = (k / 3, k % 3);
                 (0..3).map(|c| e.axes[(row, c)] * u[dofs[3 * block + c]]).sum()
             });
-            let parts = &self.structure.parts[&e.key];
+            let parts = &self.structure.parts[e.parts];
             let energy = |k: &Mat24| ue.dot(&(k * ue));
             membrane += energy(&parts.membrane);
             bending += energy(&parts.bending);
