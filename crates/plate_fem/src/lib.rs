@@ -135,6 +135,17 @@ pub enum FemError {
         #[source]
         source: SparseError,
     },
+    /// A mesh file that cannot be read: its origin, the line (1-based; 0 where the fault is
+    /// the file's as a whole) and what is wrong there.
+    #[error("{origin}, line {line}: {message}")]
+    MeshFile {
+        /// The file's name as given.
+        origin: String,
+        /// The line, from 1 (0: the whole file).
+        line: usize,
+        /// What is wrong, with the value as written and what is allowed.
+        message: String,
+    },
     /// An eigenvalue request that cannot be met: more modes than degrees of freedom, or a
     /// subspace iteration that did not reach its residual tolerance.
     #[error("modes: {0}")]

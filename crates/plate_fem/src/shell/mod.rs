@@ -53,8 +53,12 @@
 //! ```
 
 pub mod element;
+pub mod gmsh;
+mod load;
 pub mod quad;
+mod restraints;
 mod structure;
 pub mod tail_beam;
 
+pub use load::DISC_RULE;
 pub use structure::{Face, FaceId, Factorized, Restraints, ShellResponse, Spring, Structure, WARP_LIMIT};

@@ -107,6 +107,32 @@ impl Quad {
         k
     }
 
+    /// The parameters (ξ, η) of the point `p` of the element's plane, by Newton's iteration on
+    /// the bilinear map from the centre; None if it does not converge to 1e-12 of the element's
+    /// size in 30 steps or lands outside [-1e-9, 1 + 1e-9]² (the point is not on the element).
+    pub fn locate(&self, p: [f64; 2]) -> Option<(f64, f64)> {
+        let size = self.diameter();
+        let (mut xi, mut eta) = (0.5, 0.5);
+        for _ in 0..30 {
+            let n = bilinear(1.0, 1.0, xi, eta);
+            let x: Vector2<f64> = (0..4).map(|k| Vector2::from(self.xy[k]) * n[k][0]).sum();
+            let r = Vector2::from(p) - x;
+            if r.norm() <= 1e-12 * size {
+                let inside = |t: f64| (-1e-9..=1.0 + 1e-9).contains(&t);
+                return (inside(xi) && inside(eta)).then_some((xi.clamp(0.0, 1.0), eta.clamp(0.0, 1.0)));
+            }
+            // r = Jᵀ (Δξ, Δη): J's rows are ∂x/∂ξ and ∂x/∂η.
+            let step = self.jacobian(xi, eta).transpose().try_inverse()? * r;
+            (xi, eta) = (xi + step.x, eta + step.y);
+        }
+        None
+    }
+
+    /// The shape functions N_k at (ξ, η).
+    pub fn shape(xi: f64, eta: f64) -> [f64; 4] {
+        bilinear(1.0, 1.0, xi, eta).map(|s| s[0])
+    }
+
     /// The area (m²): exact, det J being linear in (ξ, η).
     pub fn area(&self) -> f64 {
         self.nodal_areas().iter().sum()

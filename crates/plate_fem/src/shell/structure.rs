@@ -11,6 +11,8 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 use std::collections::HashMap;
 
+pub use super::restraints::{Restraints, Spring};
+
 /// A rectangular wall meshed as a tensor grid: its corner `origin`, two orthogonal unit axes,
 /// the grid lines along each (m, from the origin, increasing from 0) and its thickness. Its
 /// normal is e₁ x e₂; a patch on it is placed by (x, z) = (along e₁, along e₂).
@@ -87,10 +89,10 @@ pub struct FaceId(usize);
 /// One flat element: nodes in the order (0,0), (1,0), (0,1), (1,1) of its parameters (for a
 /// rectangle, of its sides a along e₁ and b along e₂).
 #[derive(Debug, Clone)]
-struct Element {
-    nodes: [usize; 4],
+pub(super) struct Element {
+    pub(super) nodes: [usize; 4],
     /// Rows e₁, e₂, e₃.
-    axes: Matrix3<f64>,
+    pub(super) axes: Matrix3<f64>,
     /// Its parts' index in [`Structure::parts`].
     parts: usize,
     shape: Shape,
@@ -122,9 +124,9 @@ pub struct Structure {
     youngs_modulus: f64,
     poisson_ratio: f64,
     drilling: f64,
-    nodes: Vec<Vector3<f64>>,
+    pub(super) nodes: Vec<Vector3<f64>>,
     index: HashMap<[i64; 3], usize>,
-    elements: Vec<Element>,
+    pub(super) elements: Vec<Element>,
     /// Element matrices: one per rectangle size (a, b, h), since a structure of walls repeats
     /// a few sizes, and one per general quadrilateral.
     parts: Vec<Parts>,
@@ -290,6 +292,12 @@ impl Structure {
         (0..self.nodes.len()).map(|n| (n, (self.nodes[n] - p).norm())).min_by(|a, b| a.1.total_cmp(&b.1))
     }
 
+    /// The nodes of element `e` (as [`Self::add_quad`] or [`Self::add_facet`] numbered it),
+    /// in its parameter order (0,0), (1,0), (0,1), (1,1).
+    pub fn element_nodes(&self, e: usize) -> [usize; 4] {
+        self.elements[e].nodes
+    }
+
     /// Number of elements.
     pub fn elements(&self) -> usize {
         self.elements.len()
@@ -422,57 +430,6 @@ impl Structure {
             FemError::Singular("the restraints leave the structure a rigid-body motion (or a mechanism)".into())
         })?;
         Ok(Factorized { structure: self, restraints: restraints.clone(), free, unknowns, factor })
-    }
-}
-
-/// A translational spring from a node to ground: a jack, a pad, a foundation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Spring {
-    /// The node.
-    pub node: usize,
-    /// The line of action (any length; normalised).
-    pub direction: [f64; 3],
-    /// Stiffness along it (N/m).
-    pub stiffness: f64,
-}
-
-impl Spring {
-    /// The spring's force (N), positive in compression along `direction`'s stretch sign,
-    /// under the displacements `u` (all DOFs).
-    pub fn force(&self, u: &[f64]) -> f64 {
-        let d = Vector3::from(self.direction).normalize();
-        let n = DOFS_PER_NODE * self.node;
-        self.stiffness * d.dot(&Vector3::new(u[n], u[n + 1], u[n + 2]))
-    }
-
-    fn check(&self, nodes: usize) -> Result<(), FemError> {
-        let norm = Vector3::from(self.direction).norm();
-        if self.node >= nodes
-            || !(norm.is_finite() && norm > 0.0)
-            || !(self.stiffness.is_finite() && self.stiffness > 0.0)
-        {
-            return Err(FemError::Support(format!(
-                "spring on node {} along {:?} with k = {} N/m: needs an existing node, a direction and 0 < k < inf",
-                self.node, self.direction, self.stiffness
-            )));
-        }
-        Ok(())
-    }
-}
-
-/// What holds a structure: DOFs held at zero and springs to ground.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Restraints {
-    /// (node, DOF) pairs held at zero; DOFs 0-2 translations, 3-5 rotations, global axes.
-    pub held: Vec<(usize, usize)>,
-    /// Springs to ground.
-    pub springs: Vec<Spring>,
-}
-
-impl Restraints {
-    /// Holds the given DOFs of `node`.
-    pub fn hold(&mut self, node: usize, dofs: &[usize]) {
-        self.held.extend(dofs.iter().map(|&d| (node, d)));
     }
 }
 
