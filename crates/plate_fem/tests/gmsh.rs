@@ -278,3 +278,68 @@ fn the_scordelis_lo_roof_from_a_file() {
     let w = -u[6 * edge + 1];
     assert!((w / 0.3024 - 1.0).abs() < 5e-3 && (w / 0.30173 - 1.0).abs() < 1e-4, "{w}");
 }
+
+/// A mesh written by `to_msh41` reads back to itself: nodes, cells and their groups.
+#[test]
+fn a_written_mesh_reads_back() {
+    let mesh = MeshFile::parse(&msh41(5, 3, distorted_square(5), (2, 1)), "m.msh", 1.0).unwrap().refined();
+    let back = MeshFile::parse(&mesh.to_msh41(1.0), "back.msh", 1.0).unwrap();
+    assert_eq!(back.nodes, mesh.nodes);
+    assert_eq!(
+        back.quads.iter().map(|c| c.nodes).collect::<Vec<_>>(),
+        mesh.quads.iter().map(|c| c.nodes).collect::<Vec<_>>()
+    );
+    for name in ["plate", "edges", "centre"] {
+        assert_eq!(back.nodes_of(name).unwrap(), mesh.nodes_of(name).unwrap(), "{name}");
+    }
+}
+
+/// The tail beam's box exported as a mesh file (in millimetres) and read back is the builder's
+/// structure: under the same disc load on its top plate, the same compliance to 1e-9 (the
+/// builder's rectangles and the file's general quadrilaterals agree to rounding).
+#[test]
+fn the_tail_beam_through_a_file_is_the_builder() {
+    use plate_fem::shell::tail_beam::{Jack, TailBeam};
+    use plate_fem::shell::Spring;
+    let beam = TailBeam {
+        length: 1.6,
+        width: 1.4,
+        height: 0.25,
+        top: 0.03,
+        bottom: 0.02,
+        webs: 0.02,
+        ends: 0.02,
+        ribs: vec![0.7],
+        rib: 0.016,
+        pin_height: 0.125,
+        pins: vec![[0.1, 0.3], [1.1, 1.3]],
+        jacks: vec![Jack { x: 0.6, z: 0.35, pad: 0.1, stiffness: 4.3e7, angle: 1.0 }],
+    };
+    let (e, nu, element, at) = (210e9, 0.3, 0.1, [0.8, 0.25, 0.5]);
+    let built = beam.build(e, nu, element, 0).unwrap();
+    let top: Vec<usize> = built.structure.faces().next().unwrap().1.to_vec();
+    let f = built.structure.disc_load(at, 0.015, &top, DISC_RULE).unwrap();
+    let u = built.structure.factorize(&built.restraints).unwrap().solve(&f);
+    let builder: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+
+    let text = beam.mesh_file(element, 0).unwrap().to_msh41(1e-3);
+    let mesh = MeshFile::parse(&text, "tail-beam.msh", 1e-3).unwrap();
+    let walls = [("top", 0.03), ("bottom", 0.02), ("webs", 0.02), ("ribs", 0.016), ("ends", 0.02)];
+    let (s, node_of) = mesh.structure(e, nu, &walls.map(|(g, t)| (g.to_string(), t))).unwrap();
+    let mut r = Restraints::default();
+    for n in mesh.nodes_of("pins").unwrap() {
+        r.hold(node_of[n].unwrap(), &[0, 1, 2]);
+    }
+    let pad = mesh.nodes_of("jack 1").unwrap();
+    for &n in &pad {
+        let direction = [1f64.cos(), 1f64.sin(), 0.0];
+        r.springs.push(Spring { node: node_of[n].unwrap(), direction, stiffness: 4.3e7 / pad.len() as f64 });
+    }
+    let g = mesh.group("top").unwrap();
+    let struck: Vec<usize> =
+        mesh.quads.iter().enumerate().filter(|(_, c)| c.groups.contains(&g)).map(|(i, _)| i).collect();
+    let f = s.disc_load(at, 0.015, &struck, DISC_RULE).unwrap();
+    let u = s.factorize(&r).unwrap().solve(&f);
+    let read: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+    assert!((read / builder - 1.0).abs() < 1e-9, "builder {builder:e}, read {read:e}");
+}

@@ -303,6 +303,12 @@ impl Structure {
         self.elements.len()
     }
 
+    /// Every face added by [`Self::add_face`], in that order, with its elements (row-major
+    /// over its grid).
+    pub fn faces(&self) -> impl Iterator<Item = (FaceId, &[usize])> {
+        self.faces.iter().enumerate().map(|(i, (_, ids))| (FaceId(i), ids.as_slice()))
+    }
+
     /// A face added by [`Self::add_face`].
     pub fn face(&self, id: FaceId) -> &Face {
         &self.faces[id.0].0

@@ -15,6 +15,7 @@
 //! acting on a square pad of the bottom plate whose nodes share its stiffness: a pad of
 //! stated side, for the same reason.
 
+use super::gmsh::{Cell, Group, MeshFile};
 use super::{Face, FaceId, Restraints, Spring, Structure};
 use crate::FemError;
 use serde::Serialize;
@@ -222,6 +223,55 @@ impl TailBeam {
             jacks.push(first..restraints.springs.len());
         }
         Ok(Built { structure: s, top, restraints, jacks })
+    }
+}
+
+impl TailBeam {
+    /// The box as a shell mesh with named groups, for a mesher or [`super::gmsh`]: the walls'
+    /// quadrilaterals in the surface groups "top", "bottom", "webs", "ribs" (if any) and
+    /// "ends"; the pins' nodes in the point group "pins"; each jack's pad nodes in "jack 1",
+    /// "jack 2", ... The mesh of [`Self::build`] at `element` and `level`.
+    pub fn mesh_file(&self, element: f64, level: u32) -> Result<MeshFile, FemError> {
+        let built = self.build(1.0, 0.0, element, level)?;
+        let s = &built.structure;
+        let mut groups: Vec<Group> = ["top", "bottom", "webs", "ribs", "ends"]
+            .iter()
+            .zip(1..)
+            .map(|(name, tag)| Group { dim: 2, tag, name: name.to_string() })
+            .collect();
+        if self.ribs.is_empty() {
+            groups.remove(3);
+        }
+        let walls = 4 + self.ribs.len();
+        let group_of_face = |k: usize| match k {
+            0 => "top",
+            1 => "bottom",
+            2 | 3 => "webs",
+            k if k < walls => "ribs",
+            _ => "ends",
+        };
+        let mut quads = Vec::new();
+        for (k, (_, elements)) in s.faces().enumerate() {
+            let g = groups.iter().position(|g| g.name == group_of_face(k)).unwrap_or(0);
+            for &e in elements {
+                let [a, b, c, d] = s.element_nodes(e);
+                quads.push(Cell { nodes: [a, b, d, c], groups: vec![g], tag: 0 });
+            }
+        }
+        let mut points = Vec::new();
+        let mut point_group = |name: String, nodes: Vec<usize>, groups: &mut Vec<Group>| {
+            groups.push(Group { dim: 0, tag: groups.len() as i64 + 1, name });
+            let g = groups.len() - 1;
+            points.extend(nodes.into_iter().map(|n| Cell { nodes: [n], groups: vec![g], tag: 0 }));
+        };
+        let mut pins: Vec<usize> = built.restraints.held.iter().map(|&(n, _)| n).collect();
+        pins.dedup();
+        point_group("pins".into(), pins, &mut groups);
+        for (j, range) in built.jacks.iter().enumerate() {
+            let pad = built.restraints.springs[range.clone()].iter().map(|sp| sp.node).collect();
+            point_group(format!("jack {}", j + 1), pad, &mut groups);
+        }
+        Ok(MeshFile { nodes: s.nodes().to_vec(), quads, lines: Vec::new(), points, groups })
     }
 }
 
