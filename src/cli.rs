@@ -313,6 +313,19 @@ pub enum Command {
     /// Kirchhoff moment of a point load is singular and the values grow with refinement: read
     /// stress maxima from the other elements.
     Field(FieldArgs),
+    /// Write a scene's tail beam ([tail_beam]) as a Gmsh mesh file, DIR/<scene name>.msh (MSH
+    /// 4.1, millimetres; default DIR impact-out/<scene name>-mesh): its coarsest mesh with the
+    /// walls ("top", "bottom", "webs", "ribs", "ends"), the pins ("pins") and each jack's pad
+    /// ("jack 1", ...) as named groups, to edit in Gmsh and read back through [shell_mesh].
+    Mesh {
+        /// Scene file with a [tail_beam] table.
+        #[arg(long, value_name = "FILE")]
+        scene: PathBuf,
+        /// Directory for the file, written whole or not at all (an existing one only if empty or
+        /// an earlier output of impact).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Print a shell completion script to standard output (e.g. `impact completions bash >
     /// ~/.local/share/bash-completion/completions/impact`).
     Completions {

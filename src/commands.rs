@@ -53,6 +53,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
             commit_reporting(target, &artifacts, &impact::report::main_scene(&scene), json)
         }
         Command::FemBench(args) => fem_bench(&args),
+        Command::Mesh { scene, out } => mesh(&scene, out),
         Command::Field(args) => crate::field::run(&args),
         Command::DefaultScene => out(DEFAULT_SCENE),
         Command::Reference { what } => out(&cli_doc::reference(what, crate::cli::Cli::command())),
@@ -96,6 +97,17 @@ fn signals(scene: &Scene, dir: Option<PathBuf>, json: bool) -> Result<(), Failur
     }
     let text: Vec<String> = tables.iter().map(|t| t.to_text()).collect();
     out(&format!("scene: {} ({})\n\n{}", scene.name, scene.description, text.join("\n")))
+}
+
+/// `impact mesh`: the scene's tail beam as a Gmsh mesh file with named groups.
+fn mesh(path: &Path, dir: Option<PathBuf>) -> Result<(), Failure> {
+    let scene = Scene::load(path)?;
+    let tb = scene.tail_beam.as_ref().ok_or("the scene has no [tail_beam] table to write as a mesh")?;
+    let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "mesh")))?;
+    let text = tb.beam.mesh_file(tb.element, 0)?.to_msh41(1e-3);
+    let mut artifacts = impact::output::Artifacts::new();
+    artifacts.add(format!("{}.msh", slug(&scene.name)), text);
+    commit(target, &artifacts)
 }
 
 /// `impact identify`: the scene's ensemble, checked against every budget before it runs.
@@ -218,7 +230,8 @@ pub fn load(path: &Option<PathBuf>) -> Result<Scene, Failure> {
 /// `impact identify` has neither (its ensemble draws its own).
 fn load_bodies(path: &Option<PathBuf>, command: &str) -> Result<Scene, Failure> {
     let scene = load(path)?;
-    if scene.bodies.is_empty() || scene.points.is_empty() {
+    // A structure from a mesh file brings its own struck points.
+    if scene.bodies.is_empty() || (scene.points.is_empty() && scene.shell_mesh.is_none()) {
         return Err(format!(
             "scene {}: impact {command} strikes the scene's [[bodies]] at its [points], and it has none (a scene of only \"identify\" or \"drops\" is for impact identify, stream or drops)",
             scene.name

@@ -15,6 +15,9 @@
    displacement = (0, 0, w), times rising from 0, and the struck node's w at each frame equal
    to the plate displacement of the history.csv row of the same time.
 
+7. `impact mesh` (the tail beam as MSH 4.1) read by meshio, written again as MSH 2.2, and
+   read back by `impact compare` through [shell_mesh]: the same compliances from both files.
+
 Prints one line per check and a closing 'N passed, N failed'; exits non-zero on failure.
 Usage: python check_roundtrip.py [--impact PATH_TO_BINARY]
 """
@@ -118,6 +121,34 @@ def check_rust_pvd(check, series_dir, doc, load, thickness):
     check(f"{tag} struck-node w = history plate displacement", peak > 0 and worst <= 1e-12 * peak, f"(worst {worst:.1e} m of {peak:.2e} m)")
 
 
+def check_mesh_file(check, impact, tmp):
+    """`impact mesh` writes the tail beam as MSH 4.1; meshio reads it (points, quadrilaterals,
+    the named groups) and writes it again as MSH 2.2, a format and writer impact shares nothing
+    with; `impact compare` on the shipped [shell_mesh] scene (two meshes, for speed) gives the
+    same compliances from either file, to the last bit."""
+    tmp = Path(tmp)
+    subprocess.run([impact, "mesh", "--scene", str(ROOT / "scenes" / "tail-beam.toml"), "--out", str(tmp / "mesh")], check=True, capture_output=True)
+    ours = tmp / "mesh" / "tail-beam.msh"
+    m = meshio.read(ours)
+    quads = sum(len(c.data) for c in m.cells if c.type == "quad")
+    lines = sum(len(c.data) for c in m.cells if c.type == "line")
+    names = {"top", "bottom", "webs", "ribs", "ends", "pins", "jack 1", "jack 2"}
+    check("meshio reads impact mesh: points, quads, lines", (len(m.points), quads, lines) == (864, 902, 4), f"({len(m.points)}, {quads}, {lines})")
+    check("meshio reads impact mesh: the named groups", set(m.field_data) == names, str(sorted(m.field_data)))
+    theirs = tmp / "meshio.msh"
+    meshio.write(theirs, m, file_format="gmsh22", binary=False)
+    scene = (ROOT / "scenes" / "tail-beam-mesh.toml").read_text().replace("levels = 4", "levels = 2")
+    tables = []
+    for name, mesh in (("ours", ours), ("theirs", theirs)):
+        text = scene.replace('file = "meshes/tail-beam.msh"', f'file = "{mesh.as_posix()}"')
+        path = tmp / f"{name}.toml"
+        path.write_text(text)
+        subprocess.run([impact, "compare", "--scene", str(path), "--out", str(tmp / name)], check=True, capture_output=True)
+        rows = (tmp / name / "shell-mesh" / "structure.csv").read_text().splitlines()
+        tables.append([r for r in rows if not r.startswith("#")])
+    check("the shell-mesh compliances from impact's MSH 4.1 and meshio's MSH 2.2", tables[0] == tables[1] and len(tables[0]) == 5)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--impact", default=str(ROOT / "target" / "release" / "impact"))
@@ -179,6 +210,9 @@ def main(argv=None):
             check=True,
         )
         check_rust_pvd(check, series, doc, (x, z), plate["thickness"])
+
+        # A shell mesh through meshio and back.
+        check_mesh_file(check, args.impact, tmp)
 
     passed = sum(results)
     failed = len(results) - passed

@@ -51,6 +51,10 @@ analyses! {
     /// The scene's bodies and velocities on a box-section tail beam (`[tail_beam]`, flat shell
     /// elements) beside the paper's beam and Kirchhoff plate.
     TailBeam => "tail-beam",
+    /// The scene's bodies and velocities on a shell structure read from a mesh file
+    /// (`[shell_mesh]`: Gmsh's MSH with named groups), its compliance on a ladder of the
+    /// file's mesh and its refinements.
+    ShellMesh => "shell-mesh",
     /// The plate FE and transient models against their classical references.
     Verification => "verification",
     /// Transient against quasi-static at the scene's points.
@@ -194,6 +198,10 @@ pub struct Scene {
     /// [`Analysis::TailBeam`]. Left out of the serialised scene when None.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tail_beam: Option<crate::compliance::tail_beam::TailBeamScene>,
+    /// The structure read from a mesh file (`[shell_mesh]`); present exactly when the scene
+    /// asks for [`Analysis::ShellMesh`]. Left out of the serialised scene when None.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shell_mesh: Option<crate::compliance::shell_mesh::ShellMeshScene>,
 }
 
 impl Scene {

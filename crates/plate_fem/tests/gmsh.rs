@@ -295,8 +295,10 @@ fn a_written_mesh_reads_back() {
 }
 
 /// The tail beam's box exported as a mesh file (in millimetres) and read back is the builder's
-/// structure: under the same disc load on its top plate, the same compliance to 1e-9 (the
-/// builder's rectangles and the file's general quadrilaterals agree to rounding).
+/// structure, and its refinement the builder's next mesh: under the same disc load on the top
+/// plate, the same compliance to 1e-9 on both (the builder's rectangles and the file's general
+/// quadrilaterals agree to rounding; the pins, a curve group, and the pad, a surface group of
+/// the bottom plate's thickness, refine with the mesh).
 #[test]
 fn the_tail_beam_through_a_file_is_the_builder() {
     use plate_fem::shell::tail_beam::{Jack, TailBeam};
@@ -316,30 +318,38 @@ fn the_tail_beam_through_a_file_is_the_builder() {
         jacks: vec![Jack { x: 0.6, z: 0.35, pad: 0.1, stiffness: 4.3e7, angle: 1.0 }],
     };
     let (e, nu, element, at) = (210e9, 0.3, 0.1, [0.8, 0.25, 0.5]);
-    let built = beam.build(e, nu, element, 0).unwrap();
-    let top: Vec<usize> = built.structure.faces().next().unwrap().1.to_vec();
-    let f = built.structure.disc_load(at, 0.015, &top, DISC_RULE).unwrap();
-    let u = built.structure.factorize(&built.restraints).unwrap().solve(&f);
-    let builder: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
-
     let text = beam.mesh_file(element, 0).unwrap().to_msh41(1e-3);
-    let mesh = MeshFile::parse(&text, "tail-beam.msh", 1e-3).unwrap();
-    let walls = [("top", 0.03), ("bottom", 0.02), ("webs", 0.02), ("ribs", 0.016), ("ends", 0.02)];
-    let (s, node_of) = mesh.structure(e, nu, &walls.map(|(g, t)| (g.to_string(), t))).unwrap();
-    let mut r = Restraints::default();
-    for n in mesh.nodes_of("pins").unwrap() {
-        r.hold(node_of[n].unwrap(), &[0, 1, 2]);
+    let mut mesh = MeshFile::parse(&text, "tail-beam.msh", 1e-3).unwrap();
+    for level in 0..2 {
+        if level > 0 {
+            mesh = mesh.refined();
+        }
+        let built = beam.build(e, nu, element, level).unwrap();
+        let top: Vec<usize> = built.structure.faces().next().unwrap().1.to_vec();
+        let f = built.structure.disc_load(at, 0.015, &top, DISC_RULE).unwrap();
+        let u = built.structure.factorize(&built.restraints).unwrap().solve(&f);
+        let builder: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+
+        let walls =
+            [("top", 0.03), ("bottom", 0.02), ("jack 1", 0.02), ("webs", 0.02), ("ribs", 0.016), ("ends", 0.02)];
+        let (s, node_of) = mesh.structure(e, nu, &walls.map(|(g, t)| (g.to_string(), t))).unwrap();
+        let mut r = Restraints::default();
+        for n in mesh.nodes_of("pins").unwrap() {
+            r.hold(node_of[n].unwrap(), &[0, 1, 2]);
+        }
+        let pad = mesh.nodes_of("jack 1").unwrap();
+        assert_eq!(pad.len(), built.restraints.springs.len(), "level {level}: the pad's nodes");
+        for &n in &pad {
+            let direction = [1f64.cos(), 1f64.sin(), 0.0];
+            r.springs.push(Spring { node: node_of[n].unwrap(), direction, stiffness: 4.3e7 / pad.len() as f64 });
+        }
+        assert_eq!(r.held.len(), built.restraints.held.len(), "level {level}: the pins' DOFs");
+        let g = mesh.group("top").unwrap();
+        let struck: Vec<usize> =
+            mesh.quads.iter().enumerate().filter(|(_, c)| c.groups.contains(&g)).map(|(i, _)| i).collect();
+        let f = s.disc_load(at, 0.015, &struck, DISC_RULE).unwrap();
+        let u = s.factorize(&r).unwrap().solve(&f);
+        let read: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+        assert!((read / builder - 1.0).abs() < 1e-9, "level {level}: builder {builder:e}, read {read:e}");
     }
-    let pad = mesh.nodes_of("jack 1").unwrap();
-    for &n in &pad {
-        let direction = [1f64.cos(), 1f64.sin(), 0.0];
-        r.springs.push(Spring { node: node_of[n].unwrap(), direction, stiffness: 4.3e7 / pad.len() as f64 });
-    }
-    let g = mesh.group("top").unwrap();
-    let struck: Vec<usize> =
-        mesh.quads.iter().enumerate().filter(|(_, c)| c.groups.contains(&g)).map(|(i, _)| i).collect();
-    let f = s.disc_load(at, 0.015, &struck, DISC_RULE).unwrap();
-    let u = s.factorize(&r).unwrap().solve(&f);
-    let read: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
-    assert!((read / builder - 1.0).abs() < 1e-9, "builder {builder:e}, read {read:e}");
 }

@@ -20,6 +20,7 @@ pub mod paper;
 pub mod paper_studies;
 pub mod plate_field;
 pub mod regimes;
+pub mod shell_mesh;
 pub mod signals;
 pub mod skfem;
 pub mod stream;
@@ -117,6 +118,15 @@ pub const STREAM_SCENES: [(&str, &str); 1] =
 /// embedded: file name and text.
 pub const TAIL_BEAM_SCENES: [(&str, &str); 1] = [("tail-beam.toml", include_str!("../../../scenes/tail-beam.toml"))];
 
+/// The mesh-file scenes `impact report` runs (the "shell-mesh" study), shipped in `scenes/`
+/// with their meshes and embedded: file name, text, and the mesh file (its name as the scene
+/// writes it, its contents).
+pub const SHELL_MESH_SCENES: [(&str, &str, (&str, &str)); 1] = [(
+    "tail-beam-mesh.toml",
+    include_str!("../../../scenes/tail-beam-mesh.toml"),
+    ("meshes/tail-beam.msh", include_str!("../../../scenes/meshes/tail-beam.msh")),
+)];
+
 const INDEX: &str = include_str!("templates/index/index.md");
 const INDEX_STREAM: &str = include_str!("templates/index/stream.md");
 const INDEX_STREAM_ROW: &str = include_str!("templates/index/stream-row.md");
@@ -152,6 +162,15 @@ pub fn full_report(scene: &Scene, out: &mut OutputDir, progress: &dyn Progress) 
         let (mut files, finding) = tail_beam::report(&s, &data)?;
         Provenance::of(&s).stamp(&mut files);
         let dir = format!("tail-beam/{}", slug(&s.name));
+        all.nest(&dir, files);
+        tail_beam.push_str(&format!("{finding}  ([{dir}/]({dir}/index.md), `scenes/{file}`)\n"));
+    }
+    for (file, text, mesh) in SHELL_MESH_SCENES {
+        let s = scene::parse_with_files(text, &format!("scenes/{file} (embedded)"), &[mesh])?;
+        let data = studies::shell_mesh::compute(&s)?;
+        let (mut files, finding) = shell_mesh::report(&s, &data)?;
+        Provenance::of(&s).stamp(&mut files);
+        let dir = format!("shell-mesh/{}", slug(&s.name));
         all.nest(&dir, files);
         tail_beam.push_str(&format!("{finding}  ([{dir}/]({dir}/index.md), `scenes/{file}`)\n"));
     }

@@ -66,8 +66,8 @@ pub trait NestedStudy: Sync {
 }
 
 /// Every nested study, in the order the scene report runs them and its page shows them.
-pub const NESTED: [&dyn NestedStudy; 5] =
-    [&PaperStudiesPage, &ThreeModelYield, &TransientPage, &RegimePage, &TailBeamPage];
+pub const NESTED: [&dyn NestedStudy; 6] =
+    [&PaperStudiesPage, &ThreeModelYield, &TransientPage, &RegimePage, &TailBeamPage, &ShellMeshPage];
 
 /// The paper's conclusions, tables and figures under both models, on the paper's scene.
 struct PaperStudiesPage;
@@ -191,9 +191,28 @@ impl NestedStudy for TailBeamPage {
     }
 }
 
+/// The scene's impacts on a shell structure read from its mesh file.
+struct ShellMeshPage;
+
+impl NestedStudy for ShellMeshPage {
+    fn folder(&self) -> &'static str {
+        "shell-mesh"
+    }
+    fn wanted(&self, scene: &Scene) -> bool {
+        scene.wants(Analysis::ShellMesh)
+    }
+    fn run(&self, scene: &Scene, _progress: &dyn Progress) -> Result<Nested, Failure> {
+        let data = studies::shell_mesh::compute(scene)?;
+        let (files, finding) = crate::shell_mesh::report(scene, &data)?;
+        let section = render("comparison/shell-mesh.md", SHELL_MESH, &[])?;
+        Ok(Nested { files, of: scene.clone(), findings: vec![finding], section })
+    }
+}
+
 // The main report's sections on the studies nested beside the comparison.
 const PAPER_STUDIES: &str = include_str!("templates/comparison/paper-studies.md");
 const TRANSIENT: &str = include_str!("templates/comparison/transient.md");
 const REGIMES: &str = include_str!("templates/comparison/regimes.md");
 const TAIL_BEAM: &str = include_str!("templates/comparison/tail-beam.md");
+const SHELL_MESH: &str = include_str!("templates/comparison/shell-mesh.md");
 const FINDING_TRANSIENT: &str = include_str!("templates/comparison/finding-transient.md");

@@ -112,6 +112,17 @@ pub fn parse_in_folder(text: &str, origin: &str, folder: &Path) -> Result<Scene,
 /// Parses and validates scene text; files it names (a measured PSD) are read relative to
 /// `base`, the scene file's folder (the working folder when None).
 fn parse_in(text: &str, origin: &str, base: Option<&Path>) -> Result<Scene, SceneError> {
+    parse_with(text, origin, base, &[])
+}
+
+/// Parses and validates scene text whose mesh file (`[shell_mesh] file`) is one of
+/// `embedded` (name as the scene writes it, contents): a scene shipped inside the program
+/// with its mesh.
+pub fn parse_with_files(text: &str, origin: &str, embedded: &[(&str, &str)]) -> Result<Scene, SceneError> {
+    parse_with(text, origin, None, embedded)
+}
+
+fn parse_with(text: &str, origin: &str, base: Option<&Path>, embedded: &[(&str, &str)]) -> Result<Scene, SceneError> {
     let mut raw: RawScene = toml::from_str(text).map_err(|e| SceneError::Syntax {
         origin: origin.to_string(),
         message: e.to_string().trim_end().to_string(),
@@ -122,6 +133,10 @@ fn parse_in(text: &str, origin: &str, base: Option<&Path>) -> Result<Scene, Scen
         Some(m) => validate::measurement::read_psd_files(m, base),
         None => Ok(()),
     };
+    let read = read.and_then(|()| match raw.shell_mesh.as_mut() {
+        Some(m) => validate::shell_mesh::read_file(m, base, embedded),
+        None => Ok(()),
+    });
     read.and_then(|()| validate(raw)).map_err(|e| match e {
         Invalid::Range(source) => SceneError::OutOfRange { origin: origin.to_string(), source },
         Invalid::Other { field, message } => SceneError::Inconsistent { origin: origin.to_string(), field, message },

@@ -42,6 +42,54 @@ pub(crate) struct RawScene {
     pub(crate) stream: Option<crate::validate::stream::RawStream>,
     #[serde(default)]
     pub(crate) tail_beam: Option<RawTailBeam>,
+    #[serde(default)]
+    pub(crate) shell_mesh: Option<RawShellMesh>,
+}
+
+/// `[shell_mesh]`: a shell structure read from a Gmsh MSH file with named groups.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawShellMesh {
+    pub(crate) file: String,
+    #[serde(default = "one")]
+    pub(crate) unit_mm: f64,
+    pub(crate) thickness_mm: std::collections::BTreeMap<String, f64>,
+    #[serde(default)]
+    pub(crate) holds: Vec<RawHold>,
+    #[serde(default)]
+    pub(crate) springs: Vec<RawGroupSpring>,
+    pub(crate) struck: String,
+    pub(crate) points_mm: Vec<Vec<f64>>,
+    #[serde(default = "default_mesh_levels")]
+    pub(crate) levels: u32,
+    /// The file's bytes, read before validation (relative to the scene's folder).
+    #[serde(skip)]
+    pub(crate) bytes: Option<Vec<u8>>,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+pub(crate) fn default_mesh_levels() -> u32 {
+    3
+}
+
+/// `[[shell_mesh.holds]]`: DOFs held at every node of a group.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawHold {
+    pub(crate) group: String,
+    pub(crate) dofs: Vec<String>,
+}
+
+/// `[[shell_mesh.springs]]`: a spring to ground shared by a group's nodes.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct RawGroupSpring {
+    pub(crate) group: String,
+    pub(crate) stiffness_n_per_m: f64,
+    pub(crate) direction: Vec<f64>,
 }
 
 /// `[tail_beam]`: a box-section tail beam of flat shell walls.

@@ -54,6 +54,7 @@ pub mod progress;
 pub mod regimes;
 pub mod run;
 pub mod settings;
+pub mod shell_mesh;
 pub mod signals;
 pub mod stream;
 pub mod study;

@@ -5,6 +5,7 @@
 
 pub mod mindlin;
 pub mod plate;
+pub mod shell_mesh;
 pub mod table;
 pub mod tail_beam;
 

@@ -521,8 +521,13 @@ impl Factorized<'_> {
 
     /// [`Self::respond`] with the displacements (all DOFs) per unit force.
     pub fn respond_with_field(&self, id: FaceId, patch: &Patch) -> Result<(ShellResponse, Vec<f64>), FemError> {
-        let f = self.structure.patch_load(id, patch)?;
-        let u = self.solve(&f);
+        Ok(self.respond_to(&self.structure.patch_load(id, patch)?))
+    }
+
+    /// The response to the load `f` (all DOFs; of unit resultant for the parts to be
+    /// compliances), with the displacements.
+    pub fn respond_to(&self, f: &[f64]) -> (ShellResponse, Vec<f64>) {
+        let u = self.solve(f);
         let compliance = f.iter().zip(&u).map(|(a, b)| a * b).sum();
         let (mut membrane, mut bending, mut shear, mut drilling) = (0.0, 0.0, 0.0, 0.0);
         for e in &self.structure.elements {
@@ -549,6 +554,6 @@ impl Factorized<'_> {
                 force * force / s.stiffness
             })
             .sum();
-        Ok((ShellResponse { compliance, membrane, bending, shear, drilling, springs }, u))
+        (ShellResponse { compliance, membrane, bending, shear, drilling, springs }, u)
     }
 }

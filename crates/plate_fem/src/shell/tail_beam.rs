@@ -229,8 +229,12 @@ impl TailBeam {
 impl TailBeam {
     /// The box as a shell mesh with named groups, for a mesher or [`super::gmsh`]: the walls'
     /// quadrilaterals in the surface groups "top", "bottom", "webs", "ribs" (if any) and
-    /// "ends"; the pins' nodes in the point group "pins"; each jack's pad nodes in "jack 1",
-    /// "jack 2", ... The mesh of [`Self::build`] at `element` and `level`.
+    /// "ends"; the pins as the curve group "pins" (lines along each pin's span); each jack's
+    /// pad as the surface group "jack 1", "jack 2", ... (the bottom plate's quadrilaterals
+    /// under it, taken out of "bottom": MSH 2.2 gives an element one group, so a converter
+    /// keeps the pads only if no quadrilateral is in two). The mesh of [`Self::build`] at
+    /// `element` and `level`; every refinement of it holds and springs the nodes the builder's
+    /// finer meshes do.
     pub fn mesh_file(&self, element: f64, level: u32) -> Result<MeshFile, FemError> {
         let built = self.build(1.0, 0.0, element, level)?;
         let s = &built.structure;
@@ -258,20 +262,30 @@ impl TailBeam {
                 quads.push(Cell { nodes: [a, b, d, c], groups: vec![g], tag: 0 });
             }
         }
-        let mut points = Vec::new();
-        let mut point_group = |name: String, nodes: Vec<usize>, groups: &mut Vec<Group>| {
-            groups.push(Group { dim: 0, tag: groups.len() as i64 + 1, name });
-            let g = groups.len() - 1;
-            points.extend(nodes.into_iter().map(|n| Cell { nodes: [n], groups: vec![g], tag: 0 }));
-        };
-        let mut pins: Vec<usize> = built.restraints.held.iter().map(|&(n, _)| n).collect();
-        pins.dedup();
-        point_group("pins".into(), pins, &mut groups);
-        for (j, range) in built.jacks.iter().enumerate() {
-            let pad = built.restraints.springs[range.clone()].iter().map(|sp| sp.node).collect();
-            point_group(format!("jack {}", j + 1), pad, &mut groups);
+        // The pins as lines along their span and each pad as the bottom plate's
+        // quadrilaterals under it, so that a refined mesh holds and springs every node the
+        // builder's finer meshes do.
+        groups.push(Group { dim: 1, tag: groups.len() as i64 + 1, name: "pins".into() });
+        let pins_group = groups.len() - 1;
+        let mut held: Vec<usize> = built.restraints.held.iter().map(|&(n, _)| n).collect();
+        held.dedup();
+        let mut lines = Vec::new();
+        for &[z0, z1] in &self.pins {
+            let tol = 1e-9 * self.width;
+            let mut on: Vec<usize> =
+                held.iter().copied().filter(|&n| (z0 - tol..=z1 + tol).contains(&s.nodes()[n].z)).collect();
+            on.sort_by(|a, b| s.nodes()[*a].z.total_cmp(&s.nodes()[*b].z));
+            lines.extend(on.windows(2).map(|w| Cell { nodes: [w[0], w[1]], groups: vec![pins_group], tag: 0 }));
         }
-        Ok(MeshFile { nodes: s.nodes().to_vec(), quads, lines: Vec::new(), points, groups })
+        for (j, range) in built.jacks.iter().enumerate() {
+            groups.push(Group { dim: 2, tag: groups.len() as i64 + 1, name: format!("jack {}", j + 1) });
+            let g = groups.len() - 1;
+            let pad: Vec<usize> = built.restraints.springs[range.clone()].iter().map(|sp| sp.node).collect();
+            for q in quads.iter_mut().filter(|q| q.nodes.iter().all(|n| pad.contains(n))) {
+                q.groups = vec![g];
+            }
+        }
+        Ok(MeshFile { nodes: s.nodes().to_vec(), quads, lines, points: Vec::new(), groups })
     }
 }
 

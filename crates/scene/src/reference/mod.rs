@@ -16,6 +16,7 @@ use identify::{Class, Variable};
 use serde::Serialize;
 
 mod measurement;
+mod shell_mesh;
 mod stream;
 mod tail_beam;
 
@@ -209,6 +210,13 @@ fn tables() -> Vec<Key> {
             "[tail_beam]",
             "required with \"tail-beam\", refused without",
             "A box-section tail beam struck by the scene's bodies (\"tail-beam\" only)",
+        ),
+        table(
+            "shell_mesh",
+            TABLE,
+            "[shell_mesh]",
+            "required with \"shell-mesh\", refused without",
+            "A shell structure read from a Gmsh mesh file, struck by the scene's bodies (\"shell-mesh\" only)",
         ),
     ]
 }
@@ -510,6 +518,7 @@ fn sections() -> Vec<Section> {
     all.extend(measurement::sections());
     all.extend(stream::sections());
     all.extend(tail_beam::sections());
+    all.extend(shell_mesh::sections());
     all
 }
 

@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::ensemble::{RawEnsemble, RawFamily, RawPlacement, RawRegion};
-use crate::raw::{RawJack, RawTailBeam};
+use crate::raw::{RawGroupSpring, RawHold, RawJack, RawShellMesh, RawTailBeam};
 use crate::validate::measurement::{
     RawAcceleration, RawAntiAlias, RawMeasurement, RawSensor, RawStrain, RawSupportForce,
 };
@@ -75,6 +75,9 @@ fn every_key_of_every_table_is_described_and_nothing_else() {
         ("[stream]", fields::<RawStream>()),
         ("[tail_beam]", fields::<RawTailBeam>()),
         ("[[tail_beam.jacks]]", fields::<RawJack>()),
+        ("[shell_mesh]", fields::<RawShellMesh>()),
+        ("[[shell_mesh.holds]]", fields::<RawHold>()),
+        ("[[shell_mesh.springs]]", fields::<RawGroupSpring>()),
     ];
     let sections = sections();
     let titles: Vec<&str> = sections.iter().map(|s| s.title).collect();

@@ -14,6 +14,7 @@ mod damping;
 pub(crate) mod measurement;
 mod points;
 mod psd_file;
+pub(crate) mod shell_mesh;
 mod signals;
 pub(crate) mod stream;
 mod supports;
@@ -110,9 +111,12 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     }
     let bodies = validate_bodies(&raw.bodies)?;
     let conditions = validate_conditions(&raw.conditions, &plate)?;
+    // A structure from a mesh file is struck at its own points, in its own frame.
+    let needs_points =
+        analyses.iter().any(|a| !matches!(a, Analysis::Identify | Analysis::Drops | Analysis::ShellMesh));
     let points = match &raw.points {
         Some(p) => validate_points(p, &plate, length_mm, width_mm)?,
-        None if needs_bodies => {
+        None if needs_points => {
             return Err(other("points", "a [points] table is required (x_mm, count, pairs_mm or [points.grid])"))
         }
         None => Points::Pairs { pairs: vec![] },
@@ -142,6 +146,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
     let tail_beam = tail_beam::table(raw.tail_beam.as_ref(), &analyses)?;
+    let shell_mesh = shell_mesh::table(raw.shell_mesh.as_ref(), &analyses, &plate)?;
     Ok(Scene {
         velocities,
         signals,
@@ -165,6 +170,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         transient_discretisation: coupled::transient::Discretisation::default(),
         main_contact_share: coupled::transient::chatter::MAIN_CONTACT_SHARE,
         tail_beam,
+        shell_mesh,
     })
 }
 
@@ -344,7 +350,12 @@ fn validate_velocities(raw: Option<&RawVelocities>, analyses: &[Analysis]) -> Re
     let needs_velocity = analyses.iter().any(|a| {
         matches!(
             a,
-            Analysis::Responses | Analysis::Transient | Analysis::SizeMap | Analysis::RegimeMaps | Analysis::TailBeam
+            Analysis::Responses
+                | Analysis::Transient
+                | Analysis::SizeMap
+                | Analysis::RegimeMaps
+                | Analysis::TailBeam
+                | Analysis::ShellMesh
         )
     });
     match raw {
@@ -360,7 +371,7 @@ fn validate_velocities(raw: Option<&RawVelocities>, analyses: &[Analysis]) -> Re
         }
         None if needs_velocity => Err(other(
             "velocities.m_per_s",
-            "is required when analyses include \"responses\", \"transient\", \"size-map\", \"regime-maps\" or \"tail-beam\"",
+            "is required when analyses include \"responses\", \"transient\", \"size-map\", \"regime-maps\", \"tail-beam\" or \"shell-mesh\"",
         )),
         None => Ok(vec![]),
     }
