@@ -30,8 +30,8 @@ fn edited(from: &str, to: &str) -> Result<Scene, String> {
 fn bad_inputs_are_refused_by_key() {
     let cases: [(&str, &str, &[&str]); 11] = [
         ("file = \"meshes/tail-beam.msh\"", "file = \"meshes/none.msh\"", &["shell_mesh.file", "none.msh"]),
-        ("struck = \"top\"", "struck = \"roof\"", &["shell_mesh.struck", "roof", "\"top\""]),
-        ("struck = \"top\"", "struck = \"pins\"", &["shell_mesh.struck", "not a surface"]),
+        ("struck = \"top\"", "struck = \"roof\"", &["shell_mesh.struck", "roof", "no thickness"]),
+        ("group = \"pins\"", "group = \"hinge\"", &["shell_mesh.holds[0].group", "hinge", "\"pins\""]),
         ("top = 30.0,", "top = 30.0, pins = 5.0,", &["shell_mesh.thickness_mm.pins", "not a surface"]),
         ("ribs = 16.0, ", "", &["quadrilateral", "no group given a thickness"]),
         ("dofs = [\"ux\", \"uy\", \"uz\"]", "dofs = [\"ux\", \"wz\"]", &["shell_mesh.holds[0].dofs", "'wz'"]),
@@ -59,6 +59,19 @@ fn bad_inputs_are_refused_by_key() {
     assert!(err.contains("shell_mesh.holds and springs") && err.contains("rigid"), "{err}");
 }
 
+/// A group the file names but fills with nothing is refused where the scene uses it.
+#[test]
+fn an_empty_group_is_refused() {
+    let dir = tmp();
+    let mesh = std::fs::read_to_string(scenes().join("meshes/tail-beam.msh")).unwrap();
+    assert!(mesh.contains("$PhysicalNames\n8\n"));
+    dir.write("empty.msh", mesh.replacen("$PhysicalNames\n8\n", "$PhysicalNames\n9\n2 9 \"canopy\"\n", 1));
+    let text =
+        shipped().replace("meshes/tail-beam.msh", "empty.msh").replace("top = 30.0,", "top = 30.0, canopy = 10.0,");
+    let err = parse_in_folder(&text, "empty", dir.path()).unwrap_err().to_string();
+    assert!(err.contains("shell_mesh.thickness_mm.canopy") && err.contains("no elements"), "{err}");
+}
+
 /// The budget is checked on the file's size before anything is built.
 #[test]
 fn the_finest_mesh_is_budgeted() {
@@ -70,7 +83,8 @@ fn the_finest_mesh_is_budgeted() {
     dir.write("huge.msh", mesh.to_msh41(1.0));
     let text = shipped().replace("meshes/tail-beam.msh", "huge.msh");
     let err = parse_in_folder(&text, "huge", dir.path()).unwrap_err().to_string();
-    assert!(err.contains("shell_mesh.levels") && err.contains("budget"), "{err}");
+    // Refused on the $Nodes header's count, before a node is read.
+    assert!(err.contains("shell_mesh.file") && err.contains("the number of nodes") && err.contains("budget"), "{err}");
 }
 
 /// The shipped box read from its file against the same box built from `scenes/tail-beam.toml`

@@ -65,18 +65,32 @@ pub struct MeshFile {
     pub groups: Vec<Group>,
 }
 
-/// Whitespace-separated tokens of a section, with their line numbers.
-struct Tokens<'a> {
+/// Whitespace-separated tokens of a section, with their line numbers, read as they are asked
+/// for (nothing is collected, so a file's declared counts are checked before its size in
+/// tokens costs memory).
+struct Tokens<'s, 'a> {
     origin: &'a str,
-    items: std::vec::IntoIter<(usize, &'a str)>,
+    lines: std::slice::Iter<'s, (usize, &'a str)>,
+    current: Option<(usize, std::str::SplitWhitespace<'a>)>,
     last: usize,
 }
 
-impl<'a> Tokens<'a> {
-    fn new(origin: &'a str, lines: &[(usize, &'a str)], end: usize) -> Self {
-        let items: Vec<(usize, &str)> =
-            lines.iter().flat_map(|&(n, l)| l.split_whitespace().map(move |t| (n, t))).collect();
-        Self { origin, items: items.into_iter(), last: end }
+impl<'s, 'a> Tokens<'s, 'a> {
+    fn new(origin: &'a str, lines: &'s [(usize, &'a str)], end: usize) -> Self {
+        Self { origin, lines: lines.iter(), current: None, last: end }
+    }
+
+    /// The next token and its line.
+    fn token(&mut self) -> Option<(usize, &'a str)> {
+        loop {
+            if let Some((n, words)) = &mut self.current {
+                if let Some(t) = words.next() {
+                    return Some((*n, t));
+                }
+            }
+            let &(n, line) = self.lines.next()?;
+            self.current = Some((n, line.split_whitespace()));
+        }
     }
 
     fn error(&self, line: usize, message: String) -> FemError {
@@ -85,7 +99,7 @@ impl<'a> Tokens<'a> {
 
     /// The next token parsed as `T`, or an error naming `what`.
     fn next<T: std::str::FromStr>(&mut self, what: &str) -> Result<T, FemError> {
-        match self.items.next() {
+        match self.token() {
             Some((line, t)) => {
                 self.last = line;
                 t.parse().map_err(|_| self.error(line, format!("expected {what}, found '{t}'")))
@@ -104,9 +118,26 @@ impl<'a> Tokens<'a> {
     }
 }
 
-/// The most nodes or elements a file may declare: 2e7 (a shell mesh of that size would need
-/// far more memory than a factorization on this kind of machine has).
+/// The most entries of any kind a file may declare: 2e7 (a shell mesh of that size would
+/// need far more memory than a factorization on this kind of machine has).
 pub const MAX_ENTRIES: usize = 20_000_000;
+
+/// The most nodes and elements a file may declare, checked on the section headers before
+/// anything is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Budget {
+    /// Nodes.
+    pub nodes: usize,
+    /// Elements of every kind together.
+    pub elements: usize,
+}
+
+impl Default for Budget {
+    /// [`MAX_ENTRIES`] of each.
+    fn default() -> Self {
+        Self { nodes: MAX_ENTRIES, elements: MAX_ENTRIES }
+    }
+}
 
 /// Nodes of the element types Gmsh writes, by type number, with why a shell cannot take
 /// those it refuses.
@@ -180,7 +211,7 @@ struct Raw {
 }
 
 impl Raw {
-    fn add_node(&mut self, t: &Tokens, tag: u64, p: Vector3<f64>) -> Result<(), FemError> {
+    fn add_node(&mut self, t: &Tokens<'_, '_>, tag: u64, p: Vector3<f64>) -> Result<(), FemError> {
         if !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()) {
             return Err(t.error(t.last, format!("node {tag} at {p:?} is not finite")));
         }
@@ -194,7 +225,7 @@ impl Raw {
     /// One element of type `kind` with node tags `tags` and physical tags `physical`.
     fn add_element(
         &mut self,
-        t: &Tokens,
+        t: &Tokens<'_, '_>,
         id: u64,
         kind: u32,
         tags: &[u64],
@@ -247,7 +278,7 @@ fn physical_names(origin: &str, lines: &[(usize, &str)]) -> Result<Vec<Group>, F
 }
 
 /// 4.1's `$Entities`: the physical tags of every (dimension, entity tag).
-fn entities(t: &mut Tokens) -> Result<HashMap<(u8, i64), Vec<i64>>, FemError> {
+fn entities(t: &mut Tokens<'_, '_>) -> Result<HashMap<(u8, i64), Vec<i64>>, FemError> {
     let counts: [usize; 4] = [
         t.count("points", MAX_ENTRIES)?,
         t.count("curves", MAX_ENTRIES)?,
@@ -276,9 +307,9 @@ fn entities(t: &mut Tokens) -> Result<HashMap<(u8, i64), Vec<i64>>, FemError> {
 }
 
 /// 4.1's `$Nodes`.
-fn nodes_41(t: &mut Tokens, raw: &mut Raw) -> Result<(), FemError> {
+fn nodes_41(t: &mut Tokens<'_, '_>, raw: &mut Raw, budget: Budget) -> Result<(), FemError> {
     let blocks = t.count("the number of node blocks", MAX_ENTRIES)?;
-    let total = t.count("the number of nodes", MAX_ENTRIES)?;
+    let total = t.count("the number of nodes", budget.nodes)?;
     t.next::<u64>("the least node tag")?;
     t.next::<u64>("the greatest node tag")?;
     raw.nodes.reserve(total);
@@ -300,9 +331,14 @@ fn nodes_41(t: &mut Tokens, raw: &mut Raw) -> Result<(), FemError> {
 }
 
 /// 4.1's `$Elements`, each carrying its entity's physical tags.
-fn elements_41(t: &mut Tokens, raw: &mut Raw, entities: &HashMap<(u8, i64), Vec<i64>>) -> Result<(), FemError> {
+fn elements_41(
+    t: &mut Tokens<'_, '_>,
+    raw: &mut Raw,
+    entities: &HashMap<(u8, i64), Vec<i64>>,
+    budget: Budget,
+) -> Result<(), FemError> {
     let blocks = t.count("the number of element blocks", MAX_ENTRIES)?;
-    let total = t.count("the number of elements", MAX_ENTRIES)?;
+    let total = t.count("the number of elements", budget.elements)?;
     t.next::<u64>("the least element tag")?;
     t.next::<u64>("the greatest element tag")?;
     for _ in 0..blocks {
@@ -323,8 +359,8 @@ fn elements_41(t: &mut Tokens, raw: &mut Raw, entities: &HashMap<(u8, i64), Vec<
 }
 
 /// 2.2's `$Nodes`.
-fn nodes_22(t: &mut Tokens, raw: &mut Raw) -> Result<(), FemError> {
-    let n = t.count("the number of nodes", MAX_ENTRIES)?;
+fn nodes_22(t: &mut Tokens<'_, '_>, raw: &mut Raw, budget: Budget) -> Result<(), FemError> {
+    let n = t.count("the number of nodes", budget.nodes)?;
     raw.nodes.reserve(n);
     for _ in 0..n {
         let tag: u64 = t.next("a node tag")?;
@@ -335,8 +371,8 @@ fn nodes_22(t: &mut Tokens, raw: &mut Raw) -> Result<(), FemError> {
 }
 
 /// 2.2's `$Elements`: the first of an element's tags is its physical group (0: none).
-fn elements_22(t: &mut Tokens, raw: &mut Raw) -> Result<(), FemError> {
-    let n = t.count("the number of elements", MAX_ENTRIES)?;
+fn elements_22(t: &mut Tokens<'_, '_>, raw: &mut Raw, budget: Budget) -> Result<(), FemError> {
+    let n = t.count("the number of elements", budget.elements)?;
     for _ in 0..n {
         let id: u64 = t.next("an element tag")?;
         let kind: u32 = t.next("an element type")?;
@@ -361,6 +397,11 @@ impl MeshFile {
     /// Reads the MSH `text` (its file name `origin`, for messages) with coordinates in units of
     /// `unit` metres (1e-3 for a mesh in millimetres).
     pub fn parse(text: &str, origin: &str, unit: f64) -> Result<Self, FemError> {
+        Self::parse_within(text, origin, unit, Budget::default())
+    }
+
+    /// [`Self::parse`] refusing a file that declares more nodes or elements than `budget`.
+    pub fn parse_within(text: &str, origin: &str, unit: f64, budget: Budget) -> Result<Self, FemError> {
         let error = |line: usize, message: String| FemError::MeshFile { origin: origin.into(), line, message };
         if !(unit.is_finite() && unit > 0.0) {
             return Err(error(0, format!("the mesh unit {unit} m is not positive and finite")));
@@ -395,16 +436,29 @@ impl MeshFile {
                 Some(mut t) => entities(&mut t)?,
                 None => HashMap::new(),
             };
-            nodes_41(&mut nodes, &mut raw)?;
-            elements_41(&mut elements, &mut raw, &entities)?;
+            nodes_41(&mut nodes, &mut raw, budget)?;
+            elements_41(&mut elements, &mut raw, &entities, budget)?;
         } else {
-            nodes_22(&mut nodes, &mut raw)?;
-            elements_22(&mut elements, &mut raw)?;
+            nodes_22(&mut nodes, &mut raw, budget)?;
+            elements_22(&mut elements, &mut raw, budget)?;
         }
         let mut groups = match find("PhysicalNames") {
             Some((_, _, lines)) => physical_names(origin, lines)?,
             None => Vec::new(),
         };
+        if let Some((a, b)) = groups
+            .iter()
+            .enumerate()
+            .find_map(|(i, g)| groups[i + 1..].iter().find(|h| h.name == g.name).map(|h| (g.clone(), h.clone())))
+        {
+            return Err(error(
+                0,
+                format!(
+                    "$PhysicalNames names two groups '{}' (dimensions {} and {}): names must be unique",
+                    a.name, a.dim, b.dim
+                ),
+            ));
+        }
         let mut group_of = |(dim, tag): (u8, i64)| -> usize {
             if let Some(i) = groups.iter().position(|g| g.dim == dim && g.tag == tag) {
                 return i;

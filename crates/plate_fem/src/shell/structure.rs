@@ -131,12 +131,20 @@ pub struct Structure {
     /// a few sizes, and one per general quadrilateral.
     parts: Vec<Parts>,
     rectangles: HashMap<(u64, u64, u64), usize>,
+    /// The parts of general quadrilaterals by shape (local corners in picometres) and
+    /// thickness.
+    quads: HashMap<([[i64; 2]; 4], u64), usize>,
     /// Each face with its elements, row-major over its grid (ez, ex).
     faces: Vec<(Face, Vec<usize>)>,
 }
 
 /// Positions closer than this (m) are one node.
 const MERGE: f64 = 1e-9;
+
+/// A position's node key: its coordinates in units of [`MERGE`].
+fn position_key(p: &Vector3<f64>) -> [i64; 3] {
+    [p.x, p.y, p.z].map(|v| (v / MERGE).round() as i64)
+}
 
 /// The most a quadrilateral's corners may leave its mean plane, as a fraction of its longer
 /// diagonal: the flat element is built on the corners' projections, an error of the order of
@@ -161,6 +169,7 @@ impl Structure {
             elements: Vec::new(),
             parts: Vec::new(),
             rectangles: HashMap::new(),
+            quads: HashMap::new(),
             faces: Vec::new(),
         })
     }
@@ -180,7 +189,7 @@ impl Structure {
     }
 
     fn node(&mut self, p: Vector3<f64>) -> usize {
-        let key = [p.x, p.y, p.z].map(|v| (v / MERGE).round() as i64);
+        let key = position_key(&p);
         let next = self.nodes.len();
         *self.index.entry(key).or_insert_with(|| {
             self.nodes.push(p);
@@ -243,6 +252,10 @@ impl Structure {
     pub fn add_quad(&mut self, corners: [[f64; 3]; 4], thickness: f64) -> Result<usize, FemError> {
         check_thickness(thickness)?;
         let p = corners.map(Vector3::from);
+        let keys = p.map(|q| position_key(&q));
+        if (0..4).any(|i| (i + 1..4).any(|j| keys[i] == keys[j])) {
+            return Err(FemError::Mesh(format!("quadrilateral {corners:?} has two corners at one node")));
+        }
         let normal = (p[2] - p[0]).cross(&(p[3] - p[1]));
         let size = (p[2] - p[0]).norm().max((p[3] - p[1]).norm());
         if !(normal.norm() > 1e-9 * size * size && size.is_finite()) {
@@ -263,16 +276,18 @@ impl Structure {
         let tensor = [p[0], p[1], p[3], p[2]];
         let xy = tensor.map(|q| [(q - centre).dot(&e1), (q - centre).dot(&e2)]);
         let quad = super::quad::Quad::new(xy)?;
+        // Congruent elements (a refined mesh repeats a few shapes) share their matrices: the
+        // shape to a picometre and the thickness.
+        let shape_key = (xy.map(|c| c.map(|v| (v / 1e-12).round() as i64)), thickness.to_bits());
         let (e, nu, alpha) = (self.youngs_modulus, self.poisson_ratio, self.drilling);
-        self.parts.push(quad.parts(e, nu, thickness, SHEAR_CORRECTION, alpha));
+        let parts = *self.quads.entry(shape_key).or_insert_with(|| {
+            self.parts.push(quad.parts(e, nu, thickness, SHEAR_CORRECTION, alpha));
+            self.parts.len() - 1
+        });
         let nodes = tensor.map(|q| self.node(q));
-        if (0..4).any(|i| (i + 1..4).any(|j| nodes[i] == nodes[j])) {
-            self.parts.pop();
-            return Err(FemError::Mesh(format!("quadrilateral {corners:?} has two corners at one node")));
-        }
         let axes = Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e3.transpose()]);
         let shape = Shape::Quad { nodal_areas: quad.nodal_areas() };
-        self.elements.push(Element { nodes, axes, parts: self.parts.len() - 1, shape, thickness });
+        self.elements.push(Element { nodes, axes, parts, shape, thickness });
         Ok(self.elements.len() - 1)
     }
 

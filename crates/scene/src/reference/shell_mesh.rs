@@ -1,7 +1,7 @@
 //! The reference's sections of `[shell_mesh]`: a shell structure read from a Gmsh MSH file
 //! (`plate_fem::shell::gmsh`, `coupled::compliance::shell_mesh`).
 
-use super::{key, num, Section, NO_UNIT, REQUIRED};
+use super::{key, num, whole, Section, NO_UNIT, REQUIRED};
 use crate::limits;
 use crate::validate::shell_mesh::{DOF_NAMES, LEVELS, MAX_MESH_FILE_BYTES, UNIT_MM};
 
@@ -17,12 +17,12 @@ pub(super) fn sections() -> Vec<Section> {
             keys: vec![
                 key("file", "string", NO_UNIT, format!("an MSH file of at most {MAX_MESH_FILE_BYTES} bytes"), REQUIRED, "The mesh, relative to the scene file's folder"),
                 num("unit_mm", "mm", UNIT_MM, "1 (the file in millimetres)", "The length of one unit of the file's coordinates"),
-                key("thickness_mm", "table: group = number", "mm", format!("{} each; surface groups", limits::THICKNESS_MM), REQUIRED, "Each surface group's wall thickness (`{{ top = 30.0, webs = 20.0 }}`); every quadrilateral must be in one of them"),
+                key("thickness_mm", "table: group = number", "mm", format!("{} each; surface groups", limits::THICKNESS_MM), REQUIRED, "Each surface group's wall thickness (`{ top = 30.0, webs = 20.0 }`); every quadrilateral must be in one of them"),
                 key("holds", "array of tables", NO_UNIT, "see `[[shell_mesh.holds]]`", "none", "Groups whose nodes are held"),
                 key("springs", "array of tables", NO_UNIT, "see `[[shell_mesh.springs]]`", "none", "Springs to ground on groups (jacks on their pads)"),
                 key("struck", "string", NO_UNIT, "a surface group with a thickness", REQUIRED, "The face the lumps strike"),
                 key("points_mm", "list of [x, y, z]", "mm", format!("on the struck group, the contact disc on its flat part; 1 to {}", limits::MAX_TAIL_BEAM_POINTS), REQUIRED, "Struck points, in the file's frame"),
-                num("levels", NO_UNIT, LEVELS, "3", "Meshes in the ladder: the file's and its refinements (three measure the convergence rate)"),
+                whole("levels", LEVELS, "3", "Meshes in the ladder: the file's and its refinements (three measure a convergence rate, four confirm it)"),
             ],
         },
         Section {

@@ -12,7 +12,7 @@ use analytic::params::{check, Range};
 use analytic::Plate;
 use coupled::compliance::shell_mesh::{GroupSpring, ShellMeshScene};
 use coupled::scene::Analysis;
-use plate_fem::shell::gmsh::MeshFile;
+use plate_fem::shell::gmsh::{Budget, MeshFile};
 use plate_fem::shell::DISC_RULE;
 use sha2::{Digest, Sha256};
 use std::path::Path;
@@ -65,49 +65,35 @@ pub(super) fn table(
 }
 
 fn validate(raw: &RawShellMesh, plate: &Plate) -> Result<ShellMeshScene, Invalid> {
+    // Everything that needs no mesh first.
     let unit = check("shell_mesh.unit_mm", raw.unit_mm, UNIT_MM, "mm")? * MM;
-    let bytes = raw.bytes.as_deref().ok_or_else(|| other("shell_mesh.file", "was not read"))?;
-    let text =
-        std::str::from_utf8(bytes).map_err(|_| other("shell_mesh.file", "is not text: save the MSH file as ASCII"))?;
-    let mesh = MeshFile::parse(text, &raw.file, unit).map_err(|e| other("shell_mesh.file", e.to_string()))?;
     let levels = check("shell_mesh.levels", raw.levels as f64, LEVELS, "")? as u32;
-    let dofs = 6 * mesh.nodes.len() * 4usize.pow(levels - 1);
-    if dofs > limits::MAX_TAIL_BEAM_DOFS {
-        return Err(other(
-            "shell_mesh.levels",
-            format!(
-                "{levels} meshes from {} nodes give about {dofs} unknowns on the finest; the budget is {}: give fewer levels or a coarser mesh",
-                mesh.nodes.len(),
-                limits::MAX_TAIL_BEAM_DOFS
-            ),
-        ));
-    }
-    let group = |field: String, name: &str, surface: bool| -> Result<(), Invalid> {
-        let g = mesh.group(name).map_err(|e| other(&field, e.to_string()))?;
-        if surface && mesh.groups[g].dim != 2 {
-            return Err(other(
-                field,
-                format!("'{name}' is a group of dimension {}, not a surface", mesh.groups[g].dim),
-            ));
-        }
-        Ok(())
-    };
     let mut thickness = Vec::new();
     for (name, &t) in &raw.thickness_mm {
-        let field = format!("shell_mesh.thickness_mm.{name}");
-        group(field.clone(), name, true)?;
-        thickness.push((name.clone(), check(&field, t, limits::THICKNESS_MM, "mm")? * MM));
+        thickness.push((
+            name.clone(),
+            check(&format!("shell_mesh.thickness_mm.{name}"), t, limits::THICKNESS_MM, "mm")? * MM,
+        ));
     }
-    let holds = raw.holds.iter().enumerate().map(|(i, h)| hold(i, h, &group)).collect::<Result<Vec<_>, _>>()?;
-    let springs = raw.springs.iter().enumerate().map(|(i, s)| spring(i, s, &group)).collect::<Result<Vec<_>, _>>()?;
-    group("shell_mesh.struck".into(), &raw.struck, true)?;
     if !raw.thickness_mm.contains_key(&raw.struck) {
         return Err(other(
             "shell_mesh.struck",
             format!("'{}' has no thickness in shell_mesh.thickness_mm", raw.struck),
         ));
     }
+    let holds = raw.holds.iter().enumerate().map(|(i, h)| hold(i, h)).collect::<Result<Vec<_>, _>>()?;
+    let springs = raw.springs.iter().enumerate().map(|(i, s)| spring(i, s)).collect::<Result<Vec<_>, _>>()?;
     let points = points(&raw.points_mm)?;
+    let bytes = raw.bytes.as_deref().ok_or_else(|| other("shell_mesh.file", "was not read"))?;
+    let mesh = read_mesh(raw, bytes, unit, levels)?;
+    let groups = thickness.iter().map(|(g, _)| (format!("shell_mesh.thickness_mm.{g}"), g, true));
+    let groups = groups
+        .chain(holds.iter().enumerate().map(|(i, (g, _))| (format!("shell_mesh.holds[{i}].group"), g, false)))
+        .chain(springs.iter().enumerate().map(|(i, s)| (format!("shell_mesh.springs[{i}].group"), &s.group, false)))
+        .chain(std::iter::once(("shell_mesh.struck".to_string(), &raw.struck, true)));
+    for (field, name, surface) in groups {
+        group(&mesh, field, name, surface)?;
+    }
     let scene = ShellMeshScene {
         mesh,
         file: raw.file.clone(),
@@ -123,13 +109,73 @@ fn validate(raw: &RawShellMesh, plate: &Plate) -> Result<ShellMeshScene, Invalid
     Ok(scene)
 }
 
-/// `[[shell_mesh.holds]]` entry `i`.
-fn hold(
-    i: usize,
-    h: &RawHold,
-    group: &impl Fn(String, &str, bool) -> Result<(), Invalid>,
-) -> Result<(String, Vec<usize>), Invalid> {
-    group(format!("shell_mesh.holds[{i}].group"), &h.group, false)?;
+/// The file's mesh, its declared size refused beyond what `levels` meshes may hold.
+fn read_mesh(raw: &RawShellMesh, bytes: &[u8], unit: f64, levels: u32) -> Result<MeshFile, Invalid> {
+    let text =
+        std::str::from_utf8(bytes).map_err(|_| other("shell_mesh.file", "is not text: save the MSH file as ASCII"))?;
+    let refinement = 4usize.pow(levels - 1);
+    // Each node carries six unknowns; a shell mesh has about as many quadrilaterals as nodes.
+    let cap = limits::MAX_TAIL_BEAM_DOFS / 6 / refinement;
+    let over = |what: String| {
+        format!(
+            "{what}: the finest of {levels} meshes (each quadrilateral split in four {} times) may hold at most {} unknowns (the budget); give fewer levels or a coarser mesh",
+            levels - 1,
+            limits::MAX_TAIL_BEAM_DOFS
+        )
+    };
+    let mesh =
+        MeshFile::parse_within(text, &raw.file, unit, Budget { nodes: cap, elements: 2 * cap }).map_err(|e| {
+            other(
+                "shell_mesh.file",
+                if e.to_string().contains("above the limit") { over(e.to_string()) } else { e.to_string() },
+            )
+        })?;
+    if mesh.quads.is_empty() {
+        return Err(other("shell_mesh.file", format!("'{}' has no quadrilaterals", raw.file)));
+    }
+    let dofs = 6 * mesh.nodes.len() * refinement;
+    if dofs > limits::MAX_TAIL_BEAM_DOFS || mesh.quads.len() > cap {
+        return Err(other(
+            "shell_mesh.levels",
+            over(format!(
+                "{} nodes and {} quadrilaterals give about {dofs} unknowns on the finest mesh",
+                mesh.nodes.len(),
+                mesh.quads.len()
+            )),
+        ));
+    }
+    Ok(mesh)
+}
+
+/// The group `name` of `mesh`, named by `field` in errors: it must exist, have cells (a
+/// surface where `surface`), and its lines must be edges of quadrilaterals (a line that is
+/// not would leave its midpoint on no element once refined).
+fn group(mesh: &MeshFile, field: String, name: &str, surface: bool) -> Result<(), Invalid> {
+    let g = mesh.group(name).map_err(|e| other(&field, e.to_string()))?;
+    if surface && mesh.groups[g].dim != 2 {
+        return Err(other(field, format!("'{name}' is a group of dimension {}, not a surface", mesh.groups[g].dim)));
+    }
+    if mesh.nodes_of(name).map_err(|e| other(&field, e.to_string()))?.is_empty() {
+        return Err(other(field, format!("'{name}' has no elements in the file")));
+    }
+    let edges: std::collections::HashSet<(usize, usize)> = mesh
+        .quads
+        .iter()
+        .flat_map(|q| (0..4).map(move |k| (q.nodes[k], q.nodes[(k + 1) % 4])))
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    if let Some(line) = mesh
+        .lines
+        .iter()
+        .find(|l| l.groups.contains(&g) && !edges.contains(&(l.nodes[0].min(l.nodes[1]), l.nodes[0].max(l.nodes[1]))))
+    {
+        return Err(other(field, format!("'{name}' has the line {} that is no quadrilateral's edge", line.tag)));
+    }
+    Ok(())
+}
+
+/// `[[shell_mesh.holds]]` entry `i`: its group and DOFs.
+fn hold(i: usize, h: &RawHold) -> Result<(String, Vec<usize>), Invalid> {
     let field = format!("shell_mesh.holds[{i}].dofs");
     if h.dofs.is_empty() {
         return Err(other(field, format!("is empty; name some of {DOF_NAMES:?}")));
@@ -149,12 +195,7 @@ fn hold(
 }
 
 /// `[[shell_mesh.springs]]` entry `i`.
-fn spring(
-    i: usize,
-    s: &RawGroupSpring,
-    group: &impl Fn(String, &str, bool) -> Result<(), Invalid>,
-) -> Result<GroupSpring, Invalid> {
-    group(format!("shell_mesh.springs[{i}].group"), &s.group, false)?;
+fn spring(i: usize, s: &RawGroupSpring) -> Result<GroupSpring, Invalid> {
     let stiffness = check(
         &format!("shell_mesh.springs[{i}].stiffness_n_per_m"),
         s.stiffness_n_per_m,
@@ -193,9 +234,11 @@ fn points(raw: &[Vec<f64>]) -> Result<Vec<[f64; 3]>, Invalid> {
 /// ladder would refuse, refused before it runs.
 fn try_coarsest(scene: &ShellMeshScene, plate: &Plate) -> Result<(), Invalid> {
     let m = plate.material();
-    let built = scene
-        .build(&scene.mesh, m.youngs_modulus(), m.poisson_ratio())
-        .map_err(|e| other("shell_mesh", e.to_string()))?;
+    let built = scene.build(&scene.mesh, m.youngs_modulus(), m.poisson_ratio()).map_err(|e| {
+        let message = e.to_string();
+        // A quadrilateral without a thickness is the thickness table's fault; any other, the file's.
+        other(if message.contains("thickness") { "shell_mesh.thickness_mm" } else { "shell_mesh.file" }, message)
+    })?;
     built.structure.factorize(&built.restraints).map_err(|e| other("shell_mesh.holds and springs", e.to_string()))?;
     let radius = scene.struck_thickness().map_err(|e| other("shell_mesh.struck", e.to_string()))? / 2.0;
     for (i, &p) in scene.points.iter().enumerate() {
