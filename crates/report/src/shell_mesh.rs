@@ -4,6 +4,7 @@
 use crate::present::table::{percent, sig, Cell, Table};
 use crate::template::render;
 use crate::Failure;
+use coupled::compliance::shell_mesh::{CONFIRMED, RATES};
 use output::Artifacts;
 use scene::Scene;
 use studies::shell_mesh::{ShellMeshData, ShellMeshRow};
@@ -158,6 +159,9 @@ pub fn report(scene: &Scene, d: &ShellMeshData) -> Result<(Artifacts, String), F
             ("struck", sm.struck.clone()),
             ("struck_mm", scene::mm_label(d.struck_thickness)),
             ("levels", levels.join(", ")),
+            ("rate_low", RATES.start().to_string()),
+            ("rate_high", RATES.end().to_string()),
+            ("confirmed", CONFIRMED.to_string()),
             ("mass", sig(d.mass, 4)),
             ("frequency", sig(d.frequency.0, 4)),
             ("frequency_change", percent(d.frequency.1)),
