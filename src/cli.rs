@@ -325,6 +325,9 @@ pub enum Command {
         /// an earlier output of impact).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
+        /// Print a JSON summary of the run (provenance, files written) to stdout.
+        #[arg(long)]
+        json: bool,
     },
     /// Print a shell completion script to standard output (e.g. `impact completions bash >
     /// ~/.local/share/bash-completion/completions/impact`).

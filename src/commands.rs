@@ -53,7 +53,7 @@ pub fn run(command: Command) -> Result<(), Failure> {
             commit_reporting(target, &artifacts, &impact::report::main_scene(&scene), json)
         }
         Command::FemBench(args) => fem_bench(&args),
-        Command::Mesh { scene, out } => mesh(&scene, out),
+        Command::Mesh { scene, out, json } => mesh(&scene, out, json),
         Command::Field(args) => crate::field::run(&args),
         Command::DefaultScene => out(DEFAULT_SCENE),
         Command::Reference { what } => out(&cli_doc::reference(what, crate::cli::Cli::command())),
@@ -100,14 +100,14 @@ fn signals(scene: &Scene, dir: Option<PathBuf>, json: bool) -> Result<(), Failur
 }
 
 /// `impact mesh`: the scene's tail beam as a Gmsh mesh file with named groups.
-fn mesh(path: &Path, dir: Option<PathBuf>) -> Result<(), Failure> {
+fn mesh(path: &Path, dir: Option<PathBuf>, json: bool) -> Result<(), Failure> {
     let scene = Scene::load(path)?;
     let tb = scene.tail_beam.as_ref().ok_or("the scene has no [tail_beam] table to write as a mesh")?;
     let target = OutputDir::prepare(dir.unwrap_or_else(|| default_out(&scene, "mesh")))?;
     let text = tb.beam.mesh_file(tb.element, 0)?.to_msh41(1e-3);
     let mut artifacts = impact::output::Artifacts::new();
     artifacts.add(format!("{}.msh", slug(&scene.name)), text);
-    commit(target, &artifacts)
+    commit_reporting(target, &artifacts, &scene, json)
 }
 
 /// `impact identify`: the scene's ensemble, checked against every budget before it runs.

@@ -2,6 +2,7 @@
 //! impacts' three forces ([`studies::shell_mesh`]).
 
 use crate::present::table::{percent, sig, Cell, Table};
+use crate::tail_beam::range;
 use crate::template::render;
 use crate::Failure;
 use coupled::compliance::shell_mesh::{CONFIRMED, RATES};
@@ -65,13 +66,13 @@ fn impacts(d: &ShellMeshData) -> Table {
             "P_max quasi-static (N)",
             "springs' force (N)",
             "P_max wave-controlled (N)",
-            "P_max rigid (N)",
+            "P_max rigid target (N)",
             "quasi-static/wave - 1",
-            "λ",
-            "ζ",
-            "t_c/T₁",
-            "δ_max/δ_my",
-            "yield velocity (m/s)",
+            "lambda",
+            "zeta",
+            "t_c/T_1",
+            "delta_max/delta_my",
+            "v_y (m/s)",
         ],
     );
     for r in &d.rows {
@@ -178,15 +179,6 @@ pub fn report(scene: &Scene, d: &ShellMeshData) -> Result<(Artifacts, String), F
 fn capitalise(s: &str) -> String {
     let mut c = s.chars();
     c.next().map_or_else(String::new, |f| f.to_uppercase().chain(c).collect())
-}
-
-/// The smallest and largest of `values` (0, 0 for none).
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let v: Vec<f64> = values.collect();
-    if v.is_empty() {
-        return (0.0, 0.0);
-    }
-    (v.iter().copied().fold(f64::INFINITY, f64::min), v.iter().copied().fold(f64::NEG_INFINITY, f64::max))
 }
 
 /// The finding line: the wave-controlled force against the rigid one, the quasi-static

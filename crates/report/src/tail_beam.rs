@@ -175,7 +175,7 @@ fn panel_table(d: &TailBeamData) -> Table {
 }
 
 /// (min, max) of `v`.
-fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
+pub(crate) fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
     v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
 }
 

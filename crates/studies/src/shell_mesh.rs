@@ -14,12 +14,10 @@
 //! from the panel the point lies on, is not given here; the struck face's own geometry decides
 //! which limit holds, and the report says so.
 
+use crate::tail_beam::{share, three_forces, ThreeForces};
 use crate::Failure;
-use analytic::{respond, yield_velocity, DruckerPrager, Plate, PointCompliance, StoreKind};
+use analytic::{yield_velocity, Plate, StoreKind};
 use coupled::compliance::shell_mesh::{MeshLevel, ShellMeshModel, ShellMeshScene};
-use coupled::plan::impact_of;
-use coupled::regimes::ChristoforouYigit;
-use coupled::transient::{law::Flores, ContactLaw, Striker};
 use coupled::validity::{self, Criterion};
 use scene::Scene;
 use serde::Serialize;
@@ -129,31 +127,11 @@ fn row(
     est: &coupled::compliance::Estimate,
 ) -> Result<ShellMeshRow, Failure> {
     let c = est.compliance.total();
-    let imp = impact_of(scene, body, v);
-    let r = respond(&imp, &est.compliance, scene.solver)?;
-    let p_rigid = respond(&imp, &PointCompliance::new(Vec::new(), Vec::new(), 0.0)?, scene.solver)?.contact_force;
-    let cy = ChristoforouYigit::with_peak(face, imp.mass, v, p_rigid, c);
-    let striker = Striker {
-        k: imp.contact_stiffness,
-        restitution: imp.restitution,
-        mass: imp.mass,
-        velocity: v,
-        law: ContactLaw::Flores(Flores),
-        gravity: 0.0,
-    };
-    let share = |name: &str| -> f64 {
-        let stores = est.compliance.stores().iter();
-        let s: f64 = stores.filter(|s| s.name.starts_with(name)).map(|s| s.compliance).sum();
-        if c > 0.0 {
-            s / c
-        } else {
-            0.0
-        }
-    };
+    let ThreeForces { imp, quasi_static: r, p_rigid, cy, striker, d_my } =
+        three_forces(scene, body, v, &est.compliance, face)?;
+    let share = |name: &str| share(&est.compliance, name);
     let springs: f64 =
         est.compliance.stores().iter().filter(|s| s.kind == StoreKind::Spring).map(|s| s.compliance).sum();
-    let dp = DruckerPrager::of(body);
-    let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
     Ok(ShellMeshRow {
         body: body.name.clone(),
         velocity: v,

@@ -219,6 +219,57 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
     })
 }
 
+/// One impact's three forces on a structure (module docs), with what they came from: the
+/// impact's contact parameters, the quasi-static balance with the whole compliance, the rigid
+/// target's force, Christoforou and Yigit's parameters for the struck wall, the impact as a
+/// Hertz striker, and the lump's yield compression (eq. 51).
+pub(crate) struct ThreeForces {
+    pub imp: analytic::Impact,
+    pub quasi_static: analytic::Response,
+    pub p_rigid: f64,
+    pub cy: ChristoforouYigit,
+    pub striker: Striker,
+    pub d_my: f64,
+}
+
+/// [`ThreeForces`] of `body` at `v` striking a structure of compliance `c` whose struck wall,
+/// as an infinite plate, is `face`.
+pub(crate) fn three_forces(
+    scene: &Scene,
+    body: &analytic::Sphere,
+    v: f64,
+    c: &PointCompliance,
+    face: &Plate,
+) -> Result<ThreeForces, Failure> {
+    let imp = impact_of(scene, body, v);
+    let quasi_static = respond(&imp, c, scene.solver)?;
+    // The rigid target under the same law: the balance with C = 0. Every force below is
+    // measured against it, so that the restitution of the paper's law (which lowers the peak
+    // against Hertz's elastic one by e^0.6) enters all three alike.
+    let p_rigid = respond(&imp, &PointCompliance::new(Vec::new(), Vec::new(), 0.0)?, scene.solver)?.contact_force;
+    let cy = ChristoforouYigit::with_peak(face, imp.mass, v, p_rigid, c.total());
+    let striker = Striker {
+        k: imp.contact_stiffness,
+        restitution: imp.restitution,
+        mass: imp.mass,
+        velocity: v,
+        law: ContactLaw::Flores(Flores),
+        gravity: 0.0,
+    };
+    let d_my = DruckerPrager::of(body).yield_compression(body.radius(), imp.contact_stiffness);
+    Ok(ThreeForces { imp, quasi_static, p_rigid, cy, striker, d_my })
+}
+
+/// The share of the compliance `c` in the stores whose names start with `name` (0 where C = 0).
+pub(crate) fn share(c: &PointCompliance, name: &str) -> f64 {
+    let s: f64 = c.stores().iter().filter(|s| s.name.starts_with(name)).map(|s| s.compliance).sum();
+    if c.total() > 0.0 {
+        s / c.total()
+    } else {
+        0.0
+    }
+}
+
 /// One impact of `body` at `v` on the tail beam at `at`.
 fn row(
     scene: &Scene,
@@ -230,32 +281,10 @@ fn row(
 ) -> Result<TailBeamRow, Failure> {
     let est = model.compliance(at.0, at.1)?;
     let c = est.compliance.total();
-    let imp = impact_of(scene, body, v);
-    let r = respond(&imp, &est.compliance, scene.solver)?;
-    // The rigid target under the same law: the balance with C = 0. Every force below is
-    // measured against it, so that the restitution of the paper's law (which lowers the peak
-    // against Hertz's elastic one by e^0.6) enters all three alike.
-    let p_rigid = respond(&imp, &PointCompliance::new(Vec::new(), Vec::new(), 0.0)?, scene.solver)?.contact_force;
-    let cy = ChristoforouYigit::with_peak(top, imp.mass, v, p_rigid, c);
-    let striker = Striker {
-        k: imp.contact_stiffness,
-        restitution: imp.restitution,
-        mass: imp.mass,
-        velocity: v,
-        law: ContactLaw::Flores(Flores),
-        gravity: 0.0,
-    };
-    let share = |name: &str| -> f64 {
-        let s: f64 = est.compliance.stores().iter().filter(|s| s.name.starts_with(name)).map(|s| s.compliance).sum();
-        if c > 0.0 {
-            s / c
-        } else {
-            0.0
-        }
-    };
+    let ThreeForces { imp, quasi_static: r, p_rigid, cy, striker, d_my } =
+        three_forces(scene, body, v, &est.compliance, top)?;
+    let share = |name: &str| share(&est.compliance, name);
     let jack_force = est.compliance.springs().iter().map(|s| s.per_unit_load).sum::<f64>() * r.contact_force;
-    let dp = DruckerPrager::of(body);
-    let d_my = dp.yield_compression(body.radius(), imp.contact_stiffness);
     let (panel_width, over_wall) =
         panel_at(&scene.tail_beam.as_ref().ok_or("the scene has no [tail_beam]")?.beam, at.1);
     let ratio = body.mass() / (top.density() * top.thickness() * top.length() * panel_width);
