@@ -55,6 +55,7 @@
 pub mod element;
 pub mod gmsh;
 mod load;
+mod msh_write;
 pub mod quad;
 mod restraints;
 mod structure;
