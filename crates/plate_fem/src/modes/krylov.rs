@@ -2,9 +2,8 @@
 //! basis grown by K⁻¹M, Rayleigh-Ritz on it (Parlett, *The Symmetric Eigenvalue Problem*,
 //! 1998, ch. 11 and 13).
 
-use super::EigenMethod;
-use super::{col, dot, finish, Modes, Pencil, BLOCK, RESIDUAL_TOLERANCE};
-use crate::model::{symmetric_upper_apply, Factorization};
+use super::{col, dot, finish, EigenMethod, Finished, Modes, Pencil, SparsePencil, BLOCK, RESIDUAL_TOLERANCE};
+use crate::model::Factorization;
 use crate::FemError;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
@@ -72,7 +71,7 @@ impl Basis {
     /// Appends the columns of `w` that are independent of the basis, M-normalized; a column
     /// that has (numerically) no new direction is replaced by a random one. Returns the
     /// indices of the appended columns.
-    fn append(&mut self, pencil: &Pencil, mut w: Mat<f64>, seed: &mut u64) -> std::ops::Range<usize> {
+    fn append(&mut self, pencil: &impl Pencil, mut w: Mat<f64>, seed: &mut u64) -> std::ops::Range<usize> {
         let n = w.nrows();
         self.orthogonalize(&mut w);
         let start = self.len;
@@ -86,7 +85,7 @@ impl Basis {
             // is not.
             let mut from = start;
             loop {
-                let norm0 = dot(&v, &symmetric_upper_apply(&pencil.m, &v)).max(0.0).sqrt();
+                let norm0 = dot(&v, &pencil.mass(&v)).max(0.0).sqrt();
                 // Two passes against the block's earlier columns (or everything).
                 for _ in 0..2 {
                     for c in from..self.len {
@@ -96,10 +95,10 @@ impl Basis {
                         }
                     }
                 }
-                let mv = symmetric_upper_apply(&pencil.m, &v);
+                let mv = pencil.mass(&v);
                 let norm = dot(&v, &mv).max(0.0).sqrt();
                 if norm > 1e-10 * norm0 && norm > 0.0 {
-                    let kv = symmetric_upper_apply(&pencil.k, &v);
+                    let kv = pencil.stiffness(&v);
                     for i in 0..n {
                         self.q[(i, self.len)] = v[i] / norm;
                         self.mq[(i, self.len)] = mv[i] / norm;
@@ -112,7 +111,7 @@ impl Basis {
                 if tries > 3 {
                     break;
                 }
-                v = random_vector(seed, &pencil.held);
+                v = random_vector(seed, pencil.held());
                 from = 0;
             }
         }
@@ -123,7 +122,7 @@ impl Basis {
 /// The error of a search that reached its basis limit with a residual `worst` left.
 fn not_converged(count: usize, limit: usize, worst: f64) -> FemError {
     FemError::Modes(format!(
-        "the lowest {count} modes did not converge within a Krylov basis of {limit} vectors (residual {worst:e} above {RESIDUAL_TOLERANCE:e}): the supports leave modes of nearly zero frequency (corner springs far softer than the plate?), which the shift-invert search cannot separate; stiffen the supports or ask for fewer modes"
+        "the lowest {count} modes did not converge within a Krylov basis of {limit} vectors (residual {worst:e} above {RESIDUAL_TOLERANCE:e}): the supports leave modes of nearly zero frequency (springs far softer than the structure?), which the shift-invert search cannot separate; stiffen the supports or ask for fewer modes"
     ))
 }
 
@@ -151,93 +150,100 @@ impl Modes {
     pub fn krylov(fact: &Factorization<'_>, count: usize) -> Result<Self, FemError> {
         let model = fact.model();
         let supports = *fact.supports();
-        let pencil = Pencil::new(model, &supports)?;
-        let n = model.dofs();
-        let free = pencil.free();
-        Self::check_count(count, free)?;
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        // The basis never grows past `limit`: where the lowest modes need more (supports that
-        // leave modes of nearly zero frequency), the search ends with an error, not after
-        // the whole space.
-        let limit = free.min((20 * count).max(400));
-        let capacity = limit.min((3 * count + 8 * BLOCK).max(count + 16 * BLOCK));
-        let mut basis = Basis::new(n, capacity);
-        // Start: K⁻¹M applied once to a random block, which damps the highest modes.
-        let b = BLOCK.min(free);
-        let mut x = Mat::<f64>::zeros(n, b);
-        for j in 0..b {
-            let r = random_vector(&mut seed, &pencil.held);
-            let mr = symmetric_upper_apply(&pencil.m, &r);
+        let pencil = SparsePencil::new(model, &supports)?;
+        Self::check_count(count, pencil.free())?;
+        let (found, basis) = search(&pencil, |x| fact.solve_unchecked(x), count)?;
+        Ok(Self {
+            mesh: model.mesh().clone(),
+            supports,
+            omega: found.omega,
+            shapes: found.shapes,
+            residuals: found.residuals,
+            orthogonality: found.orthogonality,
+            method: EigenMethod::Krylov { basis },
+        })
+    }
+}
+
+/// The lowest `count` eigenpairs of `pencil` by shift-invert block Krylov, `solve` applying
+/// K⁻¹ to every column in place (held rows zero), with the final basis size; `count` is at
+/// most the free DOFs (checked by the caller).
+pub(crate) fn search(
+    pencil: &impl Pencil,
+    solve: impl Fn(&mut Mat<f64>),
+    count: usize,
+) -> Result<(Finished, usize), FemError> {
+    let held = pencil.held();
+    let n = held.len();
+    let free = held.iter().filter(|h| !**h).count();
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    // The basis never grows past `limit`: where the lowest modes need more (supports that
+    // leave modes of nearly zero frequency), the search ends with an error, not after
+    // the whole space.
+    let limit = free.min((20 * count).max(400));
+    let capacity = limit.min((3 * count + 8 * BLOCK).max(count + 16 * BLOCK));
+    let mut basis = Basis::new(n, capacity);
+    // Start: K⁻¹M applied once to a random block, which damps the highest modes.
+    let b = BLOCK.min(free);
+    let mut x = Mat::<f64>::zeros(n, b);
+    for j in 0..b {
+        let r = random_vector(&mut seed, held);
+        let mr = pencil.mass(&r);
+        for i in 0..n {
+            x[(i, j)] = mr[i];
+        }
+    }
+    solve(&mut x);
+    let mut block = basis.append(pencil, x, &mut seed);
+    let mut next_check = (3 * count / 2 + 2 * BLOCK).min(free);
+    loop {
+        if basis.len >= next_check || basis.len == basis.q.ncols() {
+            if let Some(found) = rayleigh_ritz(&basis, count, pencil)? {
+                let worst = found.residuals.iter().copied().fold(0.0, f64::max);
+                if worst <= RESIDUAL_TOLERANCE || basis.len == free {
+                    if worst > RESIDUAL_TOLERANCE {
+                        return Err(FemError::Modes(format!(
+                            "the complete basis of {free} vectors left a residual {worst:e} above {RESIDUAL_TOLERANCE:e}: the stiffness or mass is too ill conditioned"
+                        )));
+                    }
+                    return Ok((found, basis.len));
+                }
+                if basis.len >= limit {
+                    return Err(not_converged(count, limit, worst));
+                }
+            } else if basis.len >= limit {
+                return Err(not_converged(count, limit, f64::INFINITY));
+            }
+            if basis.len == basis.q.ncols() {
+                // Grow the basis: keep what was built. A full basis is also a Rayleigh-Ritz
+                // step, so it grows as the steps do (see `check_step`).
+                let capacity = basis.q.ncols();
+                basis = basis.grown(limit.min(capacity + count.max(8 * BLOCK).max(check_step(capacity, count))));
+            }
+            next_check = (basis.len + check_step(basis.len, count)).min(free);
+        }
+        if block.is_empty() {
+            // The Krylov space is invariant: continue from a random block.
+            let r = random_vector(&mut seed, held);
+            let w = Mat::from_fn(n, 1, |i, _| r[i]);
+            block = basis.append(pencil, w, &mut seed);
+            continue;
+        }
+        // Next block: K⁻¹ M X for the last block X (M X is stored).
+        let mut w = Mat::<f64>::zeros(n, block.len());
+        for (j, c) in block.clone().enumerate() {
             for i in 0..n {
-                x[(i, j)] = mr[i];
+                w[(i, j)] = basis.mq[(i, c)];
             }
         }
-        fact.solve_unchecked(&mut x);
-        let mut block = basis.append(&pencil, x, &mut seed);
-        let mut next_check = (3 * count / 2 + 2 * BLOCK).min(free);
-        loop {
-            if basis.len >= next_check || basis.len == basis.q.ncols() {
-                if let Some(modes) = rayleigh_ritz(&basis, count, &pencil)? {
-                    let (omega, shapes, residuals, orthogonality) = modes;
-                    let worst = residuals.iter().copied().fold(0.0, f64::max);
-                    if worst <= RESIDUAL_TOLERANCE || basis.len == free {
-                        if worst > RESIDUAL_TOLERANCE {
-                            return Err(FemError::Modes(format!(
-                                "the complete basis of {free} vectors left a residual {worst:e} above {RESIDUAL_TOLERANCE:e}: the stiffness or mass is too ill conditioned"
-                            )));
-                        }
-                        return Ok(Self {
-                            mesh: model.mesh().clone(),
-                            supports,
-                            omega,
-                            shapes,
-                            residuals,
-                            orthogonality,
-                            method: EigenMethod::Krylov { basis: basis.len },
-                        });
-                    }
-                    if basis.len >= limit {
-                        return Err(not_converged(count, limit, worst));
-                    }
-                } else if basis.len >= limit {
-                    return Err(not_converged(count, limit, f64::INFINITY));
-                }
-                if basis.len == basis.q.ncols() {
-                    // Grow the basis: keep what was built. A full basis is also a Rayleigh-Ritz
-                    // step, so it grows as the steps do (see `check_step`).
-                    let capacity = basis.q.ncols();
-                    basis = basis.grown(limit.min(capacity + count.max(8 * BLOCK).max(check_step(capacity, count))));
-                }
-                next_check = (basis.len + check_step(basis.len, count)).min(free);
-            }
-            if block.is_empty() {
-                // The Krylov space is invariant: continue from a random block.
-                let r = random_vector(&mut seed, &pencil.held);
-                let w = Mat::from_fn(n, 1, |i, _| r[i]);
-                block = basis.append(&pencil, w, &mut seed);
-                continue;
-            }
-            // Next block: K⁻¹ M X for the last block X (M X is stored).
-            let mut w = Mat::<f64>::zeros(n, block.len());
-            for (j, c) in block.clone().enumerate() {
-                for i in 0..n {
-                    w[(i, j)] = basis.mq[(i, c)];
-                }
-            }
-            fact.solve_unchecked(&mut w);
-            block = basis.append(&pencil, w, &mut seed);
-        }
+        solve(&mut w);
+        block = basis.append(pencil, w, &mut seed);
     }
 }
 
 /// Rayleigh-Ritz of (K, M) on the basis; the lowest `count` pairs, or None if the basis is
 /// still smaller than `count`.
-#[allow(clippy::type_complexity)]
-fn rayleigh_ritz(
-    basis: &Basis,
-    count: usize,
-    pencil: &Pencil,
-) -> Result<Option<(Vec<f64>, Mat<f64>, Vec<f64>, f64)>, FemError> {
+fn rayleigh_ritz(basis: &Basis, count: usize, pencil: &impl Pencil) -> Result<Option<Finished>, FemError> {
     let d = basis.len;
     if d < count {
         return Ok(None);

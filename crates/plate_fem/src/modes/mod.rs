@@ -33,7 +33,7 @@ use faer::{Accum, Mat, MatRef, Par};
 use nalgebra::DMatrix;
 use serde::Serialize;
 
-mod krylov;
+pub(crate) mod krylov;
 mod residual;
 
 pub use residual::ResidualFlexibility;
@@ -76,8 +76,28 @@ pub struct Modes {
     method: EigenMethod,
 }
 
-/// The matrices of the generalized problem on one support set.
-struct Pencil {
+/// The generalized problem Kφ = ω²Mφ as the eigensolvers use it: products with K and M
+/// (held rows and columns zero) and which DOFs are held.
+pub(crate) trait Pencil {
+    /// Whether each DOF is held (its mode components are zero).
+    fn held(&self) -> &[bool];
+    /// M x.
+    fn mass(&self, x: &[f64]) -> Vec<f64>;
+    /// K x.
+    fn stiffness(&self, x: &[f64]) -> Vec<f64>;
+}
+
+/// Eigenpairs found: ωᵢ, M-normalised shapes (DOFs x modes), relative residuals and
+/// max |ΦᵀMΦ - I|.
+pub(crate) struct Finished {
+    pub omega: Vec<f64>,
+    pub shapes: Mat<f64>,
+    pub residuals: Vec<f64>,
+    pub orthogonality: f64,
+}
+
+/// The plate's matrices of the generalized problem on one support set.
+struct SparsePencil {
     /// K with springs, held rows and columns zero (for products; not factorizable).
     k: faer::sparse::SparseColMat<usize, f64>,
     /// M with held rows and columns zero.
@@ -85,7 +105,7 @@ struct Pencil {
     held: Vec<bool>,
 }
 
-impl Pencil {
+impl SparsePencil {
     fn new(model: &Model, supports: &Supports) -> Result<Self, FemError> {
         let k = model.supported_matrix(supports, 1.0, 0.0, false)?;
         let m = model.supported_mass(supports)?;
@@ -97,6 +117,18 @@ impl Pencil {
     }
     fn free(&self) -> usize {
         self.held.iter().filter(|h| !**h).count()
+    }
+}
+
+impl Pencil for SparsePencil {
+    fn held(&self) -> &[bool] {
+        &self.held
+    }
+    fn mass(&self, x: &[f64]) -> Vec<f64> {
+        symmetric_upper_apply(&self.m, x)
+    }
+    fn stiffness(&self, x: &[f64]) -> Vec<f64> {
+        symmetric_upper_apply(&self.k, x)
     }
 }
 
@@ -112,7 +144,7 @@ impl Modes {
     /// The lowest `count` modes of `model` on `supports`: dense on tiny meshes (at most
     /// [`DENSE_LIMIT`] free DOFs), shift-invert block Krylov otherwise.
     pub fn lowest(model: &Model, supports: &Supports, count: usize) -> Result<Self, FemError> {
-        let free = Pencil::new(model, supports)?.free();
+        let free = SparsePencil::new(model, supports)?.free();
         if free <= DENSE_LIMIT {
             Self::dense(model, supports, count)
         } else {
@@ -133,7 +165,7 @@ impl Modes {
     /// DOFs (M = LLᵀ, L⁻¹KL⁻ᵀ y = ω² y, φ = L⁻ᵀy); refused above [`DENSE_LIMIT`] free DOFs.
     pub fn dense(model: &Model, supports: &Supports, count: usize) -> Result<Self, FemError> {
         supports.validate(model.props().length, model.props().width)?;
-        let pencil = Pencil::new(model, supports)?;
+        let pencil = SparsePencil::new(model, supports)?;
         let free_dofs: Vec<usize> = (0..model.dofs()).filter(|&d| !pencil.held[d]).collect();
         let nf = free_dofs.len();
         Self::check_count(count, nf)?;
@@ -173,7 +205,7 @@ impl Modes {
                 shapes[(di, m)] = phi[i];
             }
         }
-        let (omega, shapes, residuals, orthogonality) = finish(shapes, &pencil)?;
+        let Finished { omega, shapes, residuals, orthogonality } = finish(shapes, &pencil)?;
         Ok(Self {
             mesh: model.mesh().clone(),
             supports: *supports,
@@ -259,16 +291,15 @@ pub fn shape_at(mesh: &Mesh, x: f64, z: f64) -> Result<([usize; 16], Vec16), Fem
 
 /// Frequencies, sign-fixed shapes, residuals and the orthogonality error of candidate
 /// shapes (columns of `shapes`, any normalisation).
-#[allow(clippy::type_complexity)]
-fn finish(mut shapes: Mat<f64>, pencil: &Pencil) -> Result<(Vec<f64>, Mat<f64>, Vec<f64>, f64), FemError> {
+fn finish(mut shapes: Mat<f64>, pencil: &impl Pencil) -> Result<Finished, FemError> {
     let (n, count) = (shapes.nrows(), shapes.ncols());
     let mut omega = Vec::with_capacity(count);
     let mut residuals = Vec::with_capacity(count);
     let mut mshapes = Mat::<f64>::zeros(n, count);
     for m in 0..count {
         let mut v = col(&shapes, m);
-        let mv = symmetric_upper_apply(&pencil.m, &v);
-        let kv = symmetric_upper_apply(&pencil.k, &v);
+        let mv = pencil.mass(&v);
+        let kv = pencil.stiffness(&v);
         let mass = dot(&v, &mv);
         let lambda = dot(&v, &kv) / mass;
         if !(lambda.is_finite() && lambda > 0.0 && mass > 0.0) {
@@ -294,5 +325,5 @@ fn finish(mut shapes: Mat<f64>, pencil: &Pencil) -> Result<(Vec<f64>, Mat<f64>, 
             orth = orth.max((g[(i, j)] - if i == j { 1.0 } else { 0.0 }).abs());
         }
     }
-    Ok((omega, shapes, residuals, orth))
+    Ok(Finished { omega, shapes, residuals, orthogonality: orth })
 }

@@ -19,6 +19,8 @@
 //! - [`Factorized`]: the restrained stiffness, factorized once (faer's sparse Cholesky), the
 //!   response to a patch pressure with its energy split, and the fundamental frequency with a
 //!   lumped mass;
+//! - [`ShellModes`]: the lowest modes with the lumped mass ([`Factorized::modes`]), the
+//!   plate's shift-invert Krylov search, and a load's modal forces and residual flexibility;
 //! - [`tail_beam`]: a hydraulic support's tail beam, a welded box on hinge pins and jacks.
 //!
 //! Walls of boxes are rectangles, and so are the facets of a cylinder meshed along its axis and
@@ -55,6 +57,7 @@
 pub mod element;
 pub mod gmsh;
 mod load;
+mod modes;
 mod msh_write;
 pub mod quad;
 mod restraints;
@@ -62,4 +65,5 @@ mod structure;
 pub mod tail_beam;
 
 pub use load::DISC_RULE;
+pub use modes::{ShellMass, ShellModes};
 pub use structure::{Face, FaceId, Factorized, Restraints, ShellResponse, Spring, Structure, WARP_LIMIT};

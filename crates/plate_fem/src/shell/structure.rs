@@ -95,13 +95,13 @@ pub(super) struct Element {
     pub(super) axes: Matrix3<f64>,
     /// Its parts' index in [`Structure::parts`].
     parts: usize,
-    shape: Shape,
-    thickness: f64,
+    pub(super) shape: Shape,
+    pub(super) thickness: f64,
 }
 
 /// What a uniform load and a lumped mass need of an element's shape.
 #[derive(Debug, Clone, Copy)]
-enum Shape {
+pub(super) enum Shape {
     /// An a x b rectangle: a quarter of ab at each node.
     Rectangle { a: f64, b: f64 },
     /// A general quadrilateral: ∫ N_k dA at node k.
@@ -110,7 +110,7 @@ enum Shape {
 
 impl Shape {
     /// The share of the element's area at each node (m²).
-    fn nodal_areas(&self) -> [f64; 4] {
+    pub(super) fn nodal_areas(&self) -> [f64; 4] {
         match *self {
             Shape::Rectangle { a, b } => [a * b / 4.0; 4],
             Shape::Quad { nodal_areas } => nodal_areas,
@@ -450,7 +450,7 @@ impl Structure {
         let factor = Cholesky::new(&symbolic, upper.as_ref()).map_err(|_| {
             FemError::Singular("the restraints leave the structure a rigid-body motion (or a mechanism)".into())
         })?;
-        Ok(Factorized { structure: self, restraints: restraints.clone(), free, unknowns, factor })
+        Ok(Factorized { structure: self, restraints: restraints.clone(), free, unknowns, factor, stiffness: upper })
     }
 }
 
@@ -474,11 +474,14 @@ pub struct ShellResponse {
 
 /// A restrained structure with its factorized stiffness.
 pub struct Factorized<'s> {
-    structure: &'s Structure,
+    pub(super) structure: &'s Structure,
     restraints: Restraints,
-    free: Vec<usize>,
-    unknowns: usize,
-    factor: Cholesky,
+    /// Each DOF's unknown, usize::MAX where held.
+    pub(super) free: Vec<usize>,
+    pub(super) unknowns: usize,
+    pub(super) factor: Cholesky,
+    /// The restrained stiffness's upper triangle on the unknowns (for products).
+    pub(super) stiffness: SparseColMat<usize, f64>,
 }
 
 impl Factorized<'_> {
