@@ -56,6 +56,7 @@ mod impact;
 pub mod plan;
 pub mod signals;
 pub mod stream;
+pub mod structure;
 pub mod target;
 pub mod window;
 

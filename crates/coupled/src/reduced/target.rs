@@ -50,6 +50,7 @@ pub(crate) struct CornerPoint {
 }
 
 /// One channel of one impact: y = A·q + B·q̇ + D P (A, B None where zero).
+#[derive(Debug, Clone)]
 pub(crate) struct ChannelRow {
     pub a: Option<Vec<f64>>,
     pub b: Option<Vec<f64>>,

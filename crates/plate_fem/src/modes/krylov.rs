@@ -111,7 +111,7 @@ impl Basis {
                 if tries > 3 {
                     break;
                 }
-                v = random_vector(seed, pencil.held());
+                v = pencil.start(random_vector(seed, pencil.held()));
                 from = 0;
             }
         }
@@ -224,9 +224,15 @@ pub(crate) fn search(
         }
         if block.is_empty() {
             // The Krylov space is invariant: continue from a random block.
-            let r = random_vector(&mut seed, held);
+            let r = pencil.start(random_vector(&mut seed, held));
             let w = Mat::from_fn(n, 1, |i, _| r[i]);
             block = basis.append(pencil, w, &mut seed);
+            if block.is_empty() {
+                // Nothing new even from random vectors: with a singular M (massless DOFs)
+                // the basis spans every direction of finite frequency, and its pairs are
+                // exact.
+                return exhausted(&basis, count, pencil);
+            }
             continue;
         }
         // Next block: K⁻¹ M X for the last block X (M X is stored).
@@ -239,6 +245,22 @@ pub(crate) fn search(
         solve(&mut w);
         block = basis.append(pencil, w, &mut seed);
     }
+}
+
+/// The pairs of a basis that spans every direction the mass reaches (fewer than the free
+/// DOFs: some are massless), or the error that there are fewer than `count` of them.
+fn exhausted(basis: &Basis, count: usize, pencil: &impl Pencil) -> Result<(Finished, usize), FemError> {
+    let found = rayleigh_ritz(basis, count, pencil)?.ok_or_else(|| {
+        FemError::Modes(format!(
+            "{count} modes asked for; the structure has only {} of finite frequency (its other free DOFs carry no mass)",
+            basis.len
+        ))
+    })?;
+    let worst = found.residuals.iter().copied().fold(0.0, f64::max);
+    if worst > RESIDUAL_TOLERANCE {
+        return Err(not_converged(count, basis.len, worst));
+    }
+    Ok((found, basis.len))
 }
 
 /// Rayleigh-Ritz of (K, M) on the basis; the lowest `count` pairs, or None if the basis is

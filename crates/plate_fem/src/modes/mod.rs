@@ -85,6 +85,12 @@ pub(crate) trait Pencil {
     fn mass(&self, x: &[f64]) -> Vec<f64>;
     /// K x.
     fn stiffness(&self, x: &[f64]) -> Vec<f64>;
+    /// A random vector as the search takes it in: unchanged where M is positive definite;
+    /// where some DOFs carry no mass, K⁻¹M r, which has no part along the modes of infinite
+    /// frequency (directions the M inner product cannot see).
+    fn start(&self, r: Vec<f64>) -> Vec<f64> {
+        r
+    }
 }
 
 /// Eigenpairs found: ωᵢ, M-normalised shapes (DOFs x modes), relative residuals and

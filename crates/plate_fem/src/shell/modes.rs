@@ -26,6 +26,7 @@
 use super::element::DOFS_PER_NODE;
 use super::structure::Factorized;
 use super::structure::Structure;
+use crate::model::cholesky::Cholesky;
 use crate::model::symmetric_upper_apply;
 use crate::modes::krylov::search;
 use crate::modes::{Finished, Pencil};
@@ -94,6 +95,7 @@ pub struct ShellModes {
 /// K and M on the unknowns.
 struct Unknowns<'a> {
     stiffness: &'a SparseColMat<usize, f64>,
+    factor: &'a Cholesky,
     mass: &'a ShellMass,
     /// Each DOF's unknown, usize::MAX where held.
     free: &'a [usize],
@@ -117,9 +119,37 @@ impl Pencil for Unknowns<'_> {
     fn stiffness(&self, x: &[f64]) -> Vec<f64> {
         symmetric_upper_apply(self.stiffness, x)
     }
+    fn start(&self, r: Vec<f64>) -> Vec<f64> {
+        let m = self.mass(&r);
+        let mut x = Mat::from_fn(m.len(), 1, |i, _| m[i]);
+        self.factor.solve_in_place(x.as_mut());
+        x.col(0).iter().copied().collect()
+    }
 }
 
 impl Factorized<'_> {
+    /// The structure's DOFs, held ones included.
+    pub fn dofs(&self) -> usize {
+        self.free.len()
+    }
+
+    /// K u over all DOFs (held DOFs' rows and columns taken out, their entries 0): the
+    /// restrained stiffness as a product, for models built beside this one.
+    ///
+    /// # Panics
+    ///
+    /// If `u` is shorter than the structure has DOFs.
+    pub fn stiffness_times(&self, u: &[f64]) -> Vec<f64> {
+        let mut x = vec![0.0; self.unknowns];
+        for (d, &slot) in self.free.iter().enumerate() {
+            if slot != usize::MAX {
+                x[slot] = u[d];
+            }
+        }
+        let y = symmetric_upper_apply(&self.stiffness, &x);
+        self.free.iter().map(|&slot| if slot == usize::MAX { 0.0 } else { y[slot] }).collect()
+    }
+
     /// The lowest `count` modes with the mass `mass` of this structure ([`ShellMass::lumped`]):
     /// see the module. Refused when `mass` is another structure's or a free translation has
     /// no positive finite mass, and when `count` is not in [1, unknowns].
@@ -147,7 +177,13 @@ impl Factorized<'_> {
                 )));
             }
         }
-        let pencil = Unknowns { stiffness: &self.stiffness, mass, free: &self.free, held: vec![false; self.unknowns] };
+        let pencil = Unknowns {
+            stiffness: &self.stiffness,
+            factor: &self.factor,
+            mass,
+            free: &self.free,
+            held: vec![false; self.unknowns],
+        };
         let (found, basis) = search(&pencil, |x| self.factor.solve_in_place(x.as_mut()), count)?;
         let Finished { omega, shapes, residuals, orthogonality } = found;
         let all =
@@ -229,8 +265,13 @@ mod tests {
         let mass = super::ShellMass::lumped(&s, 7850.0);
         let modes = fact.modes(&mass, 12).unwrap();
         let n = fact.unknowns;
-        let pencil =
-            super::Unknowns { stiffness: &fact.stiffness, mass: &mass, free: &fact.free, held: vec![false; n] };
+        let pencil = super::Unknowns {
+            stiffness: &fact.stiffness,
+            factor: &fact.factor,
+            mass: &mass,
+            free: &fact.free,
+            held: vec![false; n],
+        };
         let column = |f: &dyn Fn(&[f64]) -> Vec<f64>| {
             let mut a = DMatrix::<f64>::zeros(n, n);
             for j in 0..n {

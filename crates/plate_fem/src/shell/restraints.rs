@@ -25,6 +25,15 @@ impl Spring {
         self.stiffness * d.dot(&Vector3::new(u[n], u[n + 1], u[n + 2]))
     }
 
+    /// The spring's force as a functional of the displacements: (DOF, coefficient) for its
+    /// node's three translations, so that the force is Σ c u (equal to [`Self::force`] up to
+    /// rounding).
+    pub fn coefficients(&self) -> [(usize, f64); 3] {
+        let d = Vector3::from(self.direction).normalize();
+        let n = DOFS_PER_NODE * self.node;
+        [(n, self.stiffness * d.x), (n + 1, self.stiffness * d.y), (n + 2, self.stiffness * d.z)]
+    }
+
     pub(super) fn check(&self, nodes: usize) -> Result<(), FemError> {
         let norm = Vector3::from(self.direction).norm();
         if self.node >= nodes

@@ -1,0 +1,231 @@
+//! The reduced model of a shell structure (a tail beam, a structure read from a mesh) struck
+//! by the sphere: the plate's reduced model ([`super`]) on the structure's own modes.
+//!
+//! **Model.** The restrained structure's lowest N modes with its lumped mass
+//! ([`plate_fem::shell::ShellModes`]), each with the modal damping ratio of the settings;
+//! the contact force acts as a pressure of unit resultant over a small area at the struck
+//! point (load vector f), so mode i feels φᵢ(p)P with φᵢ(p) = φᵢᵀf, and the structure's
+//! deflection there is Σφᵢ(p)qᵢ + C_res(p)P, where C_res(p) = fᵀK⁻¹f - Σφᵢ(p)²/ωᵢ² is the
+//! truncated modes' static correction (Craig & Kurdila, *Fundamentals of Structural
+//! Dynamics*, 2nd ed., 2006). The impact runs through the plate's time loop
+//! ([`crate::transient::simulate_with`]) on the same modal target ([`super::target`]):
+//! Newmark's rule on every mode while a force acts, the exact damped free vibration while
+//! none does, the contact law solved at each step's end, and the stopping rule with the
+//! static compliance fᵀK⁻¹f. The step is the rigid-target Hertz time over
+//! `steps_per_contact`.
+//!
+//! **Springs.** A group of springs to ground (a jack's pad) carries the force Σ gᵀu, g its
+//! springs' coefficients ([`plate_fem::shell::Spring::coefficients`]): on the modes
+//! Σ(gᵀφᵢ)qᵢ, plus the static correction's part (gᵀK⁻¹f - Σ gᵀφᵢ φᵢᵀf/ωᵢ²)P. It is recorded
+//! at every step over the window, free vibration after the sphere has left included, so its
+//! peak is the jack's dynamic force, whose quasi-static counterpart is the force under the
+//! peak contact force held still.
+//!
+//! ```
+//! use coupled::reduced::structure::{StructureModel, StructureSettings};
+//! use coupled::transient::{ContactLaw, Striker, law::Flores};
+//! use plate_fem::shell::{Face, Restraints, ShellMass, Structure, DISC_RULE};
+//! // A 0.4 x 0.3 m steel plate, 10 mm thick, hard simply supported, as a shell.
+//! let mut s = Structure::new(210e9, 0.3)?;
+//! let lines = |l: f64, n: usize| (0..=n).map(|i| l * i as f64 / n as f64).collect::<Vec<_>>();
+//! let face = Face::new([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], lines(0.4, 12), lines(0.3, 9), 0.01)?;
+//! s.add_face(&face)?;
+//! let mut r = Restraints::default();
+//! for n in s.nodes_where(|p| p[0] == 0.0 || p[0] == 0.4 || p[2] == 0.0 || p[2] == 0.3) {
+//!     r.hold(n, &[0, 1, 2]);
+//! }
+//! let fact = s.factorize(&r)?;
+//! let load = s.disc_load([0.2, 0.0, 0.15], 0.005, &(0..s.elements()).collect::<Vec<_>>(), DISC_RULE)?;
+//! let settings = StructureSettings { modes: 30, ..StructureSettings::default() };
+//! let model = StructureModel::new(&fact, &ShellMass::lumped(&s, 7850.0), &[load], &[], settings)?;
+//! let ball = Striker { k: 5e9, restitution: 1.0, mass: 0.1, velocity: 1.0, law: ContactLaw::Flores(Flores), gravity: 0.0 };
+//! let hit = model.impact(&ball, 0, 2e-3)?;
+//! // Softer than a rigid target: the force stays below Hertz's.
+//! assert!(hit.outcome.force_max > 0.0 && hit.outcome.force_max < ball.hertz_force());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use super::signals::FreeMaps;
+use super::target::{ChannelRow, ModalTarget, Recording};
+use super::{modal_compliance, ModalDamping, ReducedSettings};
+use crate::error::ModelError;
+use crate::transient::{simulate_with, Outcome, PlateFacts, Striker};
+use analytic::params::{check, Range};
+use plate_fem::shell::{Factorized, ShellMass, ShellModes, Spring};
+use serde::Serialize;
+
+/// How a structure's reduced model is built and stepped.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StructureSettings {
+    /// N, the modes kept.
+    pub modes: usize,
+    /// The damping ratio of the modes.
+    pub damping: ModalDamping,
+    /// The time step is at most the Hertz time over this.
+    pub steps_per_contact: f64,
+}
+
+impl Default for StructureSettings {
+    /// The plate's reduced model's defaults: 80 modes, ζ = 0.5 %, 100 steps per contact.
+    fn default() -> Self {
+        Self {
+            modes: ReducedSettings::DEFAULT_MODES,
+            damping: ModalDamping::Ratio(ReducedSettings::DEFAULT_DAMPING_RATIO),
+            steps_per_contact: ReducedSettings::DEFAULT_STEPS_PER_CONTACT,
+        }
+    }
+}
+
+/// What an impact at one point needs of the modes.
+#[derive(Debug, Clone)]
+struct StruckPoint {
+    /// φᵢ(p) = φᵢᵀf.
+    phi: Vec<f64>,
+    /// fᵀK⁻¹f, m/N.
+    static_compliance: f64,
+    /// C_res(p), m/N.
+    residual: f64,
+    /// Per spring group, its force's row on the modes and its static-correction part per
+    /// unit contact force.
+    groups: Vec<ChannelRow>,
+    /// Per spring group, its force per unit static contact force.
+    group_static: Vec<f64>,
+}
+
+/// A structure's modes and its struck points, built once for many impacts.
+pub struct StructureModel {
+    omega: Vec<f64>,
+    settings: StructureSettings,
+    points: Vec<StruckPoint>,
+    basis: usize,
+    largest_residual: f64,
+    simd: pulp::Arch,
+}
+
+/// One impact on the structure.
+#[derive(Debug, Clone, Serialize)]
+pub struct StructureImpact {
+    /// The contact's course.
+    pub outcome: Outcome,
+    /// Each spring group's largest |force| over the window, N.
+    pub group_force_max: Vec<f64>,
+    /// The time step, s.
+    pub dt: f64,
+}
+
+impl StructureModel {
+    /// The lowest `settings.modes` modes of the structure `fact` (factorized) with `mass`,
+    /// and the struck points' load vectors `loads` (unit resultant, all DOFs); the forces of
+    /// the spring `groups` are followed in every impact.
+    pub fn new(
+        fact: &Factorized<'_>,
+        mass: &ShellMass,
+        loads: &[Vec<f64>],
+        groups: &[Vec<Spring>],
+        settings: StructureSettings,
+    ) -> Result<Self, ModelError> {
+        check("modes", settings.modes as f64, ReducedSettings::MODES, "")?;
+        check("steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
+        let modes = fact.modes(mass, settings.modes)?;
+        let functionals: Vec<Vec<f64>> = groups.iter().map(|g| functional(g, fact.dofs())).collect();
+        let points = loads.iter().map(|f| struck_point(fact, &modes, f, &functionals)).collect();
+        Ok(Self {
+            omega: modes.omegas().to_vec(),
+            settings,
+            points,
+            basis: modes.basis(),
+            largest_residual: modes.residuals().iter().copied().fold(0.0, f64::max),
+            simd: pulp::Arch::new(),
+        })
+    }
+
+    /// The modes' frequencies, Hz.
+    pub fn frequencies_hz(&self) -> Vec<f64> {
+        self.omega.iter().map(|w| w / std::f64::consts::TAU).collect()
+    }
+
+    /// The Krylov basis the modes were found in, and their largest relative residual.
+    pub fn search(&self) -> (usize, f64) {
+        (self.basis, self.largest_residual)
+    }
+
+    /// The static compliance fᵀK⁻¹f at point `point`, m/N, and the share of it the kept modes
+    /// carry, Σφᵢ(p)²/ωᵢ² over it.
+    pub fn compliance(&self, point: usize) -> Option<(f64, f64)> {
+        let p = self.points.get(point)?;
+        Some((p.static_compliance, modal_compliance(&p.phi, &self.omega) / p.static_compliance))
+    }
+
+    /// Each spring group's force per unit contact force held still at `point` (the static
+    /// answer), N/N.
+    pub fn group_static(&self, point: usize) -> Option<&[f64]> {
+        self.points.get(point).map(|p| p.group_static.as_slice())
+    }
+
+    /// The impact of `striker` at load `point`, followed over `window` seconds from the
+    /// first touch (the spring groups' forces over all of it).
+    pub fn impact(&self, striker: &Striker, point: usize, window: f64) -> Result<StructureImpact, ModelError> {
+        let p = self.points.get(point).ok_or_else(|| {
+            ModelError::Missing(format!("struck point {point} of a structure with {} points", self.points.len()))
+        })?;
+        check("window", window, Range::open(0.0, 10.0), "s")?;
+        let dt = striker.hertz_time() / self.settings.steps_per_contact;
+        let steps = (window / dt).ceil() as usize;
+        if steps > MAX_STEPS {
+            return Err(ModelError::Missing(format!(
+                "a window of {window} s at the step {dt:e} s is {steps} steps, above {MAX_STEPS}"
+            )));
+        }
+        let zeta = self.settings.damping;
+        let rows = p.groups.clone();
+        let recording = (!rows.is_empty()).then(|| Recording { rows, every: 1, samples: steps + 1 });
+        let map = FreeMaps::new(&self.omega, zeta, dt);
+        let mut target = ModalTarget::new(
+            self.omega.clone(),
+            zeta,
+            p.phi.clone(),
+            p.residual,
+            dt,
+            Some(map),
+            Default::default(),
+            recording,
+            self.simd,
+        );
+        let facts =
+            PlateFacts { static_compliance: Some(p.static_compliance), corner_springs: None, follow_unbounded: true };
+        let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
+        while !p.groups.is_empty() && target.recorded() < steps + 1 {
+            target.advance_free(1);
+        }
+        let group_force_max = target.out.iter().map(|s| s.iter().fold(0.0, |m: f64, f| m.max(f.abs()))).collect();
+        Ok(StructureImpact { outcome, group_force_max, dt })
+    }
+}
+
+/// Most time steps of one impact's window (a sample per step is kept per spring group).
+pub const MAX_STEPS: usize = 2_000_000;
+
+/// The springs' force coefficients as one vector over `dofs` DOFs.
+fn functional(springs: &[Spring], dofs: usize) -> Vec<f64> {
+    let mut g = vec![0.0; dofs];
+    for s in springs {
+        for (d, c) in s.coefficients() {
+            g[d] += c;
+        }
+    }
+    g
+}
+
+/// The modal view of the load `f` (see the module).
+fn struck_point(fact: &Factorized<'_>, modes: &ShellModes, f: &[f64], groups: &[Vec<f64>]) -> StruckPoint {
+    let field = fact.solve(f);
+    let static_compliance: f64 = f.iter().zip(&field).map(|(a, b)| a * b).sum();
+    let phi = modes.modal(f);
+    let residual = modes.residual_between(f, f, &field).max(0.0);
+    let rows = groups
+        .iter()
+        .map(|g| ChannelRow { a: Some(modes.modal(g)), b: None, d: modes.residual_between(g, f, &field) })
+        .collect();
+    let group_static = groups.iter().map(|g| g.iter().zip(&field).map(|(a, b)| a * b).sum()).collect();
+    StruckPoint { phi, static_compliance, residual, groups: rows, group_static }
+}
