@@ -59,6 +59,7 @@ pub mod signals;
 pub mod stream;
 pub mod study;
 pub mod tail_beam;
+pub mod tail_beam_time;
 pub mod transient;
 pub mod verdict;
 pub mod yield_models;

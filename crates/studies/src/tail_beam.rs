@@ -20,6 +20,7 @@
 //! balance would say with the whole structure behind the point.
 
 use crate::settings::{BASE_MESH, LEVELS};
+use crate::tail_beam_time::InTime;
 use crate::Failure;
 use analytic::{respond, yield_velocity, DruckerPrager, Plate, PointCompliance};
 use coupled::compliance::tail_beam::{contact_patch, TailBeamModel, TailBeamScene, TAIL_BEAM_LEVELS};
@@ -168,6 +169,8 @@ pub struct TailBeamData {
     pub panel_checks: Vec<PanelCheck>,
     /// Seconds the shell model took.
     pub seconds: f64,
+    /// The impacts on the box's own modes in time.
+    pub in_time: InTime,
 }
 
 /// Runs the study on a scene with a `[tail_beam]`.
@@ -202,7 +205,9 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         None => Vec::new(),
     };
     let panel = on_panel.map(|(p, _)| p);
+    let in_time = crate::tail_beam_time::compute(scene, tb, &rows)?;
     Ok(TailBeamData {
+        in_time,
         panel,
         panel_checks,
         scene: tb.clone(),
@@ -321,15 +326,36 @@ fn row(
 /// about 0.2 % (the model spreads each jack over its pad's nodes, whose arms differ from the
 /// pad centre's).
 pub fn rigid_frequency(b: &TailBeam, rho: f64) -> f64 {
-    let (l, h, w, yp) = (b.length, b.height, b.width, b.pin_height);
-    // ∫ (y - y_p)² dy / H over the depth: what a vertical wall adds per unit mass.
-    let depth = h * h / 3.0 - h * yp + yp * yp;
-    let long = l * l / 3.0;
-    let flanges = rho * l * w * (b.top * (long + (h - yp).powi(2)) + b.bottom * (long + yp * yp));
-    let walls = rho * l * h * (2.0 * b.webs + b.ribs.len() as f64 * b.rib) * (long + depth);
-    let ends = rho * w * h * b.ends * (depth + (l * l + depth));
-    let k: f64 = b.jacks.iter().map(|j| j.stiffness * (yp * j.angle.cos() + j.x * j.angle.sin()).powi(2)).sum();
-    (k / (flanges + walls + ends)).sqrt() / (2.0 * std::f64::consts::PI)
+    let r = RigidTurning::of(b, rho);
+    (r.stiffness / r.inertia).sqrt() / (2.0 * std::f64::consts::PI)
+}
+
+/// The box as a rigid body turning about the pins' line on its jacks (see [`rigid_frequency`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidTurning {
+    /// k_θ = Σ k_j a_j², N m/rad.
+    pub stiffness: f64,
+    /// The walls' moment of inertia about the pins' line, kg m².
+    pub inertia: f64,
+    /// Σ k_j a_j, N/rad: the jacks' summed force per unit rotation.
+    pub jacks_force: f64,
+}
+
+impl RigidTurning {
+    /// The rigid box of `b` in steel of density `rho`.
+    pub fn of(b: &TailBeam, rho: f64) -> Self {
+        let (l, h, w, yp) = (b.length, b.height, b.width, b.pin_height);
+        // ∫ (y - y_p)² dy / H over the depth: what a vertical wall adds per unit mass.
+        let depth = h * h / 3.0 - h * yp + yp * yp;
+        let long = l * l / 3.0;
+        let flanges = rho * l * w * (b.top * (long + (h - yp).powi(2)) + b.bottom * (long + yp * yp));
+        let walls = rho * l * h * (2.0 * b.webs + b.ribs.len() as f64 * b.rib) * (long + depth);
+        let ends = rho * w * h * b.ends * (depth + (l * l + depth));
+        let arm = |j: &plate_fem::shell::tail_beam::Jack| yp * j.angle.cos() + j.x * j.angle.sin();
+        let stiffness: f64 = b.jacks.iter().map(|j| j.stiffness * arm(j).powi(2)).sum();
+        let jacks_force = b.jacks.iter().map(|j| j.stiffness * arm(j)).sum();
+        Self { stiffness, inertia: flanges + walls + ends, jacks_force }
+    }
 }
 
 /// The walls' z positions, sorted: the webs and the ribs.

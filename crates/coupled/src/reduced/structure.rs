@@ -139,6 +139,43 @@ impl StructureModel {
         })
     }
 
+    /// The same model on its lowest `n` modes only (1 ≤ n ≤ N), the others joining the static
+    /// correction: C_res grows by Σ_{i>n} φᵢ(p)²/ωᵢ², a spring group's static part by
+    /// Σ_{i>n} gᵀφᵢ φᵢ(p)/ωᵢ². The truncation's error estimate without a second eigensolution.
+    pub fn truncated(&self, n: usize) -> Result<Self, ModelError> {
+        check("modes", n as f64, Range::closed(1.0, self.omega.len() as f64), "")?;
+        let dropped = |a: &[f64], b: &[f64]| -> f64 {
+            a[n..].iter().zip(&b[n..]).zip(&self.omega[n..]).map(|((x, y), w)| x * y / (w * w)).sum()
+        };
+        let points = self
+            .points
+            .iter()
+            .map(|p| StruckPoint {
+                phi: p.phi[..n].to_vec(),
+                static_compliance: p.static_compliance,
+                residual: p.residual + dropped(&p.phi, &p.phi),
+                groups: p
+                    .groups
+                    .iter()
+                    .map(|g| {
+                        let a = g.a.as_deref().unwrap_or(&[]);
+                        let d = if a.len() == p.phi.len() { g.d + dropped(a, &p.phi) } else { g.d };
+                        ChannelRow { a: g.a.as_ref().map(|a| a[..n].to_vec()), b: None, d }
+                    })
+                    .collect(),
+                group_static: p.group_static.clone(),
+            })
+            .collect();
+        Ok(Self {
+            omega: self.omega[..n].to_vec(),
+            settings: StructureSettings { modes: n, ..self.settings },
+            points,
+            basis: self.basis,
+            largest_residual: self.largest_residual,
+            simd: self.simd,
+        })
+    }
+
     /// The modes' frequencies, Hz.
     pub fn frequencies_hz(&self) -> Vec<f64> {
         self.omega.iter().map(|w| w / std::f64::consts::TAU).collect()
