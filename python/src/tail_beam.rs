@@ -54,5 +54,19 @@ fn rows(d: &TailBeamData) -> Table {
         t.num("v_y_m_per_s", i, r.yield_velocity);
         t.num("v_y_rigid_m_per_s", i, r.yield_velocity_rigid);
     }
+    // The box in time, one row per impact in the same order.
+    for (i, (r, rigid_box)) in d.in_time.rows.iter().zip(&d.jacks_rigid_box).enumerate() {
+        t.num("P_max_in_time_N", i, r.p_max);
+        t.num("P_max_in_time_error_N", i, r.p_max_error);
+        t.num("truncation_rel", i, r.truncation);
+        t.num("mesh_rel", i, r.mesh);
+        if let Some(t_c) = r.contact_time {
+            t.num("t_c_in_time_s", i, t_c);
+        }
+        t.count("contacts_in_time", i, r.contacts as u64);
+        t.num("jacks_force_in_time_N", i, r.spring_force);
+        t.num("jacks_force_in_time_error_N", i, r.spring_force_error);
+        t.num("jacks_force_rigid_box_N", i, *rigid_box);
+    }
     t
 }

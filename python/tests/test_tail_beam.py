@@ -48,6 +48,16 @@ def test_tail_beam_identical_to_the_command_line(tmp_path):
                 assert float(row[key]) == float(got), (i, key, row[key], got)
                 compared += 1
     assert compared > 400
+    # The box in time: its CSV's columns are the rows' too.
+    with open(out / "tail-beam" / "impacts-in-time.csv", newline="") as f:
+        timed = list(csv.DictReader([line for line in f if not line.startswith("#")]))
+    shared = [k for k in timed[0] if k in cols and k not in ("body", "x_m", "z_m", "v_m_per_s")]
+    assert {"P_max_in_time_N", "jacks_force_in_time_N", "contacts_in_time", "t_c_in_time_s"} <= set(shared)
+    for i, row in enumerate(timed):
+        assert row["body"] == str(cols["body"][i])
+        for key in shared:
+            assert float(row[key]) == float(cols[key][i]), (i, key, row[key], cols[key][i])
+    assert np.all(cols["P_max_in_time_error_N"] < 1e-2 * cols["P_max_in_time_N"])
     # The structure's statics, read from the JSON: the jacks carry the unit load's moment
     # about the pins on a rigid box, to 0.5 %.
     beam = r.results["scene"]["beam"]

@@ -15,6 +15,7 @@ pub mod fem_verification;
 pub mod field;
 pub mod field_series;
 pub mod identify;
+pub mod in_time;
 pub mod nested;
 pub mod paper;
 pub mod paper_studies;

@@ -103,6 +103,28 @@ pub fn report(scene: &Scene, d: &ShellMeshData) -> Result<(Artifacts, String), F
     let mut a = Artifacts::new();
     a.add("structure.csv", st.to_csv());
     a.add("impacts.csv", im.to_csv());
+    let beside = crate::in_time::Beside {
+        point: d
+            .rows
+            .iter()
+            .map(|r| vec![Cell::Given(r.at[0] * 1e3), Cell::Given(r.at[1] * 1e3), Cell::Given(r.at[2] * 1e3)])
+            .collect(),
+        point_headers: &["x (mm)", "y (mm)", "z (mm)"],
+        p_wave: d.rows.iter().map(|r| r.p_wave).collect(),
+        springs_quasi_static: d.rows.iter().map(|r| r.spring_force).collect(),
+        rigid_box: None,
+        springs: "springs'",
+    };
+    let it = crate::in_time::table(&d.in_time, &beside);
+    a.add("impacts-in-time.csv", it.to_csv());
+    let prose = crate::in_time::Prose {
+        mesh: "the file's mesh refined once",
+        contact: format!("disc of diameter {} mm", scene::mm_label(d.struck_thickness)),
+        coarser: "the file's own mesh",
+        rigid: "",
+        checked: "",
+    };
+    let in_time = crate::in_time::section(&d.in_time, &beside, &prose, &it)?;
     let sm = &d.scene;
     let mesh = &sm.mesh;
     let groups: Vec<String> = mesh
@@ -170,6 +192,7 @@ pub fn report(scene: &Scene, d: &ShellMeshData) -> Result<(Artifacts, String), F
             ("structure", st.to_markdown()),
             ("findings", finding.clone()),
             ("impacts", im.to_markdown()),
+            ("in_time", in_time),
         ],
     )?;
     a.add("index.md", page);
@@ -190,6 +213,7 @@ fn finding(scene: &Scene, d: &ShellMeshData) -> Result<String, Failure> {
     let (spring_low, spring_high) = range(d.rows.iter().map(|r| r.shares[3]));
     let (_, error) = range(d.rows.iter().map(|r| r.compliance_error / r.compliance));
     let share = |v: f64| format!("{} %", sig(100.0 * v, 3));
+    let (time_low, time_high) = range(d.in_time.rows.iter().zip(&d.rows).map(|(t, r)| t.p_max / r.p_wave - 1.0));
     render(
         "shell_mesh/finding.md",
         FINDING,
@@ -205,6 +229,9 @@ fn finding(scene: &Scene, d: &ShellMeshData) -> Result<String, Failure> {
             ("spring_low", share(spring_low)),
             ("spring_high", share(spring_high)),
             ("error", percent(error)),
+            ("modes", d.in_time.modes.to_string()),
+            ("time_low", percent(time_low)),
+            ("time_high", percent(time_high)),
         ],
     )
     .map_err(Into::into)

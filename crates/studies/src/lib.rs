@@ -24,6 +24,8 @@
 //!   the size map and the model's verification (`impact dynamic`);
 //! * [`tail_beam`]: the scene's impacts on a box-section tail beam beside the paper's beam and
 //!   Kirchhoff plate;
+//! * [`in_time`]: the tail beam's and a mesh file's impacts in time on the structure's own
+//!   modes;
 //! * [`field_series`]: the plate's deflection recorded during one contact;
 //! * [`verdict`]: a statement's verdict under one model, to the model's resolution;
 //! * [`columns`]: one schema for the result rows (key with unit, header, kind, getter);
@@ -48,6 +50,7 @@ pub mod fem_verification;
 pub mod field;
 pub mod field_series;
 pub mod identify;
+pub mod in_time;
 pub mod paper;
 pub mod paper_studies;
 pub mod progress;
@@ -59,7 +62,6 @@ pub mod signals;
 pub mod stream;
 pub mod study;
 pub mod tail_beam;
-pub mod tail_beam_time;
 pub mod transient;
 pub mod verdict;
 pub mod yield_models;

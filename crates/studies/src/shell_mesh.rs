@@ -14,11 +14,13 @@
 //! from the panel the point lies on, is not given here; the struck face's own geometry decides
 //! which limit holds, and the report says so.
 
+use crate::in_time::{InTime, OnMesh, IN_TIME_LEVEL};
 use crate::tail_beam::{share, three_forces, ThreeForces};
 use crate::Failure;
 use analytic::{yield_velocity, Plate, StoreKind};
 use coupled::compliance::shell_mesh::{MeshLevel, ShellMeshModel, ShellMeshScene};
 use coupled::validity::{self, Criterion};
+use plate_fem::shell::DISC_RULE;
 use scene::Scene;
 use serde::Serialize;
 use std::time::Instant;
@@ -83,6 +85,8 @@ pub struct ShellMeshData {
     pub rows: Vec<ShellMeshRow>,
     /// Seconds the ladder took.
     pub seconds: f64,
+    /// The impacts on the structure's own modes in time, one per row.
+    pub in_time: InTime,
 }
 
 /// Runs the study on a scene with a `[shell_mesh]`.
@@ -104,7 +108,9 @@ pub fn compute(scene: &Scene) -> Result<ShellMeshData, Failure> {
             }
         }
     }
+    let in_time = in_time_of(scene, sm, thickness, &rows)?;
     Ok(ShellMeshData {
+        in_time,
         scene: sm.clone(),
         struck_thickness: thickness,
         levels: model.levels.clone(),
@@ -114,6 +120,38 @@ pub fn compute(scene: &Scene) -> Result<ShellMeshData, Failure> {
         rows,
         seconds,
     })
+}
+
+/// The study's impacts in time ([`crate::in_time`]) on the file's mesh refined once, and on the
+/// file's own for the mesh's error.
+fn in_time_of(scene: &Scene, sm: &ShellMeshScene, thickness: f64, rows: &[ShellMeshRow]) -> Result<InTime, Failure> {
+    let started = Instant::now();
+    let (m, rho) = (scene.plate.material(), scene.plate.density());
+    let on = |mesh: &plate_fem::shell::gmsh::MeshFile| -> Result<_, Failure> {
+        let built = sm.build(mesh, m.youngs_modulus(), m.poisson_ratio())?;
+        let s = &built.structure;
+        let loads = sm
+            .points
+            .iter()
+            .map(|&at| s.disc_load(at, thickness / 2.0, &built.struck, DISC_RULE))
+            .collect::<Result<Vec<_>, _>>()?;
+        let groups = built.springs.iter().map(|r| built.restraints.springs[r.clone()].to_vec()).collect();
+        OnMesh { structure: s, restraints: &built.restraints, loads, groups }.model(rho)
+    };
+    let (coarse, _) = on(&sm.mesh)?;
+    let mut fine_mesh = sm.mesh.clone();
+    for _ in 0..IN_TIME_LEVEL {
+        fine_mesh = fine_mesh.refined();
+    }
+    let fine = on(&fine_mesh)?;
+    let impacts = rows
+        .iter()
+        .map(|r| {
+            let point = sm.points.iter().position(|&p| p == r.at).ok_or("a row at an unknown point")?;
+            Ok((r.body.clone(), r.velocity, point))
+        })
+        .collect::<Result<Vec<_>, Failure>>()?;
+    crate::in_time::compute(scene, fine, coarse, &impacts, started)
 }
 
 /// One impact of `body` at `v` on the structure at `at`.

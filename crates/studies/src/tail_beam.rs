@@ -19,8 +19,8 @@
 //! wave-controlled force is the answer, and the quasi-static one shows what the paper's
 //! balance would say with the whole structure behind the point.
 
+use crate::in_time::{InTime, OnMesh, IN_TIME_LEVEL};
 use crate::settings::{BASE_MESH, LEVELS};
-use crate::tail_beam_time::InTime;
 use crate::Failure;
 use analytic::{respond, yield_velocity, DruckerPrager, Plate, PointCompliance};
 use coupled::compliance::tail_beam::{contact_patch, TailBeamModel, TailBeamScene, TAIL_BEAM_LEVELS};
@@ -169,8 +169,11 @@ pub struct TailBeamData {
     pub panel_checks: Vec<PanelCheck>,
     /// Seconds the shell model took.
     pub seconds: f64,
-    /// The impacts on the box's own modes in time.
+    /// The impacts on the box's own modes in time, one per row.
     pub in_time: InTime,
+    /// The rigid box's answer to each impact's impulse J at x, the jacks' summed force
+    /// Σk_j a_j·J x/(I ω_r), N ([`RigidTurning`]): the first mode's alone.
+    pub jacks_rigid_box: Vec<f64>,
 }
 
 /// Runs the study on a scene with a `[tail_beam]`.
@@ -205,9 +208,10 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         None => Vec::new(),
     };
     let panel = on_panel.map(|(p, _)| p);
-    let in_time = crate::tail_beam_time::compute(scene, tb, &rows)?;
+    let (in_time, jacks_rigid_box) = in_time_of(scene, tb, &rows)?;
     Ok(TailBeamData {
         in_time,
+        jacks_rigid_box,
         panel,
         panel_checks,
         scene: tb.clone(),
@@ -222,6 +226,37 @@ pub fn compute(scene: &Scene) -> Result<TailBeamData, Failure> {
         paper: paper_rows(scene)?,
         seconds,
     })
+}
+
+/// The study's impacts on the box in time ([`crate::in_time`]) on the ladder's middle mesh and
+/// the coarser, with the rigid box's answer for the jacks beside each.
+fn in_time_of(scene: &Scene, tb: &TailBeamScene, rows: &[TailBeamRow]) -> Result<(InTime, Vec<f64>), Failure> {
+    let started = Instant::now();
+    let (m, rho) = (scene.plate.material(), scene.plate.density());
+    let on = |level: u32| -> Result<_, Failure> {
+        let built = tb.beam.build(m.youngs_modulus(), m.poisson_ratio(), tb.element, level)?;
+        let loads = tb
+            .points
+            .iter()
+            .map(|&(x, z)| built.structure.patch_load(built.top, &contact_patch(&tb.beam, x, z)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let groups = built.jacks.iter().map(|r| built.restraints.springs[r.clone()].to_vec()).collect();
+        OnMesh { structure: &built.structure, restraints: &built.restraints, loads, groups }.model(rho)
+    };
+    let (fine, (coarse, _)) = (on(IN_TIME_LEVEL)?, on(IN_TIME_LEVEL - 1)?);
+    let impacts = rows
+        .iter()
+        .map(|r| {
+            let point = tb.points.iter().position(|&p| p == (r.x, r.z)).ok_or("a row at an unknown point")?;
+            Ok((r.body.clone(), r.velocity, point))
+        })
+        .collect::<Result<Vec<_>, Failure>>()?;
+    let t = crate::in_time::compute(scene, fine, coarse, &impacts, started)?;
+    let rigid = RigidTurning::of(&tb.beam, rho);
+    let omega_r = (rigid.stiffness / rigid.inertia).sqrt();
+    let jacks =
+        t.rows.iter().zip(rows).map(|(r, q)| rigid.jacks_force * r.impulse * q.x / (rigid.inertia * omega_r)).collect();
+    Ok((t, jacks))
 }
 
 /// One impact's three forces on a structure (module docs), with what they came from: the

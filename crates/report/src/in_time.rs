@@ -1,0 +1,113 @@
+//! The section of a structure's page on its impacts in time ([`studies::in_time`]), shared by
+//! the tail beam's and a mesh file's pages.
+
+use crate::present::table::{sig, Cell, Table};
+use crate::template::render;
+use crate::Failure;
+use studies::in_time::InTime;
+
+const SECTION: &str = include_str!("templates/in_time/section.md");
+
+/// What a page puts beside the rows in time, one entry per row (in the rows' order).
+pub struct Beside<'a> {
+    /// The struck point's cells (its coordinates, mm).
+    pub point: Vec<Vec<Cell>>,
+    /// The point's coordinate headers.
+    pub point_headers: &'a [&'a str],
+    /// The wave-controlled P_max, N.
+    pub p_wave: Vec<f64>,
+    /// The quasi-static balance's summed spring force, N.
+    pub springs_quasi_static: Vec<f64>,
+    /// The rigid box's answer for the springs, N, where the page has one.
+    pub rigid_box: Option<Vec<f64>>,
+    /// What the springs are ("jacks'", "springs'").
+    pub springs: &'a str,
+}
+
+/// The table of the impacts in time.
+pub fn table(t: &InTime, b: &Beside<'_>) -> Table {
+    let springs = b.springs;
+    let mut headers: Vec<String> = vec!["body".into(), "v (m/s)".into()];
+    headers.extend(b.point_headers.iter().map(|h| h.to_string()));
+    headers.extend(
+        [
+            "P_max in time (N)",
+            "truncation (rel)",
+            "mesh (rel)",
+            "P_max wave-controlled (N)",
+            "in time/wave - 1",
+            "t_c in time (ms)",
+            "contacts in time",
+        ]
+        .map(String::from),
+    );
+    headers.push(format!("{springs} force in time (N)"));
+    if b.rigid_box.is_some() {
+        headers.push(format!("{springs} force, rigid box (N)"));
+    }
+    headers.push(format!("{springs} force quasi-static (N)"));
+    headers.push("in time/quasi-static".into());
+    let refs: Vec<&str> = headers.iter().map(String::as_str).collect();
+    let mut out = Table::new("", &refs);
+    for (i, r) in t.rows.iter().enumerate() {
+        let mut row = vec![Cell::Text(r.body.clone()), Cell::Given(r.velocity)];
+        row.extend(b.point[i].iter().cloned());
+        row.extend([
+            Cell::Measured { value: r.p_max, error: r.p_max_error },
+            Cell::Sig(r.truncation, 2),
+            Cell::Sig(r.mesh, 2),
+            Cell::Sig(b.p_wave[i], 5),
+            Cell::Rel(r.p_max / b.p_wave[i] - 1.0),
+            r.contact_time.map_or(Cell::Empty, |t| Cell::Sig(t * 1e3, 4)),
+            Cell::Int(r.contacts as u64),
+            Cell::Measured { value: r.spring_force, error: r.spring_force_error },
+        ]);
+        if let Some(rigid) = &b.rigid_box {
+            row.push(Cell::Sig(rigid[i], 3));
+        }
+        let qs = b.springs_quasi_static[i];
+        row.push(Cell::Sig(qs, 4));
+        row.push(if qs > 0.0 { Cell::Sig(r.spring_force / qs, 3) } else { Cell::Empty });
+        out.push(row);
+    }
+    out
+}
+
+/// The section's prose and table: `mesh` names the mesh, `contact` the load, `coarser` the
+/// mesh of the mesh error, `rigid` and `checked` add the page's own sentences.
+pub struct Prose<'a> {
+    /// "mesh 1 of the ladder".
+    pub mesh: &'a str,
+    /// "30 mm patch".
+    pub contact: String,
+    /// "the coarser mesh".
+    pub coarser: &'a str,
+    /// A sentence on the rigid box's answer, or empty.
+    pub rigid: &'a str,
+    /// A sentence on the page's own independent check, or empty.
+    pub checked: &'a str,
+}
+
+/// The section's text with `table`.
+pub fn section(t: &InTime, b: &Beside<'_>, p: &Prose<'_>, table: &Table) -> Result<String, Failure> {
+    Ok(render(
+        "in_time/section.md",
+        SECTION,
+        &[
+            ("mesh", p.mesh.into()),
+            ("unknowns", t.unknowns.to_string()),
+            ("modes", t.modes.to_string()),
+            ("half", (t.modes / 2).to_string()),
+            ("f1", sig(t.frequencies.0, 4)),
+            ("fn", sig(t.frequencies.1, 4)),
+            ("contact", p.contact.clone()),
+            ("springs", b.springs.into()),
+            ("window", sig(t.window * 1e3, 3)),
+            ("rigid", p.rigid.into()),
+            ("coarser", p.coarser.into()),
+            ("checked", p.checked.into()),
+            ("seconds", format!("{:.1}", t.seconds)),
+            ("table", table.to_markdown()),
+        ],
+    )?)
+}
