@@ -21,12 +21,14 @@
 //!   lumped mass;
 //! - [`ShellModes`]: the lowest modes with the lumped mass ([`Factorized::modes`]), the
 //!   plate's shift-invert Krylov search, and a load's modal forces and residual flexibility;
+//! - [`warp`]: a warped quadrilateral formed on its corners' projections and tied to its nodes
+//!   by rigid links (MacNeal's warping correction);
 //! - [`tail_beam`]: a hydraulic support's tail beam, a welded box on hinge pins and jacks.
 //!
 //! Walls of boxes are rectangles, and so are the facets of a cylinder meshed along its axis and
 //! around it, which is how the curved benchmarks are built; [`Structure::add_quad`] takes any
-//! convex flat quadrilateral (a skewed or graded mesh, a mesher's output), each with its own
-//! element matrices.
+//! convex quadrilateral (a skewed or graded mesh, a mesher's output, a twisted strip), each with
+//! its own element matrices.
 //!
 //! # Example: a flat plate as a shell
 //!
@@ -63,6 +65,7 @@ pub mod quad;
 mod restraints;
 mod structure;
 pub mod tail_beam;
+pub mod warp;
 
 pub use load::DISC_RULE;
 pub use modes::{ShellMass, ShellModes};

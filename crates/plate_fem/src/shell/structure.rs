@@ -97,6 +97,9 @@ pub(super) struct Element {
     parts: usize,
     pub(super) shape: Shape,
     pub(super) thickness: f64,
+    /// A warped element's corner heights above its mean plane (m, element node order), tied
+    /// to its flat projection by rigid links ([`super::warp`]); None when flat.
+    heights: Option<[f64; 4]>,
 }
 
 /// What a uniform load and a lumped mass need of an element's shape.
@@ -147,9 +150,10 @@ fn position_key(p: &Vector3<f64>) -> [i64; 3] {
 }
 
 /// The most a quadrilateral's corners may leave its mean plane, as a fraction of its longer
-/// diagonal: the flat element is built on the corners' projections, an error of the order of
-/// this ratio in the element's geometry.
-pub const WARP_LIMIT: f64 = 1e-3;
+/// diagonal: the flat element is built on the corners' projections and tied to its nodes by
+/// rigid links ([`super::warp`]), an error of the order of this ratio in the element's
+/// geometry (MacNeal and Harder's twisted beam on 12 x 2 elements is warped by 1.6 %).
+pub const WARP_LIMIT: f64 = 0.05;
 
 impl Structure {
     /// An empty structure of one isotropic material.
@@ -208,7 +212,14 @@ impl Structure {
             self.parts.push(Parts::new(a, b, e, nu, h, SHEAR_CORRECTION, alpha));
             self.parts.len() - 1
         });
-        self.elements.push(Element { nodes, axes, parts, shape: Shape::Rectangle { a, b }, thickness: h });
+        self.elements.push(Element {
+            nodes,
+            axes,
+            parts,
+            shape: Shape::Rectangle { a, b },
+            thickness: h,
+            heights: None,
+        });
         self.elements.len() - 1
     }
 
@@ -248,7 +259,8 @@ impl Structure {
     /// index. Its frame: e₃ the unit normal (p₂ - p₀) x (p₃ - p₁), e₁ along its first side,
     /// e₂ = e₃ x e₁. Refused if the corners are not finite, the quadrilateral is concave or
     /// degenerate, or its corners leave its mean plane by more than [`WARP_LIMIT`] of its
-    /// diagonal (a warped element would need a warping correction this element lacks).
+    /// diagonal. A warped quadrilateral (its corners off its mean plane by more than
+    /// rounding) is formed on their projections and linked to its nodes ([`super::warp`]).
     pub fn add_quad(&mut self, corners: [[f64; 3]; 4], thickness: f64) -> Result<usize, FemError> {
         check_thickness(thickness)?;
         let p = corners.map(Vector3::from);
@@ -287,7 +299,8 @@ impl Structure {
         let nodes = tensor.map(|q| self.node(q));
         let axes = Matrix3::from_rows(&[e1.transpose(), e2.transpose(), e3.transpose()]);
         let shape = Shape::Quad { nodal_areas: quad.nodal_areas() };
-        self.elements.push(Element { nodes, axes, parts, shape, thickness });
+        let heights = (warp > super::warp::FLAT).then(|| tensor.map(|q| (q - centre).dot(&e3)));
+        self.elements.push(Element { nodes, axes, parts, shape, thickness, heights });
         Ok(self.elements.len() - 1)
     }
 
@@ -421,7 +434,7 @@ impl Structure {
         }
         let mut triplets = Vec::with_capacity(self.elements.len() * 300);
         for e in &self.elements {
-            let k = Self::global(e, &self.parts[e.parts].total());
+            let k = Self::global(e, &super::warp::on_nodes(e.heights.as_ref(), self.parts[e.parts].total()));
             let dofs = self.element_dofs(e);
             for p in 0..24 {
                 for q in 0..24 {
@@ -552,10 +565,13 @@ impl Factorized<'_> {
             let dofs = self.structure.element_dofs(e);
             // The element's displacements in its own frame, T u: each part's energy is then a
             // quadratic form of the local matrix, without forming Tᵀ K T.
-            let ue = Vec24::from_fn(|k, _| {
-                let (block, row) = (k / 3, k % 3);
-                (0..3).map(|c| e.axes[(row, c)] * u[dofs[3 * block + c]]).sum()
-            });
+            let ue = super::warp::at_projections(
+                e.heights.as_ref(),
+                Vec24::from_fn(|k, _| {
+                    let (block, row) = (k / 3, k % 3);
+                    (0..3).map(|c| e.axes[(row, c)] * u[dofs[3 * block + c]]).sum()
+                }),
+            );
             let parts = &self.structure.parts[e.parts];
             let energy = |k: &Mat24| ue.dot(&(k * ue));
             membrane += energy(&parts.membrane);
