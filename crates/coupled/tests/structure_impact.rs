@@ -1,7 +1,7 @@
 //! The reduced model of a shell structure against the full structure stepped in time.
 //!
 //! The reference is written here and shares no code with the model under test beyond the
-//! structure's stiffness and lumped mass: every DOF of a small structure (a welded angle on
+//! structure's stiffness, lumped mass and contact load: every DOF of a small structure (a welded angle on
 //! a clamped end, struck on one leg) is stepped by Newmark's average-acceleration rule,
 //! (K + 4M/Δt²)u₊ = fP₊ + M(4u/Δt² + 4u̇/Δt) + (fP - Ku), with dense matrices, and the
 //! sphere by the same rule, the step-end force solved from Hertz's law P = Kδ^{3/2} by
@@ -38,7 +38,8 @@ fn angle() -> (Structure, Restraints) {
         r.hold(n, &[0, 1, 2, 3, 4, 5]);
     }
     let (tip, _) = s.nearest_node([l, w, 0.0]).unwrap();
-    r.springs.push(Spring { node: tip, direction: [0.0, 1.0, 0.0], stiffness: 2e6 });
+    // An oblique spring, its direction not of unit length.
+    r.springs.push(Spring { node: tip, direction: [0.0, 2.0, 0.5], stiffness: 2e6 });
     (s, r)
 }
 
@@ -81,9 +82,11 @@ fn full_newmark(
     let s = ball();
     let (mut u, mut v) = (DVector::zeros(n), DVector::zeros(n));
     let (mut x, mut xv, mut p) = (0.0, s.velocity, 0.0);
+    // The spring's force k d̂·u at its node, d̂ its unit direction.
+    let norm = spring.direction.iter().map(|d| d * d).sum::<f64>().sqrt();
     let mut coeff = DVector::zeros(n);
-    for (d, c) in spring.coefficients() {
-        coeff[d] = c;
+    for i in 0..3 {
+        coeff[6 * spring.node + i] = spring.stiffness * spring.direction[i] / norm;
     }
     let (mut forces, mut spring_max) = (Vec::with_capacity(steps), 0.0f64);
     for _ in 0..steps {

@@ -97,6 +97,7 @@ pub fn section(t: &InTime, b: &Beside<'_>, p: &Prose<'_>, table: &Table) -> Resu
             ("mesh", p.mesh.into()),
             ("unknowns", t.unknowns.to_string()),
             ("modes", t.modes.to_string()),
+            ("zeta", format!("{} %", 100.0 * t.damping_ratio)),
             ("half", (t.modes / 2).to_string()),
             ("f1", sig(t.frequencies.0, 4)),
             ("fn", sig(t.frequencies.1, 4)),
@@ -110,4 +111,10 @@ pub fn section(t: &InTime, b: &Beside<'_>, p: &Prose<'_>, table: &Table) -> Resu
             ("table", table.to_markdown()),
         ],
     )?)
+}
+
+/// The section's CSV and text: [`table`] and [`section`] together.
+pub fn part(t: &InTime, b: &Beside<'_>, p: &Prose<'_>) -> Result<(String, String), Failure> {
+    let table = table(t, b);
+    Ok((table.to_csv(), section(t, b, p, &table)?))
 }

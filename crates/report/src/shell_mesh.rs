@@ -103,28 +103,8 @@ pub fn report(scene: &Scene, d: &ShellMeshData) -> Result<(Artifacts, String), F
     let mut a = Artifacts::new();
     a.add("structure.csv", st.to_csv());
     a.add("impacts.csv", im.to_csv());
-    let beside = crate::in_time::Beside {
-        point: d
-            .rows
-            .iter()
-            .map(|r| vec![Cell::Given(r.at[0] * 1e3), Cell::Given(r.at[1] * 1e3), Cell::Given(r.at[2] * 1e3)])
-            .collect(),
-        point_headers: &["x (mm)", "y (mm)", "z (mm)"],
-        p_wave: d.rows.iter().map(|r| r.p_wave).collect(),
-        springs_quasi_static: d.rows.iter().map(|r| r.spring_force).collect(),
-        rigid_box: None,
-        springs: "springs'",
-    };
-    let it = crate::in_time::table(&d.in_time, &beside);
-    a.add("impacts-in-time.csv", it.to_csv());
-    let prose = crate::in_time::Prose {
-        mesh: "the file's mesh refined once",
-        contact: format!("disc of diameter {} mm", scene::mm_label(d.struck_thickness)),
-        coarser: "the file's own mesh",
-        rigid: "",
-        checked: "",
-    };
-    let in_time = crate::in_time::section(&d.in_time, &beside, &prose, &it)?;
+    let (csv, in_time) = in_time_part(d)?;
+    a.add("impacts-in-time.csv", csv);
     let sm = &d.scene;
     let mesh = &sm.mesh;
     let groups: Vec<String> = mesh
@@ -197,6 +177,30 @@ pub fn report(scene: &Scene, d: &ShellMeshData) -> Result<(Artifacts, String), F
     )?;
     a.add("index.md", page);
     Ok((a, finding))
+}
+
+/// The in-time section's CSV and text.
+fn in_time_part(d: &ShellMeshData) -> Result<(String, String), Failure> {
+    let beside = crate::in_time::Beside {
+        point: d
+            .rows
+            .iter()
+            .map(|r| vec![Cell::Given(r.at[0] * 1e3), Cell::Given(r.at[1] * 1e3), Cell::Given(r.at[2] * 1e3)])
+            .collect(),
+        point_headers: &["x (mm)", "y (mm)", "z (mm)"],
+        p_wave: d.rows.iter().map(|r| r.p_wave).collect(),
+        springs_quasi_static: d.rows.iter().map(|r| r.spring_force).collect(),
+        rigid_box: None,
+        springs: "springs'",
+    };
+    let prose = crate::in_time::Prose {
+        mesh: "the file's mesh refined once",
+        contact: format!("disc of diameter {} mm", scene::mm_label(d.struck_thickness)),
+        coarser: "the file's own mesh",
+        rigid: "",
+        checked: "",
+    };
+    crate::in_time::part(&d.in_time, &beside, &prose)
 }
 
 fn capitalise(s: &str) -> String {

@@ -187,6 +187,19 @@ fn in_time_beside(d: &TailBeamData) -> crate::in_time::Beside<'static> {
     }
 }
 
+/// The in-time section's CSV and text.
+fn in_time_part(d: &TailBeamData) -> Result<(String, String), Failure> {
+    let beside = in_time_beside(d);
+    let prose = crate::in_time::Prose {
+        mesh: "the ladder's second mesh",
+        contact: format!("{} mm patch", scene::mm_label(d.scene.beam.top)),
+        coarser: "the ladder's first mesh",
+        rigid: " Beside it, the rigid box turning on the jacks under the contact's impulse J at x, Σk_j a_j·J x/(I ω_r): the first mode's answer alone.",
+        checked: " Here its P_max is checked against the transient Kirchhoff panel above (`crates/studies/tests/tail_beam.rs`: 0.1-1.7 %, growing as the contact shortens; the shell's contact is the patch, the plate's a point).",
+    };
+    crate::in_time::part(&d.in_time, &beside, &prose)
+}
+
 /// (min, max) of `v`.
 pub(crate) fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
     v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x), hi.max(x)))
@@ -195,18 +208,10 @@ pub(crate) fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
 /// The page's files and the finding for the comparison's list.
 pub fn report(scene: &Scene, d: &TailBeamData) -> Result<(Artifacts, String), Failure> {
     let (st, im, pa, pn) = (structure(d), impacts(d), paper(d), panel_table(d));
-    let beside = in_time_beside(d);
-    let it = crate::in_time::table(&d.in_time, &beside);
-    let prose = crate::in_time::Prose {
-        mesh: "the ladder's second mesh",
-        contact: format!("{} mm patch", scene::mm_label(d.scene.beam.top)),
-        coarser: "the ladder's first mesh",
-        rigid: " Beside it, the rigid box turning on the jacks under the contact's impulse J at x, Σk_j a_j·J x/(I ω_r): the first mode's answer alone.",
-        checked: " Here its P_max is checked against the transient Kirchhoff panel above (`crates/studies/tests/tail_beam.rs`: 0.1-1.7 %, growing as the contact shortens; the shell's contact is the patch, the plate's a point).",
-    };
-    let in_time = crate::in_time::section(&d.in_time, &beside, &prose, &it)?;
+    let (in_time_csv, in_time) = in_time_part(d)?;
+
     let mut a = Artifacts::new();
-    a.add("impacts-in-time.csv", it.to_csv());
+    a.add("impacts-in-time.csv", in_time_csv);
     a.add("panel-transient.csv", pn.to_csv());
     a.add("structure.csv", st.to_csv());
     a.add("impacts.csv", im.to_csv());
@@ -320,15 +325,34 @@ fn finding(scene: &Scene, d: &TailBeamData) -> Result<String, Failure> {
     };
     let (time_low, time_high) =
         range(d.in_time.rows.iter().zip(&d.rows).filter(|(_, q)| !q.over_wall).map(|(r, q)| r.p_max / q.p_wave - 1.0));
-    let (jt_low, jt_high) = range(d.in_time.rows.iter().zip(&d.rows).map(|(r, q)| r.spring_force / q.jack_force));
-    let in_time = format!(
-        " In time, on the box's own {} modes, P_max away from the walls is {} to {} off the wave-controlled force, and the jacks feel {} to {} of the quasi-static balance's jack force: a contact this short reaches them as an impulse.",
-        d.in_time.modes,
-        percent(time_low),
-        percent(time_high),
-        share(jt_low),
-        share(jt_high)
+    let (jt_low, jt_high) = range(
+        d.in_time
+            .rows
+            .iter()
+            .zip(&d.rows)
+            .filter(|(_, q)| q.jack_force > 0.0)
+            .map(|(r, q)| r.spring_force / q.jack_force),
     );
+    // An empty range (every point over a wall, or no jack loaded) says nothing.
+    let forces = if time_low <= time_high {
+        format!(
+            ", P_max away from the walls is {} to {} off the wave-controlled force",
+            percent(time_low),
+            percent(time_high)
+        )
+    } else {
+        String::new()
+    };
+    let jacks = if jt_low <= jt_high {
+        format!(
+            ", and the jacks feel {} to {} of the quasi-static balance's jack force: a contact this short reaches them as an impulse",
+            share(jt_low),
+            share(jt_high)
+        )
+    } else {
+        String::new()
+    };
+    let in_time = format!(" In time, on the box's own {} modes{forces}{jacks}.", d.in_time.modes);
     render(
         "tail_beam/finding.md",
         FINDING,

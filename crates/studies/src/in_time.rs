@@ -2,7 +2,8 @@
 //! tail beam's and a mesh file's lumps beside the three forces that bound them.
 //!
 //! The structure is taken on the middle mesh of its ladder (the first refinement), with the
-//! lumped mass of its steel and its lowest [`IN_TIME_MODES`] modes; the contact is the study's
+//! lumped mass of its steel and its lowest [`IN_TIME_MODES`] modes (fewer where a mesh is
+//! small or large: [`modes_for`]); the contact is the study's
 //! own load at each point (the tail beam's patch of side t, a mesh's disc of diameter t), the
 //! law the scene's, the modes damped at the reduced model's ζ. P_max is, as in the paper and
 //! the transient model, the law's force at the largest compression (Kδ_max^{3/2}); the springs'
@@ -19,6 +20,7 @@
 use crate::Failure;
 use coupled::plan::scene_striker;
 use coupled::reduced::structure::{StructureImpact, StructureModel, StructureSettings};
+use coupled::reduced::ReducedSettings;
 use plate_fem::shell::{Restraints, ShellMass, Spring, Structure};
 use scene::Scene;
 use serde::Serialize;
@@ -28,8 +30,10 @@ use std::time::Instant;
 /// correction carries the rest; P_max moves by 0.05-0.6 % from 100 to 200 modes there.
 pub const IN_TIME_MODES: usize = 200;
 
-/// The mesh of the time model in its structure's ladder: the second (the first refined).
+/// The mesh of the time model in its structure's ladder: the second (the first refined); the
+/// first gives the mesh's error.
 pub const IN_TIME_LEVEL: u32 = 1;
+const _: () = assert!(IN_TIME_LEVEL >= 1, "the mesh error needs a coarser mesh");
 
 /// One impact on the structure in time.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -69,6 +73,8 @@ pub struct InTime {
     pub unknowns: usize,
     /// Modes kept.
     pub modes: usize,
+    /// The modes' damping ratio ζ.
+    pub damping_ratio: f64,
     /// The lowest and the highest kept mode's frequency, Hz.
     pub frequencies: (f64, f64),
     /// The window: one fundamental period, s.
@@ -81,26 +87,50 @@ pub struct InTime {
 
 /// A structure on one mesh as the time model takes it: restrained, with each struck point's
 /// load (unit resultant) and each spring group.
-pub struct OnMesh<'a> {
+pub struct OnMesh {
     /// The structure.
-    pub structure: &'a Structure,
+    pub structure: Structure,
     /// What holds it.
-    pub restraints: &'a Restraints,
+    pub restraints: Restraints,
     /// Each struck point's load vector.
     pub loads: Vec<Vec<f64>>,
     /// Each spring group (a jack's pad).
     pub groups: Vec<Vec<Spring>>,
 }
 
-impl OnMesh<'_> {
-    /// Its lowest [`IN_TIME_MODES`] modes with the lumped mass of steel of density `rho`, and
-    /// its unknowns.
-    pub fn model(&self, rho: f64) -> Result<(StructureModel, usize), Failure> {
-        let fact = self.structure.factorize(self.restraints)?;
-        let mass = ShellMass::lumped(self.structure, rho);
-        let settings = StructureSettings { modes: IN_TIME_MODES, ..StructureSettings::default() };
-        Ok((StructureModel::new(&fact, &mass, &self.loads, &self.groups, settings)?, fact.unknowns()))
+/// The most memory the Krylov basis of the modes may take: about 3N + 32 vectors of three
+/// arrays over the unknowns.
+pub const BASIS_BYTES: f64 = 2.0 * 1024.0 * 1024.0 * 1024.0;
+
+/// The modes a mesh of `free` unknowns, `massive` of them with mass, is taken on:
+/// [`IN_TIME_MODES`], at most half the DOFs with mass (the search needs room beyond the modes
+/// it returns), and at most what a basis of [`BASIS_BYTES`] holds.
+pub fn modes_for(free: usize, massive: usize) -> usize {
+    let by_memory = ((BASIS_BYTES / (24.0 * free.max(1) as f64) - 32.0) / 3.0).max(0.0) as usize;
+    IN_TIME_MODES.min(massive / 2).min(by_memory)
+}
+
+/// The models of the middle mesh `fine` (with its unknowns) and the coarser `coarse`, on the
+/// same number of modes ([`modes_for`] of both), with the lumped mass of steel of density
+/// `rho`.
+pub fn models(fine: &OnMesh, coarse: &OnMesh, rho: f64) -> Result<((StructureModel, usize), StructureModel), Failure> {
+    let masses = [ShellMass::lumped(&fine.structure, rho), ShellMass::lumped(&coarse.structure, rho)];
+    let sizes = [masses[0].free_dofs(&fine.restraints), masses[1].free_dofs(&coarse.restraints)];
+    let modes = sizes.iter().map(|&(free, massive)| modes_for(free, massive)).min().unwrap_or(0);
+    if modes < 2 {
+        return Err(format!(
+            "the structure in time needs at least 2 modes on each mesh; its meshes allow {modes} (free DOFs and DOFs with mass {sizes:?}, a basis of at most {BASIS_BYTES:e} bytes)"
+        )
+        .into());
     }
+    let settings = StructureSettings { modes, ..StructureSettings::default() };
+    let model = |m: &OnMesh, mass: &ShellMass| -> Result<(StructureModel, usize), Failure> {
+        let fact = m.structure.factorize(&m.restraints)?;
+        Ok((StructureModel::new(&fact, mass, &m.loads, &m.groups, settings)?, fact.unknowns()))
+    };
+    let fine = model(fine, &masses[0])?;
+    let (coarse, _) = model(coarse, &masses[1])?;
+    Ok((fine, coarse))
 }
 
 /// The `impacts` (body, velocity, point index) on `fine` (the middle mesh, with its unknowns)
@@ -112,8 +142,8 @@ pub fn compute(
     impacts: &[(String, f64, usize)],
     started: Instant,
 ) -> Result<InTime, Failure> {
-    let half = fine.truncated(IN_TIME_MODES / 2)?;
     let f = fine.frequencies_hz();
+    let half = fine.truncated(f.len() / 2)?;
     let window = 1.0 / f[0];
     let mut rows = Vec::with_capacity(impacts.len());
     for (name, v, point) in impacts {
@@ -146,7 +176,8 @@ pub fn compute(
     Ok(InTime {
         level: IN_TIME_LEVEL,
         unknowns,
-        modes: IN_TIME_MODES,
+        modes: f.len(),
+        damping_ratio: ReducedSettings::DEFAULT_DAMPING_RATIO,
         frequencies: (f[0], f[f.len() - 1]),
         window,
         rows,

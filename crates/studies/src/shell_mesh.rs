@@ -136,14 +136,13 @@ fn in_time_of(scene: &Scene, sm: &ShellMeshScene, thickness: f64, rows: &[ShellM
             .map(|&at| s.disc_load(at, thickness / 2.0, &built.struck, DISC_RULE))
             .collect::<Result<Vec<_>, _>>()?;
         let groups = built.springs.iter().map(|r| built.restraints.springs[r.clone()].to_vec()).collect();
-        OnMesh { structure: s, restraints: &built.restraints, loads, groups }.model(rho)
+        Ok(OnMesh { structure: built.structure, restraints: built.restraints, loads, groups })
     };
-    let (coarse, _) = on(&sm.mesh)?;
     let mut fine_mesh = sm.mesh.clone();
     for _ in 0..IN_TIME_LEVEL {
         fine_mesh = fine_mesh.refined();
     }
-    let fine = on(&fine_mesh)?;
+    let (fine, coarse) = crate::in_time::models(&on(&fine_mesh)?, &on(&sm.mesh)?, rho)?;
     let impacts = rows
         .iter()
         .map(|r| {

@@ -241,9 +241,9 @@ fn in_time_of(scene: &Scene, tb: &TailBeamScene, rows: &[TailBeamRow]) -> Result
             .map(|&(x, z)| built.structure.patch_load(built.top, &contact_patch(&tb.beam, x, z)))
             .collect::<Result<Vec<_>, _>>()?;
         let groups = built.jacks.iter().map(|r| built.restraints.springs[r.clone()].to_vec()).collect();
-        OnMesh { structure: &built.structure, restraints: &built.restraints, loads, groups }.model(rho)
+        Ok(OnMesh { structure: built.structure, restraints: built.restraints, loads, groups })
     };
-    let (fine, (coarse, _)) = (on(IN_TIME_LEVEL)?, on(IN_TIME_LEVEL - 1)?);
+    let (fine, coarse) = crate::in_time::models(&on(IN_TIME_LEVEL)?, &on(IN_TIME_LEVEL - 1)?, rho)?;
     let impacts = rows
         .iter()
         .map(|r| {
@@ -388,7 +388,9 @@ impl RigidTurning {
         let ends = rho * w * h * b.ends * (depth + (l * l + depth));
         let arm = |j: &plate_fem::shell::tail_beam::Jack| yp * j.angle.cos() + j.x * j.angle.sin();
         let stiffness: f64 = b.jacks.iter().map(|j| j.stiffness * arm(j).powi(2)).sum();
-        let jacks_force = b.jacks.iter().map(|j| j.stiffness * arm(j)).sum();
+        // Each jack's force magnitude per unit rotation: jacks on both sides of the pins' line
+        // push and pull, and the time model sums each one's peak magnitude.
+        let jacks_force = b.jacks.iter().map(|j| j.stiffness * arm(j).abs()).sum();
         Self { stiffness, inertia: flanges + walls + ends, jacks_force }
     }
 }

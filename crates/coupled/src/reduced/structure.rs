@@ -25,7 +25,7 @@
 //! use coupled::reduced::structure::{StructureModel, StructureSettings};
 //! use coupled::transient::{ContactLaw, Striker, law::Flores};
 //! use plate_fem::shell::{Face, Restraints, ShellMass, Structure, DISC_RULE};
-//! // A 0.4 x 0.3 m steel plate, 10 mm thick, hard simply supported, as a shell.
+//! // A 0.4 x 0.3 m steel plate, 10 mm thick, its edges held in translation, as a shell.
 //! let mut s = Structure::new(210e9, 0.3)?;
 //! let lines = |l: f64, n: usize| (0..=n).map(|i| l * i as f64 / n as f64).collect::<Vec<_>>();
 //! let face = Face::new([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], lines(0.4, 12), lines(0.3, 9), 0.01)?;
@@ -126,7 +126,28 @@ impl StructureModel {
     ) -> Result<Self, ModelError> {
         check("modes", settings.modes as f64, ReducedSettings::MODES, "")?;
         check("steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
+        let dofs = fact.dofs();
+        for (k, f) in loads.iter().enumerate() {
+            if f.len() != dofs || !f.iter().all(|v| v.is_finite()) {
+                return Err(ModelError::Missing(format!(
+                    "load {k} has {} entries (finite: {}) for a structure of {dofs} DOFs",
+                    f.len(),
+                    f.iter().all(|v| v.is_finite())
+                )));
+            }
+        }
+        for s in groups.iter().flatten() {
+            s.check(dofs / 6)?;
+        }
         let modes = fact.modes(mass, settings.modes)?;
+        for (i, &w) in modes.omegas().iter().enumerate() {
+            check(
+                &format!("damping ratio of mode {}", i + 1),
+                settings.damping.at(w),
+                ReducedSettings::DAMPING_RATIO,
+                "",
+            )?;
+        }
         let functionals: Vec<Vec<f64>> = groups.iter().map(|g| functional(g, fact.dofs())).collect();
         let points = loads.iter().map(|f| struck_point(fact, &modes, f, &functionals)).collect();
         Ok(Self {
@@ -157,10 +178,9 @@ impl StructureModel {
                 groups: p
                     .groups
                     .iter()
-                    .map(|g| {
-                        let a = g.a.as_deref().unwrap_or(&[]);
-                        let d = if a.len() == p.phi.len() { g.d + dropped(a, &p.phi) } else { g.d };
-                        ChannelRow { a: g.a.as_ref().map(|a| a[..n].to_vec()), b: None, d }
+                    .map(|g| match &g.a {
+                        Some(a) => ChannelRow { a: Some(a[..n].to_vec()), b: None, d: g.d + dropped(a, &p.phi) },
+                        None => g.clone(),
                     })
                     .collect(),
                 group_static: p.group_static.clone(),

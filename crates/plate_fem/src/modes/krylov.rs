@@ -258,7 +258,10 @@ fn exhausted(basis: &Basis, count: usize, pencil: &impl Pencil) -> Result<(Finis
     })?;
     let worst = found.residuals.iter().copied().fold(0.0, f64::max);
     if worst > RESIDUAL_TOLERANCE {
-        return Err(not_converged(count, basis.len, worst));
+        return Err(FemError::Modes(format!(
+            "the {count} modes asked for are nearly all the structure's {} modes of finite frequency, whose highest the shift-invert search cannot resolve (residual {worst:e} above {RESIDUAL_TOLERANCE:e}); ask for fewer",
+            basis.len
+        )));
     }
     Ok((found, basis.len))
 }

@@ -14,18 +14,20 @@
 //! Gram-Schmidt, Rayleigh-Ritz pairs accepted once each of the lowest N has the relative
 //! residual ‖Kφ - ω²Mφ‖/‖Kφ‖ ≤ [`crate::modes::RESIDUAL_TOLERANCE`] (Parlett, *The Symmetric
 //! Eigenvalue Problem*, 1998, ch. 11 and 13). It runs on the unknowns (the held DOFs taken
-//! out), where the lumped M is diagonal and positive.
+//! out), where the lumped M is block diagonal (a node's translations, and a 3 x 3 block of its
+//! rotations) and singular: the drilling rotations carry no mass, so a structure has fewer
+//! modes of finite frequency than unknowns, and random restarts enter through K⁻¹M.
 //!
 //! **A load's modal view.** For a load vector f of unit resultant (a disc of pressure,
 //! [`Structure::disc_load`](super::Structure::disc_load)) the work-conjugate displacement of mode i is φᵢ(p) = φᵢᵀf, and
-//! the static compliance fᵀK⁻¹f = Σ over all modes φᵢ(p)²/ωᵢ². Keeping N modes leaves the
-//! residual flexibility C_res(p) = fᵀK⁻¹f - Σ_{i≤N} φᵢ(p)²/ωᵢ² ≥ 0 (Craig & Kurdila,
+//! the static compliance fᵀK⁻¹f is Σ φᵢ(p)²/ωᵢ² over the modes of finite frequency plus the
+//! static part of the massless DOFs. Keeping N modes leaves the residual flexibility C_res(p) = fᵀK⁻¹f - Σ_{i≤N} φᵢ(p)²/ωᵢ² ≥ 0 (Craig & Kurdila,
 //! *Fundamentals of Structural Dynamics*, 2nd ed., 2006: the static correction), and between
 //! the load and a second load g the residual term is gᵀK⁻¹f - Σ φᵢᵀg φᵢᵀf/ωᵢ².
 
 use super::element::DOFS_PER_NODE;
 use super::structure::Factorized;
-use super::structure::Structure;
+use super::structure::{Restraints, Structure};
 use crate::model::cholesky::Cholesky;
 use crate::model::symmetric_upper_apply;
 use crate::modes::krylov::search;
@@ -58,6 +60,31 @@ impl ShellMass {
             }
         }
         Self { translational, rotary }
+    }
+
+    /// The DOFs `restraints` leave free, and how many of them carry mass: the second bounds
+    /// the modes of finite frequency ([`Factorized::modes`] finds at most that many).
+    pub fn free_dofs(&self, restraints: &Restraints) -> (usize, usize) {
+        let dofs = DOFS_PER_NODE * self.translational.len();
+        let mut held = vec![false; dofs];
+        for &(node, dof) in &restraints.held {
+            if let Some(h) = held.get_mut(DOFS_PER_NODE * node + dof) {
+                *h = true;
+            }
+        }
+        let free = held.iter().filter(|h| !**h).count();
+        let massive = (0..dofs).filter(|&d| !held[d] && self.diagonal(d) > 0.0).count();
+        (free, massive)
+    }
+
+    /// M's diagonal entry of DOF `d` (all DOFs numbered as the structure's).
+    fn diagonal(&self, d: usize) -> f64 {
+        let (n, i) = (d / DOFS_PER_NODE, d % DOFS_PER_NODE);
+        if i < 3 {
+            self.translational[n]
+        } else {
+            self.rotary[n][(i - 3, i - 3)]
+        }
     }
 
     /// The total translational mass, kg.
@@ -152,7 +179,8 @@ impl Factorized<'_> {
 
     /// The lowest `count` modes with the mass `mass` of this structure ([`ShellMass::lumped`]):
     /// see the module. Refused when `mass` is another structure's or a free translation has
-    /// no positive finite mass, and when `count` is not in [1, unknowns].
+    /// no positive finite mass, when `count` is not in [1, unknowns], and when the structure
+    /// has fewer modes of finite frequency than `count` ([`ShellMass::free_dofs`] bounds them).
     pub fn modes(&self, mass: &ShellMass, count: usize) -> Result<ShellModes, FemError> {
         let dofs = self.structure.dofs();
         if mass.translational.len() * DOFS_PER_NODE != dofs {
@@ -166,6 +194,14 @@ impl Factorized<'_> {
             return Err(FemError::Modes(format!(
                 "{count} modes asked for; the restrained structure has {} unknowns, so the allowed range is [1, {}]",
                 self.unknowns, self.unknowns
+            )));
+        }
+        let massive =
+            self.free.iter().enumerate().filter(|&(d, &slot)| slot != usize::MAX && mass.diagonal(d) > 0.0).count();
+        if count > massive {
+            return Err(FemError::Modes(format!(
+                "{count} modes asked for; the restrained structure has at most {massive} of finite frequency (its other {} unknowns carry no mass)",
+                self.unknowns - massive
             )));
         }
         for (d, &slot) in self.free.iter().enumerate() {
@@ -297,5 +333,16 @@ mod tests {
         assert!(modes.orthogonality() < 1e-10);
         assert!(modes.residuals().iter().all(|&r| r < crate::modes::RESIDUAL_TOLERANCE));
         assert!(fact.modes(&mass, 0).is_err() && fact.modes(&mass, n + 1).is_err());
+        // At most as many modes as DOFs with mass: asking for all of them ends either with
+        // them or with an error, never a hang; asking for more is refused.
+        let (free, massive) = mass.free_dofs(&r);
+        assert_eq!(free, n);
+        assert!(massive < n);
+        // The highest of them are beyond the shift-invert search's reach: an error, not a hang.
+        if let Ok(all) = fact.modes(&mass, massive) {
+            assert_eq!(all.count(), massive);
+        }
+        let more = fact.modes(&mass, massive + 1).unwrap_err().to_string();
+        assert!(more.contains("finite frequency"), "{more}");
     }
 }

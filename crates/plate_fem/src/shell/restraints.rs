@@ -34,7 +34,9 @@ impl Spring {
         [(n, self.stiffness * d.x), (n + 1, self.stiffness * d.y), (n + 2, self.stiffness * d.z)]
     }
 
-    pub(super) fn check(&self, nodes: usize) -> Result<(), FemError> {
+    /// Refused unless its node exists among `nodes`, its direction is finite and not zero, and
+    /// 0 < k < inf.
+    pub fn check(&self, nodes: usize) -> Result<(), FemError> {
         let norm = Vector3::from(self.direction).norm();
         if self.node >= nodes
             || !(norm.is_finite() && norm > 0.0)

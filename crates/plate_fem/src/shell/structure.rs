@@ -253,7 +253,7 @@ impl Structure {
         Ok(self.add_rectangle(p0, axes, a, b, thickness))
     }
 
-    /// Adds a flat quadrilateral ([`super::quad`]) from its four corners in order around its
+    /// Adds a quadrilateral ([`super::quad`]) from its four corners in order around its
     /// boundary (counter-clockwise seen from the side its normal points to, as meshers write
     /// them), merging its nodes with those already at the same positions; returns its element
     /// index. Its frame: e₃ the unit normal (p₂ - p₀) x (p₃ - p₁), e₁ along its first side,
@@ -397,7 +397,8 @@ impl Structure {
     /// The lumped (diagonal) mass of steel of density `rho` (kg/m³) over all DOFs: each
     /// element's ρhA shared by its nodes' translations as ∫ N_k dA (equally on a rectangle),
     /// and its rotary inertia ρh³A/12 alike by their rotations (the drilling one too, so that
-    /// no DOF is massless).
+    /// no DOF is massless): the inverse iteration's mass for the fundamental frequency. The
+    /// modes take [`super::ShellMass`], which leaves the drilling rotation massless.
     pub fn lumped_mass(&self, rho: f64) -> Vec<f64> {
         let mut m = vec![0.0; self.dofs()];
         for e in &self.elements {
