@@ -66,7 +66,7 @@ fn full_newmark(
         }
         a
     };
-    let k = column(&|x| fact.stiffness_times(x));
+    let k = column(&|x| fact.stiffness_times(x).unwrap());
     let m = column(&|x| mass.apply(x));
     // Held DOFs have empty rows and columns: a unit diagonal keeps them at zero.
     let mut eff = &k + &m * (4.0 / (dt * dt));

@@ -155,6 +155,11 @@ impl Pencil for Unknowns<'_> {
 }
 
 impl Factorized<'_> {
+    /// The restrained stiffness's upper triangle on the unknowns.
+    fn stiffness(&self) -> Result<SparseColMat<usize, f64>, FemError> {
+        self.structure.restrained_stiffness(&self.restraints, &self.free, self.unknowns)
+    }
+
     /// The structure's DOFs, held ones included.
     pub fn dofs(&self) -> usize {
         self.free.len()
@@ -166,15 +171,15 @@ impl Factorized<'_> {
     /// # Panics
     ///
     /// If `u` is shorter than the structure has DOFs.
-    pub fn stiffness_times(&self, u: &[f64]) -> Vec<f64> {
+    pub fn stiffness_times(&self, u: &[f64]) -> Result<Vec<f64>, FemError> {
         let mut x = vec![0.0; self.unknowns];
         for (d, &slot) in self.free.iter().enumerate() {
             if slot != usize::MAX {
                 x[slot] = u[d];
             }
         }
-        let y = symmetric_upper_apply(&self.stiffness, &x);
-        self.free.iter().map(|&slot| if slot == usize::MAX { 0.0 } else { y[slot] }).collect()
+        let y = symmetric_upper_apply(&self.stiffness()?, &x);
+        Ok(self.free.iter().map(|&slot| if slot == usize::MAX { 0.0 } else { y[slot] }).collect())
     }
 
     /// The lowest `count` modes with the mass `mass` of this structure ([`ShellMass::lumped`]):
@@ -213,8 +218,11 @@ impl Factorized<'_> {
                 )));
             }
         }
+        // K for the search's products, assembled again here rather than kept by every
+        // factorization.
+        let stiffness = self.stiffness()?;
         let pencil = Unknowns {
-            stiffness: &self.stiffness,
+            stiffness: &stiffness,
             factor: &self.factor,
             mass,
             free: &self.free,
@@ -301,8 +309,9 @@ mod tests {
         let mass = super::ShellMass::lumped(&s, 7850.0);
         let modes = fact.modes(&mass, 12).unwrap();
         let n = fact.unknowns;
+        let stiffness = fact.stiffness().unwrap();
         let pencil = super::Unknowns {
-            stiffness: &fact.stiffness,
+            stiffness: &stiffness,
             factor: &fact.factor,
             mass: &mass,
             free: &fact.free,

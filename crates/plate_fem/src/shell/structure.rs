@@ -94,12 +94,12 @@ pub(super) struct Element {
     /// Rows e₁, e₂, e₃.
     pub(super) axes: Matrix3<f64>,
     /// Its parts' index in [`Structure::parts`].
-    parts: usize,
+    pub(super) parts: usize,
     pub(super) shape: Shape,
     pub(super) thickness: f64,
     /// A warped element's corner heights above its mean plane (m, element node order), tied
     /// to its flat projection by rigid links ([`super::warp`]); None when flat.
-    heights: Option<[f64; 4]>,
+    pub(super) heights: Option<[f64; 4]>,
 }
 
 /// What a uniform load and a lumped mass need of an element's shape.
@@ -132,7 +132,7 @@ pub struct Structure {
     pub(super) elements: Vec<Element>,
     /// Element matrices: one per rectangle size (a, b, h), since a structure of walls repeats
     /// a few sizes, and one per general quadrilateral.
-    parts: Vec<Parts>,
+    pub(super) parts: Vec<Parts>,
     rectangles: HashMap<(u64, u64, u64), usize>,
     /// The parts of general quadrilaterals by shape (local corners in picometres) and
     /// thickness.
@@ -352,7 +352,7 @@ impl Structure {
     }
 
     /// An element matrix in the global frame: Tᵀ K T, T = diag(Λ) over the eight 3-blocks.
-    fn global(e: &Element, local: &Mat24) -> Mat24 {
+    pub(super) fn global(e: &Element, local: &Mat24) -> Mat24 {
         let mut t = Mat24::zeros();
         for block in 0..8 {
             t.fixed_view_mut::<3, 3>(3 * block, 3 * block).copy_from(&e.axes);
@@ -433,6 +433,22 @@ impl Structure {
             *slot = if held[d] { usize::MAX } else { unknowns };
             unknowns += usize::from(!held[d]);
         }
+        let upper = self.restrained_stiffness(restraints, &free, unknowns)?;
+        let symbolic = Symbolic::new(upper.symbolic(), unknowns)?;
+        let factor = Cholesky::new(&symbolic, upper.as_ref()).map_err(|_| {
+            FemError::Singular("the restraints leave the structure a rigid-body motion (or a mechanism)".into())
+        })?;
+        Ok(Factorized { structure: self, restraints: restraints.clone(), free, unknowns, factor })
+    }
+
+    /// The restrained stiffness's upper triangle on the `unknowns` (`free[d]` each DOF's, or
+    /// usize::MAX where held), springs included.
+    pub(super) fn restrained_stiffness(
+        &self,
+        restraints: &Restraints,
+        free: &[usize],
+        unknowns: usize,
+    ) -> Result<SparseColMat<usize, f64>, FemError> {
         let mut triplets = Vec::with_capacity(self.elements.len() * 300);
         for e in &self.elements {
             let k = Self::global(e, &super::warp::on_nodes(e.heights.as_ref(), self.parts[e.parts].total()));
@@ -458,13 +474,8 @@ impl Structure {
                 }
             }
         }
-        let upper = SparseColMat::try_new_from_triplets(unknowns, unknowns, &triplets)
-            .map_err(|e| FemError::sparse("sparsity pattern", unknowns, e))?;
-        let symbolic = Symbolic::new(upper.symbolic(), unknowns)?;
-        let factor = Cholesky::new(&symbolic, upper.as_ref()).map_err(|_| {
-            FemError::Singular("the restraints leave the structure a rigid-body motion (or a mechanism)".into())
-        })?;
-        Ok(Factorized { structure: self, restraints: restraints.clone(), free, unknowns, factor, stiffness: upper })
+        SparseColMat::try_new_from_triplets(unknowns, unknowns, &triplets)
+            .map_err(|e| FemError::sparse("sparsity pattern", unknowns, e))
     }
 }
 
@@ -489,13 +500,11 @@ pub struct ShellResponse {
 /// A restrained structure with its factorized stiffness.
 pub struct Factorized<'s> {
     pub(super) structure: &'s Structure,
-    restraints: Restraints,
+    pub(super) restraints: Restraints,
     /// Each DOF's unknown, usize::MAX where held.
     pub(super) free: Vec<usize>,
     pub(super) unknowns: usize,
     pub(super) factor: Cholesky,
-    /// The restrained stiffness's upper triangle on the unknowns (for products).
-    pub(super) stiffness: SparseColMat<usize, f64>,
 }
 
 impl Factorized<'_> {

@@ -44,3 +44,47 @@ pub(super) fn at_projections(h: Option<&[f64; 4]>, u: Vec24) -> Vec24 {
         None => u,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::Structure;
+    use super::on_nodes;
+    use nalgebra::Vector3;
+
+    /// A warped quadrilateral (corners 4 % of its diagonal off its mean plane) keeps exactly the
+    /// six rigid-body motions of its nodes as zero-energy modes with the links; without them
+    /// the rotations about its in-plane axes strain it.
+    #[test]
+    fn a_warped_element_moves_rigidly_without_energy() {
+        let mut s = Structure::new(210e9, 0.3).unwrap();
+        let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.05], [1.1, 0.9, -0.01], [-0.05, 1.0, 0.06]];
+        s.add_quad(corners, 0.02).unwrap();
+        let e = &s.elements[0];
+        assert!(e.heights.is_some());
+        let local = s.parts[e.parts].total();
+        let (with, without) =
+            (Structure::global(e, &on_nodes(e.heights.as_ref(), local)), Structure::global(e, &local));
+        let scale = with.abs().max();
+        let rigid = |a: Vector3<f64>, theta: Vector3<f64>| {
+            let mut r = nalgebra::SVector::<f64, 24>::zeros();
+            for (k, &n) in e.nodes.iter().enumerate() {
+                let u = a + theta.cross(&s.nodes[n]);
+                for i in 0..3 {
+                    r[6 * k + i] = u[i];
+                    r[6 * k + 3 + i] = theta[i];
+                }
+            }
+            r
+        };
+        let mut worst_without: f64 = 0.0;
+        for i in 0..3 {
+            let unit = Vector3::from_fn(|j, _| if i == j { 1.0 } else { 0.0 });
+            for r in [rigid(unit, Vector3::zeros()), rigid(Vector3::zeros(), unit)] {
+                let residual = (with * r).abs().max() / (scale * r.abs().max());
+                assert!(residual < 1e-12, "{residual:e}");
+                worst_without = worst_without.max((without * r).abs().max() / (scale * r.abs().max()));
+            }
+        }
+        assert!(worst_without > 1e-4, "{worst_without:e}");
+    }
+}
