@@ -27,7 +27,7 @@
 
 use super::element::DOFS_PER_NODE;
 use super::structure::Factorized;
-use super::structure::{Restraints, Structure};
+use super::structure::{Restraints, Shape, Structure};
 use crate::model::cholesky::Cholesky;
 use crate::model::symmetric_upper_apply;
 use crate::modes::krylov::search;
@@ -43,6 +43,31 @@ use nalgebra::{Matrix3, Vector3};
 pub struct ShellMass {
     translational: Vec<f64>,
     rotary: Vec<Matrix3<f64>>,
+}
+
+impl Structure {
+    /// The lumped (diagonal) mass of steel of density `rho` (kg/m³) over all DOFs: each
+    /// element's ρhA shared by its nodes' translations as ∫ N_k dA (equally on a rectangle),
+    /// and its rotary inertia ρh³A/12 alike by their rotations (the drilling one too, so that
+    /// no DOF is massless): the inverse iteration's mass for the fundamental frequency. The
+    /// modes take [`super::ShellMass`], which leaves the drilling rotation massless.
+    pub fn lumped_mass(&self, rho: f64) -> Vec<f64> {
+        let mut m = vec![0.0; self.dofs()];
+        for e in &self.elements {
+            let h = e.thickness;
+            let shares = match e.shape {
+                Shape::Rectangle { a, b } => [(rho * h * a * b / 4.0, rho * h.powi(3) / 12.0 * a * b / 4.0); 4],
+                Shape::Quad { nodal_areas } => nodal_areas.map(|s| (rho * h * s, rho * h.powi(3) / 12.0 * s)),
+            };
+            for (&n, (translation, rotation)) in e.nodes.iter().zip(shares) {
+                for i in 0..3 {
+                    m[DOFS_PER_NODE * n + i] += translation;
+                    m[DOFS_PER_NODE * n + 3 + i] += rotation;
+                }
+            }
+        }
+        m
+    }
 }
 
 impl ShellMass {
