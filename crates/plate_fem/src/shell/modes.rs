@@ -226,8 +226,7 @@ impl Factorized<'_> {
                 self.unknowns, self.unknowns
             )));
         }
-        let massive =
-            self.free.iter().enumerate().filter(|&(d, &slot)| slot != usize::MAX && mass.diagonal(d) > 0.0).count();
+        let (_, massive) = mass.free_dofs(&self.restraints);
         if count > massive {
             return Err(FemError::Modes(format!(
                 "{count} modes asked for; the restrained structure has at most {massive} of finite frequency (its other {} unknowns carry no mass)",
