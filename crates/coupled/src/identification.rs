@@ -344,7 +344,9 @@ pub fn measurand(kind: ChannelKind) -> Measurand {
         ChannelKind::Velocity { .. } => Measurand::Velocity,
         ChannelKind::Acceleration { .. } => Measurand::Acceleration,
         ChannelKind::Strain { .. } => Measurand::Strain,
-        ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => Measurand::SupportForce,
+        ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } | ChannelKind::JackForce { .. } => {
+            Measurand::SupportForce
+        }
     }
 }
 

@@ -30,11 +30,14 @@ impl ChannelInfo {
             ChannelKind::Strain { sensor } => ("strain", Some(sensor)),
             ChannelKind::SpringForce { .. } => ("spring force", None),
             ChannelKind::Reaction { .. } => ("reaction", None),
+            ChannelKind::JackForce { .. } => ("jack force", None),
         };
         let at = match kind {
             ChannelKind::SpringForce { corner } | ChannelKind::Reaction { corner } => {
                 corner.position(plate.length(), plate.width())
             }
+            // A plate has no jack groups; a structure's channels are named where they are built.
+            ChannelKind::JackForce { .. } => (0.0, 0.0),
             _ => sensors[sensor.unwrap_or(0)],
         };
         Self { kind, quantity, at, sensor, unit: kind.unit() }

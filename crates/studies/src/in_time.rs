@@ -19,7 +19,7 @@
 
 use crate::Failure;
 use coupled::plan::scene_striker;
-use coupled::reduced::structure::{StructureImpact, StructureModel, StructureSettings};
+use coupled::reduced::structure::{Readings, StructureImpact, StructureModel, StructureSettings};
 use coupled::reduced::ReducedSettings;
 use plate_fem::shell::{Restraints, ShellMass, Spring, Structure};
 use scene::Scene;
@@ -126,7 +126,16 @@ pub fn models(fine: &OnMesh, coarse: &OnMesh, rho: f64) -> Result<((StructureMod
     let settings = StructureSettings { modes, ..StructureSettings::default() };
     let model = |m: &OnMesh, mass: &ShellMass| -> Result<(StructureModel, usize), Failure> {
         let fact = m.structure.factorize(&m.restraints)?;
-        Ok((StructureModel::new(&fact, mass, &m.loads, &m.groups, settings)?, fact.unknowns()))
+        Ok((
+            StructureModel::new(
+                &fact,
+                mass,
+                &m.loads,
+                Readings { groups: &m.groups, ..Readings::default() },
+                settings,
+            )?,
+            fact.unknowns(),
+        ))
     };
     let fine = model(fine, &masses[0])?;
     let (coarse, _) = model(coarse, &masses[1])?;

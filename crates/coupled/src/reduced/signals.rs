@@ -117,6 +117,12 @@ pub enum ChannelKind {
         /// The corner.
         corner: Corner,
     },
+    /// Force of a spring group of a shell structure (a jack on its pad), Σ gᵀu, N (positive
+    /// in compression along the springs' directions).
+    JackForce {
+        /// The group's index.
+        jack: usize,
+    },
 }
 
 impl ChannelKind {
@@ -127,7 +133,7 @@ impl ChannelKind {
             ChannelKind::Velocity { .. } => "m/s",
             ChannelKind::Acceleration { .. } => "m/s^2",
             ChannelKind::Strain { .. } => "1",
-            ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => "N",
+            ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } | ChannelKind::JackForce { .. } => "N",
         }
     }
 
@@ -140,6 +146,7 @@ impl ChannelKind {
             ChannelKind::Strain { sensor } => format!("strain s{}", sensor + 1),
             ChannelKind::SpringForce { corner } => format!("spring force {}", corner.name()),
             ChannelKind::Reaction { corner } => format!("reaction {}", corner.name()),
+            ChannelKind::JackForce { jack } => format!("jack {} force", jack + 1),
         }
     }
 }

@@ -22,7 +22,7 @@
 //! peak contact force held still.
 //!
 //! ```
-//! use coupled::reduced::structure::{StructureModel, StructureSettings};
+//! use coupled::reduced::structure::{Readings, StructureModel, StructureSettings};
 //! use coupled::transient::{ContactLaw, Striker, law::Flores};
 //! use plate_fem::shell::{Face, Restraints, ShellMass, Structure, DISC_RULE};
 //! // A 0.4 x 0.3 m steel plate, 10 mm thick, its edges held in translation, as a shell.
@@ -37,7 +37,7 @@
 //! let fact = s.factorize(&r)?;
 //! let load = s.disc_load([0.2, 0.0, 0.15], 0.005, &(0..s.elements()).collect::<Vec<_>>(), DISC_RULE)?;
 //! let settings = StructureSettings { modes: 30, ..StructureSettings::default() };
-//! let model = StructureModel::new(&fact, &ShellMass::lumped(&s, 7850.0), &[load], &[], settings)?;
+//! let model = StructureModel::new(&fact, &ShellMass::lumped(&s, 7850.0), &[load], Readings::default(), settings)?;
 //! let ball = Striker { k: 5e9, restitution: 1.0, mass: 0.1, velocity: 1.0, law: ContactLaw::Flores(Flores), gravity: 0.0 };
 //! let hit = model.impact(&ball, 0, 2e-3)?;
 //! // Softer than a rigid target: the force stays below Hertz's.
@@ -45,7 +45,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::signals::FreeMaps;
+use super::signals::{ChannelKind, ChannelRows, FreeMaps, Probes, SignalSpec};
+use super::stream::{Arrival, StreamResponse, Struck, StruckAt};
 use super::target::{ChannelRow, ModalTarget, Recording};
 use super::{modal_compliance, ModalDamping, ReducedSettings};
 use crate::error::ModelError;
@@ -85,9 +86,9 @@ struct StruckPoint {
     static_compliance: f64,
     /// C_res(p), m/N.
     residual: f64,
-    /// Per spring group, its force's row on the modes and its static-correction part per
-    /// unit contact force.
-    groups: Vec<ChannelRow>,
+    /// Per spring group, its force's static-correction part per unit contact force,
+    /// gᵀK⁻¹f - Σ gᵀφᵢ φᵢᵀf/ωᵢ².
+    group_d: Vec<f64>,
     /// Per spring group, its force per unit static contact force.
     group_static: Vec<f64>,
 }
@@ -97,6 +98,10 @@ pub struct StructureModel {
     omega: Vec<f64>,
     settings: StructureSettings,
     points: Vec<StruckPoint>,
+    /// Per spring group, its force on the modes, gᵀφᵢ.
+    group_rows: Vec<Vec<f64>>,
+    /// Per accelerometer, its reading on the modes, aᵀφᵢ.
+    accelerometers: Vec<Vec<f64>>,
     basis: usize,
     largest_residual: f64,
     simd: pulp::Arch,
@@ -116,14 +121,16 @@ pub struct StructureImpact {
 impl StructureModel {
     /// The lowest `settings.modes` modes of the structure `fact` (factorized) with `mass`,
     /// and the struck points' load vectors `loads` (unit resultant, all DOFs); the forces of
-    /// the spring `groups` are followed in every impact.
+    /// the spring groups of `readings` are followed in every impact, and its accelerometers
+    /// are recorded in a stream ([`Self::probes`]).
     pub fn new(
         fact: &Factorized<'_>,
         mass: &ShellMass,
         loads: &[Vec<f64>],
-        groups: &[Vec<Spring>],
+        readings: Readings<'_>,
         settings: StructureSettings,
     ) -> Result<Self, ModelError> {
+        let groups = readings.groups;
         check("modes", settings.modes as f64, ReducedSettings::MODES, "")?;
         check("steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
         let dofs = fact.dofs();
@@ -138,6 +145,15 @@ impl StructureModel {
         }
         for s in groups.iter().flatten() {
             s.check(dofs / 6)?;
+        }
+        for (k, a) in readings.accelerometers.iter().enumerate() {
+            if a.len() != dofs || !a.iter().all(|v| v.is_finite()) {
+                return Err(ModelError::Missing(format!(
+                    "accelerometer {k} has {} entries (finite: {}) for a structure of {dofs} DOFs",
+                    a.len(),
+                    a.iter().all(|v| v.is_finite())
+                )));
+            }
         }
         let modes = fact.modes(mass, settings.modes)?;
         for (i, &w) in modes.omegas().iter().enumerate() {
@@ -154,6 +170,8 @@ impl StructureModel {
             omega: modes.omegas().to_vec(),
             settings,
             points,
+            group_rows: functionals.iter().map(|g| modes.modal(g)).collect(),
+            accelerometers: readings.accelerometers.iter().map(|a| modes.modal(a)).collect(),
             basis: modes.basis(),
             largest_residual: modes.residuals().iter().copied().fold(0.0, f64::max),
             simd: pulp::Arch::new(),
@@ -175,14 +193,7 @@ impl StructureModel {
                 phi: p.phi[..n].to_vec(),
                 static_compliance: p.static_compliance,
                 residual: p.residual + dropped(&p.phi, &p.phi),
-                groups: p
-                    .groups
-                    .iter()
-                    .map(|g| match &g.a {
-                        Some(a) => ChannelRow { a: Some(a[..n].to_vec()), b: None, d: g.d + dropped(a, &p.phi) },
-                        None => g.clone(),
-                    })
-                    .collect(),
+                group_d: self.group_rows.iter().zip(&p.group_d).map(|(g, d)| d + dropped(g, &p.phi)).collect(),
                 group_static: p.group_static.clone(),
             })
             .collect();
@@ -190,6 +201,8 @@ impl StructureModel {
             omega: self.omega[..n].to_vec(),
             settings: StructureSettings { modes: n, ..self.settings },
             points,
+            group_rows: self.group_rows.iter().map(|g| g[..n].to_vec()).collect(),
+            accelerometers: self.accelerometers.iter().map(|a| a[..n].to_vec()).collect(),
             basis: self.basis,
             largest_residual: self.largest_residual,
             simd: self.simd,
@@ -234,7 +247,12 @@ impl StructureModel {
             )));
         }
         let zeta = self.settings.damping;
-        let rows = p.groups.clone();
+        let rows: Vec<ChannelRow> = self
+            .group_rows
+            .iter()
+            .zip(&p.group_d)
+            .map(|(g, &d)| ChannelRow { a: Some(g.clone()), b: None, d })
+            .collect();
         let recording = (!rows.is_empty()).then(|| Recording { rows, every: 1, samples: steps + 1 });
         let map = FreeMaps::new(&self.omega, zeta, dt);
         let mut target = ModalTarget::new(
@@ -251,11 +269,123 @@ impl StructureModel {
         let facts =
             PlateFacts { static_compliance: Some(p.static_compliance), corner_springs: None, follow_unbounded: true };
         let outcome = simulate_with(striker, Some(&mut target), facts, dt, window + 2.0 * dt);
-        while !p.groups.is_empty() && target.recorded() < steps + 1 {
+        while !p.group_d.is_empty() && target.recorded() < steps + 1 {
             target.advance_free(1);
         }
         let group_force_max = target.out.iter().map(|s| s.iter().fold(0.0, |m: f64, f| m.max(f.abs()))).collect();
         Ok(StructureImpact { outcome, group_force_max, dt })
+    }
+}
+
+/// What a structure's signals read besides the contact.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Readings<'a> {
+    /// Spring groups (a jack on its pad), each read as its force Σ gᵀu.
+    pub groups: &'a [Vec<Spring>],
+    /// Accelerometers, each a functional a over the DOFs read as aᵀü (a unit normal on a
+    /// node's translations for one mounted on a wall).
+    pub accelerometers: &'a [Vec<f64>],
+}
+
+impl StructureModel {
+    /// The channels a stream on this structure records, sampled at `rate_hz` and each
+    /// lump followed for at most `window` seconds from its touch: every spring group's force
+    /// (its static correction's part per lump at its point), then every accelerometer,
+    /// aᵀü = Σ αᵢq̈ᵢ with q̈ᵢ = φᵢ(p)P - ωᵢ²qᵢ - 2ζωᵢq̇ᵢ (the truncated modes, answering
+    /// statically, carry no acceleration).
+    pub fn probes(&self, window: f64, rate_hz: f64) -> Result<Probes, ModelError> {
+        check("window", window, Range::open_closed(0.0, 10.0), "s")?;
+        check("rate_hz", rate_hz, Range::closed(10.0, 1e7), "Hz")?;
+        check("window × rate_hz", window * rate_hz, Range::closed(1.0, 1e7), "samples")?;
+        let spec = SignalSpec { window, rate_hz, sensors: Vec::new(), quantities: Vec::new(), corners: false };
+        let zeta = self.settings.damping;
+        let n = self.omega.len();
+        let plain = |kind, a: Vec<f64>, b: Vec<f64>, c| ChannelRows {
+            kind,
+            a,
+            b,
+            c,
+            direct: None,
+            res: [None, None, None],
+            damped_inertia: false,
+        };
+        let mut rows: Vec<ChannelRows> = (self.group_rows.iter().enumerate())
+            .map(|(jack, g)| plain(ChannelKind::JackForce { jack }, g.clone(), vec![0.0; n], None))
+            .collect();
+        for (sensor, alpha) in self.accelerometers.iter().enumerate() {
+            let w = &self.omega;
+            let a = (0..n).map(|i| -w[i] * w[i] * alpha[i]).collect();
+            let b = (0..n).map(|i| -2.0 * zeta.at(w[i]) * w[i] * alpha[i]).collect();
+            rows.push(plain(ChannelKind::Acceleration { sensor }, a, b, Some(alpha.clone())));
+        }
+        Ok(Probes::new(&spec, rows, Vec::new(), &self.omega, zeta))
+    }
+
+    /// The continuous signals of `probes` ([`Self::probes`]) over `duration` seconds of the
+    /// stream `arrivals` (in order of time), as on the plate ([`super::stream`]): each lump
+    /// strikes the load point nearest its (x, z), `points[k]` being load k's place on the
+    /// struck face.
+    pub fn stream(
+        &self,
+        arrivals: &[Arrival],
+        points: &[(f64, f64)],
+        probes: &Probes,
+        duration: f64,
+    ) -> Result<StreamResponse, ModelError> {
+        if points.len() != self.points.len() {
+            return Err(ModelError::Missing(format!(
+                "{} places for a structure of {} load points",
+                points.len(),
+                self.points.len()
+            )));
+        }
+        if probes.omega.len() != self.omega.len() {
+            return Err(ModelError::Missing("the probes were prepared on another model".into()));
+        }
+        super::stream::stream(&OnFace { model: self, points }, arrivals, probes, duration)
+    }
+}
+
+/// A structure with its load points' places on the struck face.
+struct OnFace<'a> {
+    model: &'a StructureModel,
+    points: &'a [(f64, f64)],
+}
+
+impl Struck for OnFace<'_> {
+    fn omega(&self) -> &[f64] {
+        &self.model.omega
+    }
+
+    fn damping(&self) -> ModalDamping {
+        self.model.settings.damping
+    }
+
+    fn steps_per_contact(&self) -> f64 {
+        self.model.settings.steps_per_contact
+    }
+
+    fn simd(&self) -> pulp::Arch {
+        self.model.simd
+    }
+
+    /// The nearest load point's modes; a spring group's direct term is its static
+    /// correction's part, an accelerometer's Σ αᵢφᵢ(p).
+    fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError> {
+        let d2 = |&(a, b): &(f64, f64)| (a - x) * (a - x) + (b - z) * (b - z);
+        let k = (0..self.points.len())
+            .min_by(|&i, &j| d2(&self.points[i]).total_cmp(&d2(&self.points[j])))
+            .ok_or_else(|| ModelError::Missing("a structure without load points".into()))?;
+        let p = &self.model.points[k];
+        let d = probes
+            .rows
+            .iter()
+            .map(|r| match r.kind {
+                ChannelKind::JackForce { jack } => p.group_d[jack],
+                _ => r.c.as_ref().map_or(0.0, |c| c.iter().zip(&p.phi).map(|(a, b)| a * b).sum()),
+            })
+            .collect();
+        Ok(StruckAt { phi: p.phi.clone(), c_res: p.residual, d })
     }
 }
 
@@ -279,10 +409,7 @@ fn struck_point(fact: &Factorized<'_>, modes: &ShellModes, f: &[f64], groups: &[
     let static_compliance: f64 = f.iter().zip(&field).map(|(a, b)| a * b).sum();
     let phi = modes.modal(f);
     let residual = modes.residual_between(f, f, &field).max(0.0);
-    let rows = groups
-        .iter()
-        .map(|g| ChannelRow { a: Some(modes.modal(g)), b: None, d: modes.residual_between(g, f, &field) })
-        .collect();
+    let group_d = groups.iter().map(|g| modes.residual_between(g, f, &field)).collect();
     let group_static = groups.iter().map(|g| g.iter().zip(&field).map(|(a, b)| a * b).sum()).collect();
-    StruckPoint { phi, static_compliance, residual, groups: rows, group_static }
+    StruckPoint { phi, static_compliance, residual, group_d, group_static }
 }

@@ -380,7 +380,7 @@ fn channel_groups(kinds: &[ChannelKind], sensors: usize) -> Vec<(String, Vec<usi
         | ChannelKind::Velocity { sensor }
         | ChannelKind::Acceleration { sensor }
         | ChannelKind::Strain { sensor } => Some(sensor),
-        ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } => None,
+        ChannelKind::SpringForce { .. } | ChannelKind::Reaction { .. } | ChannelKind::JackForce { .. } => None,
     };
     let mut out: Vec<(String, Vec<usize>)> = (0..sensors)
         .map(|s| (format!("sensor {}", s + 1), (0..kinds.len()).filter(|&c| sensor_of(&kinds[c]) == Some(s)).collect()))

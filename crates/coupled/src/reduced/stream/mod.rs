@@ -45,7 +45,7 @@ use super::impact::{at_point, channel_row};
 use super::signals::{dot, FreeMaps, Probes, Signals};
 use super::target::ChannelRow;
 use super::window::free_window;
-use super::{Correction, ReducedModel};
+use super::{Correction, ModalDamping, ReducedModel};
 use crate::error::ModelError;
 use crate::transient::Striker;
 use analytic::params::{check, Range};
@@ -149,6 +149,59 @@ struct StepMaps {
     h: Vec<f64>,
 }
 
+/// What a stream needs of the struck structure: its modes, and each struck point's view of
+/// them. The plate ([`ReducedModel`]) and a shell structure
+/// ([`super::structure::StructureModel`]) are struck through it alike.
+pub(crate) trait Struck {
+    /// ωᵢ of the kept modes, rad/s.
+    fn omega(&self) -> &[f64];
+    /// Their damping.
+    fn damping(&self) -> ModalDamping;
+    /// The contact step is at most the rigid-target Hertz time over this.
+    fn steps_per_contact(&self) -> f64;
+    /// The instruction set of the passes over the modes.
+    fn simd(&self) -> pulp::Arch;
+    /// A lump striking at (x, z): φᵢ(p), C_res(p) and each channel's direct term Dⱼ.
+    fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError>;
+}
+
+/// A struck point as a lump of the stream sees the modes.
+pub(crate) struct StruckAt {
+    /// φᵢ(p).
+    pub phi: Vec<f64>,
+    /// The truncated modes' static correction C_res(p), m/N.
+    pub c_res: f64,
+    /// Each channel's direct term Dⱼ (its response per unit contact force at p).
+    pub d: Vec<f64>,
+}
+
+impl Struck for ReducedModel {
+    fn omega(&self) -> &[f64] {
+        &self.omega
+    }
+
+    fn damping(&self) -> ModalDamping {
+        self.settings.damping()
+    }
+
+    fn steps_per_contact(&self) -> f64 {
+        self.settings.steps_per_contact
+    }
+
+    fn simd(&self) -> pulp::Arch {
+        self.simd
+    }
+
+    fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError> {
+        let pt = self.point(x, z)?;
+        let zeta = self.settings.damping();
+        let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_point(&pt, f)).collect();
+        let d =
+            probes.rows.iter().map(|r| channel_row(r, &pt, &field_at_p, None, (pt.c_res, zeta), &pt.phi).d).collect();
+        Ok(StruckAt { c_res: pt.c_res, phi: pt.phi, d })
+    }
+}
+
 impl ReducedModel {
     /// The continuous signals of `probes` over `duration` seconds of the stream `arrivals`
     /// (in order of time; see the module). The probes' window is the longest a lump is
@@ -159,35 +212,45 @@ impl ReducedModel {
                 "a stream carries the truncated modes as the static correction; set correction = \"static\"".into(),
             ));
         }
-        check("duration", duration, Range::open(0.0, f64::INFINITY), "s")?;
-        for (i, a) in arrivals.iter().enumerate() {
-            let earlier = if i == 0 { 0.0 } else { arrivals[i - 1].time };
-            check(&format!("arrival {i}'s time"), a.time, Range::closed(earlier, f64::INFINITY), "s")?;
-            // The flight bounds (`Active::highest`) hold for a body force toward the plate.
-            check(&format!("arrival {i}'s gravity"), a.striker.gravity, Range::closed(0.0, f64::INFINITY), "m/s²")?;
-        }
-        let rate = probes.spec.rate_hz;
-        let total = (duration * rate - 1e-9).ceil().max(1.0) as usize;
-        let mut run = Run::new(self, probes, total);
-        let mut next = 0;
-        let mut k = 0;
-        while k + 1 < total {
-            while next < arrivals.len() && sample_of(arrivals[next].time, rate) <= k {
-                run.admit(next, &arrivals[next], k)?;
-                next += 1;
-            }
-            if run.active.is_empty() {
-                let target = arrivals.get(next).map_or(total - 1, |a| sample_of(a.time, rate).min(total - 1));
-                run.free(target - k);
-                k = target;
-            } else {
-                run.contact_interval();
-                k += 1;
-                run.retire(k);
-            }
-        }
-        Ok(run.finish())
+        stream(self, arrivals, probes, duration)
     }
+}
+
+/// The stream `arrivals` on `model`, recorded by `probes` over `duration` seconds.
+pub(crate) fn stream(
+    model: &dyn Struck,
+    arrivals: &[Arrival],
+    probes: &Probes,
+    duration: f64,
+) -> Result<StreamResponse, ModelError> {
+    check("duration", duration, Range::open(0.0, f64::INFINITY), "s")?;
+    for (i, a) in arrivals.iter().enumerate() {
+        let earlier = if i == 0 { 0.0 } else { arrivals[i - 1].time };
+        check(&format!("arrival {i}'s time"), a.time, Range::closed(earlier, f64::INFINITY), "s")?;
+        // The flight bounds (`Active::highest`) hold for a body force toward the plate.
+        check(&format!("arrival {i}'s gravity"), a.striker.gravity, Range::closed(0.0, f64::INFINITY), "m/s²")?;
+    }
+    let rate = probes.spec.rate_hz;
+    let total = (duration * rate - 1e-9).ceil().max(1.0) as usize;
+    let mut run = Run::new(model, probes, total);
+    let mut next = 0;
+    let mut k = 0;
+    while k + 1 < total {
+        while next < arrivals.len() && sample_of(arrivals[next].time, rate) <= k {
+            run.admit(next, &arrivals[next], k)?;
+            next += 1;
+        }
+        if run.active.is_empty() {
+            let target = arrivals.get(next).map_or(total - 1, |a| sample_of(a.time, rate).min(total - 1));
+            run.free(target - k);
+            k = target;
+        } else {
+            run.contact_interval();
+            k += 1;
+            run.retire(k);
+        }
+    }
+    Ok(run.finish())
 }
 
 /// The sample an arrival at `time` falls on.
@@ -197,7 +260,7 @@ fn sample_of(time: f64, rate: f64) -> usize {
 
 /// The stream under way.
 struct Run<'a> {
-    model: &'a ReducedModel,
+    model: &'a dyn Struck,
     probes: &'a Probes,
     rows: Vec<ChannelRow>,
     q: Vec<f64>,
@@ -219,8 +282,8 @@ struct Run<'a> {
 }
 
 impl<'a> Run<'a> {
-    fn new(model: &'a ReducedModel, probes: &'a Probes, total: usize) -> Self {
-        let n = model.omega.len();
+    fn new(model: &'a dyn Struck, probes: &'a Probes, total: usize) -> Self {
+        let n = model.omega().len();
         let rows =
             probes.rows.iter().map(|r| ChannelRow { a: nonzero(&r.a), b: nonzero(&r.b), d: 0.0 }).collect::<Vec<_>>();
         let mut out: Vec<Vec<f64>> = rows.iter().map(|_| Vec::with_capacity(total)).collect();
@@ -238,7 +301,7 @@ impl<'a> Run<'a> {
             done: Vec::new(),
             maps: HashMap::new(),
             sample_map: probes.step_map(1),
-            half_period: half_periods(&model.omega, model.settings.damping(), probes.spec.interval()),
+            half_period: half_periods(model.omega(), model.damping(), probes.spec.interval()),
             window_samples: probes.spec.samples(),
             steps: 0,
             joint_steps: 0,
@@ -252,25 +315,17 @@ impl<'a> Run<'a> {
     /// Lump `index` touches at sample `k`: the sphere at the plate's deflection there.
     fn admit(&mut self, index: usize, a: &Arrival, k: usize) -> Result<(), ModelError> {
         let m = self.model;
-        let pt = m.point(a.x, a.z)?;
-        let zeta = m.settings.damping();
-        let field_at_p: Vec<f64> = self.probes.fields.iter().map(|f| at_point(&pt, f)).collect();
-        let d = self
-            .probes
-            .rows
-            .iter()
-            .map(|r| channel_row(r, &pt, &field_at_p, None, (pt.c_res, zeta), &pt.phi).d)
-            .collect();
+        let StruckAt { phi, c_res, d } = m.struck_at(a.x, a.z, self.probes)?;
         let ts = self.probes.spec.interval();
-        let every = (ts / (a.striker.hertz_time() / m.settings.steps_per_contact)).ceil().max(1.0) as usize;
-        let static_compliance = super::modal_compliance(&pt.phi, &m.omega) + pt.c_res;
-        let (w, wv) = (dot(&pt.phi, &self.q), dot(&pt.phi, &self.v));
+        let every = (ts / (a.striker.hertz_time() / m.steps_per_contact())).ceil().max(1.0) as usize;
+        let static_compliance = super::modal_compliance(&phi, m.omega()) + c_res;
+        let (w, wv) = (dot(&phi, &self.q), dot(&phi, &self.v));
         self.active.push(Active {
             index,
             striker: a.striker,
-            c_res: pt.c_res,
+            c_res,
             static_compliance,
-            phi: pt.phi,
+            phi,
             d,
             every,
             u: w,
@@ -304,10 +359,10 @@ impl<'a> Run<'a> {
         }
         let m = self.model;
         let maps = [self.probes.block_maps.modes()];
-        free_window(m.simd, &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
-        let zeta = m.settings.damping();
+        free_window(m.simd(), &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
+        let zeta = m.damping();
         let tau = count as f64 * self.probes.spec.interval();
-        for (i, &w) in m.omega.iter().enumerate() {
+        for (i, &w) in m.omega().iter().enumerate() {
             let f = super::free_map(w, zeta.at(w), tau);
             let (q, v) = (self.q[i], self.v[i]);
             self.q[i] = f[0] * q + f[1] * v;
@@ -399,7 +454,7 @@ impl<'a> Run<'a> {
         let ts = self.probes.spec.interval();
         let mut kept = Vec::with_capacity(self.active.len());
         for l in std::mem::take(&mut self.active) {
-            let reach = reach(&l.phi, &self.q, &self.v, &self.model.omega);
+            let reach = reach(&l.phi, &self.q, &self.v, self.model.omega());
             let rest = self.window_samples.saturating_sub(k - l.touched) as f64 * ts;
             let left = l.force == 0.0 && l.steps > 0 && l.highest(rest) - l.opens_at() + reach < 0.0;
             // At its window's end a lump is let go once it is out of contact (dropping a force
@@ -453,10 +508,10 @@ fn nonzero(x: &[f64]) -> Option<Vec<f64>> {
 }
 
 /// The maps of the step T_s/`every`.
-fn step_maps(model: &ReducedModel, probes: &Probes, every: usize) -> StepMaps {
+fn step_maps(model: &dyn Struck, probes: &Probes, every: usize) -> StepMaps {
     let dt = probes.spec.interval() / every as f64;
-    let zeta = model.settings.damping();
-    let omega = &model.omega;
+    let zeta = model.damping();
+    let omega = model.omega();
     StepMaps {
         dt,
         newmark: FreeMaps::newmark(omega, zeta, dt),
