@@ -196,6 +196,11 @@ impl<'a> Instrument<'a> {
         self.model.modes().omegas().last().copied().unwrap_or(0.0) / (2.0 * std::f64::consts::PI)
     }
 
+    /// The modes the reduced model keeps.
+    pub fn modes(&self) -> usize {
+        self.model.modes().omegas().len()
+    }
+
     /// The channels each impact records.
     pub fn channels(&self) -> Vec<ChannelKind> {
         self.probes.kinds()
@@ -300,16 +305,13 @@ impl Instrument<'_> {
     /// The sphere of `draw` (of family `family_name`) and its striker: the scene's law,
     /// restitution and gravity, the contact stiffness against the plate (eq. 3).
     pub fn striker(&self, draw: &Draw, family_name: &str) -> Result<(analytic::Sphere, Striker), ModelError> {
-        let sphere = draw.sphere(family_name)?;
-        let striker = Striker {
-            k: contact_stiffness(&sphere, self.plate.material()),
+        let striking = Striking {
             restitution: self.restitution,
-            mass: sphere.mass(),
-            velocity: draw.velocity,
-            law: self.law.law_for(&sphere),
+            law: self.law,
             gravity: self.gravity,
+            steel: self.plate.material(),
         };
-        Ok((sphere, striker))
+        striking.striker(draw, family_name)
     }
 
     /// The continuous model signals of a caving stream of `lumps` over `duration` seconds
@@ -334,6 +336,46 @@ impl Instrument<'_> {
     /// The model's sample rate, Hz.
     pub fn model_rate_hz(&self) -> f64 {
         self.probes.spec().rate_hz
+    }
+}
+
+/// How a scene's lumps strike: the Flores restitution, the contact law, gravity, and the
+/// struck steel (eq. 3's contact stiffness).
+#[derive(Debug, Clone, Copy)]
+pub struct Striking {
+    /// Coefficient of restitution of the Flores law.
+    pub restitution: f64,
+    /// The contact law.
+    pub law: LawKind,
+    /// Gravity on the lumps, m/s².
+    pub gravity: f64,
+    /// The struck steel.
+    pub steel: analytic::Elastic,
+}
+
+impl Striking {
+    /// The scene's, against its plate's steel.
+    pub fn of(scene: &Scene) -> Self {
+        Self {
+            restitution: scene.restitution,
+            law: scene.contact_law,
+            gravity: scene.gravity,
+            steel: scene.plate.material(),
+        }
+    }
+
+    /// The sphere of `draw` (of family `family_name`) and its striker.
+    pub fn striker(&self, draw: &Draw, family_name: &str) -> Result<(analytic::Sphere, Striker), ModelError> {
+        let sphere = draw.sphere(family_name)?;
+        let striker = Striker {
+            k: contact_stiffness(&sphere, self.steel),
+            restitution: self.restitution,
+            mass: sphere.mass(),
+            velocity: draw.velocity,
+            law: self.law.law_for(&sphere),
+            gravity: self.gravity,
+        };
+        Ok((sphere, striker))
     }
 }
 

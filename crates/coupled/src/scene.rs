@@ -216,6 +216,12 @@ impl Scene {
         self.analyses.contains(&analysis)
     }
 
+    /// Whether its identification strikes its tail beam: a scene with a [`TailBeamScene`] that
+    /// asks for identification, whose lumps' region and sensors lie on the box's top face.
+    pub fn identifies_on_tail_beam(&self) -> bool {
+        self.tail_beam.is_some() && self.wants(Analysis::Identify)
+    }
+
     /// A copy whose points are `count` evenly spaced positions on the centreline (the paper
     /// divides L into 100 parts: 101 points).
     pub fn with_sweep(&self, count: usize) -> Self {

@@ -102,6 +102,8 @@ pub struct StructureModel {
     group_rows: Vec<Vec<f64>>,
     /// Per accelerometer, its reading on the modes, aᵀφᵢ.
     accelerometers: Vec<Vec<f64>>,
+    /// The static cross compliances fⱼᵀK⁻¹fₖ of the load points, row-major.
+    static_cross: Vec<f64>,
     basis: usize,
     largest_residual: f64,
     simd: pulp::Arch,
@@ -133,6 +135,7 @@ impl StructureModel {
         let groups = readings.groups;
         check("modes", settings.modes as f64, ReducedSettings::MODES, "")?;
         check("steps_per_contact", settings.steps_per_contact, Range::closed(4.0, 1e5), "")?;
+        check("load points", loads.len() as f64, Range::closed(0.0, MAX_LOAD_POINTS as f64), "")?;
         let dofs = fact.dofs();
         for (k, f) in loads.iter().enumerate() {
             if f.len() != dofs || !f.iter().all(|v| v.is_finite()) {
@@ -165,13 +168,14 @@ impl StructureModel {
             )?;
         }
         let functionals: Vec<Vec<f64>> = groups.iter().map(|g| functional(g, fact.dofs())).collect();
-        let points = loads.iter().map(|f| struck_point(fact, &modes, f, &functionals)).collect();
+        let (points, static_cross) = struck_points(fact, &modes, loads, &functionals);
         Ok(Self {
             omega: modes.omegas().to_vec(),
             settings,
             points,
             group_rows: functionals.iter().map(|g| modes.modal(g)).collect(),
             accelerometers: readings.accelerometers.iter().map(|a| modes.modal(a)).collect(),
+            static_cross,
             basis: modes.basis(),
             largest_residual: modes.residuals().iter().copied().fold(0.0, f64::max),
             simd: pulp::Arch::new(),
@@ -203,6 +207,7 @@ impl StructureModel {
             points,
             group_rows: self.group_rows.iter().map(|g| g[..n].to_vec()).collect(),
             accelerometers: self.accelerometers.iter().map(|a| a[..n].to_vec()).collect(),
+            static_cross: self.static_cross.clone(),
             basis: self.basis,
             largest_residual: self.largest_residual,
             simd: self.simd,
@@ -385,7 +390,14 @@ impl Struck for OnFace<'_> {
                 _ => r.c.as_ref().map_or(0.0, |c| c.iter().zip(&p.phi).map(|(a, b)| a * b).sum()),
             })
             .collect();
-        Ok(StruckAt { phi: p.phi.clone(), c_res: p.residual, d })
+        Ok(StruckAt { phi: p.phi.clone(), c_res: p.residual, d, point: k })
+    }
+
+    /// fⱼᵀK⁻¹fₖ - Σᵢ φᵢ(pⱼ)φᵢ(pₖ)/ωᵢ² on the kept modes.
+    fn cross_residual(&self, (j, phi_j): (usize, &[f64]), (k, phi_k): (usize, &[f64])) -> Option<f64> {
+        let n = self.model.points.len();
+        let modal: f64 = phi_j.iter().zip(phi_k).zip(&self.model.omega).map(|((a, b), w)| a * b / (w * w)).sum();
+        Some(self.model.static_cross[j * n + k] - modal)
     }
 }
 
@@ -403,13 +415,48 @@ fn functional(springs: &[Spring], dofs: usize) -> Vec<f64> {
     g
 }
 
-/// The modal view of the load `f` (see the module).
-fn struck_point(fact: &Factorized<'_>, modes: &ShellModes, f: &[f64], groups: &[Vec<f64>]) -> StruckPoint {
-    let field = fact.solve(f);
-    let static_compliance: f64 = f.iter().zip(&field).map(|(a, b)| a * b).sum();
+/// The most load points a structure's model holds: their static cross compliances take
+/// 8 bytes a pair (128 MB at the most).
+pub const MAX_LOAD_POINTS: usize = 4_000;
+
+/// The modal view of every load (see the module) and their static cross compliances
+/// fⱼᵀK⁻¹fₖ, row-major, symmetrised (each load is nonzero on its patch's few DOFs only).
+fn struck_points(
+    fact: &Factorized<'_>,
+    modes: &ShellModes,
+    loads: &[Vec<f64>],
+    groups: &[Vec<f64>],
+) -> (Vec<StruckPoint>, Vec<f64>) {
+    let n = loads.len();
+    let sparse: Vec<Vec<(usize, f64)>> = loads
+        .iter()
+        .map(|f| f.iter().enumerate().filter(|(_, v)| **v != 0.0).map(|(i, v)| (i, *v)).collect())
+        .collect();
+    let mut cross = vec![0.0; n * n];
+    let mut points = Vec::with_capacity(n);
+    for (k, f) in loads.iter().enumerate() {
+        let field = fact.solve(f);
+        for (j, s) in sparse.iter().enumerate() {
+            cross[j * n + k] = s.iter().map(|&(i, v)| v * field[i]).sum();
+        }
+        points.push(struck_point(modes, f, &field, groups));
+    }
+    for j in 0..n {
+        for k in j + 1..n {
+            let mean = 0.5 * (cross[j * n + k] + cross[k * n + j]);
+            cross[j * n + k] = mean;
+            cross[k * n + j] = mean;
+        }
+    }
+    (points, cross)
+}
+
+/// The modal view of the load `f` whose static field is `field` = K⁻¹f (see the module).
+fn struck_point(modes: &ShellModes, f: &[f64], field: &[f64], groups: &[Vec<f64>]) -> StruckPoint {
+    let static_compliance: f64 = f.iter().zip(field).map(|(a, b)| a * b).sum();
     let phi = modes.modal(f);
-    let residual = modes.residual_between(f, f, &field).max(0.0);
-    let group_d = groups.iter().map(|g| modes.residual_between(g, f, &field)).collect();
-    let group_static = groups.iter().map(|g| g.iter().zip(&field).map(|(a, b)| a * b).sum()).collect();
+    let residual = modes.residual_between(f, f, field).max(0.0);
+    let group_d = groups.iter().map(|g| modes.residual_between(g, f, field)).collect();
+    let group_static = groups.iter().map(|g| g.iter().zip(field).map(|(a, b)| a * b).sum()).collect();
     StruckPoint { phi, static_compliance, residual, group_d, group_static }
 }

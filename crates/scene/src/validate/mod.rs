@@ -141,11 +141,32 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     if let Some(why) = limits::quasi_static_excess(conditions.len(), points.len(), bodies.len(), responses, yields) {
         return Err(other("conditions, points, bodies and velocities", why));
     }
-    let signals = validate_signals(raw.signals.as_ref(), length_mm, width_mm, plate_damping)?;
-    let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, length_mm, width_mm)?;
+    let tail_beam = tail_beam::table(raw.tail_beam.as_ref(), &analyses)?;
+    // A tail-beam scene's identification strikes the box: its lumps' region and its sensors
+    // lie on the box's top face (x along the beam, z across).
+    let on_box = tail_beam.is_some() && analyses.contains(&Analysis::Identify);
+    let face_mm = match &tail_beam {
+        Some(tb) if on_box => (tb.beam.length / MM, tb.beam.width / MM),
+        _ => (length_mm, width_mm),
+    };
+    let signals = validate_signals(raw.signals.as_ref(), face_mm.0, face_mm.1, plate_damping, !on_box)?;
+    if on_box && signals.modes_from_chain {
+        return Err(other(
+            "signals.modes",
+            "\"chain\" chooses a plate's modes by its chain; a tail beam's stream keeps a number of them (give one)",
+        ));
+    }
+    let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, face_mm.0, face_mm.1)?;
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
-    let tail_beam = tail_beam::table(raw.tail_beam.as_ref(), &analyses)?;
+    if let (Some(_), Some(study)) = (&tail_beam, &stream) {
+        if analyses.contains(&Analysis::Identify) && !study.thickness_sweep.is_empty() {
+            return Err(other(
+                "stream.thickness_sweep_mm",
+                "sweeps the plate's thickness; a tail beam's stream strikes the box, whose walls have their own (leave it out)",
+            ));
+        }
+    }
     let shell_mesh = shell_mesh::table(raw.shell_mesh.as_ref(), &analyses, &plate)?;
     Ok(Scene {
         velocities,

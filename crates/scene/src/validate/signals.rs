@@ -14,6 +14,7 @@ pub(super) fn validate_signals(
     l_mm: f64,
     b_mm: f64,
     rayleigh: Option<plate_fem::dynamics::Rayleigh>,
+    on_plate: bool,
 ) -> Result<SignalSettings, Invalid> {
     let d = SignalSettings { rayleigh, ..SignalSettings::default() };
     let Some(raw) = raw else { return Ok(d) };
@@ -56,7 +57,7 @@ pub(super) fn validate_signals(
         Some(z) => check("signals.damping_ratio", z, coupled::reduced::ReducedSettings::DAMPING_RATIO, "")?,
         None => d.damping_ratio,
     };
-    let (modes, modes_from_chain) = modes(raw.modes.as_ref(), l_mm, b_mm)?;
+    let (modes, modes_from_chain) = modes(raw.modes.as_ref(), on_plate.then_some((l_mm, b_mm)))?;
     let sensors = match &raw.sensors_mm {
         None => Vec::new(),
         Some(list) => {
@@ -81,12 +82,13 @@ pub(super) fn validate_signals(
     Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, rayleigh, modes, modes_from_chain, sensors })
 }
 
-/// `signals.modes`: a whole number within [`limits::MODES`] and the plate's
-/// [`limits::max_modes`]; absent, the default or the plate's most, whichever is fewer;
+/// `signals.modes`: a whole number within [`limits::MODES`] and, on a plate of `plate_mm`
+/// (length, width), the plate's [`limits::max_modes`] (a structure's own mesh bounds its
+/// modes when it is built); absent, the default or the plate's most, whichever is fewer;
 /// `"chain"`, the plate's most with each support set keeping those the chain needs. Returns
 /// the count and whether the chain chooses.
-fn modes(raw: Option<&RawModes>, l_mm: f64, b_mm: f64) -> Result<(usize, bool), Invalid> {
-    let most = limits::max_modes(l_mm, b_mm);
+fn modes(raw: Option<&RawModes>, plate_mm: Option<(f64, f64)>) -> Result<(usize, bool), Invalid> {
+    let most = plate_mm.map_or(limits::MAX_MODES, |(l, b)| limits::max_modes(l, b));
     let n = match raw {
         None => return Ok((SignalSettings::default().modes.min(most), false)),
         Some(RawModes::Word(w)) if w == "chain" => return Ok((most, true)),
@@ -95,7 +97,7 @@ fn modes(raw: Option<&RawModes>, l_mm: f64, b_mm: f64) -> Result<(usize, bool), 
         }
         Some(RawModes::Count(n)) => *n,
     };
-    if n > most as f64 {
+    if let (Some((l_mm, b_mm)), true) = (plate_mm, n > most as f64) {
         return Err(other(
             "signals.modes",
             format!(

@@ -14,6 +14,8 @@
 //! ([`transfer`]), and the every-channel detector fitted on every window, to take away
 //! ([`identify::detector`]).
 
+mod on_box;
+mod recorder;
 mod run;
 mod score;
 pub mod transfer;
@@ -205,10 +207,19 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
     };
     let mut conditions = Vec::with_capacity(scene.conditions.len());
     let mut shifted = Vec::with_capacity(scene.conditions.len());
-    for (index, set) in scene.conditions.iter().enumerate() {
-        let (data, rows) = run::condition(scene, study, ensemble, set, index, progress)?;
-        conditions.push(data);
-        shifted.push(rows);
+    match &scene.tail_beam {
+        Some(tb) if scene.identifies_on_tail_beam() => {
+            let (data, rows) = on_box::condition(scene, (study, ensemble), tb, progress)?;
+            conditions.push(data);
+            shifted.push(rows);
+        }
+        _ => {
+            for (index, set) in scene.conditions.iter().enumerate() {
+                let (data, rows) = run::condition(scene, study, ensemble, set, index, progress)?;
+                conditions.push(data);
+                shifted.push(rows);
+            }
+        }
     }
     Ok(StreamData {
         scene: scene.name.clone(),

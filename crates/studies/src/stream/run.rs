@@ -1,5 +1,6 @@
 //! One support set's stream study: simulate, record, window, score.
 
+use super::recorder::Recorder;
 use super::score::Windows;
 use super::transfer::Shifted;
 use super::{
@@ -26,7 +27,7 @@ use std::time::Instant;
 const RECORDING_KEY: usize = 1 << 48;
 
 /// One simulated stream: its lumps, the model's response and the seconds it took.
-struct Simulated {
+pub(super) struct Simulated {
     lumps: Vec<Lump>,
     response: StreamResponse,
     seconds: f64,
@@ -45,52 +46,87 @@ pub(super) fn condition(
     let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
     let sensors = scene.signals.sensors.clone();
     let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
-    let infos = channel_infos(&instrument, &sensors, plate);
-    let seed = study.spec.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    let target = Target {
+        name: &set.name,
+        index,
+        recorder: &instrument,
+        infos: channel_infos(&instrument, &sensors, plate),
+        sensors: sensors.len(),
+    };
+    let sweeps = |w: &Windows| -> Result<Vec<Condition>, Failure> {
+        let mut out = other_lumps((ensemble, study), (&instrument, w), progress)?;
+        out.extend(other_laws(scene, (ensemble, study), (&model, w), progress)?);
+        out.extend(other_plates(scene, (ensemble, study), (set, w), progress)?);
+        Ok(out)
+    };
+    scored(scene, (study, ensemble), &target, &sweeps, progress)
+}
+
+/// A struck model as the study scores it: its name and number among the study's, what
+/// records it, its channels' names and its sensors.
+pub(super) struct Target<'a> {
+    pub name: &'a str,
+    pub index: usize,
+    pub recorder: &'a dyn Recorder,
+    pub infos: Vec<ChannelInfo>,
+    pub sensors: usize,
+}
+
+/// The study on `target`: the main run and its scores by channel group, the baselines, the
+/// noise and rate sweeps, then the target's own `sweeps` (for the transfer), the detector to
+/// take away.
+pub(super) fn scored(
+    scene: &Scene,
+    (study, ensemble): (&StreamStudy, &identify::Study),
+    target: &Target<'_>,
+    sweeps: &dyn Fn(&Windows) -> Result<Vec<Condition>, Failure>,
+    progress: &dyn Progress,
+) -> Result<(ConditionStream, Shifted), Failure> {
+    let recorder = target.recorder;
+    let seed = study.spec.seed ^ (target.index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
     let runs = 1
         + study.rate_sweep.len()
         + study.size_sweep.len()
         + study.thickness_sweep.len()
         + scene.stream_law_sweep.len();
-    progress.start(study.streams * runs, &format!("{}: streams", set.name));
+    progress.start(study.streams * runs, &format!("{}: streams", target.name));
     let w = window_set(study, seed);
-    let main = simulate(&instrument, ensemble, study, study.spec.rate_per_s, progress)?;
-    let simulation = simulation(&instrument, ensemble, study, &main, &model)?;
-    let (recorded, rate) = record(&instrument, &main, 1.0);
+    let main = simulate(recorder, ensemble, study, study.spec.rate_per_s, progress)?;
+    let simulation = simulation(recorder, ensemble, study, &main)?;
+    let (recorded, rate) = record(recorder, &main, 1.0);
     let rows = features(&recorded, rate, &w.windows, study);
-    let kinds = instrument.channels();
+    let kinds = recorder.channels();
     let mut groups = Vec::new();
     let (every, scores) = w.score("every channel", &rows, &scale_flags(kinds.len()))?;
     groups.push(every.clone());
     let mut on_sensors = Vec::new();
-    for (name, members) in channel_groups(&kinds, sensors.len()) {
+    for (name, members) in channel_groups(&kinds, target.sensors) {
         let sub = select(&rows, &members);
         groups.push(w.score(&name, &sub, &scale_flags(members.len()))?.0);
         if name != SUPPORTS {
             on_sensors.extend(members);
         }
     }
-    let detector = detector(scene, study, set, (&w, &rows, rate), &infos)?;
+    let detector = detector(scene, study, target.name, (&w, &rows, rate), &target.infos)?;
     let baselines = baselines(&w, &main);
-    let (noise_sweep, mut others) = noise_sweep(&instrument, study, &main, &w, (&recorded, &every))?;
+    let (noise_sweep, mut others) = noise_sweep(recorder, study, &main, &w, (&recorded, &every))?;
     let mut rate_sweep = Vec::new();
     for &rate_per_s in &study.rate_sweep {
-        let (sims, rows) = windowed(&instrument, (ensemble, study, rate_per_s), &w, progress)?;
+        let (sims, rows) = windowed(recorder, (ensemble, study, rate_per_s), &w, progress)?;
         let score = w.score("every channel", &rows, &scale_flags(kinds.len()))?.0;
         rate_sweep.push(RatePoint { rate_per_s, overlapped_share: overlapped_share(&sims), score });
         others.push((format!("{} lumps/s", compact(rate_per_s)), rows));
     }
-    others.extend(other_lumps(scene, (ensemble, study), (&model, &instrument, &w), progress)?);
-    others.extend(other_plates(scene, (ensemble, study), (set, &w), progress)?);
+    others.extend(sweeps(&w)?);
     progress.finish();
-    let names: Vec<String> = infos.iter().map(channel_name).collect();
+    let names: Vec<String> = target.infos.iter().map(channel_name).collect();
     let signal = study.write_signal.then(|| RecordedSignal {
         rate_hz: rate,
         names: names.clone(),
         columns: recorded.first().cloned().unwrap_or_default(),
     });
     let data = ConditionStream {
-        name: set.name.clone(),
+        name: target.name.to_string(),
         channels: names,
         simulation,
         groups,
@@ -103,7 +139,7 @@ pub(super) fn condition(
         detector,
     };
     let shifted = Shifted {
-        name: set.name.clone(),
+        name: target.name.to_string(),
         channels: on_sensors.len(),
         main: select(&rows, &on_sensors),
         others: others.into_iter().map(|(shift, rows)| (shift, select(&rows, &on_sensors))).collect(),
@@ -117,14 +153,14 @@ pub(super) fn condition(
 fn detector(
     scene: &Scene,
     study: &StreamStudy,
-    set: &SupportSet,
+    name: &str,
     (w, rows, rate): (&Windows, &[Vec<f64>], f64),
     infos: &[ChannelInfo],
 ) -> Result<Detector, Failure> {
     let channels = infos.iter().map(|i| ChannelSpec { name: i.label(), unit: i.unit.to_string() }).collect();
     let provenance = Provenance {
         scene: scene.name.clone(),
-        support_set: set.name.clone(),
+        support_set: name.to_string(),
         chain: scene.measurement.as_ref().and_then(|c| serde_json::to_value(c).ok()),
         program: "impact".into(),
         version: env!("CARGO_PKG_VERSION").into(),
@@ -136,27 +172,43 @@ fn detector(
         .map_err(|e| Failure::from(e.to_string()))
 }
 
-/// The size and law sweeps: the main run's streams with every lump's radius scaled, and
-/// struck under each other contact law (the same plate, chain and lumps; only the contact's
-/// force law differs), each with its window features, for the transfer.
-fn other_lumps(
-    scene: &Scene,
+/// The size sweep: the main run's streams with every lump's radius scaled (the same
+/// target, chain and lumps, each that many times as large), each with its window features,
+/// for the transfer.
+pub(super) fn other_lumps(
     (ensemble, study): (&identify::Study, &StreamStudy),
-    (model, instrument, w): (&ReducedModel, &Instrument<'_>, &Windows),
+    (recorder, w): (&dyn Recorder, &Windows),
     progress: &dyn Progress,
 ) -> Result<Vec<Condition>, Failure> {
     let mut out = Vec::new();
     for &scale in &study.size_sweep {
-        let rows = windowed(instrument, (&sized(ensemble, scale), study, study.spec.rate_per_s), w, progress)?.1;
+        let rows = windowed(recorder, (&sized(ensemble, scale), study, study.spec.rate_per_s), w, progress)?.1;
         out.push((format!("radii x {}", compact(scale)), rows));
     }
+    Ok(out)
+}
+
+/// The law sweep: the main run's streams struck under each other contact law (the same
+/// plate, chain and lumps; only the contact's force law differs), for the transfer.
+fn other_laws(
+    scene: &Scene,
+    (ensemble, study): (&identify::Study, &StreamStudy),
+    (model, w): (&ReducedModel, &Windows),
+    progress: &dyn Progress,
+) -> Result<Vec<Condition>, Failure> {
+    let mut out = Vec::new();
     for &law in &scene.stream_law_sweep {
         let with_law = Scene { contact_law: law, ..scene.clone() };
         let striking = Instrument::new(model, &scene.plate, &spec(scene, scene.signals.sensors.clone()), &with_law)?;
         let rows = windowed(&striking, (ensemble, study, study.spec.rate_per_s), w, progress)?.1;
-        out.push((format!("{} contact law", law.key()), rows));
+        out.push((law_shift(law), rows));
     }
     Ok(out)
+}
+
+/// The name of the shift to contact law `law`.
+pub(super) fn law_shift(law: coupled::transient::LawKind) -> String {
+    format!("{} contact law", law.key())
 }
 
 /// The thickness sweep: the main run's streams on the plate made as thick as each swept
@@ -184,8 +236,8 @@ fn other_plates(
 
 /// The study's streams of `ensemble` at `rate_per_s`, recorded through `instrument` as it
 /// stands, and their window features.
-fn windowed(
-    instrument: &Instrument<'_>,
+pub(super) fn windowed(
+    instrument: &dyn Recorder,
     (ensemble, study, rate_per_s): (&identify::Study, &StreamStudy, f64),
     w: &Windows,
     progress: &dyn Progress,
@@ -209,7 +261,7 @@ fn sized(ensemble: &identify::Study, scale: f64) -> identify::Study {
 
 /// The study's streams at `rate_per_s` (stream r from seed + r), simulated in parallel.
 fn simulate(
-    instrument: &Instrument<'_>,
+    instrument: &dyn Recorder,
     ensemble: &identify::Study,
     study: &StreamStudy,
     rate_per_s: f64,
@@ -234,11 +286,10 @@ fn simulate(
 /// The main run's lumps, overlaps and cost, with the free plate's cost over one stream's
 /// length measured in the same run as the reference.
 fn simulation(
-    instrument: &Instrument<'_>,
+    instrument: &dyn Recorder,
     ensemble: &identify::Study,
     study: &StreamStudy,
     main: &[Simulated],
-    model: &ReducedModel,
 ) -> Result<Simulation, Failure> {
     let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
     let t0 = Instant::now();
@@ -258,7 +309,7 @@ fn simulation(
         cross_residual_bound: main.iter().map(|s| s.response.cross_residual_bound).fold(0.0, f64::max),
         real_time_factor: simulated / seconds.max(1e-9),
         free_real_time_factor: study.spec.duration / free_seconds.max(1e-9),
-        modes: model.modes().omegas().len(),
+        modes: instrument.modes(),
         model_rate_hz: instrument.model_rate_hz(),
     })
 }
@@ -276,7 +327,7 @@ fn overlapped_share(sims: &[Simulated]) -> f64 {
 
 /// Every stream's channels as recorded (through the chain, its background scaled by
 /// `scale`, or as the model gives them without one) and the recording's rate.
-fn record(instrument: &Instrument<'_>, sims: &[Simulated], scale: f64) -> (Vec<Vec<Vec<f64>>>, f64) {
+fn record(instrument: &dyn Recorder, sims: &[Simulated], scale: f64) -> (Vec<Vec<Vec<f64>>>, f64) {
     let rate = instrument.chain().map_or_else(|| instrument.model_rate_hz(), |c| c.spec().rate_hz);
     let out = sims.par_iter().enumerate().map(|(r, s)| record_one(instrument, r, s, scale)).collect();
     (out, rate)
@@ -284,7 +335,7 @@ fn record(instrument: &Instrument<'_>, sims: &[Simulated], scale: f64) -> (Vec<V
 
 /// Stream `r`'s channels as recorded: through the chain with the background of its own
 /// stream of random numbers (scaled by `scale`), or as the model gives them without one.
-fn record_one(instrument: &Instrument<'_>, r: usize, s: &Simulated, scale: f64) -> Vec<Vec<f64>> {
+fn record_one(instrument: &dyn Recorder, r: usize, s: &Simulated, scale: f64) -> Vec<Vec<f64>> {
     let channels = &s.response.signals.channels;
     let Some(chain) = instrument.chain() else { return channels.iter().map(|c| c.samples.clone()).collect() };
     let mut rng = chain.stream(RECORDING_KEY + r);
@@ -431,7 +482,7 @@ pub(super) type Condition = (String, Vec<Vec<f64>>);
 /// The every-channel detector with the chain's background as stated and scaled by each of
 /// the study's scales, and the best channel's SNR there.
 fn noise_sweep(
-    instrument: &Instrument<'_>,
+    instrument: &dyn Recorder,
     study: &StreamStudy,
     main: &[Simulated],
     w: &Windows,

@@ -132,6 +132,11 @@ struct Active {
     last: (f64, f64),
     /// The static correction's trapezoidal velocity at the last step end.
     res_v: f64,
+    /// The model's number for the struck point.
+    point: usize,
+    /// The other lumps' part of the static correction at its point at the last step end,
+    /// Σₖ≠ⱼ N(pⱼ)ᵀRN(pₖ)Pₖ (zero where the model leaves the cross terms out).
+    w_cross: f64,
     touched: usize,
     steps: usize,
     /// Time since the touch, s.
@@ -163,6 +168,13 @@ pub(crate) trait Struck {
     fn simd(&self) -> pulp::Arch;
     /// A lump striking at (x, z): φᵢ(p), C_res(p) and each channel's direct term Dⱼ.
     fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError>;
+    /// The cross static correction N(p)ᵀRN(q) of two struck points, each given by its
+    /// [`StruckAt::point`] and φᵢ, where the model holds it (None: left out, and bounded in
+    /// the response).
+    fn cross_residual(&self, p: (usize, &[f64]), q: (usize, &[f64])) -> Option<f64> {
+        let _ = (p, q);
+        None
+    }
 }
 
 /// A struck point as a lump of the stream sees the modes.
@@ -173,6 +185,8 @@ pub(crate) struct StruckAt {
     pub c_res: f64,
     /// Each channel's direct term Dⱼ (its response per unit contact force at p).
     pub d: Vec<f64>,
+    /// The model's own number for the point (its cross static correction's key).
+    pub point: usize,
 }
 
 impl Struck for ReducedModel {
@@ -198,7 +212,7 @@ impl Struck for ReducedModel {
         let field_at_p: Vec<f64> = probes.fields.iter().map(|f| at_point(&pt, f)).collect();
         let d =
             probes.rows.iter().map(|r| channel_row(r, &pt, &field_at_p, None, (pt.c_res, zeta), &pt.phi).d).collect();
-        Ok(StruckAt { c_res: pt.c_res, phi: pt.phi, d })
+        Ok(StruckAt { c_res: pt.c_res, phi: pt.phi, d, point: 0 })
     }
 }
 
@@ -315,11 +329,16 @@ impl<'a> Run<'a> {
     /// Lump `index` touches at sample `k`: the sphere at the plate's deflection there.
     fn admit(&mut self, index: usize, a: &Arrival, k: usize) -> Result<(), ModelError> {
         let m = self.model;
-        let StruckAt { phi, c_res, d } = m.struck_at(a.x, a.z, self.probes)?;
+        let StruckAt { phi, c_res, d, point } = m.struck_at(a.x, a.z, self.probes)?;
         let ts = self.probes.spec.interval();
         let every = (ts / (a.striker.hertz_time() / m.steps_per_contact())).ceil().max(1.0) as usize;
         let static_compliance = super::modal_compliance(&phi, m.omega()) + c_res;
-        let (w, wv) = (dot(&phi, &self.q), dot(&phi, &self.v));
+        // The other lumps' static correction at the point, where the model carries it.
+        let w_cross: f64 = (self.active.iter())
+            .filter(|l| l.force != 0.0)
+            .filter_map(|l| m.cross_residual((point, &phi), (l.point, &l.phi)).map(|r| r * l.force))
+            .sum();
+        let (w, wv) = (dot(&phi, &self.q) + w_cross, dot(&phi, &self.v));
         self.active.push(Active {
             index,
             striker: a.striker,
@@ -336,6 +355,8 @@ impl<'a> Run<'a> {
             force: 0.0,
             last: (0.0, a.striker.velocity - wv),
             res_v: 0.0,
+            point,
+            w_cross,
             touched: k,
             steps: 0,
             time: 0.0,
@@ -386,10 +407,14 @@ impl<'a> Run<'a> {
         let every = self.active.iter().map(|a| a.every).max().unwrap_or(1);
         let (model, probes) = (self.model, self.probes);
         let maps = self.maps.entry(every).or_insert_with(|| step_maps(model, probes, every));
-        let g = flexibility(&self.active, &maps.h);
+        let mut g = flexibility(&self.active, &maps.h);
+        let cross = cross_terms(model, &self.active);
+        if let Some(c) = &cross {
+            g.iter_mut().zip(c).for_each(|(g, c)| *g += c);
+        }
         self.steps += every;
         for _ in 0..every {
-            if !step(&mut self.active, &mut self.q, &mut self.v, maps, &g, &mut self.scratch) {
+            if !step(&mut self.active, (&mut self.q, &mut self.v), maps, (&g, cross.as_deref()), &mut self.scratch) {
                 self.unconverged_steps += 1;
             }
             let in_contact: Vec<usize> = (0..self.active.len()).filter(|&j| self.active[j].force > 0.0).collect();
@@ -397,7 +422,8 @@ impl<'a> Run<'a> {
                 self.joint_steps += 1;
                 for (x, &j) in in_contact.iter().enumerate() {
                     self.active[j].response.overlapped = true;
-                    for &k in &in_contact[x + 1..] {
+                    // Where the model carries the cross terms nothing is left out.
+                    for &k in in_contact[x + 1..].iter().filter(|_| cross.is_none()) {
                         let (a, b) = (&self.active[j], &self.active[k]);
                         let bound = (a.c_res * b.c_res).sqrt() / a.static_compliance.min(b.static_compliance);
                         self.cross_residual_bound = self.cross_residual_bound.max(bound);
@@ -439,6 +465,7 @@ impl<'a> Run<'a> {
             l.v += g * ts;
             l.a = g;
             l.res_v = 0.0;
+            l.w_cross = 0.0;
             l.time += ts;
             l.last = (l.u - dot(&l.phi, &self.q), l.v - dot(&l.phi, &self.v));
         }
@@ -500,6 +527,24 @@ impl Active {
     fn response_of(self) -> (usize, LumpResponse) {
         (self.index, self.response)
     }
+}
+
+/// The cross static corrections of the lumps followed, row-major with a zero diagonal, where
+/// the model carries them (None where it leaves them out, or with fewer than two lumps).
+fn cross_terms(model: &dyn Struck, active: &[Active]) -> Option<Vec<f64>> {
+    let k = active.len();
+    if k < 2 {
+        return None;
+    }
+    let mut c = vec![0.0; k * k];
+    for j in 0..k {
+        for l in j + 1..k {
+            let r = model.cross_residual((active[j].point, &active[j].phi), (active[l].point, &active[l].phi))?;
+            c[j * k + l] = r;
+            c[l * k + j] = r;
+        }
+    }
+    Some(c)
 }
 
 /// A row with its zero entries all zero: None.

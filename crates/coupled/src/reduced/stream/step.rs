@@ -6,7 +6,8 @@ use super::{Active, StepMaps, SWEEPS};
 use crate::reduced::signals::dot;
 use crate::transient::{approach_velocity, contact_force_after};
 
-/// Gⱼₖ = Σᵢ hᵢφᵢ(pⱼ)φᵢ(pₖ) + δⱼₖC_res(pⱼ) over the lumps followed, row-major.
+/// Gⱼₖ = Σᵢ hᵢφᵢ(pⱼ)φᵢ(pₖ) + δⱼₖC_res(pⱼ) over the lumps followed, row-major (the cross
+/// static corrections, where the model carries them, are added by the caller).
 pub(super) fn flexibility(active: &[Active], h: &[f64]) -> Vec<f64> {
     let k = active.len();
     let mut g = vec![0.0; k * k];
@@ -57,10 +58,9 @@ impl Scratch {
 /// step end and its own flexibilities d₁, r₁ (the sphere's and the plate's).
 pub(super) fn step(
     active: &mut [Active],
-    q: &mut [f64],
-    v: &mut [f64],
+    (q, v): (&mut [f64], &mut [f64]),
     maps: &StepMaps,
-    g: &[f64],
+    (g, cross): (&[f64], Option<&[f64]>),
     w: &mut Scratch,
 ) -> bool {
     let (dt, n, k) = (maps.dt, q.len(), active.len());
@@ -106,6 +106,11 @@ pub(super) fn step(
         l.a = if l.striker.gravity != 0.0 { l.striker.gravity + a_contact } else { a_contact };
         l.approach = w.approach[j];
         l.res_v = residual_rate(l, c1) + c1 * l.c_res * p;
+        if let Some(c) = cross {
+            let w_cross: f64 = (0..k).filter(|&m| m != j).map(|m| c[j * k + m] * forces[m]).sum();
+            l.res_v += c1 * w_cross;
+            l.w_cross = w_cross;
+        }
         l.dmax = l.dmax.max(delta);
         l.last = (delta, rate);
         l.record(p, dt);
@@ -146,14 +151,14 @@ fn commit(h: &[f64], (qh, vh): (&[f64], &[f64]), f: &[f64], c1: f64, (q, v): (&m
 }
 
 /// The static correction's velocity at the step's end before its end force, by the
-/// trapezoidal rule C_res(P₊ - P)(2/Δt) - v with this step's Δt: (2/Δt)C_res P₊ is added
-/// once P₊ is known; without a start force the correction is at rest (a static response to
-/// no load).
+/// trapezoidal rule (w₊ - w)(2/Δt) - v with this step's Δt, w = C_res P + Σₖ≠ⱼ RⱼₖPₖ the
+/// correction at the lump's point: (2/Δt)w₊ is added once the forces are known; without a
+/// load the correction is at rest (a static response to no load).
 fn residual_rate(l: &Active, c1: f64) -> f64 {
-    if l.force == 0.0 {
+    if l.force == 0.0 && l.w_cross == 0.0 {
         0.0
     } else {
-        -c1 * l.c_res * l.force - l.res_v
+        -c1 * l.c_res * l.force - c1 * l.w_cross - l.res_v
     }
 }
 
