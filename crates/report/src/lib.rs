@@ -112,8 +112,10 @@ pub const IDENTIFY_SCENES: [(&str, &str); 3] = [
 
 /// The caving-stream detection scenes `impact report` runs (`impact stream`), shipped in
 /// `scenes/` and embedded: file name and text.
-pub const STREAM_SCENES: [(&str, &str); 1] =
-    [("caving-stream-detect.toml", include_str!("../../../scenes/caving-stream-detect.toml"))];
+pub const STREAM_SCENES: [(&str, &str); 2] = [
+    ("caving-stream-detect.toml", include_str!("../../../scenes/caving-stream-detect.toml")),
+    ("tail-beam-stream.toml", include_str!("../../../scenes/tail-beam-stream.toml")),
+];
 
 /// The tail-beam scenes `impact report` runs (the "tail-beam" study), shipped in `scenes/` and
 /// embedded: file name and text.

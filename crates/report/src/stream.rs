@@ -15,6 +15,10 @@ pub use studies::stream::check;
 use studies::stream::{compute, ConditionStream, RecordedSignal, Score, StreamData};
 
 const PAGE: &str = include_str!("templates/stream/page.md");
+const STRUCK_PLATE: &str = include_str!("templates/stream/struck-plate.md");
+const STRUCK_BOX: &str = include_str!("templates/stream/struck-box.md");
+const SIMULATION_PLATE: &str = include_str!("templates/stream/simulation-plate.md");
+const SIMULATION_BOX: &str = include_str!("templates/stream/simulation-box.md");
 
 /// Runs the stream study of `scene` and returns its files and data.
 pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, StreamData), Failure> {
@@ -105,6 +109,7 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
         .collect::<Vec<_>>()
         .join("\n");
     let transfer = transfer_table(d);
+    let (struck, simulation_prose) = struck(d)?;
     Ok(render(
         "stream/page.md",
         PAGE,
@@ -134,10 +139,55 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
             ("groups", groups),
             ("sweeps", sweeps),
             ("simulation", simulation_table(d).to_markdown()),
+            ("struck", struck),
+            ("simulation_prose", simulation_prose),
             ("transfer", transfer.0.to_markdown()),
             ("worst", transfer.1),
         ],
     )?)
+}
+
+/// What the lumps strike and how their simulation is told: the plate's sentences, or the
+/// tail beam's with its model and the chain's band against its highest mode.
+fn struck(d: &StreamData) -> Result<(String, String), Failure> {
+    let Some(f) = &d.structure else {
+        return Ok((STRUCK_PLATE.trim_end().to_string(), SIMULATION_PLATE.trim_end().to_string()));
+    };
+    let highest = sig(f.frequencies_hz.1, 3);
+    let band = match (f.resolved, f.gain_above_highest) {
+        (Some(true), Some(g)) => format!("The chain passes at most {} of a response above the highest kept mode ({highest} Hz), within its band tolerance: the recorded features are resolved by the modes.", sig(g, 2)),
+        (Some(false), Some(g)) => format!("**Not resolved:** the chain passes up to {} of a response above the highest kept mode ({highest} Hz), beyond its band tolerance, so the accelerometers' features miss what the box does above it (the jacks' forces, carried by the box's low modes and the static correction, much less); the detector's scores on the accelerometers are those of a model truncated inside the chain's band.", sig(g, 2)),
+        _ => "The signals are the model's, without a chain: the accelerometers' features carry the truncation at the highest kept mode.".to_string(),
+    };
+    let main = d.conditions.first().and_then(|c| c.groups.first());
+    let band = match (&f.truncation, main) {
+        (Some((half, score)), Some(main)) => format!(
+            "{band} The truncation's check: on the lowest {half} modes (the rest joining the static correction) the every-channel detector scores {} against {} on all {} (the transfer table carries the accelerometers' detector there too).",
+            auc_text(score),
+            auc_text(main),
+            f.modes,
+        ),
+        _ => band,
+    };
+    let struck = render(
+        "stream/struck-box.md",
+        STRUCK_BOX,
+        &[
+            ("unknowns", f.unknowns.to_string()),
+            ("modes", f.modes.to_string()),
+            ("f1", sig(f.frequencies_hz.0, 3)),
+            ("fn", highest),
+            ("points", f.load_points.to_string()),
+            ("spacing", sig(f.spacing * 1e3, 3)),
+            ("band", band),
+        ],
+    )?;
+    Ok((struck.trim_end().to_string(), SIMULATION_BOX.trim_end().to_string()))
+}
+
+/// "0.97 (0.95-0.98)".
+fn auc_text(s: &Score) -> String {
+    format!("{} ({}-{})", sig(s.auc, 3), sig(s.interval.0, 3), sig(s.interval.1, 3))
 }
 
 /// A score's AUC with its interval.
@@ -312,6 +362,7 @@ fn rate_table(d: &StreamData) -> Table {
 }
 
 fn simulation_table(d: &StreamData) -> Table {
+    let free = if d.structure.is_some() { "free box, real time ×" } else { "free plate, real time ×" };
     let mut t = Table::new(
         "the simulation: lumps, simultaneous contacts, lumps let go while resting on the plate, the left-out cross static correction's bound, and the cost against the free plate measured in the same run",
         &[
@@ -326,7 +377,7 @@ fn simulation_table(d: &StreamData) -> Table {
             "modes",
             "model rate (Hz)",
             "real time ×",
-            "free plate, real time ×",
+            free,
         ],
     );
     for c in &d.conditions {

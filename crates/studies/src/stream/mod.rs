@@ -27,6 +27,7 @@ use identify::stream::StreamStudy;
 use scene::Scene;
 use serde::Serialize;
 
+pub use on_box::truncation_shift;
 pub use run::one_stream;
 pub use score::Score;
 pub use transfer::TransferPoint;
@@ -44,6 +45,32 @@ pub struct StreamData {
     pub conditions: Vec<ConditionStream>,
     /// Detectors applied where they were not trained ([`transfer`]).
     pub transfer: Vec<TransferPoint>,
+    /// The struck structure's model, where the stream strikes a tail beam (None: the plate).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub structure: Option<StructureFacts>,
+}
+
+/// The model of a struck structure (a tail beam) and how far the chain's band is resolved.
+#[derive(Debug, Clone, Serialize)]
+pub struct StructureFacts {
+    /// Unknowns of its mesh.
+    pub unknowns: usize,
+    /// Modes kept.
+    pub modes: usize,
+    /// The lowest and highest kept mode's frequency, Hz.
+    pub frequencies_hz: (f64, f64),
+    /// Load points the lumps strike (the mesh's top-plate nodes in the region).
+    pub load_points: usize,
+    /// Their largest spacing, m.
+    pub spacing: f64,
+    /// The chain's largest gain above the highest kept mode (None without a chain): what the
+    /// modes left out could pass into the recording.
+    pub gain_above_highest: Option<f64>,
+    /// Whether that gain is within the chain's band tolerance (None without a chain).
+    pub resolved: Option<bool>,
+    /// The truncation's check: the main run's streams on the lowest half of the modes (the
+    /// others joining the static correction), and the every-channel detector's score there.
+    pub truncation: Option<(usize, Score)>,
 }
 
 /// One support set's detection results.
@@ -207,11 +234,13 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
     };
     let mut conditions = Vec::with_capacity(scene.conditions.len());
     let mut shifted = Vec::with_capacity(scene.conditions.len());
+    let mut structure = None;
     match &scene.tail_beam {
         Some(tb) if scene.identifies_on_tail_beam() => {
-            let (data, rows) = on_box::condition(scene, (study, ensemble), tb, progress)?;
+            let (data, rows, facts) = on_box::condition(scene, (study, ensemble), tb, progress)?;
             conditions.push(data);
             shifted.push(rows);
+            structure = Some(facts);
         }
         _ => {
             for (index, set) in scene.conditions.iter().enumerate() {
@@ -227,6 +256,7 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
         measured: scene.measurement.is_some(),
         conditions,
         transfer: transfer::transfers(&shifted)?,
+        structure,
     })
 }
 

@@ -17,8 +17,8 @@ use super::recorder::Recorder;
 use super::run::{law_shift, other_lumps, scored, windowed, Condition, Target};
 use super::score::Windows;
 use super::transfer::Shifted;
-use super::ConditionStream;
-use crate::channel::{mm, ChannelInfo};
+use super::{ConditionStream, StructureFacts};
+use crate::channel::ChannelInfo;
 use crate::in_time::{modes_for, IN_TIME_LEVEL};
 use crate::progress::Progress;
 use crate::Failure;
@@ -28,6 +28,7 @@ use coupled::identification::Striking;
 use coupled::reduced::stream::{Arrival, StreamResponse};
 use coupled::reduced::structure::{Readings, StructureModel, StructureSettings, MAX_LOAD_POINTS};
 use coupled::reduced::{ChannelKind, Probes};
+use identify::detector::scale_flags;
 use identify::measurement::Chain;
 use identify::stream::{Lump, StreamStudy};
 use plate_fem::shell::ShellMass;
@@ -41,8 +42,8 @@ pub(super) struct BoxModel {
     probes: Probes,
     chain: Option<Chain>,
     infos: Vec<ChannelInfo>,
-    /// The spacing of the load points, m (the largest of the two directions).
-    pub spacing: f64,
+    /// What the page states of the model.
+    facts: StructureFacts,
 }
 
 impl BoxModel {
@@ -94,8 +95,45 @@ impl BoxModel {
         let probes = model.probes(scene.signals.window, scene.signals.rate_hz)?;
         let chain = scene.measurement.as_ref().map(|c| Chain::new(c.clone(), scene.signals.rate_hz)).transpose()?;
         let infos = channel_infos(tb, &scene.signals.sensors, &probes.kinds());
-        Ok(Self { model, points, probes, chain, infos, spacing })
+        let f = model.frequencies_hz();
+        let highest = f.last().copied().unwrap_or(0.0);
+        let gain = chain.as_ref().map(|c| c.gain_above(highest));
+        let facts = StructureFacts {
+            unknowns: fact.unknowns(),
+            modes: f.len(),
+            frequencies_hz: (f.first().copied().unwrap_or(0.0), highest),
+            load_points: points.len(),
+            spacing,
+            gain_above_highest: gain,
+            resolved: chain.as_ref().zip(gain).map(|(c, g)| g <= c.spec().band_tolerance),
+            truncation: None,
+        };
+        Ok(Self { model, points, probes, chain, infos, facts })
     }
+}
+
+impl BoxModel {
+    /// The same box on its lowest half of the modes, the others joining the static correction
+    /// ([`StructureModel::truncated`]): the truncation's check, without a second eigensolution.
+    fn halved(&self, window: f64) -> Result<(Self, usize), Failure> {
+        let n = self.facts.modes / 2;
+        let model = self.model.truncated(n.max(1))?;
+        let probes = model.probes(window, self.probes.spec().rate_hz)?;
+        let b = Self {
+            model,
+            points: self.points.clone(),
+            probes,
+            chain: self.chain.clone(),
+            infos: self.infos.clone(),
+            facts: self.facts.clone(),
+        };
+        Ok((b, n.max(1)))
+    }
+}
+
+/// The name of the truncation check's shift: the main run on `modes` modes.
+pub fn truncation_shift(modes: usize) -> String {
+    format!("{modes} modes (truncation)")
 }
 
 /// The channels' names: a jack at its pad's centre, an accelerometer at its sensor.
@@ -165,24 +203,33 @@ pub(super) fn condition(
     (study, ensemble): (&StreamStudy, &identify::Study),
     tb: &TailBeamScene,
     progress: &dyn Progress,
-) -> Result<(ConditionStream, Shifted), Failure> {
+) -> Result<(ConditionStream, Shifted, StructureFacts), Failure> {
     let model = BoxModel::new(scene, tb, &ensemble.ensemble.region)?;
     let on = OnTheBox { model: &model, striking: Striking::of(scene) };
-    let name = format!("tail beam ({} mm load points)", mm(model.spacing));
     let target = Target {
-        name: &name,
+        name: "tail beam on its pins and jacks",
         index: 0,
         recorder: &on,
         infos: model.infos.clone(),
         sensors: scene.signals.sensors.len(),
+        extra_runs: 1,
     };
+    let truncation = std::cell::RefCell::new(None);
     let sweeps = |w: &Windows| -> Result<Vec<Condition>, Failure> {
         let mut out = other_lumps((ensemble, study), (&on, w), progress)?;
         for &law in &scene.stream_law_sweep {
             let other = OnTheBox { model: &model, striking: Striking { law, ..on.striking } };
             out.push((law_shift(law), windowed(&other, (ensemble, study, study.spec.rate_per_s), w, progress)?.1));
         }
+        let (half, modes) = model.halved(scene.signals.window)?;
+        let on_half = OnTheBox { model: &half, striking: on.striking };
+        let rows = windowed(&on_half, (ensemble, study, study.spec.rate_per_s), w, progress)?.1;
+        let score = w.score("every channel", &rows, &scale_flags(on.channels().len()))?.0;
+        *truncation.borrow_mut() = Some((modes, score));
+        out.push((truncation_shift(modes), rows));
         Ok(out)
     };
-    scored(scene, (study, ensemble), &target, &sweeps, progress)
+    let (data, shifted) = scored(scene, (study, ensemble), &target, &sweeps, progress)?;
+    let facts = StructureFacts { truncation: truncation.into_inner(), ..model.facts.clone() };
+    Ok((data, shifted, facts))
 }

@@ -52,6 +52,7 @@ pub(super) fn condition(
         recorder: &instrument,
         infos: channel_infos(&instrument, &sensors, plate),
         sensors: sensors.len(),
+        extra_runs: 0,
     };
     let sweeps = |w: &Windows| -> Result<Vec<Condition>, Failure> {
         let mut out = other_lumps((ensemble, study), (&instrument, w), progress)?;
@@ -70,6 +71,8 @@ pub(super) struct Target<'a> {
     pub recorder: &'a dyn Recorder,
     pub infos: Vec<ChannelInfo>,
     pub sensors: usize,
+    /// Runs of the study's streams its own `sweeps` add beyond the scene's sweeps.
+    pub extra_runs: usize,
 }
 
 /// The study on `target`: the main run and its scores by channel group, the baselines, the
@@ -88,7 +91,8 @@ pub(super) fn scored(
         + study.rate_sweep.len()
         + study.size_sweep.len()
         + study.thickness_sweep.len()
-        + scene.stream_law_sweep.len();
+        + scene.stream_law_sweep.len()
+        + target.extra_runs;
     progress.start(study.streams * runs, &format!("{}: streams", target.name));
     let w = window_set(study, seed);
     let main = simulate(recorder, ensemble, study, study.spec.rate_per_s, progress)?;
