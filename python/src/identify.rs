@@ -84,6 +84,12 @@ fn ensemble_and_set<'s>(s: &'s coupled::Scene, condition: &str) -> PyResult<(&'s
             "has no [ensemble] table; impact identify's scenes (scenes/caving-stream.toml) have one".into(),
         )
     })?;
+    if s.identifies_on_tail_beam() {
+        return Err(argument_message(
+            "scene",
+            format!("{}: its identification strikes its tail beam as a caving stream (impact.stream); single impacts strike the plate's support sets only", s.name),
+        ));
+    }
     let set = s.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
         let names: Vec<&str> = s.conditions.iter().map(|c| c.name.as_str()).collect();
         argument_message("condition", format!("'{condition}' is not in the scene; it has {names:?}"))

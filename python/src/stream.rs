@@ -67,6 +67,12 @@ pub fn stream_recording<'py>(
             ),
         ));
     };
+    if s.identifies_on_tail_beam() {
+        return Err(argument_message(
+            "scene",
+            format!("{}: its stream strikes its tail beam, whose streams impact.stream runs together; one stream apart is built for the plate's support sets only", s.name),
+        ));
+    }
     let set = s.conditions.iter().find(|c| c.name == condition).ok_or_else(|| {
         let names: Vec<&str> = s.conditions.iter().map(|c| c.name.as_str()).collect();
         argument_message("condition", format!("'{condition}' is not in the scene; it has {names:?}"))

@@ -232,3 +232,40 @@ def test_streams_computed_apart_are_the_studys_streams(tmp_path):
         impact.stream_recording(scene, "Con 2", -1)
     with pytest.raises(ValueError, match="'Con 9' is not in the scene"):
         impact.stream_recording(scene, "Con 9", 0)
+
+
+def tiny_box() -> dict:
+    """scenes/tail-beam-stream.toml made small: 200 mm elements, two streams of 6 s at 3
+    lumps a second over the middle of the top plate, no sweeps."""
+    d = tomllib.loads((REPO / "scenes" / "tail-beam-stream.toml").read_text())
+    d["tail_beam"]["element_mm"] = 200.0
+    d["ensemble"]["region"] = {"x_mm": [400.0, 1400.0], "z_mm": [200.0, 1200.0]}
+    d["stream"].update(
+        rate_per_s=3.0, duration_s=6.0, streams=2, onset_s=3.0, ramp_s=0.0, window_s=1.0, hop_s=0.5, blocks=2,
+        rate_sweep_per_s=[], noise_sweep=[], size_sweep=[], law_sweep=[], write_signal=True,
+    )
+    return d
+
+
+@pytest.mark.skipif(BINARY is None, reason="no impact binary: cargo build --release")
+def test_the_tail_beams_stream_is_the_command_lines(tmp_path):
+    """A stream on the tail beam from Python: the command line's scores, baselines and box
+    bit for bit, its jack and accelerometer channels recorded over the stream's length; one
+    stream apart (impact.stream_recording) is refused by name, as is impact.identify."""
+    scene = impact.Scene.from_dict(tiny_box())
+    path = tmp_path / "box.toml"
+    path.write_text(scene.to_toml_str())
+    subprocess.run([str(BINARY), "stream", "--scene", str(path), "--out", str(tmp_path / "out")], check=True, capture_output=True)
+    cli = json.loads((tmp_path / "out" / "stream.json").read_text())
+    r = impact.stream(scene)
+    assert cli["conditions"][0]["groups"] == r.results["conditions"][0]["groups"]
+    assert cli["conditions"][0]["baselines"] == r.results["conditions"][0]["baselines"]
+    assert cli["structure"] == r.results["structure"]
+    c = r.conditions["tail beam on its pins and jacks"]
+    names = list(c.signal)
+    assert [n.split(" at ")[0] for n in names] == ["jack force", "jack force", "acceleration", "acceleration"]
+    assert all(len(v) == 6.0 * c.signal_rate_hz for v in c.signal.values())
+    with pytest.raises(ValueError, match="tail beam"):
+        impact.stream_recording(scene, "Con 1", 0)
+    with pytest.raises(ValueError, match="tail beam"):
+        impact.identify(scene, "Con 1", 0, 1)

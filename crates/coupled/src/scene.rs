@@ -216,7 +216,7 @@ impl Scene {
         self.analyses.contains(&analysis)
     }
 
-    /// Whether its identification strikes its tail beam: a scene with a [`TailBeamScene`] that
+    /// Whether its identification strikes its tail beam: a scene with a [`crate::compliance::tail_beam::TailBeamScene`] that
     /// asks for identification, whose lumps' region and sensors lie on the box's top face.
     pub fn identifies_on_tail_beam(&self) -> bool {
         self.tail_beam.is_some() && self.wants(Analysis::Identify)

@@ -75,25 +75,7 @@ fn full_newmark(
     steps: usize,
 ) -> FullRun {
     let n = fact.dofs();
-    let column = |op: &dyn Fn(&[f64]) -> Vec<f64>| {
-        let mut a = DMatrix::<f64>::zeros(n, n);
-        for j in 0..n {
-            let mut e = vec![0.0; n];
-            e[j] = 1.0;
-            a.set_column(j, &DVector::from_vec(op(&e)));
-        }
-        a
-    };
-    let k = column(&|x| fact.stiffness_times(x).unwrap());
-    let m = column(&|x| mass.apply(x));
-    // Held DOFs have empty rows and columns: a unit diagonal keeps them at zero.
-    let mut eff = &k + &m * (4.0 / (dt * dt));
-    for d in 0..n {
-        if eff[(d, d)] == 0.0 {
-            eff[(d, d)] = 1.0;
-        }
-    }
-    let chol = nalgebra::Cholesky::new(eff).expect("positive definite");
+    let (k, m, chol) = dense_system(fact, mass, dt);
     let loads: Vec<DVector<f64>> = spheres.iter().map(|s| DVector::from_column_slice(s.load)).collect();
     let gvecs: Vec<DVector<f64>> = loads.iter().map(|f| chol.solve(f)).collect();
     let count = spheres.len();
@@ -123,34 +105,8 @@ fn full_newmark(
         let x_hat: Vec<f64> =
             (0..count).map(|j| x[j] + dt * xv[j] - dt * dt / (4.0 * spheres[j].striker.mass) * p[j]).collect();
         let d0: Vec<f64> = (0..count).map(|j| x_hat[j] - loads[j].dot(&u_hat)).collect();
-        let mut p_new = vec![0.0; count];
-        for _ in 0..500 {
-            let before = p_new.clone();
-            for &j in &live {
-                let s = &spheres[j].striker;
-                let others: f64 = live.iter().filter(|&&l| l != j).map(|&l| g(j, l) * p_new[l]).sum();
-                let (free, c) = (d0[j] - others, g(j, j) + dt * dt / (4.0 * s.mass));
-                // P = K (free - cP)^{3/2}: monotone in P, bisected to rounding.
-                p_new[j] = if free <= 0.0 {
-                    0.0
-                } else {
-                    let (mut lo, mut hi) = (0.0, s.k * free.powf(1.5));
-                    for _ in 0..200 {
-                        let mid = 0.5 * (lo + hi);
-                        if mid < s.k * (free - c * mid).max(0.0).powf(1.5) {
-                            lo = mid;
-                        } else {
-                            hi = mid;
-                        }
-                    }
-                    0.5 * (lo + hi)
-                };
-            }
-            let scale = p_new.iter().copied().fold(1e-300, f64::max);
-            if p_new.iter().zip(&before).all(|(a, b)| (a - b).abs() <= 1e-14 * scale) {
-                break;
-            }
-        }
+        let strikers: Vec<Striker> = spheres.iter().map(|s| s.striker).collect();
+        let p_new = joint_forces(&strikers, &live, &d0, &g, dt);
         let mut u_new = u_hat;
         for &j in &live {
             u_new += &gvecs[j] * p_new[j];
@@ -165,13 +121,81 @@ fn full_newmark(
             x[j] = x_new;
             p[j] = p_new[j];
         }
-        for j in 0..count {
-            out.forces[j].push(p[j]);
+        for (record, &force) in out.forces.iter_mut().zip(&p) {
+            record.push(force);
         }
         out.reading.push(coeff.dot(&u));
         out.acceleration.push(a[probe]);
     }
     out
+}
+
+/// The dense K, M and the Cholesky factor of K + 4M/Δt² over every DOF (held DOFs have empty
+/// rows and columns: a unit diagonal keeps them at zero).
+fn dense_system(
+    fact: &Factorized<'_>,
+    mass: &ShellMass,
+    dt: f64,
+) -> (DMatrix<f64>, DMatrix<f64>, nalgebra::Cholesky<f64, nalgebra::Dyn>) {
+    let n = fact.dofs();
+    let column = |op: &dyn Fn(&[f64]) -> Vec<f64>| {
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for j in 0..n {
+            let mut e = vec![0.0; n];
+            e[j] = 1.0;
+            a.set_column(j, &DVector::from_vec(op(&e)));
+        }
+        a
+    };
+    let k = column(&|x| fact.stiffness_times(x).unwrap());
+    let m = column(&|x| mass.apply(x));
+    let mut eff = &k + &m * (4.0 / (dt * dt));
+    for d in 0..n {
+        if eff[(d, d)] == 0.0 {
+            eff[(d, d)] = 1.0;
+        }
+    }
+    (k, m, nalgebra::Cholesky::new(eff).expect("positive definite"))
+}
+
+/// The step-end forces of the `live` spheres: Pⱼ = Kⱼ(d₀ⱼ - Σₗ gⱼₗPₗ - Δt²Pⱼ/4mⱼ)^{3/2},
+/// by Gauss-Seidel sweeps, each a bisection with the others held, to rounding.
+fn joint_forces(
+    strikers: &[Striker],
+    live: &[usize],
+    d0: &[f64],
+    g: &dyn Fn(usize, usize) -> f64,
+    dt: f64,
+) -> Vec<f64> {
+    let mut p = vec![0.0; strikers.len()];
+    for _ in 0..500 {
+        let before = p.clone();
+        for &j in live {
+            let s = &strikers[j];
+            let others: f64 = live.iter().filter(|&&l| l != j).map(|&l| g(j, l) * p[l]).sum();
+            let (free, c) = (d0[j] - others, g(j, j) + dt * dt / (4.0 * s.mass));
+            // P = K (free - cP)^{3/2}: monotone in P, bisected to rounding.
+            p[j] = if free <= 0.0 {
+                0.0
+            } else {
+                let (mut lo, mut hi) = (0.0, s.k * free.powf(1.5));
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if mid < s.k * (free - c * mid).max(0.0).powf(1.5) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                0.5 * (lo + hi)
+            };
+        }
+        let scale = p.iter().copied().fold(1e-300, f64::max);
+        if p.iter().zip(&before).all(|(a, b)| (a - b).abs() <= 1e-14 * scale) {
+            break;
+        }
+    }
+    p
 }
 
 #[test]

@@ -5,6 +5,7 @@ use crate::limits;
 use crate::raw::*;
 use analytic::params::{check, Range, FRICTION_ANGLE_DEG, POISSON_RATIO};
 use analytic::{Elastic, InvalidParameter, Method, Plate, RockStrength, Sphere};
+use coupled::compliance::tail_beam::TailBeamScene;
 use coupled::reduced::SignalSettings;
 use coupled::scene::{Analysis, Points, Scene};
 use coupled::transient::LawKind;
@@ -142,31 +143,12 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         return Err(other("conditions, points, bodies and velocities", why));
     }
     let tail_beam = tail_beam::table(raw.tail_beam.as_ref(), &analyses)?;
-    // A tail-beam scene's identification strikes the box: its lumps' region and its sensors
-    // lie on the box's top face (x along the beam, z across).
-    let on_box = tail_beam.is_some() && analyses.contains(&Analysis::Identify);
-    let face_mm = match &tail_beam {
-        Some(tb) if on_box => (tb.beam.length / MM, tb.beam.width / MM),
-        _ => (length_mm, width_mm),
-    };
-    let signals = validate_signals(raw.signals.as_ref(), face_mm.0, face_mm.1, plate_damping, !on_box)?;
-    if on_box && signals.modes_from_chain {
-        return Err(other(
-            "signals.modes",
-            "\"chain\" chooses a plate's modes by its chain; a tail beam's stream keeps a number of them (give one)",
-        ));
-    }
+    let face_mm = struck_face(tail_beam.as_ref(), &analyses, (length_mm, width_mm));
+    let signals = validate_signals(raw.signals.as_ref(), face_mm.0, face_mm.1, plate_damping, face_mm.2)?;
     let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, face_mm.0, face_mm.1)?;
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
-    if let (Some(_), Some(study)) = (&tail_beam, &stream) {
-        if analyses.contains(&Analysis::Identify) && !study.thickness_sweep.is_empty() {
-            return Err(other(
-                "stream.thickness_sweep_mm",
-                "sweeps the plate's thickness; a tail beam's stream strikes the box, whose walls have their own (leave it out)",
-            ));
-        }
-    }
+    tail_beam::check_stream(!face_mm.2, &signals, stream.as_ref())?;
     let shell_mesh = shell_mesh::table(raw.shell_mesh.as_ref(), &analyses, &plate)?;
     Ok(Scene {
         velocities,
@@ -193,6 +175,16 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         tail_beam,
         shell_mesh,
     })
+}
+
+/// The face the identification's lumps strike, (length, width) in mm, and whether it is the
+/// plate's: a tail-beam scene's identification strikes the box, its lumps' region and its
+/// sensors on the box's top face (x along the beam, z across).
+fn struck_face(tail_beam: Option<&TailBeamScene>, analyses: &[Analysis], plate_mm: (f64, f64)) -> (f64, f64, bool) {
+    match tail_beam {
+        Some(tb) if analyses.contains(&Analysis::Identify) => (tb.beam.length / MM, tb.beam.width / MM, false),
+        _ => (plate_mm.0, plate_mm.1, true),
+    }
 }
 
 /// `[measurement]` and `[stream]`, both read only by the identification: the chain, the

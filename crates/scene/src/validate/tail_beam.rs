@@ -6,7 +6,9 @@ use crate::limits;
 use crate::raw::{RawJack, RawTailBeam};
 use analytic::params::check;
 use coupled::compliance::tail_beam::{TailBeamScene, TAIL_BEAM_LEVELS};
+use coupled::reduced::SignalSettings;
 use coupled::scene::Analysis;
+use identify::stream::StreamStudy;
 use plate_fem::shell::element::DOFS_PER_NODE;
 use plate_fem::shell::tail_beam::{Jack, TailBeam};
 
@@ -21,6 +23,31 @@ pub(super) fn table(raw: Option<&RawTailBeam>, analyses: &[Analysis]) -> Result<
             "is read only by the \"tail-beam\" analysis; add it to analyses or remove the table",
         )),
     }
+}
+
+/// What a plate's identification has and a tail beam's stream (`on_box`) does not: the
+/// chain choosing the modes (a plate's), a swept plate thickness.
+pub(super) fn check_stream(
+    on_box: bool,
+    signals: &SignalSettings,
+    stream: Option<&StreamStudy>,
+) -> Result<(), Invalid> {
+    if !on_box {
+        return Ok(());
+    }
+    if signals.modes_from_chain {
+        return Err(other(
+            "signals.modes",
+            "\"chain\" chooses a plate's modes by its chain; a tail beam's stream keeps a number of them (give one)",
+        ));
+    }
+    if stream.is_some_and(|s| !s.thickness_sweep.is_empty()) {
+        return Err(other(
+            "stream.thickness_sweep_mm",
+            "sweeps the plate's thickness; a tail beam's stream strikes the box, whose walls have their own (leave it out)",
+        ));
+    }
+    Ok(())
 }
 
 /// `[tail_beam]` into a [`TailBeamScene`].

@@ -317,6 +317,13 @@ pub fn checked_study(scene: &Scene) -> Result<&Study, Failure> {
     let study = scene.ensemble.as_ref().ok_or_else(|| {
         format!("scene {}: impact identify needs an [ensemble] table and \"identify\" in analyses", scene.name)
     })?;
+    if scene.identifies_on_tail_beam() {
+        return Err(format!(
+            "scene {}: its identification strikes its tail beam, as a caving stream (impact stream); the ensemble of single impacts (impact identify) strikes the plate's support sets only",
+            scene.name
+        )
+        .into());
+    }
     for set in &scene.conditions {
         let channels = channels_per_impact(scene, study, set);
         if channels == 0 {

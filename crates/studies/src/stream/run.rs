@@ -359,6 +359,13 @@ pub fn one_stream(
     set: &SupportSet,
     r: usize,
 ) -> Result<(RecordedSignal, Vec<LumpRow>), Failure> {
+    if scene.identifies_on_tail_beam() {
+        return Err(format!(
+            "scene {}: its stream strikes the tail beam, whose streams are run together by the whole study (impact stream); one stream apart is built for the plate's support sets only",
+            scene.name
+        )
+        .into());
+    }
     // The recording's stream of random numbers is RECORDING_KEY + r.
     if r > usize::MAX - RECORDING_KEY {
         return Err(format!("stream {r}: allowed at most {}", usize::MAX - RECORDING_KEY).into());
