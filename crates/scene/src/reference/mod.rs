@@ -202,14 +202,14 @@ fn tables() -> Vec<Key> {
             TABLE,
             "[stream]",
             "none: no stream study",
-            "A caving-stream detection study on the ensemble (\"identify\" only; `impact stream`)",
+            "A caving-stream detection study on the ensemble (\"identify\" only; `impact stream`): on the plate's support sets, or on the tail beam where the scene has a [tail_beam]",
         ),
         table(
             "tail_beam",
             TABLE,
             "[tail_beam]",
             "required with \"tail-beam\", refused without",
-            "A box-section tail beam struck by the scene's bodies (\"tail-beam\" only)",
+            "A box-section tail beam struck by the scene's bodies (\"tail-beam\"); with \"identify\" too, the identification strikes it: the [ensemble] region and the [signals] sensors lie on its top plate, and `impact stream` records its jacks and accelerometers",
         ),
         table(
             "shell_mesh",
@@ -377,8 +377,8 @@ fn runs() -> Vec<Section> {
                 num("window_ms", "ms", limits::SIGNAL_WINDOW_MS, compact(d.window * 1e3), "Length of each signal from first touch"),
                 num("rate_hz", "Hz", limits::SAMPLE_RATE_HZ, compact(d.rate_hz), "Sampling rate"),
                 num("damping_ratio", NO_UNIT, ReducedSettings::DAMPING_RATIO, compact(d.damping_ratio), "Modal damping ratio ζ of every mode (not with [plate_damping], which replaces it)"),
-                key("modes", "whole number or `\"chain\"`", NO_UNIT, format!("{} and the plate's most, or `\"chain\"` (needs `[measurement]`)", limits::MODES), d.modes.to_string(), "Modes the reduced model keeps: at most an eighth of the degrees of freedom of its mesh of the plate (178 on a 458.4 x 360 mm plate, 220 on a square one); by default 80, or that many where fewer. `\"chain\"`: on each support set the fewest whose highest the measurement chain's gain above stays within `measurement.band_tolerance`, the plate's most if none does"),
-                key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}, at least 0.1 mm apart (channels are named by position to 0.1 mm)", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate"),
+                key("modes", "whole number or `\"chain\"`", NO_UNIT, format!("{} and the plate's most, or `\"chain\"` (needs `[measurement]`)", limits::MODES), d.modes.to_string(), "Modes the reduced model keeps: at most an eighth of the degrees of freedom of its mesh of the plate (178 on a 458.4 x 360 mm plate, 220 on a square one); by default 80, or that many where fewer. `\"chain\"`: on each support set the fewest whose highest the measurement chain's gain above stays within `measurement.band_tolerance`, the plate's most if none does. On a tail beam (where the identification strikes it): a number, at most 220 and at most what its mesh allows (200, half its DOFs with mass, a 2 GiB Krylov basis)"),
+                key("sensors_mm", "list of [x, z]", "mm", format!("x in [0, L], z in [0, B]; at most {}, at least 0.1 mm apart (channels are named by position to 0.1 mm)", limits::MAX_SENSORS), "none: the corner channels only", "Sensor points on the plate; on a tail beam's top plate (x along it from the pins, z across) where the identification strikes the tail beam, each an accelerometer at its nearest node"),
             ],
         },
         Section {
@@ -411,7 +411,7 @@ fn ensemble() -> Vec<Section> {
             word(&variables),
             "The variables held at their medians, one at a time, to find which variability hides the difference",
         ),
-        table("region", TABLE, "[ensemble.region]", "the whole plate", "Where the impacts land, uniformly"),
+        table("region", TABLE, "[ensemble.region]", "the whole plate", "Where the impacts land, uniformly (on a tail beam's top plate, where the identification strikes the tail beam: each lump at the nearest node of its mesh)"),
         key(
             "fall_height_m",
             RANDOM,
