@@ -165,21 +165,7 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
         assert_eq!(w[3].parse::<usize>().unwrap(), inside.len(), "{w:?}");
         assert_eq!(w[4].parse::<usize>().unwrap(), inside.iter().filter(|l| l[3] == "1").count(), "{w:?}");
     }
-    // The signal: 6 s at the model's 20 kHz, its metadata beside it.
-    let (header, signal) = rows(&dir.join("one").join("con-2").join("signal.csv"));
-    assert_eq!(signal.len(), 120_000);
-    assert_eq!(header[0], "t_s");
-    let meta: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.join("one").join("con-2").join("signal.json")).unwrap()).unwrap();
-    assert_eq!(meta["rate_hz"], 20_000.0);
-    assert_eq!(meta["channels"].as_array().unwrap().len(), header.len() - 1);
-    assert_eq!(meta["time_column"], header[0]);
-    let columns: Vec<&str> = meta["columns"].as_array().unwrap().iter().map(|c| c.as_str().unwrap()).collect();
-    assert_eq!(columns, header[1..]);
-    assert_eq!(
-        (meta["format"].as_str(), meta["data"].as_str(), meta["onset_s"].as_f64()),
-        (Some("impact-signal/1"), Some("signal.csv"), Some(3.0))
-    );
+    the_signal_has_its_sidecar(&dir.join("one").join("con-2"));
     detect_reads_the_run(&dir.join("one").join("con-2"), &dir);
     let data: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("one").join("stream.json")).unwrap()).unwrap();
@@ -208,6 +194,23 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     for p in same {
         assert_eq!(p["transferred"], p["matched"], "{p}");
     }
+}
+
+/// The signal of `run`: 6 s at the model's 20 kHz, its metadata beside it naming its columns.
+fn the_signal_has_its_sidecar(run: &std::path::Path) {
+    let (header, signal) = rows(&run.join("signal.csv"));
+    assert_eq!(signal.len(), 120_000);
+    assert_eq!(header[0], "t_s");
+    let meta: serde_json::Value = serde_json::from_slice(&std::fs::read(run.join("signal.json")).unwrap()).unwrap();
+    assert_eq!(meta["rate_hz"], 20_000.0);
+    assert_eq!(meta["channels"].as_array().unwrap().len(), header.len() - 1);
+    assert_eq!(meta["time_column"], header[0]);
+    let columns: Vec<&str> = meta["columns"].as_array().unwrap().iter().map(|c| c.as_str().unwrap()).collect();
+    assert_eq!(columns, header[1..]);
+    assert_eq!(
+        (meta["format"].as_str(), meta["data"].as_str(), meta["onset_s"].as_f64()),
+        (Some("impact-signal/1"), Some("signal.csv"), Some(3.0))
+    );
 }
 
 /// `impact detect` reads the run's own detector and signal: the stream's 23 windows, each

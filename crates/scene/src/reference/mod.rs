@@ -392,9 +392,10 @@ fn runs() -> Vec<Section> {
     ]
 }
 
-fn ensemble() -> Vec<Section> {
+/// The keys of `[ensemble]` itself.
+fn ensemble_keys() -> Vec<Key> {
     let variables: Vec<&str> = Variable::ALL.iter().map(|v| v.key()).collect();
-    let ensemble = vec![
+    vec![
         key(
             "seed",
             "integer",
@@ -442,7 +443,11 @@ fn ensemble() -> Vec<Section> {
             "required, at least one of each class",
             "The material families of the stream",
         ),
-    ];
+    ]
+}
+
+fn ensemble() -> Vec<Section> {
+    let ensemble = ensemble_keys();
     let laws: Vec<String> = LAWS.iter().map(|(law, keys)| format!("{} ({})", word(law), keys.join(", "))).collect();
     vec![
         Section {

@@ -54,10 +54,7 @@ pub(super) fn run_set(
     let run_seconds = t0.elapsed().as_secs_f64();
     let full_model = full_model::check(scene, study, set, &instrument)?;
     let half = half_modes(scene, study, set, &sensors, progress)?;
-    // The main run's and the half-mode run's features and clean peaks (under a chain), and one
-    // chunk of records.
-    let peaks = 8 * (main.clean_peaks.len() + half.clean_peaks.len());
-    let feature_bytes = 2 * main.table.bytes() + peaks + CHUNK * infos.len() * FEATURES.len() * 8;
+    let feature_bytes = held_bytes(&main, &half, infos.len());
 
     // Each support set's bootstrap and fold streams, apart from the other sets'.
     let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
@@ -107,6 +104,13 @@ pub(super) fn run_set(
         design_backgrounds,
     };
     Ok((result, detail))
+}
+
+/// The bytes a set's run holds: the main run's and the half-mode run's features and clean
+/// peaks (under a chain), and one chunk of records of `channels` channels.
+fn held_bytes(main: &ConditionRun, half: &ConditionRun, channels: usize) -> usize {
+    let peaks = 8 * (main.clean_peaks.len() + half.clean_peaks.len());
+    2 * main.table.bytes() + peaks + CHUNK * channels * FEATURES.len() * 8
 }
 
 /// What the set's section shows (the placement maps, the histograms' values, the variability
