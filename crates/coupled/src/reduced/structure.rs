@@ -168,12 +168,13 @@ impl StructureModel {
             )?;
         }
         let functionals: Vec<Vec<f64>> = groups.iter().map(|g| functional(g, fact.dofs())).collect();
-        let (points, static_cross) = struck_points(fact, &modes, loads, &functionals);
+        let group_rows: Vec<Vec<f64>> = functionals.iter().map(|g| modes.modal(g)).collect();
+        let (points, static_cross) = struck_points(fact, &modes, loads, (&functionals, &group_rows));
         Ok(Self {
             omega: modes.omegas().to_vec(),
             settings,
             points,
-            group_rows: functionals.iter().map(|g| modes.modal(g)).collect(),
+            group_rows,
             accelerometers: readings.accelerometers.iter().map(|a| modes.modal(a)).collect(),
             static_cross,
             basis: modes.basis(),
@@ -425,7 +426,7 @@ fn struck_points(
     fact: &Factorized<'_>,
     modes: &ShellModes,
     loads: &[Vec<f64>],
-    groups: &[Vec<f64>],
+    (groups, group_rows): (&[Vec<f64>], &[Vec<f64>]),
 ) -> (Vec<StruckPoint>, Vec<f64>) {
     let n = loads.len();
     let sparse: Vec<Vec<(usize, f64)>> = loads
@@ -439,7 +440,7 @@ fn struck_points(
         for (j, s) in sparse.iter().enumerate() {
             cross[j * n + k] = s.iter().map(|&(i, v)| v * field[i]).sum();
         }
-        points.push(struck_point(modes, f, &field, groups));
+        points.push(struck_point(modes, (f, &sparse[k]), &field, (groups, group_rows)));
     }
     for j in 0..n {
         for k in j + 1..n {
@@ -451,12 +452,20 @@ fn struck_points(
     (points, cross)
 }
 
-/// The modal view of the load `f` whose static field is `field` = K⁻¹f (see the module).
-fn struck_point(modes: &ShellModes, f: &[f64], field: &[f64], groups: &[Vec<f64>]) -> StruckPoint {
+/// The modal view of the load `f` (with its nonzero entries) whose static field is `field` =
+/// K⁻¹f (see the module), with the spring groups' functionals and their modal rows.
+fn struck_point(
+    modes: &ShellModes,
+    (f, entries): (&[f64], &[(usize, f64)]),
+    field: &[f64],
+    (groups, group_rows): (&[Vec<f64>], &[Vec<f64>]),
+) -> StruckPoint {
     let static_compliance: f64 = f.iter().zip(field).map(|(a, b)| a * b).sum();
-    let phi = modes.modal(f);
-    let residual = modes.residual_between(f, f, field).max(0.0);
-    let group_d = groups.iter().map(|g| modes.residual_between(g, f, field)).collect();
+    let phi = modes.modal_sparse(entries);
+    let residual = modes.residual_of(static_compliance, &phi, &phi).max(0.0);
+    let group_d = (groups.iter().zip(group_rows))
+        .map(|(g, row)| modes.residual_of(g.iter().zip(field).map(|(a, b)| a * b).sum(), row, &phi))
+        .collect();
     let group_static = groups.iter().map(|g| g.iter().zip(field).map(|(a, b)| a * b).sum()).collect();
     StruckPoint { phi, static_compliance, residual, group_d, group_static }
 }

@@ -300,8 +300,20 @@ impl ShellModes {
     /// φᵢᵀf/ωᵢ², with K⁻¹f given as `static_field` (one solve on the same factorization).
     pub fn residual_between(&self, g: &[f64], f: &[f64], static_field: &[f64]) -> f64 {
         let full: f64 = g.iter().zip(static_field).map(|(a, b)| a * b).sum();
-        let (mg, mf) = (self.modal(g), self.modal(f));
-        full - mg.iter().zip(&mf).zip(&self.omega).map(|((a, b), w)| a * b / (w * w)).sum::<f64>()
+        self.residual_of(full, &self.modal(g), &self.modal(f))
+    }
+
+    /// The residual flexibility gᵀK⁻¹f - Σ φᵢᵀg φᵢᵀf/ωᵢ² from its parts: `full` = gᵀK⁻¹f and
+    /// the modal projections `mg` = Φᵀg, `mf` = Φᵀf.
+    pub fn residual_of(&self, full: f64, mg: &[f64], mf: &[f64]) -> f64 {
+        full - mg.iter().zip(mf).zip(&self.omega).map(|((a, b), w)| a * b / (w * w)).sum::<f64>()
+    }
+
+    /// Φᵀf of a load given by its nonzero entries (DOF, value) in increasing DOF order: the
+    /// same sums as [`Self::modal`] (which adds the zeros too, exactly), at the cost of the
+    /// entries rather than of every DOF.
+    pub fn modal_sparse(&self, f: &[(usize, f64)]) -> Vec<f64> {
+        (0..self.count()).map(|m| f.iter().map(|&(d, v)| self.shapes[(d, m)] * v).sum()).collect()
     }
 }
 
