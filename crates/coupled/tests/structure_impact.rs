@@ -215,18 +215,13 @@ fn the_reduced_structure_is_the_full_structure_in_modal_coordinates() {
     let full = full_newmark((&fact, &mass), &[sphere], (&spring, 0), dt, steps);
     let p_ref = full.forces[0].iter().copied().fold(0.0, f64::max);
     let spring_ref = full.reading.iter().fold(0.0, |m: f64, r| m.max(r.abs()));
-    let run = |modes: usize| {
+    let groups = [vec![spring]];
+    let model = |modes: usize| {
         let settings = StructureSettings { modes, damping: ModalDamping::Ratio(0.0), steps_per_contact: 100.0 };
-        let model = StructureModel::new(
-            &fact,
-            &mass,
-            std::slice::from_ref(&f),
-            Readings { groups: &[vec![spring]], ..Readings::default() },
-            settings,
-        )
-        .unwrap();
-        model.impact(&ball(), 0, window).unwrap()
+        let readings = Readings { groups: &groups, ..Readings::default() };
+        StructureModel::new(&fact, &mass, std::slice::from_ref(&f), readings, settings).unwrap()
     };
+    let run = |modes: usize| model(modes).impact(&ball(), 0, window).unwrap();
     let mut last = f64::INFINITY;
     for modes in [5, 20, 80, 160] {
         let hit = run(modes);
@@ -242,15 +237,7 @@ fn the_reduced_structure_is_the_full_structure_in_modal_coordinates() {
     assert!(last < 1e-5, "{last:e}");
     // Truncating the 160-mode model to 20 is the 20-mode model (the dropped modes join the
     // static correction): the same discrete scheme, to rounding.
-    let settings = StructureSettings { modes: 160, damping: ModalDamping::Ratio(0.0), steps_per_contact: 100.0 };
-    let big = StructureModel::new(
-        &fact,
-        &mass,
-        std::slice::from_ref(&f),
-        Readings { groups: &[vec![spring]], ..Readings::default() },
-        settings,
-    )
-    .unwrap();
+    let big = model(160);
     let (cut, direct) = (big.truncated(20).unwrap().impact(&ball(), 0, window).unwrap(), run(20));
     assert!((cut.outcome.force_max / direct.outcome.force_max - 1.0).abs() < 1e-9);
     assert!((cut.group_force_max[0] / direct.group_force_max[0] - 1.0).abs() < 1e-9);
