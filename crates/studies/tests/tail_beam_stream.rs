@@ -38,10 +38,11 @@ fn small() -> String {
 }
 
 /// Each stream's first lump against the single impact at the same mesh node, from rest: P_max
-/// within 2e-3 (both step Newmark's rule in contact, the stream at T_s/m ≤ t_H/100, the
-/// single impact at t_H/100: their period errors differ by O((ωΔt)²)), the first contact's
-/// duration within two steps; the jack forces and accelerometers recorded and named; nothing
-/// left out of the static correction between lumps in contact together.
+/// within 1e-4 (both step Newmark's rule in contact, the stream at T_s/m ≤ t_H/100, the
+/// single impact at t_H/100: their period errors differ by O((ωΔt)²); measured 1.2e-5 and
+/// 5.8e-6), the first contact's duration within two steps (measured within one: the two
+/// grids end the contact at different steps); the jack forces and accelerometers recorded
+/// and named.
 #[test]
 fn a_stream_on_the_tail_beam_strikes_as_single_impacts_do() {
     let scene = scene::Scene::parse(&small(), "tail-beam-stream (small)").unwrap();
@@ -53,7 +54,6 @@ fn a_stream_on_the_tail_beam_strikes_as_single_impacts_do() {
     assert_eq!(c.channels.len(), 4, "{:?}", c.channels);
     assert!(c.channels[0].starts_with("jack force at (600, 350) mm"), "{:?}", c.channels);
     assert!(c.channels[2].starts_with("acceleration at (1200, 350) mm"), "{:?}", c.channels);
-    assert_eq!(c.simulation.cross_residual_bound, 0.0);
     assert!(c.groups.iter().all(|g| g.auc.is_finite()));
 
     // The reference: the box's reduced model built here from the scene, struck once per lump.
@@ -91,7 +91,7 @@ fn a_stream_on_the_tail_beam_strikes_as_single_impacts_do() {
         let (_, striker) = Striking::of(&scene).striker(&first.draw, &names[first.draw.family]).unwrap();
         let hit = model.impact(&striker, 0, scene.signals.window).unwrap();
         let e = (row.force_max / hit.outcome.force_max - 1.0).abs();
-        assert!(e < 2e-3, "stream {r}: P_max {} against {} ({e:e})", row.force_max, hit.outcome.force_max);
+        assert!(e < 1e-4, "stream {r}: P_max {} against {} ({e:e})", row.force_max, hit.outcome.force_max);
         let t_c = hit.outcome.contact_time.unwrap();
         eprintln!("stream {r}: P_max {e:.2e}, t_c {:.2e} steps", (row.contact_time - t_c).abs() / hit.dt);
         assert!((row.contact_time - t_c).abs() < 2.0 * hit.dt, "stream {r}: t_c {} against {t_c}", row.contact_time);
@@ -116,4 +116,8 @@ fn the_box_stream_scene_is_checked_against_the_box() {
         &["stream.thickness_sweep_mm"],
     );
     expect(&edits(&s, &[("modes = 200", "modes = \"chain\"")]), &["signals.modes", "chain"]);
+    // The chain must record what the box's channels are.
+    let jacks =
+        "[measurement.support_force]\nadc_range_kn = 2000.0\nadc_bits = 16\nnoise = \"white\"\nnoise_rms_kn = 1.0\n";
+    expect(&edits(&s, &[(jacks, "")]), &["measurement.support_force", "missing"]);
 }

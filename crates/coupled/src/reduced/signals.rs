@@ -117,8 +117,8 @@ pub enum ChannelKind {
         /// The corner.
         corner: Corner,
     },
-    /// Force of a spring group of a shell structure (a jack on its pad), Σ gᵀu, N (positive
-    /// in compression along the springs' directions).
+    /// Force of a spring group of a shell structure (a jack on its pad), Σ gᵀu = Σ k d̂·u over
+    /// its springs, N (signed along the springs' directions as the structure gives them).
     JackForce {
         /// The group's index.
         jack: usize,

@@ -345,7 +345,12 @@ impl StructureModel {
                 self.points.len()
             )));
         }
-        if probes.omega.len() != self.omega.len() {
+        let fits = probes.rows.iter().all(|r| match r.kind {
+            ChannelKind::JackForce { jack } => jack < self.group_rows.len(),
+            ChannelKind::Acceleration { sensor } => sensor < self.accelerometers.len(),
+            _ => false,
+        });
+        if probes.omega.len() != self.omega.len() || !fits {
             return Err(ModelError::Missing("the probes were prepared on another model".into()));
         }
         super::stream::stream(&OnFace { model: self, points }, arrivals, probes, duration)

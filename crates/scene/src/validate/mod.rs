@@ -148,7 +148,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, face_mm.0, face_mm.1)?;
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
-    tail_beam::check_stream(!face_mm.2, &signals, stream.as_ref())?;
+    tail_beam::check_stream(!face_mm.2, &signals, stream.as_ref(), measurement.as_ref())?;
     let shell_mesh = shell_mesh::table(raw.shell_mesh.as_ref(), &analyses, &plate)?;
     Ok(Scene {
         velocities,

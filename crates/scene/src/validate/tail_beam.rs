@@ -8,6 +8,7 @@ use analytic::params::check;
 use coupled::compliance::tail_beam::{TailBeamScene, TAIL_BEAM_LEVELS};
 use coupled::reduced::SignalSettings;
 use coupled::scene::Analysis;
+use identify::measurement::{ChainSpec, Measurand};
 use identify::stream::StreamStudy;
 use plate_fem::shell::element::DOFS_PER_NODE;
 use plate_fem::shell::tail_beam::{Jack, TailBeam};
@@ -26,14 +27,33 @@ pub(super) fn table(raw: Option<&RawTailBeam>, analyses: &[Analysis]) -> Result<
 }
 
 /// What a plate's identification has and a tail beam's stream (`on_box`) does not: the
-/// chain choosing the modes (a plate's), a swept plate thickness.
+/// chain choosing the modes (a plate's), a swept plate thickness; and a chain that records
+/// what the box's channels are: its jacks' forces, and accelerations where it has sensors.
 pub(super) fn check_stream(
     on_box: bool,
     signals: &SignalSettings,
     stream: Option<&StreamStudy>,
+    chain: Option<&ChainSpec>,
 ) -> Result<(), Invalid> {
     if !on_box {
         return Ok(());
+    }
+    let records = |m: Measurand| chain.is_none_or(|c| c.recordings.iter().any(|r| r.measurand == m));
+    for (m, key, needed, what) in [
+        (Measurand::SupportForce, "measurement.support_force", true, "the jacks' forces"),
+        (
+            Measurand::Acceleration,
+            "measurement.acceleration",
+            !signals.sensors.is_empty(),
+            "the sensors' accelerations",
+        ),
+    ] {
+        if needed && !records(m) {
+            return Err(other(
+                key,
+                format!("is missing: a tail beam's stream records {what} through the chain; add the table"),
+            ));
+        }
     }
     if signals.modes_from_chain {
         return Err(other(

@@ -6,8 +6,10 @@
 //! mass of its steel and the modes the scene's `[signals]` keeps (at most what the mesh allows,
 //! [`modes_for`]), damped at the scene's ratio; the truncated modes carry their static
 //! correction ([`coupled::reduced::structure`]). A lump strikes the top plate's mesh node
-//! nearest its drawn point (the mesh's lines are at most half the scene's element apart, so
-//! within half a diagonal of that), as the contact patch of side t there, normal to the plate.
+//! nearest its drawn point among those inside the ensemble's region (the mesh's lines are at
+//! most half the scene's element apart: within half a diagonal of that inside, up to a spacing
+//! where the region's edge falls between lines), as the contact patch of side t there, normal
+//! to the plate.
 //!
 //! **Channels.** Each jack's force (its pad's springs, Σ gᵀu), then each `[signals]` sensor as an
 //! accelerometer at the top plate's node nearest it, reading the acceleration along the

@@ -106,11 +106,15 @@ pub(super) fn step(
         l.a = if l.striker.gravity != 0.0 { l.striker.gravity + a_contact } else { a_contact };
         l.approach = w.approach[j];
         l.res_v = residual_rate(l, c1) + c1 * l.c_res * p;
-        if let Some(c) = cross {
-            let w_cross: f64 = (0..k).filter(|&m| m != j).map(|m| c[j * k + m] * forces[m]).sum();
-            l.res_v += c1 * w_cross;
-            l.w_cross = w_cross;
-        }
+        // Without cross terms (the plate's, or one lump followed) the others add nothing.
+        l.w_cross = match cross {
+            Some(c) => {
+                let w_cross: f64 = (0..k).filter(|&m| m != j).map(|m| c[j * k + m] * forces[m]).sum();
+                l.res_v += c1 * w_cross;
+                w_cross
+            }
+            None => 0.0,
+        };
         l.dmax = l.dmax.max(delta);
         l.last = (delta, rate);
         l.record(p, dt);
