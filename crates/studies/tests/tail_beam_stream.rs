@@ -98,6 +98,16 @@ fn a_stream_on_the_tail_beam_strikes_as_single_impacts_do() {
     }
 }
 
+/// A box asked for more modes than its mesh allows is refused by name before its modes are
+/// sought.
+#[test]
+fn more_modes_than_the_box_allows_are_refused() {
+    let text = edits(&small(), &[("modes = 200", "modes = 210")]);
+    let scene = scene::Scene::parse(&text, "tail-beam-stream (210 modes)").unwrap();
+    let e = studies::stream::compute(&scene, &studies::progress::Silent).unwrap_err().to_string();
+    assert!(e.contains("signals.modes = 210") && e.contains("at most 200"), "{e}");
+}
+
 /// Where the stream is on the box, its region and sensors lie on the box's top plate (beyond
 /// the paper's plate, within the box), and what only a plate has is refused by name.
 #[test]

@@ -86,8 +86,16 @@ impl BoxModel {
         let mass = ShellMass::lumped(&built.structure, rho);
         let (free, massive) = mass.free_dofs(&built.restraints);
         let reduced = scene.signals.reduced();
+        let most = modes_for(free, massive);
+        if reduced.modes > most {
+            return Err(format!(
+                "signals.modes = {} is more than the tail beam's mesh allows: at most {most} (200, half its {massive} DOFs with mass, a 2 GiB Krylov basis over its {free} free DOFs); ask for fewer",
+                reduced.modes
+            )
+            .into());
+        }
         let settings = StructureSettings {
-            modes: reduced.modes.min(modes_for(free, massive)),
+            modes: reduced.modes,
             damping: reduced.damping(),
             steps_per_contact: reduced.steps_per_contact,
         };
