@@ -133,10 +133,7 @@ pub struct Instrument<'a> {
     chain: Option<Chain>,
     noise_scale: f64,
     model_samples: usize,
-    plate: Plate,
-    restitution: f64,
-    law: LawKind,
-    gravity: f64,
+    striking: Striking,
 }
 
 impl<'a> Instrument<'a> {
@@ -153,20 +150,9 @@ impl<'a> Instrument<'a> {
             None => Extractor::new(spec.samples(), spec.rate_hz),
             Some(c) => Extractor::new(c.samples(spec.samples()), c.spec().rate_hz),
         };
-        let (restitution, law, gravity) = (scene.restitution, scene.contact_law, scene.gravity);
+        let striking = Striking { steel: plate.material(), ..Striking::of(scene) };
         let model_samples = spec.samples();
-        Ok(Self {
-            model,
-            probes,
-            extractor,
-            chain,
-            noise_scale: 1.0,
-            model_samples,
-            plate: *plate,
-            restitution,
-            law,
-            gravity,
-        })
+        Ok(Self { model, probes, extractor, chain, noise_scale: 1.0, model_samples, striking })
     }
 
     /// Scales its chain's background by `scale` from now on (1: as the scene states it; 0:
@@ -305,13 +291,7 @@ impl Instrument<'_> {
     /// The sphere of `draw` (of family `family_name`) and its striker: the scene's law,
     /// restitution and gravity, the contact stiffness against the plate (eq. 3).
     pub fn striker(&self, draw: &Draw, family_name: &str) -> Result<(analytic::Sphere, Striker), ModelError> {
-        let striking = Striking {
-            restitution: self.restitution,
-            law: self.law,
-            gravity: self.gravity,
-            steel: self.plate.material(),
-        };
-        striking.striker(draw, family_name)
+        self.striking.striker(draw, family_name)
     }
 
     /// The continuous model signals of a caving stream of `lumps` over `duration` seconds
@@ -322,15 +302,7 @@ impl Instrument<'_> {
         family_names: &[String],
         duration: f64,
     ) -> Result<crate::reduced::stream::StreamResponse, ModelError> {
-        let arrivals = lumps
-            .iter()
-            .map(|l| {
-                let name = family_names.get(l.draw.family).map_or("", String::as_str);
-                let (_, striker) = self.striker(&l.draw, name)?;
-                Ok(crate::reduced::stream::Arrival { time: l.time, striker, x: l.draw.x, z: l.draw.z })
-            })
-            .collect::<Result<Vec<_>, ModelError>>()?;
-        self.model.stream(&arrivals, &self.probes, duration)
+        self.model.stream(&self.striking.arrivals(lumps, family_names)?, &self.probes, duration)
     }
 
     /// The model's sample rate, Hz.
@@ -376,6 +348,22 @@ impl Striking {
             gravity: self.gravity,
         };
         Ok((sphere, striker))
+    }
+
+    /// The arrivals of a stream's `lumps` (their families named by `family_names`): each at
+    /// its time and drawn point, with its striker.
+    pub fn arrivals(
+        &self,
+        lumps: &[identify::stream::Lump],
+        family_names: &[String],
+    ) -> Result<Vec<crate::reduced::stream::Arrival>, ModelError> {
+        (lumps.iter())
+            .map(|l| {
+                let name = family_names.get(l.draw.family).map_or("", String::as_str);
+                let (_, striker) = self.striker(&l.draw, name)?;
+                Ok(crate::reduced::stream::Arrival { time: l.time, striker, x: l.draw.x, z: l.draw.z })
+            })
+            .collect()
     }
 }
 

@@ -240,7 +240,7 @@ fn in_time_of(scene: &Scene, tb: &TailBeamScene, rows: &[TailBeamRow]) -> Result
             .iter()
             .map(|&(x, z)| built.structure.patch_load(built.top, &contact_patch(&tb.beam, x, z)))
             .collect::<Result<Vec<_>, _>>()?;
-        let groups = built.jacks.iter().map(|r| built.restraints.springs[r.clone()].to_vec()).collect();
+        let groups = built.jack_groups();
         Ok(OnMesh { structure: built.structure, restraints: built.restraints, loads, groups })
     };
     let (fine, coarse) = crate::in_time::models(&on(IN_TIME_LEVEL)?, &on(IN_TIME_LEVEL - 1)?, rho)?;

@@ -76,6 +76,14 @@ pub struct Built {
     pub jacks: Vec<std::ops::Range<usize>>,
 }
 
+impl Built {
+    /// Each jack's springs, in the order of [`TailBeam::jacks`]: the groups whose forces are
+    /// the jacks'.
+    pub fn jack_groups(&self) -> Vec<Vec<Spring>> {
+        self.jacks.iter().map(|r| self.restraints.springs[r.clone()].to_vec()).collect()
+    }
+}
+
 impl TailBeam {
     /// Checks what the builder needs: positive sizes, ribs, pins and pads on the box, a jack
     /// that holds the rotation about the pins.

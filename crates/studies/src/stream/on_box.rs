@@ -27,7 +27,7 @@ use crate::Failure;
 use coupled::compliance::tail_beam::{contact_patch, TailBeamScene};
 use coupled::error::ModelError;
 use coupled::identification::Striking;
-use coupled::reduced::stream::{Arrival, StreamResponse};
+use coupled::reduced::stream::StreamResponse;
 use coupled::reduced::structure::{Readings, StructureModel, StructureSettings, MAX_LOAD_POINTS};
 use coupled::reduced::{ChannelKind, Probes};
 use identify::detector::scale_flags;
@@ -72,7 +72,7 @@ impl BoxModel {
         let loads = (points.iter())
             .map(|&(x, z)| built.structure.patch_load(built.top, &contact_patch(&tb.beam, x, z)))
             .collect::<Result<Vec<_>, _>>()?;
-        let groups: Vec<_> = built.jacks.iter().map(|r| built.restraints.springs[r.clone()].to_vec()).collect();
+        let groups: Vec<_> = built.jack_groups();
         let h = tb.beam.height;
         let accelerometers = (scene.signals.sensors.iter())
             .map(|&(x, z)| {
@@ -178,15 +178,8 @@ struct OnTheBox<'a> {
 
 impl Recorder for OnTheBox<'_> {
     fn stream(&self, lumps: &[Lump], names: &[String], duration: f64) -> Result<StreamResponse, ModelError> {
-        let arrivals = (lumps.iter())
-            .map(|l| {
-                let name = names.get(l.draw.family).map_or("", String::as_str);
-                let (_, striker) = self.striking.striker(&l.draw, name)?;
-                Ok(Arrival { time: l.time, striker, x: l.draw.x, z: l.draw.z })
-            })
-            .collect::<Result<Vec<_>, ModelError>>()?;
         let b = self.model;
-        b.model.stream(&arrivals, &b.points, &b.probes, duration)
+        b.model.stream(&self.striking.arrivals(lumps, names)?, &b.points, &b.probes, duration)
     }
 
     fn chain(&self) -> Option<&Chain> {
