@@ -40,6 +40,17 @@ fn ensemble_and_identify_come_together() {
 }
 
 #[test]
+fn the_truncation_checks_share_is_within_zero_and_one() {
+    for bad in ["0.0", "1.5", "-0.25", "nan"] {
+        let text = with("modes = 24", &format!("modes = 24\ntruncation_check_fraction = {bad}"));
+        expect(&text, &["signals.truncation_check_fraction", "(0, 1]"]);
+    }
+    let text = with("modes = 24", "modes = 24\ntruncation_check_fraction = 0.25");
+    assert_eq!(Scene::parse(&text, "small").unwrap().signals.truncation_check, 0.25);
+    assert_eq!(Scene::parse(ENSEMBLE, "small").unwrap().signals.truncation_check, 1.0);
+}
+
+#[test]
 fn distribution_values_name_field_value_and_range() {
     expect(
         &with("min = 15.0, max = 40.0 }", "min = 0.0, max = 40.0 }"),

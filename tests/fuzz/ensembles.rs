@@ -29,6 +29,7 @@ pub fn bases() -> Vec<Base> {
             f("signals.rate_hz", limits::SAMPLE_RATE_HZ),
             f("signals.damping_ratio", coupled::reduced::ReducedSettings::DAMPING_RATIO),
             f("signals.modes", limits::MODES),
+            f("signals.truncation_check_fraction", limits::TRUNCATION_CHECK),
             f("signals.sensors_mm[0][0]", POS_MM),
             f("plate.thickness_mm", limits::THICKNESS_MM),
             f("plate.width_mm", limits::PLATE_SIZE_MM),

@@ -116,6 +116,30 @@ pub struct ConditionRun {
 }
 
 impl ConditionRun {
+    /// The run's impacts `rows` (positions in this run), in that order: what a run of those
+    /// impacts alone would have recorded, except the validity counts and clipped samples,
+    /// which stay the whole run's.
+    pub fn select(&self, rows: &[usize]) -> Self {
+        let n = self.channels.len();
+        let pick = |v: &[f64]| rows.iter().map(|&i| v[i]).collect();
+        let clean_peaks = if self.clean_peaks.is_empty() {
+            Vec::new()
+        } else {
+            rows.iter().flat_map(|&i| self.clean_peaks[i * n..(i + 1) * n].iter().copied()).collect()
+        };
+        Self {
+            channels: self.channels.clone(),
+            table: self.table.select(rows),
+            mass: pick(&self.mass),
+            force_max: pick(&self.force_max),
+            contact_time: pick(&self.contact_time),
+            validity: self.validity,
+            fundamental_hz: self.fundamental_hz,
+            clean_peaks,
+            clipped: self.clipped,
+        }
+    }
+
     /// Channel `c`'s clean peaks (module docs of `identify::measurement`), one per impact;
     /// empty without a chain.
     pub fn clean_peaks(&self, c: usize) -> Vec<f64> {
@@ -396,32 +420,62 @@ pub enum RunError<E> {
     Sink(E),
 }
 
-/// Runs the ensemble of `study` with `held` on `instrument`, handing each record to `sink`
-/// in impact order, and returns the features as columns.
+/// Which impacts of an ensemble a run strikes.
+#[derive(Debug, Clone, Copy)]
+pub enum Impacts<'a> {
+    /// Every impact, in order.
+    All,
+    /// These impacts (indices into the ensemble, each below its length), in this order.
+    Only(&'a [usize]),
+}
+
+impl Impacts<'_> {
+    /// How many impacts of an ensemble of `n` the run strikes.
+    pub fn len(&self, n: usize) -> usize {
+        match self {
+            Impacts::All => n,
+            Impacts::Only(rows) => rows.len(),
+        }
+    }
+
+    /// The ensemble's index of the run's `k`-th impact.
+    pub fn index(&self, k: usize) -> usize {
+        match self {
+            Impacts::All => k,
+            Impacts::Only(rows) => rows[k],
+        }
+    }
+}
+
+/// Runs `impacts` of the ensemble of `study` with `held` on `instrument`, handing each
+/// record to `sink` in the run's order, and returns the features as columns.
 pub fn run_condition<E>(
     study: &Study,
-    held: Held,
+    (held, impacts): (Held, Impacts<'_>),
     instrument: &Instrument<'_>,
     mut sink: impl FnMut(&ImpactRecord) -> Result<(), E>,
 ) -> Result<ConditionRun, RunError<E>> {
     let e = &study.ensemble;
+    let count = impacts.len(e.len());
     let channels = instrument.channels();
     let mut run = ConditionRun {
         channels: channels.clone(),
         table: FeatureTable::new(channels.len()),
-        mass: Vec::with_capacity(e.len()),
-        force_max: Vec::with_capacity(e.len()),
-        contact_time: Vec::with_capacity(e.len()),
+        mass: Vec::with_capacity(count),
+        force_max: Vec::with_capacity(count),
+        contact_time: Vec::with_capacity(count),
         validity: EnsembleValidity::default(),
         fundamental_hz: 1.0 / instrument.fundamental_period(),
         clean_peaks: Vec::new(),
         clipped: 0,
     };
     for_each_ordered(
-        e.len(),
+        count,
         CHUNK,
-        |i| {
-            let draw = e.draw(i, held).expect("the index is below the ensemble's length");
+        |k| {
+            let i = impacts.index(k);
+            let missing = || (i, ModelError::Missing(format!("impact {i} is beyond the ensemble")));
+            let draw = e.draw(i, held).ok_or_else(missing)?;
             let name = &e.families[draw.family].name;
             instrument.impact(draw, name).map_err(|source| (i, source))
         },

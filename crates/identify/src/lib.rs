@@ -29,6 +29,8 @@
 //! - [`measurement`]: the measurement chain between the plate and a feature (the sensor's
 //!   band, the anti-aliasing filter, the sampler, a seeded background of a PSD and tonal
 //!   lines, the ADC), and Welch's PSD estimate;
+//! - [`subsample`]: a stratified random subsample of an ensemble, and how well the change
+//!   of an AUC measured on it stands for the whole ensemble's;
 //! - [`placement`]: the features of an ensemble as columns, the AUC of every channel and
 //!   feature, the best sensor, and placement maps.
 //!
@@ -89,6 +91,7 @@ pub mod placement;
 pub mod recording;
 pub mod roc;
 pub mod stream;
+pub mod subsample;
 
 pub use distribution::Distribution;
 pub use ensemble::{Class, Draw, Ensemble, Family, Held, Region, Speed, Study, Variable};

@@ -78,6 +78,15 @@ impl FeatureTable {
         (coal, gangue)
     }
 
+    /// The impacts `rows` of the table, in that order.
+    pub fn select(&self, rows: &[usize]) -> Self {
+        Self {
+            channels: self.channels,
+            classes: rows.iter().map(|&i| self.classes[i]).collect(),
+            values: self.values.iter().map(|column| rows.iter().map(|&i| column[i]).collect()).collect(),
+        }
+    }
+
     /// Bytes the values occupy (8 per impact, channel and feature, plus one per class).
     pub fn bytes(&self) -> usize {
         self.values.iter().map(|v| v.capacity() * 8).sum::<usize>() + self.classes.capacity()

@@ -52,6 +52,9 @@ pub const MAX_IMPACT_SIGNAL_BYTES: f64 = 512.0 * 1024.0 * 1024.0;
 /// Most modes of the reduced model on any plate: [`max_modes`] of a square plate, the plate
 /// whose mesh has the most nodes (20 x 20 elements, 1764 degrees of freedom).
 pub const MAX_MODES: usize = 220;
+/// `signals.truncation_check_fraction`: the share of each family the check on N/2 modes
+/// strikes again (none would leave the modal truncation unchecked).
+pub const TRUNCATION_CHECK: Range = Range::open_closed(0.0, 1.0);
 /// Modes of the reduced model, `[signals] modes` (and at most [`max_modes`] of the plate).
 pub const MODES: Range = Range::closed(1.0, MAX_MODES as f64);
 /// Share of its mesh's degrees of freedom the reduced model may keep as modes: 1/8.

@@ -142,6 +142,7 @@ pub(crate) struct RawSignals {
     pub(crate) damping_ratio: Option<f64>,
     pub(crate) modes: Option<RawModes>,
     pub(crate) sensors_mm: Option<Vec<Vec<f64>>>,
+    pub(crate) truncation_check_fraction: Option<f64>,
 }
 
 /// `signals.modes`: a number of modes, or a word ("chain").

@@ -5,12 +5,12 @@
 //! counts; and the shards Python computes against the study's own impacts.
 
 use coupled::identification::ImpactRecord;
-use coupled::reduced::ReducedModel;
+use coupled::reduced::{ReducedModel, ReducedSettings};
 use identify::{Class, FEATURES};
 use scene::{Scene, SceneSource};
 use std::sync::OnceLock;
 use studies::channel::ChannelInfo;
-use studies::identify::{compute_with, ensemble, run_sensors, IdentifyData, MainImpact, Ranked};
+use studies::identify::{check, compute_with, ensemble, run_sensors, IdentifyData, MainImpact, Ranked};
 use studies::progress::Silent;
 use test_scenes::TINY_IDENTIFY;
 
@@ -211,4 +211,81 @@ fn shards_are_the_main_runs_impacts() {
     }
     assert!(records == seen.records);
     assert_eq!(data.summary.conditions[0].validity.impacts, records.len());
+}
+
+/// The change AUC_b − AUC_a of two scores of the same impacts by pair counts, with DeLong's
+/// paired standard error from the differences of the structural components (DeLong, DeLong
+/// and Clarke-Pearson 1988): each argument is (coal, gangue) in the same impact order.
+fn paired_by_pairs(a: (&[f64], &[f64]), b: (&[f64], &[f64])) -> (f64, f64) {
+    let components = |(coal, gangue): (&[f64], &[f64])| {
+        let v_g: Vec<f64> =
+            gangue.iter().map(|&g| coal.iter().map(|&c| psi(g, c)).sum::<f64>() / coal.len() as f64).collect();
+        let v_c: Vec<f64> =
+            coal.iter().map(|&c| gangue.iter().map(|&g| psi(g, c)).sum::<f64>() / gangue.len() as f64).collect();
+        (v_g, v_c)
+    };
+    let ((ag, ac), (bg, bc)) = (components(a), components(b));
+    let diff = |p: &[f64], q: &[f64]| p.iter().zip(q).map(|(x, y)| x - y).collect::<Vec<f64>>();
+    let (dg, dc) = (diff(&bg, &ag), diff(&bc, &ac));
+    let var = |v: &[f64]| {
+        let m = v.iter().sum::<f64>() / v.len() as f64;
+        v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() as f64 - 1.0)
+    };
+    let change = dg.iter().sum::<f64>() / dg.len() as f64;
+    (change, (var(&dg) / dg.len() as f64 + var(&dc) / dc.len() as f64).sqrt())
+}
+
+/// With `signals.truncation_check_fraction = 0.5` the check strikes half of each family
+/// again: every shift shown is the pair-count change between those impacts of the main run
+/// and the same impacts on the half-mode model (run here as Python's shards run them, every
+/// impact of the ensemble, then those picked), with DeLong's paired error times the finite
+/// population correction √(1 − 12/24); the same impacts on every mode give the main run's
+/// AUCs untouched.
+#[test]
+fn the_check_on_a_subsample_is_the_pair_counts_of_its_impacts() {
+    let (whole_scene, whole, seen) = run();
+    let text = test_scenes::edit(TINY_IDENTIFY, "[signals]\n", "[signals]\ntruncation_check_fraction = 0.5\n");
+    let scene = Scene::parse(&text, "tiny").unwrap();
+    let data = compute_with(&scene, &Silent, &mut |_: &MainImpact<'_>| Ok(())).unwrap();
+    let (c, w) = (&data.summary.conditions[0], &whole.summary.conditions[0]);
+    let study = scene.ensemble.as_ref().unwrap();
+    let counts: Vec<usize> = study.ensemble.families.iter().map(|f| f.count).collect();
+    let rows = check::checked_impacts(0.5, &counts, check::set_seed(study.ensemble.seed, 0)).unwrap();
+    assert_eq!((c.truncation_check.impacts, c.truncation_check.of, rows.len()), (12, 24, 12));
+    assert!(c.truncation_check.coverage.is_empty() && w.truncation_check.coverage.len() == 3);
+    assert!(w.ranking.iter().all(|r| r.resolution_error.is_none()));
+
+    // The half-mode model's features of every impact.
+    let set = &whole_scene.conditions[0];
+    let settings = scene.signals.reduced();
+    let half = ReducedModel::new(&scene.plate, set, ReducedSettings { modes: settings.modes / 2, ..settings }).unwrap();
+    let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0;
+    let coarse: Vec<ImpactRecord> =
+        ensemble::shard(&scene, &half, &sensors, 0..24).unwrap().records.into_iter().map(|(_, r)| r).collect();
+    let at = |records: &[ImpactRecord], value: &dyn Fn(&ImpactRecord) -> f64| {
+        let of = |k: Class| rows.iter().filter(|&&i| records[i].draw.class == k).map(|&i| value(&records[i])).collect();
+        (of(Class::Coal), of(Class::Gangue))
+    };
+    let correction = (1.0 - 12.0 / 24.0f64).sqrt();
+    let expect = |r: &Ranked, value: &dyn Fn(&ImpactRecord) -> f64| {
+        let ((fc, fg), (hc, hg)): ((Vec<f64>, Vec<f64>), (Vec<f64>, Vec<f64>)) = (at(&seen.records, value), at(&coarse, value));
+        let (change, se) = paired_by_pairs((&hc, &hg), (&fc, &fg));
+        let shown = (r.resolution.unwrap(), r.resolution_error.unwrap());
+        assert!((shown.0 - change).abs() < EXACT, "{} {}: {} against {change}", r.channel, r.feature.key(), shown.0);
+        assert!((shown.1 - se * correction).abs() < EXACT, "{}: {} against {}", r.channel, shown.1, se * correction);
+    };
+    expect(&c.force_max, &|r| r.force_max);
+    expect(&c.contact_time, &|r| r.contact_time.unwrap_or(0.0));
+    let mut nonzero = 0;
+    for r in c.ranking.iter().chain(&c.best_converged) {
+        let (ch, f) = seen.column_of(r);
+        expect(r, &|rec| rec.features[ch * FEATURES.len() + f]);
+        nonzero += usize::from(r.resolution_error.unwrap() > 0.0);
+        // The main run is the whole ensemble's, whatever the check struck again.
+        let same = w.ranking.iter().chain(&w.best_converged).find(|x| x.channel == r.channel && x.feature == r.feature);
+        if let Some(x) = same {
+            assert_eq!(x.auc, r.auc);
+        }
+    }
+    assert!(nonzero > 0, "some entry's change has an error on the subsample");
 }

@@ -188,6 +188,17 @@ pub struct SignalSettings {
     pub modes_from_chain: bool,
     /// Sensor points (x, z), m.
     pub sensors: Vec<(f64, f64)>,
+    /// The share of each family's impacts that the identification's check on N/2 modes
+    /// strikes again (a stratified random subsample, `identify::subsample`), within (0, 1].
+    /// Left out of the serialised scene at 1, so that a scene without it keeps its
+    /// provenance hash.
+    #[serde(skip_serializing_if = "is_whole")]
+    pub truncation_check: f64,
+}
+
+/// Whether a share is the whole.
+fn is_whole(share: &f64) -> bool {
+    *share == 1.0
 }
 
 impl Default for SignalSettings {
@@ -201,6 +212,7 @@ impl Default for SignalSettings {
             modes: ReducedSettings::DEFAULT_MODES,
             modes_from_chain: false,
             sensors: Vec::new(),
+            truncation_check: 1.0,
         }
     }
 }

@@ -7,6 +7,7 @@
 //! directory as they arrive ([`RowFiles`]), and its data becomes the maps, the histograms and
 //! the page.
 
+mod check;
 mod design;
 mod figures;
 mod head;

@@ -89,8 +89,10 @@ fn ranking_table(r: &ConditionResult) -> Table {
             Cell::Text(sig(x.auc.auc, 3)),
             Cell::Text(sig(x.auc.standard_error, 2)),
             ci(x).into(),
-            x.resolution
-                .map_or(Cell::Empty, |d| Cell::Text(format!("{}{}", sig(d, 2), if x.converged() { "" } else { " *" }))),
+            x.resolution.map_or(Cell::Empty, |d| {
+                let error = x.resolution_error.map_or(String::new(), |e| format!(" ± {}", sig(e, 2)));
+                Cell::Text(format!("{}{error}{}", sig(d, 2), if x.converged() { "" } else { " *" }))
+            }),
             direction(&x.auc).into(),
         ]);
     }
@@ -177,6 +179,7 @@ pub(super) fn section(
             ("modes", modes.to_string()),
             ("half_modes", (modes / 2).max(1).to_string()),
             ("resolution", sig(AUC_RESOLUTION, 2)),
+            ("check", super::check::markdown(r, modes)?.trim_end().to_string()),
             ("classifiers", classifier_table(r).to_markdown()),
             ("maps", maps),
             ("histograms", hists.to_string()),

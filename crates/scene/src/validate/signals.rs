@@ -79,7 +79,20 @@ pub(super) fn validate_signals(
         }
     };
     check_sensors(&sensors, samples)?;
-    Ok(SignalSettings { window: window_ms * 1e-3, rate_hz, damping_ratio, rayleigh, modes, modes_from_chain, sensors })
+    let truncation_check = match raw.truncation_check_fraction {
+        Some(f) => check("signals.truncation_check_fraction", f, limits::TRUNCATION_CHECK, "")?,
+        None => d.truncation_check,
+    };
+    Ok(SignalSettings {
+        window: window_ms * 1e-3,
+        rate_hz,
+        damping_ratio,
+        rayleigh,
+        modes,
+        modes_from_chain,
+        sensors,
+        truncation_check,
+    })
 }
 
 /// `signals.modes`: a whole number within [`limits::MODES`] and, on a plate of `plate_mm`

@@ -68,11 +68,12 @@ pub fn groups(
     groups
 }
 
-/// Each group's accuracy on `run` and on `half` (the same impacts on N/2 modes), the k-th
+/// Each group's accuracy on `run`, and its change from N/2 to N modes: on `checked` (the
+/// impacts of `run` struck again, None if all) against `half` (them on N/2 modes); the k-th
 /// group's folds dealt by the stream of `seed ^ (3 + k)`.
 pub fn accuracies(
     run: &ConditionRun,
-    half: &ConditionRun,
+    (checked, half): (Option<&ConditionRun>, &ConditionRun),
     groups: Vec<Group>,
     seed: u64,
 ) -> Result<Vec<Accuracy>, Failure> {
@@ -80,7 +81,11 @@ pub fn accuracies(
     for (k, (features, chans)) in groups.into_iter().enumerate() {
         let result = classifier(&run.table, &chans, seed ^ (3 + k as u64))?;
         let coarse = classifier(&half.table, &chans, seed ^ (3 + k as u64))?;
-        out.push(Accuracy { features, result, resolution: result.accuracy - coarse.accuracy });
+        let fine = match checked {
+            None => result.accuracy,
+            Some(c) => classifier(&c.table, &chans, seed ^ (3 + k as u64))?.accuracy,
+        };
+        out.push(Accuracy { features, result, resolution: fine - coarse.accuracy });
     }
     Ok(out)
 }

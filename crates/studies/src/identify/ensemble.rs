@@ -5,7 +5,7 @@ use super::sensors::{channel_infos, spec};
 use crate::channel::ChannelInfo;
 use crate::progress::Progress;
 use crate::Failure;
-use coupled::identification::{run_condition, ConditionRun, ImpactRecord, Instrument, RunError};
+use coupled::identification::{run_condition, ConditionRun, ImpactRecord, Impacts, Instrument, RunError};
 use coupled::reduced::{ReducedModel, ReducedSettings};
 use coupled::validity::QUASI_STATIC_MIN_RATIO;
 use identify::{Held, Study};
@@ -21,10 +21,22 @@ pub fn run(
     set: &str,
     what: &str,
     progress: &dyn Progress,
+    sink: impl FnMut(&ImpactRecord) -> Result<(), Failure>,
+) -> Result<ConditionRun, Failure> {
+    run_on(study, (held, Impacts::All), instrument, (set, what), progress, sink)
+}
+
+/// [`run`] on `impacts` of the ensemble.
+fn run_on(
+    study: &Study,
+    (held, impacts): (Held, Impacts<'_>),
+    instrument: &Instrument<'_>,
+    (set, what): (&str, &str),
+    progress: &dyn Progress,
     mut sink: impl FnMut(&ImpactRecord) -> Result<(), Failure>,
 ) -> Result<ConditionRun, Failure> {
-    progress.start(study.ensemble.len(), &format!("{set}: {what}"));
-    let run = run_condition(study, held, instrument, |r: &ImpactRecord| -> Result<(), Failure> {
+    progress.start(impacts.len(study.ensemble.len()), &format!("{set}: {what}"));
+    let run = run_condition(study, (held, impacts), instrument, |r: &ImpactRecord| -> Result<(), Failure> {
         sink(r)?;
         progress.advance(1);
         Ok(())
@@ -37,12 +49,12 @@ pub fn run(
     Ok(run)
 }
 
-/// The same impacts at the same `sensors` on the model of `set` with half its modes:
+/// The same `impacts` at the same `sensors` on the model of `set` with half its modes:
 /// what each number owes to the modal truncation (the difference overstates the error at N
 /// if the AUC converges in N).
 pub fn half_modes(
     scene: &Scene,
-    study: &Study,
+    (study, impacts): (&Study, Impacts<'_>),
     set: &SupportSet,
     sensors: &[(f64, f64)],
     progress: &dyn Progress,
@@ -51,7 +63,8 @@ pub fn half_modes(
     let half = ReducedSettings { modes: (settings.modes / 2).max(1), ..settings };
     let model = ReducedModel::new(&scene.plate, set, half)?;
     let instrument = Instrument::new(&model, &scene.plate, &spec(scene, sensors.to_vec()), scene)?;
-    run(study, Held::NONE, &instrument, &set.name, &format!("{} modes", half.modes), progress, |_| Ok(()))
+    let what = format!("{} modes", half.modes);
+    run_on(study, (Held::NONE, impacts), &instrument, (&set.name, &what), progress, |_| Ok(()))
 }
 
 /// Impacts of a range of the ensemble, with the channels that recorded them.

@@ -16,6 +16,7 @@
 //! streamed to disk while no more than one chunk of records is held.
 
 pub mod baselines;
+pub mod check;
 pub mod classifiers;
 pub mod ensemble;
 pub mod full_model;
@@ -55,6 +56,18 @@ pub fn resolved(delta: f64, se: f64) -> bool {
     delta.abs() <= se.max(AUC_RESOLUTION)
 }
 
+/// The check of the modal truncation on one support set.
+#[derive(Debug, Clone, Serialize)]
+pub struct TruncationCheck {
+    /// Impacts struck again on N/2 modes.
+    pub impacts: usize,
+    /// Impacts of the main run.
+    pub of: usize,
+    /// With every impact struck again, how well subsamples of each of
+    /// [`check::COVERAGE_FRACTIONS`] would have stood for the check (empty otherwise).
+    pub coverage: Vec<check::SubsampleCheck>,
+}
+
 /// One ranked feature of one channel with its intervals.
 #[derive(Debug, Clone, Serialize)]
 pub struct Ranked {
@@ -69,6 +82,10 @@ pub struct Ranked {
     /// AUC on the model with N modes minus AUC with N/2 (the same impacts): how much the
     /// number owes to the modal truncation.
     pub resolution: Option<f64>,
+    /// The standard error of `resolution` as the whole ensemble's change, when the check
+    /// struck a subsample again (`signals.truncation_check_fraction` below 1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub resolution_error: Option<f64>,
 }
 
 impl Ranked {
@@ -162,6 +179,9 @@ pub struct ConditionResult {
     /// (`[ensemble.placement] design_backgrounds`); empty without them.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub design_backgrounds: Vec<BackgroundDesign>,
+    /// The check of the modal truncation: which impacts it struck again and, when it struck
+    /// them all, how well subsamples would have stood for it.
+    pub truncation_check: TruncationCheck,
 }
 
 impl ConditionResult {

@@ -1,8 +1,9 @@
 //! How well each feature of each channel separates coal from gangue: its ROC AUC
 //! (Mann-Whitney, with DeLong's standard error), ranked by max(AUC, 1 - AUC), with a
 //! percentile bootstrap interval for the entries shown and the change of the AUC from N/2 to
-//! N modes on the same impacts.
+//! N modes on the same impacts ([`super::check`]).
 
+use super::check::{Shift, Truncation};
 use super::{resolved, ClassValues, Ranked, LEVEL, TOP};
 use crate::channel::ChannelInfo;
 use coupled::identification::ConditionRun;
@@ -25,37 +26,35 @@ pub fn split(values: &[f64], classes: &[Class]) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// One column's AUC with its error and bootstrap interval (resampled by the stream of
-/// `seed`), and its change from `half_auc`, the AUC of the same impacts on N/2 modes.
+/// `seed`), and its `shift` from N/2 to N modes.
 pub fn ranked(
     channel: String,
     feature: &'static dyn Feature,
     (coal, gangue): (&[f64], &[f64]),
-    half_auc: Option<f64>,
+    shift: Option<Shift>,
     seed: u64,
 ) -> Ranked {
-    let auc = auc_with_error(coal, gangue);
     Ranked {
         channel,
         feature,
-        auc,
+        auc: auc_with_error(coal, gangue),
         interval: bootstrap_interval(coal, gangue, BOOTSTRAP_RESAMPLES, LEVEL, seed),
-        resolution: half_auc.map(|h| auc.auc - h),
+        resolution: shift.map(|s| s.change),
+        resolution_error: shift.and_then(|s| s.error),
     }
 }
 
 /// The paper's contact quantities, P_max and the first contact's duration t_c, scored as
-/// features are, with their change from N/2 to N modes.
-pub fn contact_quantities(run: &ConditionRun, half: &ConditionRun, seed: u64) -> (Ranked, Ranked) {
+/// features are, with their shift from N/2 to N modes (`check`).
+pub fn contact_quantities(run: &ConditionRun, check: &Truncation, seed: u64) -> (Ranked, Ranked) {
     let classes = run.table.classes();
-    let half_of = |values: &[f64]| {
-        let (c, g) = split(values, half.table.classes());
-        auc_with_error(&c, &g).auc
+    let score = |name: &str, feature: &'static dyn Feature, of: fn(&ConditionRun) -> &[f64], seed: u64| {
+        let (c, g) = split(of(run), classes);
+        let shift = check.shift_of(run, auc_with_error(&c, &g).auc, of);
+        ranked(name.into(), feature, (&c, &g), Some(shift), seed)
     };
-    let (fc, fg) = split(&run.force_max, classes);
-    let force_max = ranked("contact force P_max".into(), &Peak, (&fc, &fg), Some(half_of(&half.force_max)), seed ^ 1);
-    let (tc, tg) = split(&run.contact_time, classes);
-    let contact_time =
-        ranked("contact time t_c".into(), &Duration, (&tc, &tg), Some(half_of(&half.contact_time)), seed ^ 2);
+    let force_max = score("contact force P_max", &Peak, |r| &r.force_max, seed ^ 1);
+    let contact_time = score("contact time t_c", &Duration, |r| &r.contact_time, seed ^ 2);
     (force_max, contact_time)
 }
 
@@ -65,7 +64,8 @@ pub struct Separation<'a> {
     run: &'a ConditionRun,
     infos: &'a [ChannelInfo],
     seed: u64,
-    half: Vec<Separability>,
+    /// Every entry's shift from N/2 to N modes, channel-major.
+    pub shifts: Vec<Shift>,
     /// Every channel's every feature, channel-major.
     pub all: Vec<Separability>,
     /// The same, most separating first (ties to the earlier channel).
@@ -78,18 +78,18 @@ pub struct Separation<'a> {
 }
 
 impl<'a> Separation<'a> {
-    /// The separabilities of `run` (its channels `infos`) and of `half`, the same impacts on
-    /// half the modes; bootstrap streams derive from `seed`.
-    pub fn new(run: &'a ConditionRun, half: &ConditionRun, infos: &'a [ChannelInfo], seed: u64) -> Self {
+    /// The separabilities of `run` (its channels `infos`) and their shifts from N/2 to N
+    /// modes (`check`); bootstrap streams derive from `seed`.
+    pub fn new(run: &'a ConditionRun, check: &Truncation, infos: &'a [ChannelInfo], seed: u64) -> Self {
         let all = separabilities(&run.table);
-        let half = separabilities(&half.table);
+        let shifts = check.shifts(run, &all);
         let mut order = all.clone();
         order.sort_by(|a, b| b.auc.separability().total_cmp(&a.auc.separability()).then(a.channel.cmp(&b.channel)));
-        let half_auc = |s: &Separability| half[s.channel * FEATURES.len() + s.feature.index()].auc.auc;
-        let converged = order.iter().find(|s| resolved(s.auc.auc - half_auc(s), s.auc.standard_error)).copied();
+        let shift = |s: &Separability| shifts[s.channel * FEATURES.len() + s.feature.index()].change;
+        let converged = order.iter().find(|s| resolved(shift(s), s.auc.standard_error)).copied();
         let sensor_channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_some()).collect();
         let best_sensor = if sensor_channels.is_empty() { None } else { best(&all, &sensor_channels) };
-        Self { run, infos, seed, half, all, order, converged, best_sensor }
+        Self { run, infos, seed, shifts, all, order, converged, best_sensor }
     }
 
     /// The reference feature of the variability study: the most separating one the modal
@@ -101,8 +101,8 @@ impl<'a> Separation<'a> {
     /// `s` scored with its interval (the `k`-th bootstrap stream) and its change from N/2 modes.
     pub fn ranked(&self, s: &Separability, k: usize) -> Ranked {
         let (c, g) = self.run.table.split(s.channel, s.feature);
-        let h = self.half[s.channel * FEATURES.len() + s.feature.index()].auc.auc;
-        ranked(self.infos[s.channel].label(), s.feature, (&c, &g), Some(h), self.seed.wrapping_add(k as u64))
+        let shift = self.shifts[s.channel * FEATURES.len() + s.feature.index()];
+        ranked(self.infos[s.channel].label(), s.feature, (&c, &g), Some(shift), self.seed.wrapping_add(k as u64))
     }
 
     /// The [`TOP`] most separating entries, scored.

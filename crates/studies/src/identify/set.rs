@@ -1,12 +1,13 @@
 //! The identification on one support set: the main run, the same impacts on half the modes,
 //! and every score of [`super`] composed into the set's result and section data.
 
-use super::ensemble::{half_modes, run};
+use super::check::Truncation;
+use super::ensemble::run;
 use super::sensors::{channel_infos, no_channels, run_sensors, spec};
 use super::separability::{contact_quantities, split, Separation};
 use super::{
     baselines, classifiers, full_model, measured, placement, variability, ClassValues, ConditionDetail,
-    ConditionResult, MainImpact, SensorDesign, Sink,
+    ConditionResult, MainImpact, SensorDesign, Sink, TruncationCheck, TOP,
 };
 use crate::channel::ChannelInfo;
 use crate::progress::Progress;
@@ -53,15 +54,16 @@ pub(super) fn run_set(
     })?;
     let run_seconds = t0.elapsed().as_secs_f64();
     let full_model = full_model::check(scene, study, set, &instrument)?;
-    let half = half_modes(scene, study, set, &sensors, progress)?;
-    let feature_bytes = held_bytes(&main, &half, infos.len());
 
-    // Each support set's bootstrap and fold streams, apart from the other sets'.
-    let seed = e.seed ^ (index as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    let sep = Separation::new(&main, &half, &infos, seed);
-    let (force_max, contact_time) = contact_quantities(&main, &half, seed);
+    let seed = super::check::set_seed(e.seed, index);
+    let check = Truncation::run(scene, study, (set, &sensors), seed, progress)?;
+    let feature_bytes = held_bytes(&main, &check.half, infos.len());
+    let sep = Separation::new(&main, &check, &infos, seed);
+    let (force_max, contact_time) = contact_quantities(&main, &check, seed);
     let groups = classifiers::groups(&infos, sep.best_sensor, sep.converged, settings.sensors.len());
-    let classifiers = classifiers::accuracies(&main, &half, groups, seed)?;
+    let checked = check.rows.as_ref().map(|_| check.main(&main).into_owned());
+    let classifiers = classifiers::accuracies(&main, (checked.as_ref(), &check.half), groups, seed)?;
+    let truncation_check = truncation_check(&check, &main, study, &sep, seed);
     let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
     let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
     let top = best(&sep.all, &[]).map(|s| s.channel);
@@ -102,8 +104,27 @@ pub(super) fn run_set(
         chain_modes: settings.modes_from_chain.then(|| model.settings().modes),
         design,
         design_backgrounds,
+        truncation_check,
     };
     Ok((result, detail))
+}
+
+/// What the check of the modal truncation struck again, and how well subsamples would have
+/// stood for it.
+fn truncation_check(
+    check: &Truncation,
+    main: &ConditionRun,
+    study: &Study,
+    sep: &Separation,
+    seed: u64,
+) -> TruncationCheck {
+    let counts: Vec<usize> = study.ensemble.families.iter().map(|f| f.count).collect();
+    let top: Vec<_> = sep.order.iter().take(TOP).copied().collect();
+    TruncationCheck {
+        impacts: check.half.table.len(),
+        of: main.table.len(),
+        coverage: check.coverage(main, &counts, (&top, &sep.shifts), seed),
+    }
 }
 
 /// The bytes a set's run holds: the main run's and the half-mode run's features and clean
