@@ -53,17 +53,30 @@ pub fn stratified(counts: &[usize], fraction: f64, seed: u64, stream: usize) -> 
     out
 }
 
-/// The change AUC_b − AUC_a of every column (channel-major, as
-/// [`crate::placement::separabilities`]) of two tables of the same n impacts (`a` and `b`,
-/// the same classes in the same order), with DeLong's paired standard error times the
-/// finite population correction √(1 − n/`population`): the error of the change as an
-/// estimate of the change over all `population` impacts the n were sampled from (0 when
-/// they are all of them).
-pub fn column_changes(a: &FeatureTable, b: &FeatureTable, population: usize) -> Vec<(f64, f64)> {
+/// The change AUC_b − AUC_a of each of `columns` (indices channel-major, as
+/// [`crate::placement::separabilities`]; every column if None) of two tables of the same n
+/// impacts (`a` and `b`, the same classes in the same order), with DeLong's paired standard
+/// error times the finite population correction √(1 − n/`population`): the error of the
+/// change as an estimate of the change over all `population` impacts the n were sampled
+/// from (0 when they are all of them).
+pub fn column_changes(
+    a: &FeatureTable,
+    b: &FeatureTable,
+    population: usize,
+    columns: Option<&[usize]>,
+) -> Vec<(f64, f64)> {
     let correction = (1.0 - a.len() as f64 / population.max(1) as f64).max(0.0).sqrt();
-    (0..a.channels() * FEATURES.len())
-        .into_par_iter()
-        .map(|column| {
+    let all: Vec<usize>;
+    let columns = match columns {
+        Some(c) => c,
+        None => {
+            all = (0..a.channels() * FEATURES.len()).collect();
+            &all
+        }
+    };
+    columns
+        .par_iter()
+        .map(|&column| {
             let (channel, feature) = (column / FEATURES.len(), FEATURES[column % FEATURES.len()]);
             let ((ac, ag), (bc, bg)) = (a.split(channel, feature), b.split(channel, feature));
             let (change, se) = paired_difference((&ac, &ag), (&bc, &bg));
@@ -72,18 +85,20 @@ pub fn column_changes(a: &FeatureTable, b: &FeatureTable, population: usize) -> 
         .collect()
 }
 
-/// The [`column_changes`] of `repeats` stratified subsamples of `fraction` of each family of
-/// `counts` (streams 0..repeats of `seed`) of two tables of all Σcounts impacts.
+/// The [`column_changes`] of `columns` in `repeats` stratified subsamples of `fraction` of
+/// each family of `counts` (streams 0..repeats of `seed`) of two tables of all Σcounts
+/// impacts.
 pub fn sampled_changes(
     (a, b): (&FeatureTable, &FeatureTable),
-    counts: &[usize],
+    (counts, columns): (&[usize], Option<&[usize]>),
     fraction: f64,
     (repeats, seed): (usize, u64),
 ) -> Vec<Sampled> {
     (0..repeats)
         .map(|r| {
             let rows = stratified(counts, fraction, seed, r);
-            Sampled { impacts: rows.len(), changes: column_changes(&a.select(&rows), &b.select(&rows), a.len()) }
+            let changes = column_changes(&a.select(&rows), &b.select(&rows), a.len(), columns);
+            Sampled { impacts: rows.len(), changes }
         })
         .collect()
 }
@@ -93,7 +108,7 @@ pub fn sampled_changes(
 pub struct Sampled {
     /// Impacts in the subsample.
     pub impacts: usize,
-    /// Every column's change and its error ([`column_changes`]).
+    /// Each column's change and its error ([`column_changes`]).
     pub changes: Vec<(f64, f64)>,
 }
 
@@ -200,8 +215,8 @@ mod tests {
             a.push(class, &row);
             b.push(class, &row.iter().map(|x| x + 0.3 * (i as f64 * 1.7).cos()).collect::<Vec<_>>());
         }
-        let whole = column_changes(&a, &b, 40);
-        let sampled = sampled_changes((&a, &b), &[40], 1.0, (1, 0));
+        let whole = column_changes(&a, &b, 40, None);
+        let sampled = sampled_changes((&a, &b), (&[40], None), 1.0, (1, 0));
         assert_eq!(sampled[0].changes, whole);
         assert!(whole.iter().all(|c| c.1 == 0.0 && c.0 != 0.0));
     }
@@ -228,9 +243,9 @@ mod tests {
             let y = x + 0.5 * normal(&mut rng);
             b.push(class, &vec![y; FEATURES.len()]);
         }
-        let whole = column_changes(&a, &b, 4000);
-        let samples = sampled_changes((&a, &b), &[2000, 2000], 0.5, (400, 9));
-        let c = Coverage::of(&whole[..1], &samples, 0.5, 1.0);
+        let whole = column_changes(&a, &b, 4000, Some(&[0]));
+        let samples = sampled_changes((&a, &b), (&[2000, 2000], Some(&[0])), 0.5, (400, 9));
+        let c = Coverage::of(&whole, &samples, 0.5, 1.0);
         assert_eq!((c.impacts, c.compared, c.beyond_tolerance), (2000, 400, 0.0));
         assert!((c.covered - 0.95).abs() < 0.038, "covered {}", c.covered);
     }

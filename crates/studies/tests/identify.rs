@@ -262,13 +262,13 @@ fn the_check_on_a_subsample_is_the_pair_counts_of_its_impacts() {
     let sensors = run_sensors(&scene.signals.sensors, study, &scene.plate).0;
     let coarse: Vec<ImpactRecord> =
         ensemble::shard(&scene, &half, &sensors, 0..24).unwrap().records.into_iter().map(|(_, r)| r).collect();
-    let at = |records: &[ImpactRecord], value: &dyn Fn(&ImpactRecord) -> f64| {
+    let at = |records: &[ImpactRecord], value: &dyn Fn(&ImpactRecord) -> f64| -> (Vec<f64>, Vec<f64>) {
         let of = |k: Class| rows.iter().filter(|&&i| records[i].draw.class == k).map(|&i| value(&records[i])).collect();
         (of(Class::Coal), of(Class::Gangue))
     };
     let correction = (1.0 - 12.0 / 24.0f64).sqrt();
     let expect = |r: &Ranked, value: &dyn Fn(&ImpactRecord) -> f64| {
-        let ((fc, fg), (hc, hg)): ((Vec<f64>, Vec<f64>), (Vec<f64>, Vec<f64>)) = (at(&seen.records, value), at(&coarse, value));
+        let ((fc, fg), (hc, hg)) = (at(&seen.records, value), at(&coarse, value));
         let (change, se) = paired_by_pairs((&hc, &hg), (&fc, &fg));
         let shown = (r.resolution.unwrap(), r.resolution_error.unwrap());
         assert!((shown.0 - change).abs() < EXACT, "{} {}: {} against {change}", r.channel, r.feature.key(), shown.0);

@@ -106,7 +106,7 @@ impl Truncation {
         match &self.rows {
             None => all.iter().zip(&half).map(|(s, h)| self.shift(s.auc.auc, (s.auc.auc, h.auc.auc), 0.0)).collect(),
             Some(_) => {
-                let changes = column_changes(&self.half.table, &self.main(main).table, self.population);
+                let changes = column_changes(&self.half.table, &self.main(main).table, self.population, None);
                 changes.iter().map(|&(change, error)| Shift { change, error: Some(error) }).collect()
             }
         }
@@ -127,26 +127,42 @@ impl Truncation {
 
     /// How well subsamples of [`COVERAGE_FRACTIONS`] of `counts` would have stood for this
     /// check on every impact, whose shifts are `shifts` (every entry's, channel-major) and
-    /// whose ranking shows `top`; none if the check itself ran on a subsample.
+    /// whose ranking shows `top`, over the columns of the `stated` channels (the named
+    /// sensors' and the supports') and of `top`; none if the check itself ran on a
+    /// subsample.
     pub fn coverage(
         &self,
         main: &ConditionRun,
-        counts: &[usize],
+        (counts, stated): (&[usize], &[usize]),
         (top, shifts): (&[Separability], &[Shift]),
         seed: u64,
     ) -> Vec<SubsampleCheck> {
         if self.rows.is_some() {
             return Vec::new();
         }
+        let column = |s: &Separability| s.channel * FEATURES.len() + s.feature.index();
+        let mut columns: Vec<usize> =
+            stated.iter().flat_map(|c| c * FEATURES.len()..(c + 1) * FEATURES.len()).collect();
+        columns.extend(top.iter().map(column));
+        columns.sort_unstable();
+        columns.dedup();
         let tables = (&self.half.table, &main.table);
-        let whole = column_changes(tables.0, tables.1, self.population);
+        let whole = column_changes(tables.0, tables.1, self.population, Some(&columns));
+        let top: Vec<(usize, f64, bool)> = (top.iter())
+            .map(|s| {
+                let at = columns.binary_search(&column(s)).unwrap_or_default();
+                let se = s.auc.standard_error;
+                (at, se, resolved(shifts[column(s)].change, se))
+            })
+            .collect();
         COVERAGE_FRACTIONS
             .iter()
             .map(|&fraction| {
-                let samples = sampled_changes(tables, counts, fraction, (COVERAGE_REPEATS, seed ^ COVERAGE_KEY));
+                let key = (COVERAGE_REPEATS, seed ^ COVERAGE_KEY);
+                let samples = sampled_changes(tables, (counts, Some(&columns)), fraction, key);
                 SubsampleCheck {
                     coverage: Coverage::of(&whole, &samples, fraction, super::AUC_RESOLUTION),
-                    same_verdict: same_verdicts(&samples, top, shifts),
+                    same_verdict: same_verdicts(&samples, &top),
                 }
             })
             .collect()
@@ -154,15 +170,14 @@ impl Truncation {
 }
 
 /// The share of (subsample, entry of `top`) pairs whose verdict (the truncation moves the
-/// AUC by less than its error or the resolution, [`resolved`]) is that of the whole
-/// ensemble's `shifts`.
-fn same_verdicts(samples: &[Sampled], top: &[Separability], shifts: &[Shift]) -> f64 {
+/// AUC by less than its error or the resolution, [`resolved`]) is the whole ensemble's; each
+/// entry of `top` is its position among the samples' columns, its AUC's standard error and
+/// the whole ensemble's verdict.
+fn same_verdicts(samples: &[Sampled], top: &[(usize, f64, bool)]) -> f64 {
     let (mut same, mut all) = (0usize, 0usize);
     for sample in samples {
-        for s in top {
-            let c = s.channel * FEATURES.len() + s.feature.index();
-            let se = s.auc.standard_error;
-            same += usize::from(resolved(sample.changes[c].0, se) == resolved(shifts[c].change, se));
+        for &(at, se, whole) in top {
+            same += usize::from(resolved(sample.changes[at].0, se) == whole);
             all += 1;
         }
     }

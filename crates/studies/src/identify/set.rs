@@ -63,7 +63,9 @@ pub(super) fn run_set(
     let groups = classifiers::groups(&infos, sep.best_sensor, sep.converged, settings.sensors.len());
     let checked = check.rows.as_ref().map(|_| check.main(&main).into_owned());
     let classifiers = classifiers::accuracies(&main, (checked.as_ref(), &check.half), groups, seed)?;
-    let truncation_check = truncation_check(&check, &main, study, &sep, seed);
+    let stated: Vec<usize> =
+        (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < settings.sensors.len())).collect();
+    let truncation_check = truncation_check(&check, (&main, &stated), study, &sep, seed);
     let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
     let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
     let top = best(&sep.all, &[]).map(|s| s.channel);
@@ -110,10 +112,11 @@ pub(super) fn run_set(
 }
 
 /// What the check of the modal truncation struck again, and how well subsamples would have
-/// stood for it.
+/// stood for it on the `stated` channels of `main` (the named sensors' and the supports')
+/// and the ranking's entries.
 fn truncation_check(
     check: &Truncation,
-    main: &ConditionRun,
+    (main, stated): (&ConditionRun, &[usize]),
     study: &Study,
     sep: &Separation,
     seed: u64,
@@ -123,7 +126,7 @@ fn truncation_check(
     TruncationCheck {
         impacts: check.half.table.len(),
         of: main.table.len(),
-        coverage: check.coverage(main, &counts, (&top, &sep.shifts), seed),
+        coverage: check.coverage(main, (&counts, stated), (&top, &sep.shifts), seed),
     }
 }
 
