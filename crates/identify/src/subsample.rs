@@ -65,7 +65,7 @@ pub fn column_changes(
     population: usize,
     columns: Option<&[usize]>,
 ) -> Vec<(f64, f64)> {
-    let correction = (1.0 - a.len() as f64 / population.max(1) as f64).max(0.0).sqrt();
+    let correction = population_correction(a.len(), population);
     let all: Vec<usize>;
     let columns = match columns {
         Some(c) => c,
@@ -83,6 +83,13 @@ pub fn column_changes(
             (change, se * correction)
         })
         .collect()
+}
+
+/// √(1 − n/N), the finite population correction of the standard error of a mean over a
+/// simple random sample of n of N items (Cochran 1977, eq. 2.8); 0 when the sample is all
+/// of them.
+pub fn population_correction(n: usize, population: usize) -> f64 {
+    (1.0 - n as f64 / population.max(1) as f64).max(0.0).sqrt()
 }
 
 /// The [`column_changes`] of `columns` in `repeats` stratified subsamples of `fraction` of

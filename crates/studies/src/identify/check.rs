@@ -16,7 +16,7 @@ use crate::Failure;
 use coupled::identification::{ConditionRun, Impacts};
 use identify::features::FEATURES;
 use identify::placement::Separability;
-use identify::subsample::{column_changes, sampled_changes, stratified, Coverage, Sampled};
+use identify::subsample::{column_changes, population_correction, sampled_changes, stratified, Coverage, Sampled};
 use identify::Study;
 use scene::{Scene, SupportSet};
 use serde::Serialize;
@@ -120,7 +120,7 @@ impl Truncation {
         let (cc, cg) = split(&checked);
         let (hc, hg) = split(&self.half);
         let (change, se) = identify::roc::paired_difference((&hc, &hg), (&cc, &cg));
-        let correction = (1.0 - checked.table.len() as f64 / self.population.max(1) as f64).max(0.0).sqrt();
+        let correction = population_correction(checked.table.len(), self.population);
         let half = identify::roc::auc_with_error(&hc, &hg).auc;
         self.shift(auc, (half + change, half), se * correction)
     }
