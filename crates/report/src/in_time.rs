@@ -88,6 +88,22 @@ pub struct Prose<'a> {
     pub checked: &'a str,
 }
 
+/// The modes' damping in words, with where it comes from.
+fn damping_words(d: coupled::reduced::ModalDamping) -> String {
+    match d {
+        coupled::reduced::ModalDamping::Ratio(z) => {
+            let percent = format!("{:.4}", 100.0 * z);
+            let percent = percent.trim_end_matches('0').trim_end_matches('.');
+            format!("ζ = {percent} % (the scene's `[signals] damping_ratio`, 0.5 % unless given)")
+        }
+        coupled::reduced::ModalDamping::Rayleigh(r) => format!(
+            "Rayleigh's ζᵢ = α/(2ωᵢ) + βωᵢ/2 with α = {} 1/s and β = {} s (the scene's `[plate_damping]`)",
+            sig(r.alpha, 3),
+            sig(r.beta, 3)
+        ),
+    }
+}
+
 /// The section's text with `table`.
 pub fn section(t: &InTime, b: &Beside<'_>, p: &Prose<'_>, table: &Table) -> Result<String, Failure> {
     Ok(render(
@@ -97,7 +113,7 @@ pub fn section(t: &InTime, b: &Beside<'_>, p: &Prose<'_>, table: &Table) -> Resu
             ("mesh", p.mesh.into()),
             ("unknowns", t.unknowns.to_string()),
             ("modes", t.modes.to_string()),
-            ("zeta", format!("{} %", 100.0 * t.damping_ratio)),
+            ("damping", damping_words(t.damping)),
             ("half", (t.modes / 2).to_string()),
             ("f1", sig(t.frequencies.0, 4)),
             ("fn", sig(t.frequencies.1, 4)),

@@ -20,7 +20,7 @@
 use crate::Failure;
 use coupled::plan::scene_striker;
 use coupled::reduced::structure::{Readings, StructureImpact, StructureModel, StructureSettings};
-use coupled::reduced::ReducedSettings;
+use coupled::reduced::ModalDamping;
 use plate_fem::shell::{Restraints, ShellMass, Spring, Structure};
 use scene::Scene;
 use serde::Serialize;
@@ -73,8 +73,8 @@ pub struct InTime {
     pub unknowns: usize,
     /// Modes kept.
     pub modes: usize,
-    /// The modes' damping ratio ζ.
-    pub damping_ratio: f64,
+    /// The modes' damping: the scene's (`[signals] damping_ratio` or `[plate_damping]`).
+    pub damping: ModalDamping,
     /// The lowest and the highest kept mode's frequency, Hz.
     pub frequencies: (f64, f64),
     /// The window: one fundamental period, s.
@@ -112,8 +112,12 @@ pub fn modes_for(free: usize, massive: usize) -> usize {
 
 /// The models of the middle mesh `fine` (with its unknowns) and the coarser `coarse`, on the
 /// same number of modes ([`modes_for`] of both), with the lumped mass of steel of density
-/// `rho`.
-pub fn models(fine: &OnMesh, coarse: &OnMesh, rho: f64) -> Result<((StructureModel, usize), StructureModel), Failure> {
+/// `rho`, the modes damped by `damping`.
+pub fn models(
+    fine: &OnMesh,
+    coarse: &OnMesh,
+    (rho, damping): (f64, ModalDamping),
+) -> Result<((StructureModel, usize), StructureModel), Failure> {
     let masses = [ShellMass::lumped(&fine.structure, rho), ShellMass::lumped(&coarse.structure, rho)];
     let sizes = [masses[0].free_dofs(&fine.restraints), masses[1].free_dofs(&coarse.restraints)];
     let modes = sizes.iter().map(|&(free, massive)| modes_for(free, massive)).min().unwrap_or(0);
@@ -123,7 +127,7 @@ pub fn models(fine: &OnMesh, coarse: &OnMesh, rho: f64) -> Result<((StructureMod
         )
         .into());
     }
-    let settings = StructureSettings { modes, ..StructureSettings::default() };
+    let settings = StructureSettings { modes, damping, ..StructureSettings::default() };
     let model = |m: &OnMesh, mass: &ShellMass| -> Result<(StructureModel, usize), Failure> {
         let fact = m.structure.factorize(&m.restraints)?;
         Ok((
@@ -186,7 +190,7 @@ pub fn compute(
         level: IN_TIME_LEVEL,
         unknowns,
         modes: f.len(),
-        damping_ratio: ReducedSettings::DEFAULT_DAMPING_RATIO,
+        damping: fine.damping(),
         frequencies: (f[0], f[f.len() - 1]),
         window,
         rows,

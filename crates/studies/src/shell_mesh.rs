@@ -142,7 +142,8 @@ fn in_time_of(scene: &Scene, sm: &ShellMeshScene, thickness: f64, rows: &[ShellM
     for _ in 0..IN_TIME_LEVEL {
         fine_mesh = fine_mesh.refined();
     }
-    let (fine, coarse) = crate::in_time::models(&on(&fine_mesh)?, &on(&sm.mesh)?, rho)?;
+    let (fine, coarse) =
+        crate::in_time::models(&on(&fine_mesh)?, &on(&sm.mesh)?, (rho, scene.signals.reduced().damping()))?;
     let impacts = rows
         .iter()
         .map(|r| {

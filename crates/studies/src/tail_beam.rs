@@ -243,7 +243,8 @@ fn in_time_of(scene: &Scene, tb: &TailBeamScene, rows: &[TailBeamRow]) -> Result
         let groups = built.jack_groups();
         Ok(OnMesh { structure: built.structure, restraints: built.restraints, loads, groups })
     };
-    let (fine, coarse) = crate::in_time::models(&on(IN_TIME_LEVEL)?, &on(IN_TIME_LEVEL - 1)?, rho)?;
+    let (fine, coarse) =
+        crate::in_time::models(&on(IN_TIME_LEVEL)?, &on(IN_TIME_LEVEL - 1)?, (rho, scene.signals.reduced().damping()))?;
     let impacts = rows
         .iter()
         .map(|r| {

@@ -215,6 +215,11 @@ impl StructureModel {
         })
     }
 
+    /// How the modes are damped.
+    pub fn damping(&self) -> ModalDamping {
+        self.settings.damping
+    }
+
     /// The modes' frequencies, Hz.
     pub fn frequencies_hz(&self) -> Vec<f64> {
         self.omega.iter().map(|w| w / std::f64::consts::TAU).collect()
