@@ -28,15 +28,22 @@ use rayon::prelude::*;
 /// z of a two-sided 95 % normal interval.
 const Z95: f64 = 1.959_963_984_540_054;
 
+/// Impacts a subsample keeps of each family at the least (all of a smaller one): DeLong's
+/// variance needs two of a class.
+pub const MIN_PER_FAMILY: usize = 2;
+
 /// The indices (into 0..Σcounts, families one after the other) of a stratified random
-/// subsample: ⌈`fraction`·count⌉ of each family (at least one, at most all), in increasing
-/// order, chosen by the uniforms of stream `stream` of `seed`. `fraction` is within (0, 1].
+/// subsample: ⌈`fraction`·count⌉ of each family (at least [`MIN_PER_FAMILY`], at most all),
+/// in increasing order, chosen by the uniforms of stream `stream` of `seed`. `fraction` is
+/// within (0, 1].
 pub fn stratified(counts: &[usize], fraction: f64, seed: u64, stream: usize) -> Vec<usize> {
     let mut rng = impact_stream(seed, stream);
     let mut out = Vec::new();
     let mut first = 0;
     for &count in counts {
-        let keep = ((fraction * count as f64).ceil() as usize).clamp(count.min(1), count);
+        // fraction·count rounds up to the next whole impact, not past a whole one it hits.
+        let share = (fraction * count as f64 * (1.0 - 1e-12)).ceil() as usize;
+        let keep = share.clamp(count.min(MIN_PER_FAMILY), count);
         let mut taken = 0;
         for t in 0..count {
             if taken == keep {
@@ -181,16 +188,18 @@ mod tests {
 
     #[test]
     fn each_family_keeps_its_share_in_order() {
-        let counts = [10, 7, 0, 1];
+        let counts = [10, 7, 0, 1, 20];
         let rows = stratified(&counts, 0.3, 5, 0);
-        // ⌈3⌉, ⌈2.1⌉, none of none, at least one of one.
-        let per: Vec<usize> = [(0, 10), (10, 17), (17, 17), (17, 18)]
+        // ⌈3⌉, ⌈2.1⌉, none of none, the one of one, 0.3·20 = 6 exactly (not 7).
+        let per: Vec<usize> = [(0, 10), (10, 17), (17, 17), (17, 18), (18, 38)]
             .iter()
             .map(|&(lo, hi)| rows.iter().filter(|&&i| i >= lo && i < hi).count())
             .collect();
-        assert_eq!(per, vec![3, 3, 0, 1]);
+        assert_eq!(per, vec![3, 3, 0, 1, 6]);
         assert!(rows.windows(2).all(|w| w[0] < w[1]));
-        assert_eq!(stratified(&counts, 1.0, 5, 0), (0..18).collect::<Vec<_>>());
+        assert_eq!(stratified(&counts, 1.0, 5, 0), (0..38).collect::<Vec<_>>());
+        // At least two of a family, so that each class has a variance.
+        assert_eq!(stratified(&[100], 0.001, 5, 0).len(), MIN_PER_FAMILY);
     }
 
     #[test]

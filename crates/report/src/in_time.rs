@@ -90,12 +90,16 @@ pub struct Prose<'a> {
 
 /// The modes' damping in words, with where it comes from.
 fn damping_words(d: coupled::reduced::ModalDamping) -> String {
+    let percent = |z: f64| {
+        let text = format!("{:.4}", 100.0 * z);
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
     match d {
-        coupled::reduced::ModalDamping::Ratio(z) => {
-            let percent = format!("{:.4}", 100.0 * z);
-            let percent = percent.trim_end_matches('0').trim_end_matches('.');
-            format!("ζ = {percent} % (the scene's `[signals] damping_ratio`, 0.5 % unless given)")
-        }
+        coupled::reduced::ModalDamping::Ratio(z) => format!(
+            "ζ = {} % (the scene's `[signals] damping_ratio`, {} % unless given)",
+            percent(z),
+            percent(coupled::reduced::ReducedSettings::DEFAULT_DAMPING_RATIO)
+        ),
         coupled::reduced::ModalDamping::Rayleigh(r) => format!(
             "Rayleigh's ζᵢ = α/(2ωᵢ) + βωᵢ/2 with α = {} 1/s and β = {} s (the scene's `[plate_damping]`)",
             sig(r.alpha, 3),
@@ -133,4 +137,21 @@ pub fn section(t: &InTime, b: &Beside<'_>, p: &Prose<'_>, table: &Table) -> Resu
 pub fn part(t: &InTime, b: &Beside<'_>, p: &Prose<'_>) -> Result<(String, String), Failure> {
     let table = table(t, b);
     Ok((table.to_csv(), section(t, b, p, &table)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::damping_words;
+    use coupled::reduced::ModalDamping;
+    use plate_fem::dynamics::Rayleigh;
+
+    #[test]
+    fn the_damping_is_named_with_its_source() {
+        assert_eq!(
+            damping_words(ModalDamping::Ratio(0.007)),
+            "ζ = 0.7 % (the scene's `[signals] damping_ratio`, 0.5 % unless given)"
+        );
+        let r = damping_words(ModalDamping::Rayleigh(Rayleigh { alpha: 12.5, beta: 2e-7 }));
+        assert!(r.contains("α = 12.5 1/s") && r.contains("β = 2.00e-7 s") && r.contains("[plate_damping]"), "{r}");
+    }
 }

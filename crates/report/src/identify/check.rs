@@ -14,7 +14,7 @@ const SAMPLE: &str = include_str!("../templates/identify/check-sample.md");
 pub(super) fn markdown(r: &ConditionResult, modes: usize) -> Result<String, Failure> {
     let c = &r.truncation_check;
     let half_modes = (modes / 2).max(1).to_string();
-    if c.impacts < c.of {
+    if c.sampled {
         return Ok(render(
             "identify/check-sample.md",
             SAMPLE,
@@ -22,7 +22,7 @@ pub(super) fn markdown(r: &ConditionResult, modes: usize) -> Result<String, Fail
                 ("impacts", c.impacts.to_string()),
                 ("of", c.of.to_string()),
                 ("half_modes", half_modes),
-                ("fraction", sig(c.impacts as f64 / c.of.max(1) as f64, 3)),
+                ("fraction", analytic::params::compact(c.fraction)),
             ],
         )?);
     }

@@ -58,26 +58,7 @@ pub(super) fn validate_signals(
         None => d.damping_ratio,
     };
     let (modes, modes_from_chain) = modes(raw.modes.as_ref(), on_plate.then_some((l_mm, b_mm)))?;
-    let sensors = match &raw.sensors_mm {
-        None => Vec::new(),
-        Some(list) => {
-            if list.len() > limits::MAX_SENSORS {
-                return Err(other(
-                    "signals.sensors_mm",
-                    format!("{} sensors; at most {} are allowed", list.len(), limits::MAX_SENSORS),
-                ));
-            }
-            let (along, across) = (Range::closed(0.0, l_mm), Range::closed(0.0, b_mm));
-            let mut out = Vec::with_capacity(list.len());
-            for (j, pair) in list.iter().enumerate() {
-                let (x, z) = super::pair(&format!("signals.sensors_mm[{j}]"), pair, "[x, z]")?;
-                let x = check(&format!("signals.sensors_mm[{j}][0] (x)"), x, along, "mm")? * MM;
-                let z = check(&format!("signals.sensors_mm[{j}][1] (z)"), z, across, "mm")? * MM;
-                out.push((x, z));
-            }
-            out
-        }
-    };
+    let sensors = sensors(raw.sensors_mm.as_deref(), (l_mm, b_mm))?;
     check_sensors(&sensors, samples)?;
     let truncation_check = match raw.truncation_check_fraction {
         Some(f) => check("signals.truncation_check_fraction", f, limits::TRUNCATION_CHECK, "")?,
@@ -93,6 +74,27 @@ pub(super) fn validate_signals(
         sensors,
         truncation_check,
     })
+}
+
+/// `signals.sensors_mm`: at most [`limits::MAX_SENSORS`] points (x, z) on the plate of
+/// `(l_mm, b_mm)`, in m.
+fn sensors(list: Option<&[Vec<f64>]>, (l_mm, b_mm): (f64, f64)) -> Result<Vec<(f64, f64)>, Invalid> {
+    let Some(list) = list else { return Ok(Vec::new()) };
+    if list.len() > limits::MAX_SENSORS {
+        return Err(other(
+            "signals.sensors_mm",
+            format!("{} sensors; at most {} are allowed", list.len(), limits::MAX_SENSORS),
+        ));
+    }
+    let (along, across) = (Range::closed(0.0, l_mm), Range::closed(0.0, b_mm));
+    let mut out = Vec::with_capacity(list.len());
+    for (j, pair) in list.iter().enumerate() {
+        let (x, z) = super::pair(&format!("signals.sensors_mm[{j}]"), pair, "[x, z]")?;
+        let x = check(&format!("signals.sensors_mm[{j}][0] (x)"), x, along, "mm")? * MM;
+        let z = check(&format!("signals.sensors_mm[{j}][1] (z)"), z, across, "mm")? * MM;
+        out.push((x, z));
+    }
+    Ok(out)
 }
 
 /// `signals.modes`: a whole number within [`limits::MODES`] and, on a plate of `plate_mm`

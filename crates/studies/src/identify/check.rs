@@ -10,7 +10,8 @@
 //! is the subsample's, with DeLong's paired error times the finite population correction.
 
 use super::ensemble::half_modes;
-use super::resolved;
+use super::separability::Separation;
+use super::{resolved, TruncationCheck, TOP};
 use crate::progress::Progress;
 use crate::Failure;
 use coupled::identification::{ConditionRun, Impacts};
@@ -20,7 +21,6 @@ use identify::subsample::{column_changes, population_correction, sampled_changes
 use identify::Study;
 use scene::{Scene, SupportSet};
 use serde::Serialize;
-use std::borrow::Cow;
 
 /// The fractions whose subsamples the coverage study draws.
 pub const COVERAGE_FRACTIONS: [f64; 3] = [0.1, 0.25, 0.5];
@@ -38,10 +38,11 @@ pub fn set_seed(ensemble_seed: u64, index: usize) -> u64 {
 }
 
 /// The impacts the check strikes again on the support set of seed `seed` ([`set_seed`]):
-/// None for all of them (a `fraction` of 1), else the stratified subsample of `fraction` of
-/// each family of `counts`.
+/// the stratified subsample of `fraction` of each family of `counts`, or None where that is
+/// every impact.
 pub fn checked_impacts(fraction: f64, counts: &[usize], seed: u64) -> Option<Vec<usize>> {
-    (fraction < 1.0).then(|| stratified(counts, fraction, seed ^ SAMPLE_KEY, 0))
+    let rows = stratified(counts, fraction, seed ^ SAMPLE_KEY, 0);
+    (rows.len() < counts.iter().sum()).then_some(rows)
 }
 
 /// The change of one AUC from N/2 to N modes, with its error as an estimate of the whole
@@ -60,106 +61,125 @@ pub struct Truncation {
     pub rows: Option<Vec<usize>>,
     /// Those impacts on N/2 modes.
     pub half: ConditionRun,
-    /// The ensemble's size.
-    population: usize,
+    /// Those impacts of the main run, when a subsample.
+    checked: Option<ConditionRun>,
+    /// The scene's share.
+    fraction: f64,
+    /// Each family's impacts in the ensemble.
+    counts: Vec<usize>,
 }
 
 impl Truncation {
-    /// The impacts the scene's `signals.truncation_check_fraction` selects
-    /// ([`checked_impacts`] of `seed`), struck on the model of `set` with half its modes at
-    /// `sensors`.
+    /// The impacts of `main` (the set's main run) that the scene's
+    /// `signals.truncation_check_fraction` selects ([`checked_impacts`] of `seed`), struck on
+    /// the model of `set` with half its modes at `sensors`.
     pub fn run(
         scene: &Scene,
-        study: &Study,
+        (study, main): (&Study, &ConditionRun),
         (set, sensors): (&SupportSet, &[(f64, f64)]),
         seed: u64,
         progress: &dyn Progress,
     ) -> Result<Self, Failure> {
         let counts: Vec<usize> = study.ensemble.families.iter().map(|f| f.count).collect();
-        let rows = checked_impacts(scene.signals.truncation_check, &counts, seed);
+        let fraction = scene.signals.truncation_check;
+        let rows = checked_impacts(fraction, &counts, seed);
         let impacts = rows.as_deref().map_or(Impacts::All, Impacts::Only);
         let half = half_modes(scene, (study, impacts), set, sensors, progress)?;
-        Ok(Self { rows, half, population: study.ensemble.len() })
+        let checked = rows.as_deref().map(|r| main.select(r));
+        Ok(Self { rows, half, checked, fraction, counts })
     }
 
     /// The main run's impacts that were struck again: all of `main`, or its subsample.
-    pub fn main<'a>(&self, main: &'a ConditionRun) -> Cow<'a, ConditionRun> {
-        match &self.rows {
-            None => Cow::Borrowed(main),
-            Some(rows) => Cow::Owned(main.select(rows)),
-        }
+    pub fn main<'a>(&'a self, main: &'a ConditionRun) -> &'a ConditionRun {
+        self.checked.as_ref().unwrap_or(main)
     }
 
-    /// The shift of `auc` (the main run's AUC of a quantity) given the same quantity's AUC on
-    /// the checked impacts at N modes (`checked`) and at N/2 (`half`), with the paired
-    /// `error` on a subsample.
-    fn shift(&self, auc: f64, (checked, half): (f64, f64), error: f64) -> Shift {
-        match self.rows {
-            None => Shift { change: auc - half, error: None },
-            Some(_) => Shift { change: checked - half, error: Some(error) },
-        }
+    /// Whether the check struck only some of the impacts again.
+    pub fn sampled(&self) -> bool {
+        self.rows.is_some()
     }
 
-    /// The shift of every entry of `all` (the main run's separabilities, channel-major).
-    pub fn shifts(&self, main: &ConditionRun, all: &[Separability]) -> Vec<Shift> {
+    /// √(1 − n/N) for the impacts struck again ([`population_correction`]).
+    fn correction(&self) -> f64 {
+        population_correction(self.half.table.len(), self.counts.iter().sum())
+    }
+
+    /// The shift of every entry of `all` (the main run's separabilities, channel-major): on
+    /// every impact the difference of the two runs' AUCs, on a subsample the subsample's
+    /// paired difference with its error.
+    pub fn shifts(&self, all: &[Separability]) -> Vec<Shift> {
+        if let Some(checked) = &self.checked {
+            let changes = column_changes(&self.half.table, &checked.table, self.counts.iter().sum(), None);
+            return changes.iter().map(|&(change, error)| Shift { change, error: Some(error) }).collect();
+        }
         let half = identify::placement::separabilities(&self.half.table);
-        match &self.rows {
-            None => all.iter().zip(&half).map(|(s, h)| self.shift(s.auc.auc, (s.auc.auc, h.auc.auc), 0.0)).collect(),
-            Some(_) => {
-                let changes = column_changes(&self.half.table, &self.main(main).table, self.population, None);
-                changes.iter().map(|&(change, error)| Shift { change, error: Some(error) }).collect()
-            }
-        }
+        all.iter().zip(&half).map(|(s, h)| Shift { change: s.auc.auc - h.auc.auc, error: None }).collect()
     }
 
     /// The shift of a per-impact quantity of the runs (`of` picks it) whose main-run AUC is
     /// `auc`.
-    pub fn shift_of(&self, main: &ConditionRun, auc: f64, of: impl Fn(&ConditionRun) -> &[f64]) -> Shift {
-        let checked = self.main(main);
+    pub fn shift_of(&self, auc: f64, of: impl Fn(&ConditionRun) -> &[f64]) -> Shift {
         let split = |run: &ConditionRun| super::separability::split(of(run), run.table.classes());
-        let (cc, cg) = split(&checked);
         let (hc, hg) = split(&self.half);
-        let (change, se) = identify::roc::paired_difference((&hc, &hg), (&cc, &cg));
-        let correction = population_correction(checked.table.len(), self.population);
-        let half = identify::roc::auc_with_error(&hc, &hg).auc;
-        self.shift(auc, (half + change, half), se * correction)
+        match &self.checked {
+            None => Shift { change: auc - identify::roc::auc_with_error(&hc, &hg).auc, error: None },
+            Some(checked) => {
+                let (cc, cg) = split(checked);
+                let (change, se) = identify::roc::paired_difference((&hc, &hg), (&cc, &cg));
+                Shift { change, error: Some(se * self.correction()) }
+            }
+        }
     }
 
-    /// How well subsamples of [`COVERAGE_FRACTIONS`] of `counts` would have stood for this
-    /// check on every impact, whose shifts are `shifts` (every entry's, channel-major) and
-    /// whose ranking shows `top`, over the columns of the `stated` channels (the named
-    /// sensors' and the supports') and of `top`; none if the check itself ran on a
-    /// subsample.
-    pub fn coverage(
+    /// What the check struck again and, on every impact, how well subsamples of
+    /// [`COVERAGE_FRACTIONS`] would have stood for it over the columns of the `stated`
+    /// channels of `main` (the named sensors' and the supports') and of the [`TOP`] entries
+    /// of `sep`'s ranking.
+    pub fn summary(
+        &self,
+        (main, stated): (&ConditionRun, &[usize]),
+        sep: &Separation<'_>,
+        seed: u64,
+    ) -> TruncationCheck {
+        let top: Vec<Separability> = sep.order.iter().take(TOP).copied().collect();
+        let coverage = if self.sampled() { Vec::new() } else { self.coverage(main, stated, (&top, &sep.shifts), seed) };
+        TruncationCheck {
+            impacts: self.half.table.len(),
+            of: main.table.len(),
+            fraction: self.fraction,
+            sampled: self.sampled(),
+            coverage,
+        }
+    }
+
+    /// The coverage study of [`Truncation::summary`].
+    fn coverage(
         &self,
         main: &ConditionRun,
-        (counts, stated): (&[usize], &[usize]),
+        stated: &[usize],
         (top, shifts): (&[Separability], &[Shift]),
         seed: u64,
     ) -> Vec<SubsampleCheck> {
-        if self.rows.is_some() {
-            return Vec::new();
-        }
         let column = |s: &Separability| s.channel * FEATURES.len() + s.feature.index();
         let mut columns: Vec<usize> =
             stated.iter().flat_map(|c| c * FEATURES.len()..(c + 1) * FEATURES.len()).collect();
         columns.extend(top.iter().map(column));
         columns.sort_unstable();
         columns.dedup();
-        let tables = (&self.half.table, &main.table);
-        let whole = column_changes(tables.0, tables.1, self.population, Some(&columns));
+        let whole: Vec<(f64, f64)> = columns.iter().map(|&c| (shifts[c].change, 0.0)).collect();
         let top: Vec<(usize, f64, bool)> = (top.iter())
             .map(|s| {
-                let at = columns.binary_search(&column(s)).unwrap_or_default();
+                let at = columns.binary_search(&column(s)).expect("every ranked entry's column is compared");
                 let se = s.auc.standard_error;
                 (at, se, resolved(shifts[column(s)].change, se))
             })
             .collect();
+        let tables = (&self.half.table, &main.table);
         COVERAGE_FRACTIONS
             .iter()
             .map(|&fraction| {
                 let key = (COVERAGE_REPEATS, seed ^ COVERAGE_KEY);
-                let samples = sampled_changes(tables, (counts, Some(&columns)), fraction, key);
+                let samples = sampled_changes(tables, (&self.counts, Some(&columns)), fraction, key);
                 SubsampleCheck {
                     coverage: Coverage::of(&whole, &samples, fraction, super::AUC_RESOLUTION),
                     same_verdict: same_verdicts(&samples, &top),

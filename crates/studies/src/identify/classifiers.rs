@@ -3,6 +3,7 @@
 //! folds. The groups: the best sensor, the reference feature's sensor, the corners, and
 //! everything a named instrument records.
 
+use super::check::Truncation;
 use super::Accuracy;
 use crate::channel::{mm, ChannelInfo};
 use crate::Failure;
@@ -55,7 +56,7 @@ pub fn groups(
         ));
     }
     if named > 0 {
-        let channels: Vec<usize> = (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect();
+        let channels = super::sensors::stated_channels(infos, named);
         groups.push((
             format!(
                 "every named sensor and corner channel ({} channels) × {} features",
@@ -68,22 +69,22 @@ pub fn groups(
     groups
 }
 
-/// Each group's accuracy on `run`, and its change from N/2 to N modes: on `checked` (the
-/// impacts of `run` struck again, None if all) against `half` (them on N/2 modes); the k-th
-/// group's folds dealt by the stream of `seed ^ (3 + k)`.
+/// Each group's accuracy on `run`, and its change from N/2 to N modes on the impacts the
+/// `check` struck again; the k-th group's folds dealt by the stream of `seed ^ (3 + k)`.
 pub fn accuracies(
     run: &ConditionRun,
-    (checked, half): (Option<&ConditionRun>, &ConditionRun),
+    check: &Truncation,
     groups: Vec<Group>,
     seed: u64,
 ) -> Result<Vec<Accuracy>, Failure> {
     let mut out = Vec::new();
     for (k, (features, chans)) in groups.into_iter().enumerate() {
         let result = classifier(&run.table, &chans, seed ^ (3 + k as u64))?;
-        let coarse = classifier(&half.table, &chans, seed ^ (3 + k as u64))?;
-        let fine = match checked {
-            None => result.accuracy,
-            Some(c) => classifier(&c.table, &chans, seed ^ (3 + k as u64))?.accuracy,
+        let coarse = classifier(&check.half.table, &chans, seed ^ (3 + k as u64))?;
+        let fine = if check.sampled() {
+            classifier(&check.main(run).table, &chans, seed ^ (3 + k as u64))?.accuracy
+        } else {
+            result.accuracy
         };
         out.push(Accuracy { features, result, resolution: fine - coarse.accuracy });
     }

@@ -63,6 +63,10 @@ pub struct TruncationCheck {
     pub impacts: usize,
     /// Impacts of the main run.
     pub of: usize,
+    /// The scene's `signals.truncation_check_fraction`.
+    pub fraction: f64,
+    /// Whether only some impacts were struck again (a share below 1 may keep them all).
+    pub sampled: bool,
     /// With every impact struck again, how well subsamples of each of
     /// [`check::COVERAGE_FRACTIONS`] would have stood for the check (empty otherwise).
     pub coverage: Vec<check::SubsampleCheck>,

@@ -55,6 +55,12 @@ pub fn run_sensors(named: &[(f64, f64)], study: &Study, plate: &analytic::Plate)
     (sensors, grid)
 }
 
+/// The channels of `infos` at the first `named` sensors (the scene's named ones) and at the
+/// supports: what a user states, as against the candidate grid's.
+pub fn stated_channels(infos: &[ChannelInfo], named: usize) -> Vec<usize> {
+    (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < named)).collect()
+}
+
 /// Bytes of features one run holds: [`FEATURES`] of 8 bytes each per impact and channel.
 pub fn feature_bytes(impacts: usize, channels: usize) -> usize {
     impacts.saturating_mul(channels).saturating_mul(FEATURES.len() * 8)

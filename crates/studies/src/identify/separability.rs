@@ -50,7 +50,7 @@ pub fn contact_quantities(run: &ConditionRun, check: &Truncation, seed: u64) -> 
     let classes = run.table.classes();
     let score = |name: &str, feature: &'static dyn Feature, of: fn(&ConditionRun) -> &[f64], seed: u64| {
         let (c, g) = split(of(run), classes);
-        let shift = check.shift_of(run, auc_with_error(&c, &g).auc, of);
+        let shift = check.shift_of(auc_with_error(&c, &g).auc, of);
         ranked(name.into(), feature, (&c, &g), Some(shift), seed)
     };
     let force_max = score("contact force P_max", &Peak, |r| &r.force_max, seed ^ 1);
@@ -82,7 +82,7 @@ impl<'a> Separation<'a> {
     /// modes (`check`); bootstrap streams derive from `seed`.
     pub fn new(run: &'a ConditionRun, check: &Truncation, infos: &'a [ChannelInfo], seed: u64) -> Self {
         let all = separabilities(&run.table);
-        let shifts = check.shifts(run, &all);
+        let shifts = check.shifts(&all);
         let mut order = all.clone();
         order.sort_by(|a, b| b.auc.separability().total_cmp(&a.auc.separability()).then(a.channel.cmp(&b.channel)));
         let shift = |s: &Separability| shifts[s.channel * FEATURES.len() + s.feature.index()].change;

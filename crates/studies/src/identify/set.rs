@@ -3,11 +3,11 @@
 
 use super::check::Truncation;
 use super::ensemble::run;
-use super::sensors::{channel_infos, no_channels, run_sensors, spec};
+use super::sensors::{channel_infos, no_channels, run_sensors, spec, stated_channels};
 use super::separability::{contact_quantities, split, Separation};
 use super::{
     baselines, classifiers, full_model, measured, placement, variability, ClassValues, ConditionDetail,
-    ConditionResult, MainImpact, SensorDesign, Sink, TruncationCheck, TOP,
+    ConditionResult, MainImpact, SensorDesign, Sink,
 };
 use crate::channel::ChannelInfo;
 use crate::progress::Progress;
@@ -56,16 +56,12 @@ pub(super) fn run_set(
     let full_model = full_model::check(scene, study, set, &instrument)?;
 
     let seed = super::check::set_seed(e.seed, index);
-    let check = Truncation::run(scene, study, (set, &sensors), seed, progress)?;
-    let feature_bytes = held_bytes(&main, &check.half, infos.len());
+    let check = Truncation::run(scene, (study, &main), (set, &sensors), seed, progress)?;
     let sep = Separation::new(&main, &check, &infos, seed);
     let (force_max, contact_time) = contact_quantities(&main, &check, seed);
     let groups = classifiers::groups(&infos, sep.best_sensor, sep.converged, settings.sensors.len());
-    let checked = check.rows.as_ref().map(|_| check.main(&main).into_owned());
-    let classifiers = classifiers::accuracies(&main, (checked.as_ref(), &check.half), groups, seed)?;
-    let stated: Vec<usize> =
-        (0..infos.len()).filter(|&c| infos[c].sensor.is_none_or(|s| s < settings.sensors.len())).collect();
-    let truncation_check = truncation_check(&check, (&main, &stated), study, &sep, seed);
+    let classifiers = classifiers::accuracies(&main, &check, groups, seed)?;
+    let truncation_check = check.summary((&main, &stated_channels(&infos, settings.sensors.len())), &sep, seed);
     let main_run = variability::MainRun { model: &model, sensors: &sensors, infos: &infos };
     let (held, reference) = variability::held_runs(scene, study, set, &main_run, sep.reference(), seed, progress)?;
     let top = best(&sep.all, &[]).map(|s| s.channel);
@@ -73,9 +69,9 @@ pub(super) fn run_set(
     let (detail, design) = detail(study, (&grid, &infos), &main, &sep, reference, seed)?;
     // The main run's instrument records the design's reruns, its background rescaled: the
     // last use of it.
-    let stated = (&mut instrument, &main, design.as_ref());
+    let design_run = (&mut instrument, &main, design.as_ref());
     let design_backgrounds =
-        placement::at_backgrounds(study, set, stated, (&infos, &grid), seed ^ DESIGN_KEY, progress)?;
+        placement::at_backgrounds(study, set, design_run, (&infos, &grid), seed ^ DESIGN_KEY, progress)?;
     let ranking = sep.ranking();
     let baselines = vec![
         baselines::of_ranked("contact time t_c", &contact_time),
@@ -100,7 +96,7 @@ pub(super) fn run_set(
         setup_seconds,
         run_seconds,
         impacts_per_second: e.len() as f64 / run_seconds.max(1e-9),
-        feature_bytes,
+        feature_bytes: held_bytes(&main, &check, infos.len()),
         full_model,
         measurement,
         chain_modes: settings.modes_from_chain.then(|| model.settings().modes),
@@ -111,30 +107,13 @@ pub(super) fn run_set(
     Ok((result, detail))
 }
 
-/// What the check of the modal truncation struck again, and how well subsamples would have
-/// stood for it on the `stated` channels of `main` (the named sensors' and the supports')
-/// and the ranking's entries.
-fn truncation_check(
-    check: &Truncation,
-    (main, stated): (&ConditionRun, &[usize]),
-    study: &Study,
-    sep: &Separation,
-    seed: u64,
-) -> TruncationCheck {
-    let counts: Vec<usize> = study.ensemble.families.iter().map(|f| f.count).collect();
-    let top: Vec<_> = sep.order.iter().take(TOP).copied().collect();
-    TruncationCheck {
-        impacts: check.half.table.len(),
-        of: main.table.len(),
-        coverage: check.coverage(main, (&counts, stated), (&top, &sep.shifts), seed),
-    }
-}
-
-/// The bytes a set's run holds: the main run's and the half-mode run's features and clean
-/// peaks (under a chain), and one chunk of records of `channels` channels.
-fn held_bytes(main: &ConditionRun, half: &ConditionRun, channels: usize) -> usize {
-    let peaks = 8 * (main.clean_peaks.len() + half.clean_peaks.len());
-    2 * main.table.bytes() + peaks + CHUNK * channels * FEATURES.len() * 8
+/// The bytes a set's run holds: the main run's, the half-mode run's and (on a subsample) the
+/// checked impacts' features and clean peaks (under a chain), and one chunk of records of
+/// `channels` channels.
+fn held_bytes(main: &ConditionRun, check: &Truncation, channels: usize) -> usize {
+    let run = |r: &ConditionRun| r.table.bytes() + 8 * r.clean_peaks.len();
+    let checked = if check.sampled() { run(check.main(main)) } else { 0 };
+    run(main) + run(&check.half) + checked + CHUNK * channels * FEATURES.len() * 8
 }
 
 /// What the set's section shows (the placement maps, the histograms' values, the variability
