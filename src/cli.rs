@@ -315,7 +315,7 @@ pub enum Command {
     Field(FieldArgs),
     /// Write a scene's tail beam ([tail_beam]) as a Gmsh mesh file, DIR/<scene name>.msh (MSH
     /// 4.1, millimetres; default DIR impact-out/<scene name>-mesh): its coarsest mesh with the
-    /// walls ("top", "bottom", "webs", "ribs", "ends"), the pins ("pins") and each jack's pad
+    /// walls ("top", "bottom", "webs", "ribs", "ends", "diaphragms"), the pins ("pins") and each jack's pad
     /// ("jack 1", ...) as named groups, to edit in Gmsh and read back through [shell_mesh].
     Mesh {
         /// Scene file with a [tail_beam] table.

@@ -357,6 +357,7 @@ fn the_tail_beam_through_a_file_is_the_builder() {
         ends: 0.02,
         ribs: vec![0.7],
         rib: 0.016,
+        diaphragms: None,
         pin_height: 0.125,
         pins: vec![[0.1, 0.3], [1.1, 1.3]],
         jacks: vec![Jack { x: 0.6, z: 0.35, pad: 0.1, stiffness: 4.3e7, angle: 1.0 }],

@@ -218,8 +218,12 @@ pub fn report(scene: &Scene, d: &TailBeamData) -> Result<(Artifacts, String), Fa
     a.add("paper-plate.csv", pa.to_csv());
     let b = &d.scene.beam;
     let mm = scene::mm_label;
+    let diaphragms = b
+        .diaphragms
+        .as_ref()
+        .map_or_else(String::new, |d| format!(", {} diaphragm(s) of {} mm", d.x.len(), mm(d.thickness)));
     let box_text = format!(
-        "{} x {} x {} mm (length, width, depth), top plate {} mm, bottom {} mm, webs {} mm, end plates {} mm, {} rib(s) of {} mm, pins at {} mm height over {} span(s), {} jack(s)",
+        "{} x {} x {} mm (length, width, depth), top plate {} mm, bottom {} mm, webs {} mm, end plates {} mm, {} rib(s) of {} mm{diaphragms}, pins at {} mm height over {} span(s), {} jack(s)",
         mm(b.length), mm(b.width), mm(b.height), mm(b.top), mm(b.bottom), mm(b.webs), mm(b.ends),
         b.ribs.len(), mm(b.rib), mm(b.pin_height), b.pins.len(), b.jacks.len()
     );

@@ -107,6 +107,10 @@ pub(crate) struct RawTailBeam {
     pub(crate) ribs_z_mm: Vec<f64>,
     #[serde(default)]
     pub(crate) rib_mm: Option<f64>,
+    #[serde(default)]
+    pub(crate) diaphragms_x_mm: Vec<f64>,
+    #[serde(default)]
+    pub(crate) diaphragm_mm: Option<f64>,
     pub(crate) pin_height_mm: f64,
     pub(crate) pins_z_mm: Vec<Vec<f64>>,
     pub(crate) element_mm: f64,

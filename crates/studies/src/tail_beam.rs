@@ -387,12 +387,14 @@ impl RigidTurning {
         let flanges = rho * l * w * (b.top * (long + (h - yp).powi(2)) + b.bottom * (long + yp * yp));
         let walls = rho * l * h * (2.0 * b.webs + b.ribs.len() as f64 * b.rib) * (long + depth);
         let ends = rho * w * h * b.ends * (depth + (l * l + depth));
+        // A diaphragm at x turns about the pins at x² + (y - y_p)² per unit mass.
+        let diaphragms: f64 = b.diaphragm_walls().iter().map(|(x, t)| rho * w * h * t * (x * x + depth)).sum();
         let arm = |j: &plate_fem::shell::tail_beam::Jack| yp * j.angle.cos() + j.x * j.angle.sin();
         let stiffness: f64 = b.jacks.iter().map(|j| j.stiffness * arm(j).powi(2)).sum();
         // Each jack's force magnitude per unit rotation: jacks on both sides of the pins' line
         // push and pull, and the time model sums each one's peak magnitude.
         let jacks_force = b.jacks.iter().map(|j| j.stiffness * arm(j).abs()).sum();
-        Self { stiffness, inertia: flanges + walls + ends, jacks_force }
+        Self { stiffness, inertia: flanges + walls + ends + diaphragms, jacks_force }
     }
 }
 
@@ -414,19 +416,24 @@ fn panel_at(b: &TailBeam, z: f64) -> (f64, bool) {
 }
 
 /// The walls' largest t/(shortest span of the panel): the top and bottom plates between webs
-/// and ribs, the webs and ribs over the depth, the end plates between webs and ribs and over
-/// the depth.
+/// and ribs and between diaphragms, the webs and ribs over the depth, the end plates and
+/// diaphragms between webs and ribs and over the depth.
 fn thickness_range(tb: &TailBeamScene) -> Criterion {
     let b = &tb.beam;
-    let panel = wall_lines(b).windows(2).map(|w| w[1] - w[0]).fold(b.length, f64::min);
+    let mut across: Vec<f64> = [0.0, b.length].into_iter().chain(b.diaphragm_walls().iter().map(|w| w.0)).collect();
+    across.sort_by(f64::total_cmp);
+    let bay = across.windows(2).map(|w| w[1] - w[0]).fold(b.length, f64::min);
+    let panel = wall_lines(b).windows(2).map(|w| w[1] - w[0]).fold(bay, f64::min);
     let ratios = [
         b.top / panel,
         b.bottom / panel,
         b.webs / b.height.min(b.length),
         b.ends / b.height.min(panel),
         if b.ribs.is_empty() { 0.0 } else { b.rib / b.height.min(b.length) },
-    ];
-    Criterion::at_most("t/(shortest panel span)", ratios.into_iter().fold(0.0, f64::max), MINDLIN_PLATE_MAX_RATIO)
+    ]
+    .into_iter()
+    .chain(b.diaphragm_walls().into_iter().map(|(_, t)| t / b.height.min(panel)));
+    Criterion::at_most("t/(shortest panel span)", ratios.fold(0.0, f64::max), MINDLIN_PLATE_MAX_RATIO)
 }
 
 /// The beam's and the Kirchhoff plate's P_max at the centre of the scene's plate under its

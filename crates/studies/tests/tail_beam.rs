@@ -154,6 +154,14 @@ fn a_bad_tail_beam_is_refused_naming_its_field() {
         &["tail_beam.pins_z_mm", "at least one"],
     );
     expect(&with("ribs_z_mm = [466.7, 933.3]", "ribs_z_mm = [466.7, 1400.0]"), &["tail_beam.ribs_z_mm[1]", "1400"]);
+    let ribs = "ribs_z_mm = [466.7, 933.3]";
+    expect(&with(ribs, &format!("{ribs}\ndiaphragms_x_mm = [800.0]")), &["tail_beam.diaphragm_mm", "required"]);
+    let diaphragms = |x: &str| with(ribs, &format!("{ribs}\ndiaphragms_x_mm = [{x}]\ndiaphragm_mm = 16.0"));
+    expect(&diaphragms("2000.0"), &["tail_beam.diaphragms_x_mm[0]", "2000", "length"]);
+    expect(&diaphragms("800.0, 810.0"), &["tail_beam", "closer than their thickness"]);
+    let accepted = scene::Scene::parse(&diaphragms("800.0"), "d.toml").unwrap();
+    let beam = &accepted.tail_beam.as_ref().unwrap().beam;
+    assert_eq!(beam.diaphragm_walls(), vec![(0.8, 0.016)]);
     expect(&with("pin_height_mm = 125.0", "pin_height_mm = 260.0"), &["tail_beam.pin_height_mm", "260"]);
     expect(
         &with("x_mm = 600.0\nz_mm = 350.0", "x_mm = 1590.0\nz_mm = 350.0"),

@@ -183,6 +183,7 @@ mod tests {
             ends: 0.02,
             ribs: vec![],
             rib: 0.02,
+            diaphragms: None,
             pin_height: 0.1,
             pins: vec![[0.0, 0.8]],
             jacks: vec![Jack { x: 0.6, z: 0.4, pad: 0.1, stiffness: 1e8, angle: 1.2 }],

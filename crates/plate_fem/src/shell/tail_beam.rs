@@ -4,9 +4,10 @@
 //! x runs along the beam from the hinged end (x = 0) to the free tip (x = L), z across its
 //! width (0 to B), y up through its depth (0 at the bottom plate, H at the top plate, the face
 //! the caving rock strikes). The walls are the top and bottom plates, two side webs (z = 0 and
-//! B), two end plates (x = 0 and L) and optional longitudinal ribs (vertical plates at given z
-//! along the whole length), all on their mid-surfaces and welded where they meet: they share
-//! the nodes of their common edges.
+//! B), two end plates (x = 0 and L), optional longitudinal ribs (vertical plates at given z
+//! along the whole length) and optional diaphragms (transverse plates at given x across the
+//! whole section, as box girders are stiffened against distortion), all on their
+//! mid-surfaces and welded where they meet: they share the nodes of their common edges.
 //!
 //! **Supports.** The hinge pins are lines across the width on the hinged end plate, at a given
 //! height: every node on them is held in translation and free to rotate (a pin is a line of
@@ -56,12 +57,25 @@ pub struct TailBeam {
     pub ribs: Vec<f64>,
     /// Ribs' thickness (m).
     pub rib: f64,
+    /// Transverse diaphragms, if any (left out of the serialised box without them, so that a
+    /// box without keeps its provenance hash).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diaphragms: Option<Diaphragms>,
     /// The pins' height on the hinged end plate (m), in [0, H].
     pub pin_height: f64,
     /// The pins' spans across the width, [z0, z1] (m), each of positive length.
     pub pins: Vec<[f64; 2]>,
     /// The jacks.
     pub jacks: Vec<Jack>,
+}
+
+/// Transverse diaphragms: plates across the whole section (top to bottom, web to web).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Diaphragms {
+    /// Their positions along the length (m), strictly inside (0, L).
+    pub x: Vec<f64>,
+    /// Their thickness (m).
+    pub thickness: f64,
 }
 
 /// A tail beam meshed and restrained.
@@ -117,6 +131,7 @@ impl TailBeam {
                 w[0], w[1]
             )));
         }
+        self.validate_diaphragms()?;
         if !(self.pin_height >= 0.0 && self.pin_height <= self.height) {
             return Err(FemError::Property { name: "pin height", value: self.pin_height, allowed: "[0, H] m" });
         }
@@ -153,18 +168,46 @@ impl TailBeam {
         Ok(())
     }
 
+    /// Each diaphragm's position along the length and thickness (m).
+    pub fn diaphragm_walls(&self) -> Vec<(f64, f64)> {
+        self.diaphragms.iter().flat_map(|d| d.x.iter().map(move |&x| (x, d.thickness))).collect()
+    }
+
+    /// The diaphragms: positive thickness, inside the length, apart from each other and from
+    /// the end plates by more than the thicker wall (else they would overlap or double).
+    fn validate_diaphragms(&self) -> Result<(), FemError> {
+        let Some(d) = &self.diaphragms else { return Ok(()) };
+        if !(d.thickness.is_finite() && d.thickness > 0.0) {
+            return Err(FemError::Property { name: "diaphragm thickness", value: d.thickness, allowed: "(0, inf) m" });
+        }
+        if let Some(&x) = d.x.iter().find(|&&x| !(x.is_finite() && x > 0.0 && x < self.length)) {
+            return Err(FemError::Property { name: "diaphragm position", value: x, allowed: "(0, L) m" });
+        }
+        let mut across: Vec<f64> = [0.0, self.length].into_iter().chain(d.x.iter().copied()).collect();
+        across.sort_by(f64::total_cmp);
+        let gap = d.thickness.max(self.ends);
+        if let Some(w) = across.windows(2).find(|w| w[1] - w[0] < gap) {
+            return Err(FemError::Support(format!(
+                "walls at x = {} m and {} m are closer than their thickness, {gap} m: diaphragms must stand apart from each other and from the end plates",
+                w[0], w[1]
+            )));
+        }
+        Ok(())
+    }
+
     /// Mass of the walls (kg) for steel of density `rho`: mid-surface areas times thickness.
     pub fn mass(&self, rho: f64) -> f64 {
         let (l, b, h) = (self.length, self.width, self.height);
         rho * (l * b * (self.top + self.bottom)
             + 2.0 * l * h * self.webs
             + 2.0 * b * h * self.ends
-            + self.ribs.len() as f64 * l * h * self.rib)
+            + self.ribs.len() as f64 * l * h * self.rib
+            + self.diaphragm_walls().iter().map(|(_, t)| b * h * t).sum::<f64>())
     }
 
     /// The grid lines along x, y and z for elements of at most `element` (m, positive), refined
     /// by 2^level (level at most [`MAX_LEVEL`]): every breakpoint (pin height and spans, ribs,
-    /// jack pads) on a line.
+    /// diaphragms, jack pads) on a line.
     pub fn lines(&self, element: f64, level: u32) -> Result<[Vec<f64>; 3], FemError> {
         let longest = self.length.max(self.width).max(self.height);
         // Lines per direction before allocating them: at most a million.
@@ -175,6 +218,7 @@ impl TailBeam {
             )));
         }
         let mut bx = vec![0.0, self.length];
+        bx.extend(self.diaphragm_walls().iter().map(|w| w.0));
         let by = vec![0.0, self.height, self.pin_height];
         let mut bz = vec![0.0, self.width];
         bz.extend(self.ribs.iter().copied());
@@ -189,7 +233,7 @@ impl TailBeam {
     /// Nodes of the mesh of [`Self::lines`] (an upper bound: walls counted apart).
     pub fn nodes_bound(&self, element: f64, level: u32) -> Result<usize, FemError> {
         let [x, y, z] = self.lines(element, level)?.map(|l| l.len());
-        Ok(2 * x * z + (2 + self.ribs.len()) * x * y + 2 * y * z)
+        Ok(2 * x * z + (2 + self.ribs.len()) * x * y + (2 + self.diaphragm_walls().len()) * y * z)
     }
 
     /// Meshes and restrains the box with Young's modulus `e` and Poisson ratio `nu`.
@@ -206,8 +250,9 @@ impl TailBeam {
         for (z, t) in [(0.0, self.webs), (b, self.webs)].into_iter().chain(self.ribs.iter().map(|&z| (z, self.rib))) {
             s.add_face(&Face::new([0.0, 0.0, z], ex, ey, xs.clone(), ys.clone(), t)?)?;
         }
-        for x in [0.0, l] {
-            s.add_face(&Face::new([x, 0.0, 0.0], ey, ez, ys.clone(), zs.clone(), self.ends)?)?;
+        let ends = [(0.0, self.ends), (l, self.ends)].into_iter();
+        for (x, t) in ends.chain(self.diaphragm_walls()) {
+            s.add_face(&Face::new([x, 0.0, 0.0], ey, ez, ys.clone(), zs.clone(), t)?)?;
         }
         let tol = 1e-9 * l.max(b).max(h);
         let mut restraints = Restraints::default();
@@ -236,8 +281,8 @@ impl TailBeam {
 
 impl TailBeam {
     /// The box as a shell mesh with named groups, for a mesher or [`super::gmsh`]: the walls'
-    /// quadrilaterals in the surface groups "top", "bottom", "webs", "ribs" (if any) and
-    /// "ends"; the pins as the curve group "pins" (lines along each pin's span); each jack's
+    /// quadrilaterals in the surface groups "top", "bottom", "webs", "ribs" (if any), "ends"
+    /// and "diaphragms" (if any); the pins as the curve group "pins" (lines along each pin's span); each jack's
     /// pad as the surface group "jack 1", "jack 2", ... (the bottom plate's quadrilaterals
     /// under it, taken out of "bottom": MSH 2.2 gives an element one group, so a converter
     /// keeps the pads only if no quadrilateral is in two). The mesh of [`Self::build`] at
@@ -246,21 +291,27 @@ impl TailBeam {
     pub fn mesh_file(&self, element: f64, level: u32) -> Result<MeshFile, FemError> {
         let built = self.build(1.0, 0.0, element, level)?;
         let s = &built.structure;
-        let mut groups: Vec<Group> = ["top", "bottom", "webs", "ribs", "ends"]
-            .iter()
-            .zip(1..)
+        let named = ["top", "bottom", "webs", "ribs", "ends", "diaphragms"];
+        let present = |name: &&str| match *name {
+            "ribs" => !self.ribs.is_empty(),
+            "diaphragms" => !self.diaphragm_walls().is_empty(),
+            _ => true,
+        };
+        // Tags by place in the list, whether or not every wall is there.
+        let mut groups: Vec<Group> = (named.iter().zip(1..))
+            .filter(|(name, _)| present(name))
             .map(|(name, tag)| Group { dim: 2, tag, name: name.to_string() })
             .collect();
-        if self.ribs.is_empty() {
-            groups.remove(3);
-        }
+        // The faces in the builder's order: top, bottom, the webs, the ribs, the ends, the
+        // diaphragms.
         let walls = 4 + self.ribs.len();
         let group_of_face = |k: usize| match k {
             0 => "top",
             1 => "bottom",
             2 | 3 => "webs",
             k if k < walls => "ribs",
-            _ => "ends",
+            k if k < walls + 2 => "ends",
+            _ => "diaphragms",
         };
         let mut quads = Vec::new();
         for (k, (_, elements)) in s.faces().enumerate() {
@@ -333,6 +384,7 @@ mod tests {
             ends: 0.02,
             ribs: vec![0.7],
             rib: 0.016,
+            diaphragms: None,
             pin_height: 0.125,
             pins: vec![[0.0, 0.2], [1.2, 1.4]],
             jacks: vec![Jack { x: 0.6, z: 0.7, pad: 0.1, stiffness: 3e7, angle: 1.0 }],

@@ -24,6 +24,8 @@ pub(super) fn sections() -> Vec<Section> {
                 num("ends_mm", "mm", t, REQUIRED, "End plates' thickness (x = 0 and L)"),
                 key("ribs_z_mm", "list of numbers", "mm", "each in (0, B)", "none", "Longitudinal ribs: vertical plates along the whole length at these z"),
                 key("rib_mm", "number", "mm", t.to_string(), "`webs_mm`; required with ribs", "Ribs' thickness"),
+                key("diaphragms_x_mm", "list of numbers", "mm", "each in (0, L), apart from each other and the ends by more than their thickness", "none", "Diaphragms: transverse plates across the whole section (top to bottom, web to web) at these x, welded to every wall they meet"),
+                key("diaphragm_mm", "number", "mm", t.to_string(), "required with diaphragms", "Diaphragms' thickness"),
                 key("pin_height_mm", "number", "mm", "[0, H]", REQUIRED, "Height of the hinge pins' line on the end plate x = 0"),
                 key("pins_z_mm", "list of [z0, z1]", "mm", "0 ≤ z0 < z1 ≤ B; at least one", REQUIRED, "The pins' spans across the width: every node on them is held in translation, free to rotate"),
                 num("element_mm", "mm", limits::PLATE_SIZE_MM, REQUIRED, "Element side of the coarsest mesh"),

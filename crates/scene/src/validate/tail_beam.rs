@@ -11,7 +11,7 @@ use coupled::scene::Analysis;
 use identify::measurement::{ChainSpec, Measurand};
 use identify::stream::StreamStudy;
 use plate_fem::shell::element::DOFS_PER_NODE;
-use plate_fem::shell::tail_beam::{Jack, TailBeam};
+use plate_fem::shell::tail_beam::{Diaphragms, Jack, TailBeam};
 
 /// `[tail_beam]`, present exactly when the analyses name "tail-beam".
 pub(super) fn table(raw: Option<&RawTailBeam>, analyses: &[Analysis]) -> Result<Option<TailBeamScene>, Invalid> {
@@ -94,6 +94,7 @@ fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Invalid> {
         ends: walls.ends,
         ribs: walls.ribs,
         rib: walls.rib,
+        diaphragms: walls.diaphragms,
         pin_height,
         pins,
         jacks,
@@ -117,7 +118,7 @@ fn validate_tail_beam(raw: &RawTailBeam) -> Result<TailBeamScene, Invalid> {
     Ok(TailBeamScene { beam, element: element * MM, points: points(&raw.points_mm, l, b)? })
 }
 
-/// The walls' thicknesses (m) and the ribs' positions (m).
+/// The walls' thicknesses (m) and the ribs' and diaphragms' positions (m).
 struct Walls {
     top: f64,
     bottom: f64,
@@ -125,10 +126,26 @@ struct Walls {
     ends: f64,
     rib: f64,
     ribs: Vec<f64>,
+    diaphragms: Option<Diaphragms>,
+}
+
+/// `tail_beam.{name}` (m): each position inside (0, `extent`) mm, the `along` dimension.
+fn positions(name: &str, list: &[f64], extent: f64, along: &str) -> Result<Vec<f64>, Invalid> {
+    let mut out = Vec::with_capacity(list.len());
+    for (i, &v) in list.iter().enumerate() {
+        if !(v > 0.0 && v < extent) {
+            return Err(other(
+                format!("tail_beam.{name}[{i}]"),
+                format!("{v} mm is not inside the {along}, (0, {extent}) mm"),
+            ));
+        }
+        out.push(v * MM);
+    }
+    Ok(out)
 }
 
 /// The walls of an `l` x `b` x `h` mm box: each thickness below its smallest side, the ribs
-/// inside the width.
+/// inside the width, the diaphragms inside the length.
 fn walls(raw: &RawTailBeam, l: f64, b: f64, h: f64) -> Result<Walls, Invalid> {
     let smallest = h.min(b).min(l);
     let thick = |name: &str, v: f64| -> Result<f64, Invalid> {
@@ -147,23 +164,26 @@ fn walls(raw: &RawTailBeam, l: f64, b: f64, h: f64) -> Result<Walls, Invalid> {
         None if raw.ribs_z_mm.is_empty() => webs,
         None => return Err(other("tail_beam.rib_mm", "is required with ribs_z_mm (the ribs' thickness)")),
     };
-    let mut ribs = Vec::with_capacity(raw.ribs_z_mm.len());
-    for (i, &z) in raw.ribs_z_mm.iter().enumerate() {
-        if !(z > 0.0 && z < b) {
-            return Err(other(
-                format!("tail_beam.ribs_z_mm[{i}]"),
-                format!("{z} mm is not inside the width, (0, {b}) mm"),
-            ));
+    let ribs = positions("ribs_z_mm", &raw.ribs_z_mm, b, "width")?;
+    let ends = thick("ends_mm", raw.ends_mm)?;
+    let diaphragms = match (raw.diaphragms_x_mm.is_empty(), raw.diaphragm_mm) {
+        (true, _) => None,
+        (false, Some(v)) => Some(Diaphragms {
+            x: positions("diaphragms_x_mm", &raw.diaphragms_x_mm, l, "length")?,
+            thickness: thick("diaphragm_mm", v)?,
+        }),
+        (false, None) => {
+            return Err(other("tail_beam.diaphragm_mm", "is required with diaphragms_x_mm (the diaphragms' thickness)"))
         }
-        ribs.push(z * MM);
-    }
+    };
     Ok(Walls {
         top: thick("top_mm", raw.top_mm)?,
         bottom: thick("bottom_mm", raw.bottom_mm)?,
         webs,
-        ends: thick("ends_mm", raw.ends_mm)?,
+        ends,
         rib,
         ribs,
+        diaphragms,
     })
 }
 
