@@ -12,13 +12,20 @@
 //! `docs/performance.md` (48 GFLOP/s with FMA). The distance from the floor is the impacts'
 //! time over the floor's: what the contacts, the chain and the features add to the
 //! propagation.
+//!
+//! **The fast arithmetic** (`[signals] arithmetic = "fast"`, the channels' sums in f32 with
+//! fused multiply-adds): the same impacts on the same model built in it, their rate against
+//! the exact run's, and what it changed: every feature's largest difference from the exact
+//! run over the impacts, relative to that feature's spread (its standard deviation over them),
+//! and the largest change of a feature's AUC between the families over the same impacts.
 
 mod common;
 
 use common::best_of_five as best;
 use coupled::identification::Instrument;
-use coupled::reduced::ReducedModel;
+use coupled::reduced::{Arithmetic, ReducedModel, ReducedSettings};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use identify::features::FEATURES;
 use identify::Held;
 use impact::scene::{Scene, SceneSource};
 use std::hint::black_box;
@@ -72,11 +79,91 @@ fn identify_scenes(c: &mut Criterion) {
             draws.len() as f64 * PEAK_FLOPS / (2.0 * fma),
             t_impacts / t_free,
         );
+        let fast_model = ReducedModel::new(
+            &scene.plate,
+            set,
+            ReducedSettings { arithmetic: Arithmetic::Fast, ..reduced_settings(&scene, set).unwrap() },
+        )
+        .unwrap();
+        let fast_instrument = Instrument::new(
+            &fast_model,
+            &scene.plate,
+            &spec(&scene, run_sensors(&scene.signals.sensors, study, &scene.plate).0),
+            &scene,
+        )
+        .unwrap();
+        let run_fast = || {
+            for d in &draws {
+                black_box(fast_instrument.impact(d.clone(), &names[d.family]).unwrap());
+            }
+        };
+        let t_fast = best(&run_fast);
+        let features = |i: &Instrument| -> Vec<Vec<f64>> {
+            draws.iter().map(|d| i.impact(d.clone(), &names[d.family]).unwrap().features).collect()
+        };
+        let (exact, fast) = (features(&instrument), features(&fast_instrument));
+        let (per, auc) = differences(&exact, &fast, &draws.iter().map(|d| d.family).collect::<Vec<_>>());
+        let per: Vec<String> = FEATURES
+            .iter()
+            .zip(&per)
+            .map(|(f, (d, jumped))| format!("{} {d:.1e} ({:.2} % jumped)", f.key(), 100.0 * jumped))
+            .collect();
+        println!(
+            "identify {file} ({}), fast arithmetic: {:.0} impacts/s, {:.2}x the exact run; {:.1}x the floor; \
+             largest difference over each feature's spread over the impacts: {}; largest AUC change {auc:.2e}",
+            set.name,
+            draws.len() as f64 / t_fast,
+            t_impacts / t_fast,
+            t_fast / t_free,
+            per.join(", "),
+        );
         g.throughput(Throughput::Elements(draws.len() as u64));
         g.bench_function(format!("{file}: {} impacts as identify's main run", draws.len()), |b| b.iter(run));
         g.bench_function(format!("{file}: reference, the free plate over the same samples"), |b| b.iter(free));
+        g.bench_function(format!("{file}: {} impacts in the fast arithmetic", draws.len()), |b| b.iter(run_fast));
     }
     g.finish();
+}
+
+/// A value moved by more than this share of its column's spread is counted as having jumped
+/// (a threshold crossing a sample earlier, the dominant frequency another peak's bin), not as
+/// rounded.
+const JUMP: f64 = 1e-3;
+
+/// What the fast arithmetic changed over the impacts' feature rows (channel after channel,
+/// [`FEATURES`] in order within each), per feature: the largest |fast - exact| relative to its
+/// column's standard deviation over the impacts (columns without spread left out), and the
+/// share of its values that jumped ([`JUMP`]); and over every column the largest
+/// |AUC(fast) - AUC(exact)| between family 0 and the rest.
+fn differences(exact: &[Vec<f64>], fast: &[Vec<f64>], family: &[usize]) -> (Vec<(f64, f64)>, f64) {
+    let columns = exact.first().map_or(0, Vec::len);
+    let mut per = vec![(0.0f64, 0usize, 0usize); FEATURES.len()];
+    let mut auc = 0.0f64;
+    for j in 0..columns {
+        let e: Vec<f64> = exact.iter().map(|r| r[j]).collect();
+        let f: Vec<f64> = fast.iter().map(|r| r[j]).collect();
+        let mean = e.iter().sum::<f64>() / e.len() as f64;
+        let sd = (e.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / e.len() as f64).sqrt();
+        if sd > 0.0 && sd.is_finite() {
+            let p = &mut per[j % FEATURES.len()];
+            for (a, b) in e.iter().zip(&f) {
+                let d = (a - b).abs() / sd;
+                p.0 = p.0.max(d);
+                p.1 += usize::from(d > JUMP);
+                p.2 += 1;
+            }
+        }
+        let split = |x: &[f64]| -> (Vec<f64>, Vec<f64>) {
+            let first = x.iter().zip(family).filter(|(_, &k)| k == 0).map(|(v, _)| *v).collect();
+            let rest = x.iter().zip(family).filter(|(_, &k)| k != 0).map(|(v, _)| *v).collect();
+            (first, rest)
+        };
+        let ((ec, eg), (fc, fg)) = (split(&e), split(&f));
+        if !ec.is_empty() && !eg.is_empty() {
+            auc = auc.max((identify::roc::auc(&ec, &eg) - identify::roc::auc(&fc, &fg)).abs());
+        }
+    }
+    (per.iter().map(|&(d, n, of)| (d, n as f64 / of.max(1) as f64)).collect(), auc)
 }
 
 criterion_group!(benches, identify_scenes);

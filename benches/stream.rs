@@ -5,11 +5,15 @@
 //! the propagation (modes × samples, each mode's exact 2 x 2 map and the two channels' dot
 //! products), so the ratio of the two is the cost of the contacts. Before the timed runs the
 //! bench prints both as real-time factors (stream seconds per second of one core).
+//!
+//! **The fast arithmetic** (`[signals] arithmetic = "fast"`): the same stream and free plate on
+//! the model built in it, their real-time factors, and the largest difference of its signal
+//! from the exact one at any sample, over the exact channel's largest value.
 
 mod common;
 
 use coupled::identification::Instrument;
-use coupled::reduced::{Quantity, ReducedModel, SignalSpec};
+use coupled::reduced::{Arithmetic, Quantity, ReducedModel, ReducedSettings, SignalSpec};
 use criterion::{criterion_group, criterion_main, Criterion};
 use identify::stream::{lumps, StreamSpec};
 use impact::scene::{Scene, SceneSource};
@@ -61,6 +65,38 @@ fn stream(c: &mut Criterion) {
         duration / free,
         with / free
     );
+    let fast_model = ReducedModel::new(
+        &scene.plate,
+        set,
+        ReducedSettings { arithmetic: Arithmetic::Fast, ..scene.signals.reduced() },
+    )
+    .unwrap();
+    let fast = Instrument::new(&fast_model, &scene.plate, &spec, &scene).unwrap();
+    let fast_with = best(&|| {
+        black_box(fast.stream(&drawn, &names, duration).unwrap());
+    });
+    let fast_free = best(&|| {
+        black_box(fast.stream(&[], &names, duration).unwrap());
+    });
+    let fast_run = fast.stream(&drawn, &names, duration).unwrap();
+    let largest = run
+        .signals
+        .channels
+        .iter()
+        .zip(&fast_run.signals.channels)
+        .map(|(e, f)| {
+            let top = e.samples.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            e.samples.iter().zip(&f.samples).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / top
+        })
+        .fold(0.0f64, f64::max);
+    println!(
+        "stream, fast arithmetic: {:.0}x real time ({:.2}x the exact stream); free plate {:.0}x real time ({:.2}x the exact); \
+         largest difference from the exact signal {largest:.2e} of the channel's largest value",
+        duration / fast_with,
+        with / fast_with,
+        duration / fast_free,
+        free / fast_free,
+    );
     let mut g = c.benchmark_group("stream");
     g.sample_size(10);
     g.bench_function("10 s at 20 lumps/s, 2 sensors, 20 kHz, 80 modes", |b| {
@@ -68,6 +104,9 @@ fn stream(c: &mut Criterion) {
     });
     g.bench_function("reference: the free plate over 10 s", |b| {
         b.iter(|| black_box(instrument.stream(&[], &names, duration).unwrap()))
+    });
+    g.bench_function("10 s at 20 lumps/s, 2 sensors, 20 kHz, 80 modes, fast arithmetic", |b| {
+        b.iter(|| black_box(fast.stream(&drawn, &names, duration).unwrap()))
     });
     g.finish();
 }

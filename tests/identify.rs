@@ -51,6 +51,23 @@ fn the_truncation_checks_share_is_within_zero_and_one() {
 }
 
 #[test]
+fn the_arithmetic_is_a_word_of_two() {
+    for bad in ["\"f32\"", "\"Fast\""] {
+        let text = with("modes = 24", &format!("modes = 24\narithmetic = {bad}"));
+        expect(&text, &["signals.arithmetic", bad]);
+    }
+    // A value of the wrong type is refused by the parser at its line, key and value shown.
+    expect(&with("modes = 24", "modes = 24\narithmetic = 1"), &["arithmetic = 1", "expected a string"]);
+    let text = with("modes = 24", "modes = 24\narithmetic = \"f32\"");
+    expect(&text, &["\"f32\" is not an arithmetic", "\"exact\", \"fast\""]);
+    let text = with("modes = 24", "modes = 24\narithmetic = \"fast\"");
+    let fast = Scene::parse(&text, "small").unwrap();
+    assert_eq!(fast.signals.arithmetic, coupled::reduced::Arithmetic::Fast);
+    assert_eq!(fast.signals.reduced().arithmetic, coupled::reduced::Arithmetic::Fast);
+    assert_eq!(Scene::parse(ENSEMBLE, "small").unwrap().signals.arithmetic, coupled::reduced::Arithmetic::Exact);
+}
+
+#[test]
 fn distribution_values_name_field_value_and_range() {
     expect(
         &with("min = 15.0, max = 40.0 }", "min = 0.0, max = 40.0 }"),

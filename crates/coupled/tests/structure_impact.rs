@@ -217,7 +217,12 @@ fn the_reduced_structure_is_the_full_structure_in_modal_coordinates() {
     let spring_ref = full.reading.iter().fold(0.0, |m: f64, r| m.max(r.abs()));
     let groups = [vec![spring]];
     let model = |modes: usize| {
-        let settings = StructureSettings { modes, damping: ModalDamping::Ratio(0.0), steps_per_contact: 100.0 };
+        let settings = StructureSettings {
+            modes,
+            damping: ModalDamping::Ratio(0.0),
+            steps_per_contact: 100.0,
+            ..Default::default()
+        };
         let readings = Readings { groups: &groups, ..Readings::default() };
         StructureModel::new(&fact, &mass, std::slice::from_ref(&f), readings, settings).unwrap()
     };
@@ -288,7 +293,12 @@ fn a_stream_of_two_overlapping_lumps_is_the_full_structure_with_both_contacts() 
     let last = (0..samples * every).rev().find(|&n| full.forces.iter().any(|f| f[n] > 0.0)).unwrap() / every + 1;
     // Jack force: the truncation's error, 5.5e-4 at 80 modes, 3.6e-6 at 160.
     for (modes, jack_tolerance) in [(80, 1e-3), (160, 2e-5)] {
-        let settings = StructureSettings { modes, damping: ModalDamping::Ratio(0.0), steps_per_contact: 100.0 };
+        let settings = StructureSettings {
+            modes,
+            damping: ModalDamping::Ratio(0.0),
+            steps_per_contact: 100.0,
+            ..Default::default()
+        };
         let model = StructureModel::new(&fact, &mass, &loads, readings, settings).unwrap();
         let probes = model.probes(samples as f64 * ts, rate).unwrap();
         let stream = model.stream(&arrivals, &places, &probes, samples as f64 * ts).unwrap();

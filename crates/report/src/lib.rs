@@ -7,6 +7,7 @@
 pub mod present;
 pub mod provenance;
 
+mod arithmetic;
 pub mod comparison;
 pub mod detect;
 pub mod drops;

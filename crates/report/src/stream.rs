@@ -109,7 +109,12 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
         .collect::<Vec<_>>()
         .join("\n");
     let transfer = transfer_table(d);
-    let (struck, simulation_prose) = struck(d)?;
+    let (struck, mut simulation_prose) = struck(d)?;
+    let modes = d.structure.as_ref().map_or(scene.signals.modes, |f| f.modes);
+    let fast = crate::arithmetic::paragraph(scene.signals.arithmetic, modes)?;
+    if !fast.is_empty() {
+        simulation_prose = format!("{simulation_prose}\n\n{}", fast.trim_end());
+    }
     Ok(render(
         "stream/page.md",
         PAGE,

@@ -147,6 +147,7 @@ pub(crate) struct RawSignals {
     pub(crate) modes: Option<RawModes>,
     pub(crate) sensors_mm: Option<Vec<Vec<f64>>>,
     pub(crate) truncation_check_fraction: Option<f64>,
+    pub(crate) arithmetic: Option<String>,
 }
 
 /// `signals.modes`: a number of modes, or a word ("chain").

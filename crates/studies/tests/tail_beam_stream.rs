@@ -78,6 +78,7 @@ fn a_stream_on_the_tail_beam_strikes_as_single_impacts_do() {
         modes: reduced.modes.min(studies::in_time::modes_for(free, massive)),
         damping: reduced.damping(),
         steps_per_contact: reduced.steps_per_contact,
+        arithmetic: reduced.arithmetic,
     };
     // Each stream's first lump, its row and its load: one model (one modal search) for all.
     let firsts: Vec<_> = (0..study.streams)

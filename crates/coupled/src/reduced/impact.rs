@@ -170,7 +170,7 @@ impl ReducedModel {
         if recorded < want && recorded > 0 {
             let (q, v) = target.state();
             let maps = [probes.block_maps.modes(), extra_maps.map_or(&[], |m| m.modes())];
-            free_window(self.simd, &maps, q, v, target.rows(), &mut out, want - recorded);
+            free_window((self.simd, self.settings.arithmetic), &maps, q, v, target.rows(), &mut out, want - recorded);
         }
         out
     }

@@ -48,7 +48,7 @@
 use super::signals::{ChannelKind, ChannelRows, FreeMaps, Probes, SignalSpec};
 use super::stream::{Arrival, StreamResponse, Struck, StruckAt};
 use super::target::{ChannelRow, ModalTarget, Recording};
-use super::{modal_compliance, ModalDamping, ReducedSettings};
+use super::{modal_compliance, Arithmetic, ModalDamping, ReducedSettings};
 use crate::error::ModelError;
 use crate::transient::{simulate_with, Outcome, PlateFacts, Striker};
 use analytic::params::{check, Range};
@@ -64,6 +64,10 @@ pub struct StructureSettings {
     pub damping: ModalDamping,
     /// The time step is at most the Hertz time over this.
     pub steps_per_contact: f64,
+    /// How the free samples are summed into the channels (left out of the serialised
+    /// settings when exact: the provenance hashes of exact runs stay as they were).
+    #[serde(skip_serializing_if = "Arithmetic::is_exact")]
+    pub arithmetic: Arithmetic,
 }
 
 impl Default for StructureSettings {
@@ -73,6 +77,7 @@ impl Default for StructureSettings {
             modes: ReducedSettings::DEFAULT_MODES,
             damping: ModalDamping::Ratio(ReducedSettings::DEFAULT_DAMPING_RATIO),
             steps_per_contact: ReducedSettings::DEFAULT_STEPS_PER_CONTACT,
+            arithmetic: Arithmetic::Exact,
         }
     }
 }
@@ -383,6 +388,10 @@ impl Struck for OnFace<'_> {
 
     fn simd(&self) -> pulp::Arch {
         self.model.simd
+    }
+
+    fn arithmetic(&self) -> Arithmetic {
+        self.model.settings.arithmetic
     }
 
     /// The nearest load point's modes; a spring group's direct term is its static

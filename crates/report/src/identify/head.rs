@@ -88,6 +88,7 @@ fn modes_text(summary: &Summary) -> String {
 /// The head of the page of `summary`, the identification of `scene`'s ensemble `study`.
 pub(super) fn head(scene: &Scene, study: &Study, summary: &Summary) -> Result<String, Failure> {
     let (e, settings) = (&study.ensemble, &summary.signals);
+    let most_modes = summary.conditions.iter().map(|c| c.modes(settings)).max().unwrap_or(settings.modes);
     let mut findings = String::new();
     for c in &summary.conditions {
         findings.push_str(&finding(c, c.modes(settings))?);
@@ -129,6 +130,7 @@ pub(super) fn head(scene: &Scene, study: &Study, summary: &Summary) -> Result<St
             ("sensors", sensors),
             ("candidates", candidates),
             ("recorded", super::measurement::recorded(scene)),
+            ("arithmetic", crate::arithmetic::paragraph(settings.arithmetic, most_modes)?),
             ("measurement", super::measurement::section(scene, summary)?),
         ],
     )?)

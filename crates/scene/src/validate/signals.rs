@@ -4,7 +4,7 @@ use super::{count, other, Invalid, MM};
 use crate::limits;
 use crate::raw::*;
 use analytic::params::{check, Range};
-use coupled::reduced::SignalSettings;
+use coupled::reduced::{Arithmetic, SignalSettings};
 
 /// `[signals]`: each key in its range (the file's units), converted to SI; absent keys take
 /// the defaults of [`SignalSettings`]. The scene's plate damping `rayleigh` replaces the
@@ -64,6 +64,7 @@ pub(super) fn validate_signals(
         Some(f) => check("signals.truncation_check_fraction", f, limits::TRUNCATION_CHECK, "")?,
         None => d.truncation_check,
     };
+    let arithmetic = arithmetic(raw.arithmetic.as_deref())?;
     Ok(SignalSettings {
         window: window_ms * 1e-3,
         rate_hz,
@@ -73,7 +74,19 @@ pub(super) fn validate_signals(
         modes_from_chain,
         sensors,
         truncation_check,
+        arithmetic,
     })
+}
+
+/// `signals.arithmetic` as written: "exact" (the default) or "fast".
+fn arithmetic(written: Option<&str>) -> Result<Arithmetic, Invalid> {
+    match written {
+        None | Some("exact") => Ok(Arithmetic::Exact),
+        Some("fast") => Ok(Arithmetic::Fast),
+        Some(w) => {
+            Err(other("signals.arithmetic", format!("\"{w}\" is not an arithmetic; allowed \"exact\", \"fast\"")))
+        }
+    }
 }
 
 /// `signals.sensors_mm`: at most [`limits::MAX_SENSORS`] points (x, z) on the plate of

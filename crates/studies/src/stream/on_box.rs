@@ -98,6 +98,7 @@ impl BoxModel {
             modes: reduced.modes,
             damping: reduced.damping(),
             steps_per_contact: reduced.steps_per_contact,
+            arithmetic: reduced.arithmetic,
         };
         let fact = built.structure.factorize(&built.restraints)?;
         let readings = Readings { groups: &groups, accelerometers: &accelerometers };

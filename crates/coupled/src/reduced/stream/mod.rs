@@ -45,7 +45,7 @@ use super::impact::{at_point, channel_row};
 use super::signals::{dot, FreeMaps, Probes, Signals};
 use super::target::ChannelRow;
 use super::window::free_window;
-use super::{Correction, ModalDamping, ReducedModel};
+use super::{Arithmetic, Correction, ModalDamping, ReducedModel};
 use crate::error::ModelError;
 use crate::transient::Striker;
 use analytic::params::{check, Range};
@@ -166,6 +166,8 @@ pub(crate) trait Struck {
     fn steps_per_contact(&self) -> f64;
     /// The instruction set of the passes over the modes.
     fn simd(&self) -> pulp::Arch;
+    /// How the free samples are summed into the channels.
+    fn arithmetic(&self) -> Arithmetic;
     /// A lump striking at (x, z): φᵢ(p), C_res(p) and each channel's direct term Dⱼ.
     fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError>;
     /// The cross static correction N(p)ᵀRN(q) of two struck points, each given by its
@@ -204,6 +206,10 @@ impl Struck for ReducedModel {
 
     fn simd(&self) -> pulp::Arch {
         self.simd
+    }
+
+    fn arithmetic(&self) -> Arithmetic {
+        self.settings.arithmetic
     }
 
     fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError> {
@@ -380,7 +386,7 @@ impl<'a> Run<'a> {
         }
         let m = self.model;
         let maps = [self.probes.block_maps.modes()];
-        free_window(m.simd(), &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
+        free_window((m.simd(), m.arithmetic()), &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
         let zeta = m.damping();
         let tau = count as f64 * self.probes.spec.interval();
         for (i, &w) in m.omega().iter().enumerate() {

@@ -1,0 +1,81 @@
+//! [`super::Arithmetic::Fast`]'s window: the modes propagated in f64 as in the exact window
+//! (but with fused multiply-adds), their block of states rounded once to f32, and every
+//! channel's sum over the modes formed in f32 with fused multiply-adds. The error bound is in
+//! the parent module's documentation; subnormal states (modes rung down below 10⁻³⁸) add at
+//! most 2⁻¹⁴⁹ a term to it.
+
+use super::super::target::ChannelRow;
+use super::sums::{Aligned, Parts};
+use super::{Block, BLOCK};
+
+/// One mode's f32 values over a block of samples.
+type Block32 = Aligned<f32>;
+
+/// A channel's coefficients rounded to f32: A on q, B on q̇.
+struct Row32 {
+    a: Option<Vec<f32>>,
+    b: Option<Vec<f32>>,
+}
+
+impl Row32 {
+    fn new(row: &ChannelRow) -> Self {
+        let round = |c: &Vec<f64>| c.iter().map(|&x| x as f32).collect();
+        Self { a: row.a.as_ref().map(round), b: row.b.as_ref().map(round) }
+    }
+}
+
+/// [`super::free_window`]'s arguments.
+pub(super) struct Window<'a, 'b> {
+    pub maps: &'a [&'a [[Block; 4]]],
+    pub q: &'a [f64],
+    pub v: &'a [f64],
+    pub rows: &'a [ChannelRow],
+    pub out: &'b mut [Vec<f64>],
+    pub count: usize,
+}
+
+impl pulp::WithSimd for Window<'_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Window { maps, q, v, rows, out, count } = self;
+        let n = q.len();
+        let rows: Vec<Row32> = rows.iter().map(Row32::new).collect();
+        let (mut q0, mut v0) = (q.to_vec(), v.to_vec());
+        let (mut qs, mut vs) = (vec![Aligned([0.0; BLOCK]); n], vec![Aligned([0.0; BLOCK]); n]);
+        let parts = Parts::new(rows.iter().map(|r| (r.a.as_deref(), r.b.as_deref())));
+        let mut y = vec![[0.0f32; BLOCK]; rows.len()];
+        let mut done = 0;
+        while done < count {
+            let m = BLOCK.min(count - done);
+            let modes = maps.iter().flat_map(|m| m.iter());
+            for (((p, (qb, vb)), q0), v0) in modes.zip(qs.iter_mut().zip(vs.iter_mut())).zip(&mut q0).zip(&mut v0) {
+                (*q0, *v0) = propagate(p, (*q0, *v0), qb, vb);
+            }
+            parts.block(&qs, &vs, &mut y);
+            for (y, o) in y.iter().zip(out.iter_mut()) {
+                o.extend(y[..m].iter().map(|&x| f64::from(x)));
+            }
+            done += m;
+        }
+    }
+}
+
+/// One mode's block: `(q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀)` in f64 with fused multiply-adds,
+/// stored rounded to f32; returns the block's last state in f64, which starts the next block.
+#[inline(always)]
+fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block32, v: &mut Block32) -> (f64, f64) {
+    let [p0, p1, p2, p3] = maps;
+    let mut qd = [0.0f64; BLOCK];
+    let mut vd = [0.0f64; BLOCK];
+    for j in 0..BLOCK {
+        qd[j] = p0.0[j].mul_add(q0, p1.0[j] * v0);
+        vd[j] = p2.0[j].mul_add(q0, p3.0[j] * v0);
+    }
+    for j in 0..BLOCK {
+        q.0[j] = qd[j] as f32;
+        v.0[j] = vd[j] as f32;
+    }
+    (qd[BLOCK - 1], vd[BLOCK - 1])
+}
