@@ -186,6 +186,30 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
     }
 }
 
+/// In the fast arithmetic only the window's channel sums change: every impact's contact
+/// numbers (impacts.csv below its provenance line) are the exact run's to the digit, the
+/// summary records the arithmetic, and the page names it with its bound for the scene's 24
+/// modes, γ₅₀ = 50u/(1 - 50u) = 3.0e-6 (u = 2⁻²⁴).
+#[test]
+fn the_fast_arithmetic_changes_only_the_sums_and_says_so() {
+    let dir = tmp();
+    let exact = dir.write("exact.toml", ENSEMBLE);
+    let fast = dir.write("fast.toml", &with("modes = 24", "modes = 24\narithmetic = \"fast\""));
+    let (a, b) = (dir.join("exact"), dir.join("fast"));
+    run(&a, &exact, "2").success();
+    let out = run(&b, &fast, "2").success();
+    let body = |d: &Path| {
+        let text = std::fs::read_to_string(d.join("impacts.csv")).unwrap();
+        text.lines().skip(1).collect::<Vec<_>>().join("\n")
+    };
+    assert_eq!(body(&a), body(&b));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["signals"]["arithmetic"], "fast");
+    let page = std::fs::read_to_string(b.join("index.md")).unwrap();
+    assert!(page.contains("`[signals] arithmetic = \"fast\"`") && page.contains("γ = 3e-6"), "{page}");
+    assert!(!std::fs::read_to_string(a.join("index.md")).unwrap().contains("fast arithmetic"));
+}
+
 #[test]
 fn a_support_set_without_channels_is_refused_before_running() {
     // A cantilever plate (left edge clamped, corners free), no sensors, no grid: nothing to record.

@@ -17,8 +17,8 @@
 //! f32 and summing the n products in f32 gives, by the standard a-priori bound of a dot product
 //! (Higham 2002, *Accuracy and Stability of Numerical Algorithms*, §3.1, eq. 3.5),
 //! |ŷ - y| ≤ γₙ₊₂ Σᵢ|cᵢsᵢ| with γₖ = ku/(1 - ku), u = 2⁻²⁴ (the output back in f64 is
-//! exact: every f32 is a f64), plus |cᵢ|·2⁻¹⁰⁰ for each state of a rung-down mode flushed to
-//! zero (`fast`'s documentation says why). Fused multiply-adds are correctly rounded wherever
+//! exact: every f32 is a f64), plus 3·2⁻¹⁰⁰(|Aᵢ| + ωᵢ|Bᵢ|) for each mode rung down below 2⁻¹⁰⁰
+//! and set to rest (`fast`'s documentation says why). Fused multiply-adds are correctly rounded wherever
 //! they run, so the fast window too has the same bits on every processor.
 
 use super::signals::free_map;
