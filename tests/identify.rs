@@ -194,7 +194,7 @@ fn identify_runs_streams_rows_and_is_identical_on_one_and_two_threads() {
 fn the_fast_arithmetic_changes_only_the_sums_and_says_so() {
     let dir = tmp();
     let exact = dir.write("exact.toml", ENSEMBLE);
-    let fast = dir.write("fast.toml", &with("modes = 24", "modes = 24\narithmetic = \"fast\""));
+    let fast = dir.write("fast.toml", with("modes = 24", "modes = 24\narithmetic = \"fast\""));
     let (a, b) = (dir.join("exact"), dir.join("fast"));
     run(&a, &exact, "2").success();
     let out = run(&b, &fast, "2").success();
@@ -206,7 +206,7 @@ fn the_fast_arithmetic_changes_only_the_sums_and_says_so() {
     let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(summary["signals"]["arithmetic"], "fast");
     let page = std::fs::read_to_string(b.join("index.md")).unwrap();
-    assert!(page.contains("`[signals] arithmetic = \"fast\"`") && page.contains("γ = 3e-6"), "{page}");
+    assert!(page.contains("`[signals] arithmetic = \"fast\"`") && page.contains("γ = 3.0e-6"), "{page}");
     assert!(!std::fs::read_to_string(a.join("index.md")).unwrap().contains("fast arithmetic"));
 }
 
