@@ -98,31 +98,42 @@ fn identify_scenes(c: &mut Criterion) {
             }
         };
         let t_fast = best(&run_fast);
-        let features = |i: &Instrument| -> Vec<Vec<f64>> {
-            draws.iter().map(|d| i.impact(d.clone(), &names[d.family]).unwrap().features).collect()
-        };
-        let (exact, fast) = (features(&instrument), features(&fast_instrument));
-        let (per, auc) = differences(&exact, &fast, &draws.iter().map(|d| d.family).collect::<Vec<_>>());
-        let per: Vec<String> = FEATURES
-            .iter()
-            .zip(&per)
-            .map(|(f, (d, jumped))| format!("{} {d:.1e} ({:.2} % jumped)", f.key(), 100.0 * jumped))
-            .collect();
-        println!(
-            "identify {file} ({}), fast arithmetic: {:.0} impacts/s, {:.2}x the exact run; {:.1}x the floor; \
-             largest difference over each feature's spread over the impacts: {}; largest AUC change {auc:.2e}",
-            set.name,
-            draws.len() as f64 / t_fast,
-            t_impacts / t_fast,
-            t_fast / t_free,
-            per.join(", "),
-        );
+        let label = format!("{file} ({})", set.name);
+        print_fast(&label, (&instrument, &fast_instrument), (&draws, &names), (t_impacts, t_free, t_fast));
         g.throughput(Throughput::Elements(draws.len() as u64));
         g.bench_function(format!("{file}: {} impacts as identify's main run", draws.len()), |b| b.iter(run));
         g.bench_function(format!("{file}: reference, the free plate over the same samples"), |b| b.iter(free));
         g.bench_function(format!("{file}: {} impacts in the fast arithmetic", draws.len()), |b| b.iter(run_fast));
     }
     g.finish();
+}
+
+/// Prints the fast arithmetic's rate against the exact run's and the floor's (`times`: the
+/// exact impacts, the free plate, the fast impacts) and what it changed over the `draws`.
+fn print_fast(
+    label: &str,
+    (exact, fast): (&Instrument, &Instrument),
+    (draws, names): (&[identify::Draw], &[String]),
+    (t_impacts, t_free, t_fast): (f64, f64, f64),
+) {
+    let features = |i: &Instrument| -> Vec<Vec<f64>> {
+        draws.iter().map(|d| i.impact(d.clone(), &names[d.family]).unwrap().features).collect()
+    };
+    let (per, auc) =
+        differences(&features(exact), &features(fast), &draws.iter().map(|d| d.family).collect::<Vec<_>>());
+    let per: Vec<String> = FEATURES
+        .iter()
+        .zip(&per)
+        .map(|(f, (d, jumped))| format!("{} {d:.1e} ({:.2} % jumped)", f.key(), 100.0 * jumped))
+        .collect();
+    println!(
+        "identify {label}, fast arithmetic: {:.0} impacts/s, {:.2}x the exact run; {:.1}x the floor; \
+         largest difference over each feature's spread over the impacts: {}; largest AUC change {auc:.2e}",
+        draws.len() as f64 / t_fast,
+        t_impacts / t_fast,
+        t_fast / t_free,
+        per.join(", "),
+    );
 }
 
 /// A value moved by more than this share of its column's spread is counted as having jumped

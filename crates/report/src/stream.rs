@@ -113,7 +113,7 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
     let modes = d.structure.as_ref().map_or(scene.signals.modes, |f| f.modes);
     let fast = crate::arithmetic::paragraph(scene.signals.arithmetic, modes)?;
     if !fast.is_empty() {
-        simulation_prose = format!("{simulation_prose}\n\n{}", fast.trim_end());
+        simulation_prose = format!("{simulation_prose}\n{}", fast.trim_end());
     }
     Ok(render(
         "stream/page.md",

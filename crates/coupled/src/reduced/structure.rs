@@ -386,12 +386,8 @@ impl Struck for OnFace<'_> {
         self.model.settings.steps_per_contact
     }
 
-    fn simd(&self) -> pulp::Arch {
-        self.model.simd
-    }
-
-    fn arithmetic(&self) -> Arithmetic {
-        self.model.settings.arithmetic
+    fn passes(&self) -> (pulp::Arch, Arithmetic) {
+        (self.model.simd, self.model.settings.arithmetic)
     }
 
     /// The nearest load point's modes; a spring group's direct term is its static

@@ -164,10 +164,9 @@ pub(crate) trait Struck {
     fn damping(&self) -> ModalDamping;
     /// The contact step is at most the rigid-target Hertz time over this.
     fn steps_per_contact(&self) -> f64;
-    /// The instruction set of the passes over the modes.
-    fn simd(&self) -> pulp::Arch;
-    /// How the free samples are summed into the channels.
-    fn arithmetic(&self) -> Arithmetic;
+    /// The instruction set of the passes over the modes, and how the free samples are summed
+    /// into the channels.
+    fn passes(&self) -> (pulp::Arch, Arithmetic);
     /// A lump striking at (x, z): φᵢ(p), C_res(p) and each channel's direct term Dⱼ.
     fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError>;
     /// The cross static correction N(p)ᵀRN(q) of two struck points, each given by its
@@ -204,12 +203,8 @@ impl Struck for ReducedModel {
         self.settings.steps_per_contact
     }
 
-    fn simd(&self) -> pulp::Arch {
-        self.simd
-    }
-
-    fn arithmetic(&self) -> Arithmetic {
-        self.settings.arithmetic
+    fn passes(&self) -> (pulp::Arch, Arithmetic) {
+        (self.simd, self.settings.arithmetic)
     }
 
     fn struck_at(&self, x: f64, z: f64, probes: &Probes) -> Result<StruckAt, ModelError> {
@@ -386,7 +381,7 @@ impl<'a> Run<'a> {
         }
         let m = self.model;
         let maps = [self.probes.block_maps.modes()];
-        free_window((m.simd(), m.arithmetic()), &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
+        free_window(m.passes(), &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
         let zeta = m.damping();
         let tau = count as f64 * self.probes.spec.interval();
         for (i, &w) in m.omega().iter().enumerate() {

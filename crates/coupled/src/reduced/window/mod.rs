@@ -17,14 +17,17 @@
 //! f32 and summing the n products in f32 gives, by the standard a-priori bound of a dot product
 //! (Higham 2002, *Accuracy and Stability of Numerical Algorithms*, §3.1, eq. 3.5),
 //! |ŷ - y| ≤ γₙ₊₂ Σᵢ|cᵢsᵢ| with γₖ = ku/(1 - ku), u = 2⁻²⁴ (the output back in f64 is
-//! exact: every f32 is a f64), plus 3·2⁻¹⁰⁰(|Aᵢ| + ωᵢ|Bᵢ|) for each mode rung down below 2⁻¹⁰⁰
-//! and set to rest (`fast`'s documentation says why). Fused multiply-adds are correctly rounded wherever
+//! exact: every f32 is a f64), n the channel's terms (2N, A on q and B on q̇), plus
+//! √2·2⁻¹⁰⁰(|Aᵢ| + ωᵢ|Bᵢ|) for each mode rung down below 2⁻¹⁰⁰ and set to rest (`fast`'s
+//! documentation says why). Fused multiply-adds are correctly rounded wherever
 //! they run, so the fast window too has the same bits on every processor.
 
 use super::signals::free_map;
 use super::target::ChannelRow;
 use serde::Serialize;
-use sums::{Aligned, Parts};
+use std::borrow::Cow;
+use std::marker::PhantomData;
+use sums::{Aligned, Parts, Term};
 
 /// How a window's free part is summed into its channels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -42,14 +45,6 @@ impl Arithmetic {
     /// Whether it is [`Arithmetic::Exact`] (the serialised settings leave it out then).
     pub fn is_exact(&self) -> bool {
         *self == Self::Exact
-    }
-
-    /// The scene's word for it.
-    pub fn word(self) -> &'static str {
-        match self {
-            Self::Exact => "exact",
-            Self::Fast => "fast",
-        }
     }
 
     /// γₖ = ku/(1 - ku), the a-priori bound on the relative error of a k-term dot product in
@@ -117,57 +112,83 @@ pub(crate) fn free_window(
     count: usize,
 ) {
     match arithmetic {
-        Arithmetic::Exact => simd.dispatch(Window { maps, q, v, rows, out, count }),
-        Arithmetic::Fast => simd.dispatch(fast::Window { maps, q, v, rows, out, count }),
+        Arithmetic::Exact => simd.dispatch(Window::<f64> { maps, q, v, rows, out, count, number: PhantomData }),
+        Arithmetic::Fast => simd.dispatch(Window::<f32> { maps, q, v, rows, out, count, number: PhantomData }),
     }
 }
 
-/// [`free_window`]'s arguments.
-struct Window<'a, 'b> {
+/// The number a window stores its states and sums its channels in: f64 for the exact
+/// arithmetic, f32 for the fast one (`fast`).
+trait Stored: Term {
+    /// One mode's block, `(q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀)` for every j, stored in this
+    /// number; returns the state that starts the next block.
+    fn propagate(maps: &[Block; 4], start: (f64, f64), q: &mut Aligned<Self>, v: &mut Aligned<Self>) -> (f64, f64);
+    /// A channel's coefficients in this number.
+    fn coefficients(c: &[f64]) -> Cow<'_, [Self]>;
+    /// A sum as the output's f64.
+    fn widen(self) -> f64;
+}
+
+/// The exact arithmetic: each product then each sum, in f64.
+impl Stored for f64 {
+    #[inline(always)]
+    fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block, v: &mut Block) -> (f64, f64) {
+        let [p0, p1, p2, p3] = maps;
+        for j in 0..BLOCK {
+            q.0[j] = p0.0[j] * q0 + p1.0[j] * v0;
+            v.0[j] = p2.0[j] * q0 + p3.0[j] * v0;
+        }
+        (q.0[BLOCK - 1], v.0[BLOCK - 1])
+    }
+
+    fn coefficients(c: &[f64]) -> Cow<'_, [f64]> {
+        Cow::Borrowed(c)
+    }
+
+    #[inline(always)]
+    fn widen(self) -> f64 {
+        self
+    }
+}
+
+/// [`free_window`]'s arguments, and the number `T` it works in.
+struct Window<'a, 'b, T> {
     maps: &'a [&'a [[Block; 4]]],
     q: &'a [f64],
     v: &'a [f64],
     rows: &'a [ChannelRow],
     out: &'b mut [Vec<f64>],
     count: usize,
+    number: PhantomData<T>,
 }
 
-impl pulp::WithSimd for Window<'_, '_> {
+impl<T: Stored> pulp::WithSimd for Window<'_, '_, T> {
     type Output = ();
 
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) {
-        let Window { maps, q, v, rows, out, count } = self;
+        let Window { maps, q, v, rows, out, count, .. } = self;
         let n = q.len();
         let (mut q0, mut v0) = (q.to_vec(), v.to_vec());
         // Mode-major blocks of states: qs[i].0[j] is mode i at the block's sample j.
-        let (mut qs, mut vs) = (vec![Aligned([0.0; BLOCK]); n], vec![Aligned([0.0; BLOCK]); n]);
-        let parts = Parts::new(rows.iter().map(|r| (r.a.as_deref(), r.b.as_deref())));
-        let mut y = vec![[0.0f64; BLOCK]; rows.len()];
+        let (mut qs, mut vs) = (vec![Aligned([T::ZERO; BLOCK]); n], vec![Aligned([T::ZERO; BLOCK]); n]);
+        let cs: Vec<_> =
+            rows.iter().map(|r| (r.a.as_deref().map(T::coefficients), r.b.as_deref().map(T::coefficients))).collect();
+        let parts = Parts::new(cs.iter().map(|(a, b)| (a.as_deref(), b.as_deref())));
+        let mut y = vec![[T::ZERO; BLOCK]; rows.len()];
         let mut done = 0;
         while done < count {
             let m = BLOCK.min(count - done);
             let modes = maps.iter().flat_map(|m| m.iter());
             for (((p, (qb, vb)), q0), v0) in modes.zip(qs.iter_mut().zip(vs.iter_mut())).zip(&mut q0).zip(&mut v0) {
-                propagate(p, (*q0, *v0), qb, vb);
-                (*q0, *v0) = (qb.0[BLOCK - 1], vb.0[BLOCK - 1]);
+                (*q0, *v0) = T::propagate(p, (*q0, *v0), qb, vb);
             }
             parts.block(&qs, &vs, &mut y);
             for (y, o) in y.iter().zip(out.iter_mut()) {
-                o.extend_from_slice(&y[..m]);
+                o.extend(y[..m].iter().map(|&x| x.widen()));
             }
             done += m;
         }
-    }
-}
-
-/// One mode's block: `(q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀)` for every j of the block.
-#[inline(always)]
-fn propagate(maps: &[Block; 4], (q0, v0): (f64, f64), q: &mut Block, v: &mut Block) {
-    let [p0, p1, p2, p3] = maps;
-    for j in 0..BLOCK {
-        q.0[j] = p0.0[j] * q0 + p1.0[j] * v0;
-        v.0[j] = p2.0[j] * q0 + p3.0[j] * v0;
     }
 }
 
@@ -213,15 +234,18 @@ mod tests {
     }
 
     /// The fast window against the closed-form free vibration: 40 modes (60 Hz to 9 kHz,
-    /// ζ = 1 %) from a state of mixed signs, coefficients of mixed signs (so the sums cancel),
-    /// 3.5 blocks at 20 kHz. At every sample each channel lies within Higham's a-priori bound
-    /// γₙ₊₂ Σᵢ|cᵢsᵢ| (u = 2⁻²⁴) of the closed form, plus the exact window's 1e-13 of its
-    /// largest value for the f64 propagation; it is not the exact window's result (the f32
-    /// sums are in use); and on plain x86-64 it has the same bits as on the widest
-    /// instruction set, fused multiply-adds being correctly rounded on both.
+    /// ζ = 1 %) from a state of mixed signs, the last mode rung down to 3e-31 (below 2⁻¹⁰⁰, so
+    /// set to rest after the first block), six channels of mixed-sign coefficients (so the
+    /// sums cancel; two without a B part, one without an A part, so that the channels are
+    /// summed four, two and one at a time), 3.5 blocks at 20 kHz. At every sample each
+    /// channel lies within Higham's a-priori bound γₙ₊₂ Σᵢ|cᵢsᵢ| (u = 2⁻²⁴, n its terms) of
+    /// the closed form, plus √2·2⁻¹⁰⁰(|Aᵢ| + ωᵢ|Bᵢ|) for the mode at rest and the exact
+    /// window's 1e-13 of its largest value for the f64 propagation; it is not the exact
+    /// window's result (the f32 sums are in use); and on plain x86-64 it has the same bits as
+    /// on the widest instruction set, fused multiply-adds being correctly rounded on both.
     #[test]
     fn fast_sums_lie_within_their_rounding_bound() {
-        let (zeta, ts, n) = (0.01, 5e-5, 40);
+        let (zeta, ts, n, channels) = (0.01, 5e-5, 40, 6);
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut uniform = move || {
             seed ^= seed << 13;
@@ -230,34 +254,46 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         let omega: Vec<f64> = (0..n).map(|i| 2.0 * std::f64::consts::PI * 60.0 * (1.0 + i as f64 * 3.7)).collect();
-        let q: Vec<f64> = (0..n).map(|_| 1e-5 * uniform()).collect();
-        let v: Vec<f64> = omega.iter().map(|w| 1e-5 * w * uniform()).collect();
-        let a: Vec<f64> = (0..n).map(|_| uniform()).collect();
-        let b: Vec<f64> = omega.iter().map(|w| uniform() / w).collect();
-        let rows = [ChannelRow { a: Some(a.clone()), b: Some(b.clone()), d: 0.0 }];
+        let mut q: Vec<f64> = (0..n).map(|_| 1e-5 * uniform()).collect();
+        let mut v: Vec<f64> = omega.iter().map(|w| 1e-5 * w * uniform()).collect();
+        (q[n - 1], v[n - 1]) = (3e-31, -3e-31);
+        let rows: Vec<ChannelRow> = (0..channels)
+            .map(|r| ChannelRow {
+                a: (r != 3).then(|| (0..n).map(|_| uniform()).collect()),
+                b: (r != 2 && r != 5).then(|| omega.iter().map(|w| uniform() / w).collect()),
+                d: 0.0,
+            })
+            .collect();
         let count = 3 * BLOCK + BLOCK / 2;
         let maps = BlockMaps::new(&omega, super::super::ModalDamping::Ratio(zeta), ts);
         let window = |arch, arithmetic| {
-            let mut out = vec![Vec::new()];
+            let mut out = vec![Vec::new(); channels];
             free_window((arch, arithmetic), &[maps.modes()], &q, &v, &rows, &mut out, count);
-            out.pop().unwrap()
+            out
         };
         let fast = window(pulp::Arch::new(), Arithmetic::Fast);
         let exact = window(pulp::Arch::new(), Arithmetic::Exact);
-        // (the sum, Σ|cᵢsᵢ|) at sample k from the closed-form states.
-        let closed = |k: usize| -> (f64, f64) {
-            (0..n).fold((0.0, 0.0), |(y, s), i| {
-                let m = free_map(omega[i], zeta, k as f64 * ts);
-                let (qk, vk) = (m[0] * q[i] + m[1] * v[i], m[2] * q[i] + m[3] * v[i]);
-                (y + a[i] * qk + b[i] * vk, s + (a[i] * qk).abs() + (b[i] * vk).abs())
-            })
-        };
-        let reference: Vec<(f64, f64)> = (1..=count).map(closed).collect();
-        let scale = reference.iter().map(|x| x.0.abs()).fold(0.0, f64::max);
-        let gamma = Arithmetic::Fast.gamma(2 * n + 2);
-        for (k, (y, s)) in reference.iter().enumerate() {
-            let bound = gamma * s + 1e-13 * scale;
-            assert!((fast[k] - y).abs() <= bound, "sample {k}: {} against {y}, bound {bound:e}", fast[k]);
+        let zero = vec![0.0; n];
+        for (r, row) in rows.iter().enumerate() {
+            let (a, b) = (row.a.as_ref().unwrap_or(&zero), row.b.as_ref().unwrap_or(&zero));
+            let terms = usize::from(row.a.is_some()) * n + usize::from(row.b.is_some()) * n;
+            // (the sum, Σ|cᵢsᵢ|) at sample k from the closed-form states.
+            let closed = |k: usize| -> (f64, f64) {
+                (0..n).fold((0.0, 0.0), |(y, s), i| {
+                    let m = free_map(omega[i], zeta, k as f64 * ts);
+                    let (qk, vk) = (m[0] * q[i] + m[1] * v[i], m[2] * q[i] + m[3] * v[i]);
+                    (y + a[i] * qk + b[i] * vk, s + (a[i] * qk).abs() + (b[i] * vk).abs())
+                })
+            };
+            let reference: Vec<(f64, f64)> = (1..=count).map(closed).collect();
+            let scale = reference.iter().map(|x| x.0.abs()).fold(0.0, f64::max);
+            let rest = std::f64::consts::SQRT_2 * 2f64.powi(-100) * (a[n - 1].abs() + omega[n - 1] * b[n - 1].abs());
+            let gamma = Arithmetic::Fast.gamma(terms + 2);
+            for (k, (y, s)) in reference.iter().enumerate() {
+                let bound = gamma * s + rest + 1e-13 * scale;
+                let got = fast[r][k];
+                assert!((got - y).abs() <= bound, "channel {r}, sample {k}: {got} against {y}, bound {bound:e}");
+            }
         }
         assert_ne!(fast, exact, "the fast window summed in f64");
         assert_eq!(fast, window(pulp::Arch::Scalar, Arithmetic::Fast), "plain x86-64 against the widest");

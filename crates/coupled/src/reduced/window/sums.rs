@@ -77,14 +77,17 @@ impl<'a, T: Term> Parts<'a, T> {
     }
 }
 
-/// One part of the channels that have it, as many together as [`Term::GROUP`] allows.
+/// One part of the channels that have it, four, two or one together (as many as
+/// [`Term::GROUP`] allows).
 #[inline(always)]
 fn part<T: Term>(have: &[(usize, &[T])], states: &[Aligned<T>], y: &mut [[T; BLOCK]]) {
     let mut at = 0;
     while at < have.len() {
-        let k = [8, 4, 2, 1].into_iter().find(|&k| k <= T::GROUP && k <= have.len() - at).unwrap_or(1);
+        // Channels of one length together (every row holds one coefficient per mode, so this
+        // always holds; a shorter row would otherwise lose the terms past it).
+        let same = |k: usize| have[at..at + k].iter().all(|r| r.1.len() == have[at].1.len());
+        let k = [4, 2].into_iter().find(|&k| k <= T::GROUP && k <= have.len() - at && same(k)).unwrap_or(1);
         match k {
-            8 => sums::<T, 8>(&have[at..at + 8], states, y),
             4 => sums::<T, 4>(&have[at..at + 4], states, y),
             2 => sums::<T, 2>(&have[at..at + 2], states, y),
             _ => sums::<T, 1>(&have[at..at + 1], states, y),
