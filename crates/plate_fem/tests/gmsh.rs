@@ -4,6 +4,8 @@
 //! shear (the disc's series written here, sharing nothing with the FE load), and the
 //! Scordelis-Lo roof against MacNeal and Harder.
 
+mod common;
+
 use plate_fem::shell::gmsh::MeshFile;
 use plate_fem::shell::{Restraints, DISC_RULE};
 
@@ -345,23 +347,7 @@ fn a_written_mesh_reads_back() {
 /// the bottom plate's thickness, refine with the mesh).
 #[test]
 fn the_tail_beam_through_a_file_is_the_builder() {
-    use plate_fem::shell::tail_beam::{Jack, TailBeam};
-    use plate_fem::shell::Spring;
-    let beam = TailBeam {
-        length: 1.6,
-        width: 1.4,
-        height: 0.25,
-        top: 0.03,
-        bottom: 0.02,
-        webs: 0.02,
-        ends: 0.02,
-        ribs: vec![0.7],
-        rib: 0.016,
-        diaphragms: None,
-        pin_height: 0.125,
-        pins: vec![[0.1, 0.3], [1.1, 1.3]],
-        jacks: vec![Jack { x: 0.6, z: 0.35, pad: 0.1, stiffness: 4.3e7, angle: 1.0 }],
-    };
+    let beam = common::test_box(None);
     let (e, nu, element, at) = (210e9, 0.3, 0.1, [0.8, 0.25, 0.5]);
     let text = beam.mesh_file(element, 0).unwrap().to_msh41(1e-3);
     let mut mesh = MeshFile::parse(&text, "tail-beam.msh", 1e-3).unwrap();
@@ -377,24 +363,9 @@ fn the_tail_beam_through_a_file_is_the_builder() {
 
         let walls =
             [("top", 0.03), ("bottom", 0.02), ("jack 1", 0.02), ("webs", 0.02), ("ribs", 0.016), ("ends", 0.02)];
-        let (s, node_of) = mesh.structure(e, nu, &walls.map(|(g, t)| (g.to_string(), t))).unwrap();
-        let mut r = Restraints::default();
-        for n in mesh.nodes_of("pins").unwrap() {
-            r.hold(node_of[n].unwrap(), &[0, 1, 2]);
-        }
-        let pad = mesh.nodes_of("jack 1").unwrap();
-        assert_eq!(pad.len(), built.restraints.springs.len(), "level {level}: the pad's nodes");
-        for &n in &pad {
-            let direction = [1f64.cos(), 1f64.sin(), 0.0];
-            r.springs.push(Spring { node: node_of[n].unwrap(), direction, stiffness: 4.3e7 / pad.len() as f64 });
-        }
-        assert_eq!(r.held.len(), built.restraints.held.len(), "level {level}: the pins' DOFs");
-        let g = mesh.group("top").unwrap();
-        let struck: Vec<usize> =
-            mesh.quads.iter().enumerate().filter(|(_, c)| c.groups.contains(&g)).map(|(i, _)| i).collect();
-        let f = s.disc_load(at, 0.015, &struck, DISC_RULE).unwrap();
-        let u = s.factorize(&r).unwrap().solve(&f);
-        let read: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+        let (read, pad, held) = common::read_back(&mesh, &beam, &walls, (e, nu), at);
+        assert_eq!(pad, built.restraints.springs.len(), "level {level}: the pad's nodes");
+        assert_eq!(held, built.restraints.held.len(), "level {level}: the pins' DOFs");
         assert!((read / builder - 1.0).abs() < 1e-9, "level {level}: builder {builder:e}, read {read:e}");
     }
 }

@@ -5,29 +5,16 @@
 //! mass is its mid-surface area times its thickness; and written as a mesh file and read back
 //! it is the builder's.
 
-use plate_fem::shell::gmsh::MeshFile;
-use plate_fem::shell::tail_beam::{Diaphragms, Jack, TailBeam};
-use plate_fem::shell::{Restraints, Spring, DISC_RULE};
+mod common;
 
-/// A box whose coarsest x lines hold x = 0.65 m (the jack pad's edge), so that a diaphragm
-/// there leaves the other walls' mesh as it was.
-fn beam(diaphragms: Vec<f64>) -> TailBeam {
-    let diaphragms = (!diaphragms.is_empty()).then_some(Diaphragms { x: diaphragms, thickness: 0.016 });
-    TailBeam {
-        length: 1.6,
-        width: 1.4,
-        height: 0.25,
-        top: 0.03,
-        bottom: 0.02,
-        webs: 0.02,
-        ends: 0.02,
-        ribs: vec![0.7],
-        rib: 0.016,
-        diaphragms,
-        pin_height: 0.125,
-        pins: vec![[0.1, 0.3], [1.1, 1.3]],
-        jacks: vec![Jack { x: 0.6, z: 0.35, pad: 0.1, stiffness: 4.3e7, angle: 1.0 }],
-    }
+use common::{read_back, test_box};
+use plate_fem::shell::gmsh::MeshFile;
+use plate_fem::shell::tail_beam::{Diaphragms, TailBeam};
+use plate_fem::shell::DISC_RULE;
+
+/// The test box with diaphragms at `x`, 16 mm thick (none if `x` is empty).
+fn beam(x: Vec<f64>) -> TailBeam {
+    test_box((!x.is_empty()).then_some(Diaphragms { x, thickness: 0.016 }))
 }
 
 /// The compliance at (x, H, z) under a 15 mm disc on the top plate, and the node count.
@@ -79,21 +66,6 @@ fn a_diaphragm_goes_through_a_mesh_file() {
         ("ends", 0.02),
         ("diaphragms", 0.016),
     ];
-    let (s, node_of) = mesh.structure(e, nu, &walls.map(|(g, t)| (g.to_string(), t))).unwrap();
-    let mut r = Restraints::default();
-    for n in mesh.nodes_of("pins").unwrap() {
-        r.hold(node_of[n].unwrap(), &[0, 1, 2]);
-    }
-    let pad = mesh.nodes_of("jack 1").unwrap();
-    for &n in &pad {
-        let direction = [1f64.cos(), 1f64.sin(), 0.0];
-        r.springs.push(Spring { node: node_of[n].unwrap(), direction, stiffness: 4.3e7 / pad.len() as f64 });
-    }
-    let g = mesh.group("top").unwrap();
-    let struck: Vec<usize> =
-        mesh.quads.iter().enumerate().filter(|(_, c)| c.groups.contains(&g)).map(|(i, _)| i).collect();
-    let f = s.disc_load(at, 0.015, &struck, DISC_RULE).unwrap();
-    let u = s.factorize(&r).unwrap().solve(&f);
-    let read: f64 = f.iter().zip(&u).map(|(a, b)| a * b).sum();
+    let (read, _, _) = read_back(&mesh, &b, &walls, (e, nu), at);
     assert!((read / builder - 1.0).abs() < 1e-9, "builder {builder:e}, read {read:e}");
 }
