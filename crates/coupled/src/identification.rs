@@ -319,14 +319,24 @@ impl Instrument<'_> {
     }
 
     /// The continuous model signals of a caving stream of `lumps` over `duration` seconds
-    /// ([`crate::reduced::stream`]), the lumps' families named by `family_names`.
+    /// ([`crate::reduced::stream`]), the lumps' families named by `family_names`; `span` a
+    /// segment of it run alone ([`crate::reduced::stream::span`]; None: the whole stream).
     pub fn stream(
         &self,
         lumps: &[identify::stream::Lump],
         family_names: &[String],
-        duration: f64,
+        (duration, span): (f64, Option<crate::reduced::stream::Span>),
     ) -> Result<crate::reduced::stream::StreamResponse, ModelError> {
-        self.model.stream(&self.striking.arrivals(lumps, family_names)?, &self.probes, duration)
+        let arrivals = self.striking.arrivals(lumps, family_names)?;
+        match span {
+            None => self.model.stream(&arrivals, &self.probes, duration),
+            Some(span) => self.model.stream_span(&arrivals, &self.probes, duration, span),
+        }
+    }
+
+    /// The slowest decay rate of the model's kept modes, 1/s.
+    pub fn slowest_decay(&self) -> f64 {
+        self.model.slowest_decay()
     }
 
     /// The model's sample rate, Hz.

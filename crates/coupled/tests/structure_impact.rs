@@ -301,7 +301,7 @@ fn a_stream_of_two_overlapping_lumps_is_the_full_structure_with_both_contacts() 
         };
         let model = StructureModel::new(&fact, &mass, &loads, readings, settings).unwrap();
         let probes = model.probes(samples as f64 * ts, rate).unwrap();
-        let stream = model.stream(&arrivals, &places, &probes, samples as f64 * ts).unwrap();
+        let stream = model.stream(&arrivals, &places, &probes, (samples as f64 * ts, None)).unwrap();
         let [p_max, jack, acceleration] = compare(&stream, &full, (last, every));
         eprintln!("{modes} modes: P_max {p_max:.2e}, jack force {jack:.2e}, acceleration {acceleration:.2e} over {last} samples");
         assert!(jack < jack_tolerance, "{jack:e}");

@@ -46,7 +46,7 @@
 //! ```
 
 use super::signals::{ChannelKind, ChannelRows, FreeMaps, Probes, SignalSpec};
-use super::stream::{Arrival, StreamResponse, Struck, StruckAt};
+use super::stream::{Arrival, Span, StreamResponse, Struck, StruckAt};
 use super::target::{ChannelRow, ModalTarget, Recording};
 use super::{modal_compliance, Arithmetic, ModalDamping, ReducedSettings};
 use crate::error::ModelError;
@@ -225,6 +225,13 @@ impl StructureModel {
         self.settings.damping
     }
 
+    /// The slowest decay rate of its kept modes, minᵢ ζᵢωᵢ, 1/s (a stream's warm-up,
+    /// [`super::stream::span::warm_up_s`]).
+    pub fn slowest_decay(&self) -> f64 {
+        let zeta = self.settings.damping;
+        self.omega.iter().map(|&w| zeta.at(w) * w).fold(f64::INFINITY, f64::min)
+    }
+
     /// The modes' frequencies, Hz.
     pub fn frequencies_hz(&self) -> Vec<f64> {
         self.omega.iter().map(|w| w / std::f64::consts::TAU).collect()
@@ -340,13 +347,14 @@ impl StructureModel {
     /// The continuous signals of `probes` ([`Self::probes`]) over `duration` seconds of the
     /// stream `arrivals` (in order of time), as on the plate ([`super::stream`]): each lump
     /// strikes the load point nearest its (x, z), `points[k]` being load k's place on the
-    /// struck face.
+    /// struck face. `span` runs a segment of it alone ([`super::stream::span`]; None: the
+    /// whole stream).
     pub fn stream(
         &self,
         arrivals: &[Arrival],
         points: &[(f64, f64)],
         probes: &Probes,
-        duration: f64,
+        (duration, span): (f64, Option<Span>),
     ) -> Result<StreamResponse, ModelError> {
         if points.len() != self.points.len() {
             return Err(ModelError::Missing(format!(
@@ -363,7 +371,7 @@ impl StructureModel {
         if probes.omega.len() != self.omega.len() || !fits {
             return Err(ModelError::Missing("the probes were prepared on another model".into()));
         }
-        super::stream::stream(&OnFace { model: self, points }, arrivals, probes, duration)
+        super::stream::stream(&OnFace { model: self, points }, arrivals, probes, duration, span)
     }
 }
 

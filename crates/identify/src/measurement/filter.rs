@@ -41,6 +41,21 @@ impl Analog {
         poly(&self.numerator) / poly(&self.denominator)
     }
 
+    /// The slowest decay rate of its poles, -max Re(s) over the roots of d₂s² + d₁s + d₀,
+    /// 1/s: how fast what it holds of its past input fades.
+    pub fn decay_rate(&self) -> f64 {
+        let [d2, d1, d0] = self.denominator;
+        if d2 == 0.0 {
+            return d0 / d1;
+        }
+        let disc = d1 * d1 - 4.0 * d2 * d0;
+        if disc < 0.0 {
+            d1 / (2.0 * d2)
+        } else {
+            (d1 - disc.sqrt()) / (2.0 * d2)
+        }
+    }
+
     /// The second-order low-pass resonance ω_r²/(s² + 2ζω_r s + ω_r²): a sensor's mounted
     /// resonance (flat below it, a peak of 1/(2ζ) at it, falling as (ω_r/Ω)² above).
     pub fn resonance(omega_r: f64, zeta: f64) -> Self {
@@ -166,6 +181,12 @@ impl Cascade {
         } else {
             0.0
         }
+    }
+
+    /// The slowest decay rate of its sections' poles, 1/s (infinite for no section: it holds
+    /// no past).
+    pub fn slowest_decay(&self) -> f64 {
+        self.analog.iter().map(Analog::decay_rate).fold(f64::INFINITY, f64::min)
     }
 
     /// Filters `x` (sampled at the cascade's rate) in place, from rest.

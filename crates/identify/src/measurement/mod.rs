@@ -26,6 +26,7 @@
 
 pub mod filter;
 pub mod noise;
+pub mod segments;
 
 use crate::ensemble::impact_stream;
 use filter::{Analog, Cascade};

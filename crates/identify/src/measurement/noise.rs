@@ -191,11 +191,17 @@ pub fn synthesize(psd: &Psd, n: usize, rate_hz: f64, rng: &mut ChaCha8Rng) -> Ve
 
 /// Adds `tones` to `x` (sampled at `rate_hz`), each with a phase drawn from `rng`.
 pub fn add_tones(x: &mut [f64], tones: &[Tone], rate_hz: f64, rng: &mut ChaCha8Rng) {
-    for t in tones {
-        let phase = 2.0 * PI * crate::ensemble::open_uniform(rng);
+    let phases: Vec<f64> = tones.iter().map(|_| 2.0 * PI * crate::ensemble::open_uniform(rng)).collect();
+    add_tones_at(x, tones, rate_hz, &phases, 0);
+}
+
+/// Adds `tones` of phases `phases` to `x`, whose first sample is the recording's sample
+/// number `first`: √2 · rms · sin(2πf(first + k)/f_s + φ).
+pub fn add_tones_at(x: &mut [f64], tones: &[Tone], rate_hz: f64, phases: &[f64], first: usize) {
+    for (t, &phase) in tones.iter().zip(phases) {
         let (amplitude, w) = (2f64.sqrt() * t.rms, 2.0 * PI * t.frequency_hz / rate_hz);
         for (k, v) in x.iter_mut().enumerate() {
-            *v += amplitude * (w * k as f64 + phase).sin();
+            *v += amplitude * (w * (first + k) as f64 + phase).sin();
         }
     }
 }

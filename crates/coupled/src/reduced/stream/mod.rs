@@ -39,6 +39,7 @@
 //! ([`super::ReducedModel::impact_with`]'s rule).
 
 mod envelope;
+pub mod span;
 mod step;
 
 use super::impact::{at_point, channel_row};
@@ -52,7 +53,8 @@ use analytic::params::{check, Range};
 use envelope::{half_periods, lowest_deflection, reach, HalfPeriod};
 use serde::Serialize;
 use std::collections::HashMap;
-use step::{flexibility, step, Scratch};
+pub use span::{Cut, Span};
+use step::{flexibility, step, step_maps, Scratch, StepMaps};
 
 /// A lump of the stream: its sphere and law, its arrival and where it strikes.
 #[derive(Debug, Clone)]
@@ -146,14 +148,6 @@ struct Active {
     response: LumpResponse,
 }
 
-/// The step maps of one step Δt = T_s/m: Newmark's, the exact one, and hᵢ.
-struct StepMaps {
-    dt: f64,
-    newmark: FreeMaps,
-    exact: FreeMaps,
-    h: Vec<f64>,
-}
-
 /// What a stream needs of the struck structure: its modes, and each struck point's view of
 /// them. The plate ([`ReducedModel`]) and a shell structure
 /// ([`super::structure::StructureModel`]) are struck through it alike.
@@ -222,21 +216,50 @@ impl ReducedModel {
     /// (in order of time; see the module). The probes' window is the longest a lump is
     /// followed after its touch.
     pub fn stream(&self, arrivals: &[Arrival], probes: &Probes, duration: f64) -> Result<StreamResponse, ModelError> {
+        self.streams()?;
+        stream(self, arrivals, probes, duration, None)
+    }
+
+    /// The slowest decay rate of its kept modes, minᵢ ζᵢωᵢ, 1/s: what a stream's segments
+    /// warm up by ([`span::warm_up_s`]).
+    pub fn slowest_decay(&self) -> f64 {
+        span::slowest_decay(self)
+    }
+
+    /// Whether the model can carry a stream: its truncated modes as the static correction.
+    fn streams(&self) -> Result<(), ModelError> {
         if self.settings.correction != Correction::Static {
             return Err(ModelError::Missing(
                 "a stream carries the truncated modes as the static correction; set correction = \"static\"".into(),
             ));
         }
-        stream(self, arrivals, probes, duration)
+        Ok(())
+    }
+
+    /// The part `span` of [`Self::stream`], run alone from rest at its start (module
+    /// [`span`]): its signals from the span's start, its lumps those arriving within it.
+    pub fn stream_span(
+        &self,
+        arrivals: &[Arrival],
+        probes: &Probes,
+        duration: f64,
+        span: Span,
+    ) -> Result<StreamResponse, ModelError> {
+        self.streams()?;
+        stream(self, arrivals, probes, duration, Some(span))
     }
 }
 
-/// The stream `arrivals` on `model`, recorded by `probes` over `duration` seconds.
+/// The stream `arrivals` on `model`, recorded by `probes` over `duration` seconds, run over
+/// `span` (the whole stream: [`Span::whole`]): its signals from the span's start to its
+/// end (warm-up and segment), its lumps those arriving in [`Span::from`, `Span::to`), each
+/// with the stream's sample of its touch.
 pub(crate) fn stream(
     model: &dyn Struck,
     arrivals: &[Arrival],
     probes: &Probes,
     duration: f64,
+    span: Option<Span>,
 ) -> Result<StreamResponse, ModelError> {
     check("duration", duration, Range::open(0.0, f64::INFINITY), "s")?;
     for (i, a) in arrivals.iter().enumerate() {
@@ -247,16 +270,24 @@ pub(crate) fn stream(
     }
     let rate = probes.spec.rate_hz;
     let total = (duration * rate - 1e-9).ceil().max(1.0) as usize;
-    let mut run = Run::new(model, probes, total);
-    let mut next = 0;
+    let span = span.unwrap_or(Span::whole(total));
+    if !(span.start <= span.from && span.from < span.to && span.to <= total) {
+        return Err(ModelError::Missing(format!(
+            "the span {span:?} does not lie in the stream's {total} samples with its warm-up before it"
+        )));
+    }
+    let len = span.end(total, probes.spec.samples()) - span.start;
+    let first = arrivals.partition_point(|a| !span.admits(a.time, rate));
+    let mut run = Run::new(model, probes, len);
+    let mut next = first;
     let mut k = 0;
-    while k + 1 < total {
-        while next < arrivals.len() && sample_of(arrivals[next].time, rate) <= k {
+    while k + 1 < len {
+        while next < arrivals.len() && sample_of(arrivals[next].time, rate) - span.start <= k {
             run.admit(next, &arrivals[next], k)?;
             next += 1;
         }
         if run.active.is_empty() {
-            let target = arrivals.get(next).map_or(total - 1, |a| sample_of(a.time, rate).min(total - 1));
+            let target = arrivals.get(next).map_or(len - 1, |a| (sample_of(a.time, rate) - span.start).min(len - 1));
             run.free(target - k);
             k = target;
         } else {
@@ -265,7 +296,7 @@ pub(crate) fn stream(
             run.retire(k);
         }
     }
-    Ok(run.finish())
+    Ok(run.finish().within(span))
 }
 
 /// The sample an arrival at `time` falls on.
@@ -551,48 +582,4 @@ fn cross_terms(model: &dyn Struck, active: &[Active]) -> Option<Vec<f64>> {
 /// A row with its zero entries all zero: None.
 fn nonzero(x: &[f64]) -> Option<Vec<f64>> {
     x.iter().any(|&x| x != 0.0).then(|| x.to_vec())
-}
-
-/// The maps of the step T_s/`every`.
-fn step_maps(model: &dyn Struck, probes: &Probes, every: usize) -> StepMaps {
-    let dt = probes.spec.interval() / every as f64;
-    let zeta = model.damping();
-    let omega = model.omega();
-    StepMaps {
-        dt,
-        newmark: FreeMaps::newmark(omega, zeta, dt),
-        exact: probes.step_map(every),
-        h: omega.iter().map(|&w| 1.0 / (w * w + 4.0 * zeta.at(w) * w / dt + 4.0 / (dt * dt))).collect(),
-    }
-}
-
-impl Active {
-    /// The highest the sphere's free flight u + u̇τ + gτ²/2 reaches over the next `tau`
-    /// seconds: at one of its ends (g ≥ 0, a parabola opening upward, or a line).
-    fn highest(&self, tau: f64) -> f64 {
-        self.u.max(self.u + self.v * tau + 0.5 * self.striker.gravity * tau * tau)
-    }
-
-    /// The compression δ_p at which its contact opens: the permanent set its law has left.
-    fn opens_at(&self) -> f64 {
-        self.striker.permanent_set(self.dmax)
-    }
-
-    /// The contact bookkeeping of a step ending with force `p`.
-    fn record(&mut self, p: f64, dt: f64) {
-        if p > 0.0 && self.force == 0.0 {
-            self.response.contacts += 1;
-            if self.opened.is_none() {
-                self.opened = Some(self.time);
-            }
-        }
-        self.time += dt;
-        if p == 0.0 && self.force > 0.0 && self.response.contacts == 1 {
-            self.response.contact_time = self.time - self.opened.unwrap_or(0.0);
-        }
-        self.force = p;
-        self.steps += 1;
-        self.response.force_max = self.response.force_max.max(p);
-        self.response.compression_max = self.response.compression_max.max(self.last.0);
-    }
 }

@@ -2,9 +2,30 @@
 //! prediction and end, the joint solve of the step-end forces, and the step flexibility that
 //! couples them.
 
-use super::{Active, StepMaps, SWEEPS};
-use crate::reduced::signals::dot;
+use super::{Active, Struck, SWEEPS};
+use crate::reduced::signals::{dot, FreeMaps, Probes};
 use crate::transient::{approach_velocity, contact_force_after};
+
+/// The step maps of one step Δt = T_s/m: Newmark's, the exact one, and hᵢ.
+pub(super) struct StepMaps {
+    pub(super) dt: f64,
+    pub(super) newmark: FreeMaps,
+    pub(super) exact: FreeMaps,
+    pub(super) h: Vec<f64>,
+}
+
+/// The maps of the step T_s/`every`.
+pub(super) fn step_maps(model: &dyn Struck, probes: &Probes, every: usize) -> StepMaps {
+    let dt = probes.spec.interval() / every as f64;
+    let zeta = model.damping();
+    let omega = model.omega();
+    StepMaps {
+        dt,
+        newmark: FreeMaps::newmark(omega, zeta, dt),
+        exact: probes.step_map(every),
+        h: omega.iter().map(|&w| 1.0 / (w * w + 4.0 * zeta.at(w) * w / dt + 4.0 / (dt * dt))).collect(),
+    }
+}
 
 /// Gⱼₖ = Σᵢ hᵢφᵢ(pⱼ)φᵢ(pₖ) + δⱼₖC_res(pⱼ) over the lumps followed, row-major (the cross
 /// static corrections, where the model carries them, are added by the caller).
@@ -197,4 +218,35 @@ fn solve(active: &[Active], g: &[f64], c1: f64, w: &mut Scratch) -> bool {
         }
     }
     false
+}
+
+impl Active {
+    /// The highest the sphere's free flight u + u̇τ + gτ²/2 reaches over the next `tau`
+    /// seconds: at one of its ends (g ≥ 0, a parabola opening upward, or a line).
+    pub(super) fn highest(&self, tau: f64) -> f64 {
+        self.u.max(self.u + self.v * tau + 0.5 * self.striker.gravity * tau * tau)
+    }
+
+    /// The compression δ_p at which its contact opens: the permanent set its law has left.
+    pub(super) fn opens_at(&self) -> f64 {
+        self.striker.permanent_set(self.dmax)
+    }
+
+    /// The contact bookkeeping of a step ending with force `p`.
+    pub(super) fn record(&mut self, p: f64, dt: f64) {
+        if p > 0.0 && self.force == 0.0 {
+            self.response.contacts += 1;
+            if self.opened.is_none() {
+                self.opened = Some(self.time);
+            }
+        }
+        self.time += dt;
+        if p == 0.0 && self.force > 0.0 && self.response.contacts == 1 {
+            self.response.contact_time = self.time - self.opened.unwrap_or(0.0);
+        }
+        self.force = p;
+        self.steps += 1;
+        self.response.force_max = self.response.force_max.max(p);
+        self.response.compression_max = self.response.compression_max.max(self.last.0);
+    }
 }
