@@ -59,10 +59,10 @@ fn identify_scenes(c: &mut Criterion) {
         let window = scene.signals.window;
         let duration = window * draws.len() as f64;
         let free = || {
-            black_box(instrument.stream(&[], &names, duration).unwrap());
+            black_box(instrument.stream(&[], &names, (duration, None)).unwrap());
         };
         let (t_impacts, t_free) = (best(&run), best(&free));
-        let ringing = instrument.stream(&[], &names, duration).unwrap();
+        let ringing = instrument.stream(&[], &names, (duration, None)).unwrap();
         let (channels, samples) = (ringing.signals.channels.len(), ringing.signals.channels[0].samples.len());
         let fma = model.modes().count() as f64 * samples as f64 * (4.0 + 2.0 * channels as f64);
         println!(

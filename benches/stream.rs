@@ -50,11 +50,11 @@ fn stream(c: &mut Criterion) {
     let drawn = lumps(ensemble, &s).unwrap();
     let best = common::best_of_five;
     let with = best(&|| {
-        black_box(instrument.stream(&drawn, &names, duration).unwrap());
+        black_box(instrument.stream(&drawn, &names, (duration, None)).unwrap());
     });
-    let run = instrument.stream(&drawn, &names, duration).unwrap();
+    let run = instrument.stream(&drawn, &names, (duration, None)).unwrap();
     let free = best(&|| {
-        black_box(instrument.stream(&[], &names, duration).unwrap());
+        black_box(instrument.stream(&[], &names, (duration, None)).unwrap());
     });
     println!(
         "stream: {} lumps in {duration} s, {} contact steps ({:.0} a lump), {:.0}x real time; free plate {:.0}x real time (the floor); contacts cost {:.2}x the floor",
@@ -73,12 +73,12 @@ fn stream(c: &mut Criterion) {
     .unwrap();
     let fast = Instrument::new(&fast_model, &scene.plate, &spec, &scene).unwrap();
     let fast_with = best(&|| {
-        black_box(fast.stream(&drawn, &names, duration).unwrap());
+        black_box(fast.stream(&drawn, &names, (duration, None)).unwrap());
     });
     let fast_free = best(&|| {
-        black_box(fast.stream(&[], &names, duration).unwrap());
+        black_box(fast.stream(&[], &names, (duration, None)).unwrap());
     });
-    let fast_run = fast.stream(&drawn, &names, duration).unwrap();
+    let fast_run = fast.stream(&drawn, &names, (duration, None)).unwrap();
     let largest = largest_difference(&run.signals, &fast_run.signals);
     println!(
         "stream, fast arithmetic: {:.0}x real time ({:.2}x the exact stream); free plate {:.0}x real time ({:.2}x the exact); \
@@ -91,13 +91,13 @@ fn stream(c: &mut Criterion) {
     let mut g = c.benchmark_group("stream");
     g.sample_size(10);
     g.bench_function("10 s at 20 lumps/s, 2 sensors, 20 kHz, 80 modes", |b| {
-        b.iter(|| black_box(instrument.stream(&drawn, &names, duration).unwrap()))
+        b.iter(|| black_box(instrument.stream(&drawn, &names, (duration, None)).unwrap()))
     });
     g.bench_function("reference: the free plate over 10 s", |b| {
-        b.iter(|| black_box(instrument.stream(&[], &names, duration).unwrap()))
+        b.iter(|| black_box(instrument.stream(&[], &names, (duration, None)).unwrap()))
     });
     g.bench_function("10 s at 20 lumps/s, 2 sensors, 20 kHz, 80 modes, fast arithmetic", |b| {
-        b.iter(|| black_box(fast.stream(&drawn, &names, duration).unwrap()))
+        b.iter(|| black_box(fast.stream(&drawn, &names, (duration, None)).unwrap()))
     });
     g.finish();
 }

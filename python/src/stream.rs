@@ -49,13 +49,16 @@ const MAX_STREAM: f64 = 1e9;
 
 /// Stream `stream` of the scene's `[stream]` study on the support set `condition`, alone:
 /// its recorded channels and its lumps, bit for bit the study's stream of that number, so
-/// that streams are computed apart (a task each) and put together.
+/// that streams are computed apart (a task each) and put together; with `segment`, only that
+/// segment of a stream the scene cuts (`segment_s`), bit for bit the study's.
 #[pyfunction]
+#[pyo3(signature = (scene, condition, stream, segment=None))]
 pub fn stream_recording<'py>(
     py: Python<'py>,
     scene: &crate::scene::Scene,
     condition: &str,
     stream: f64,
+    segment: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = &scene.scene;
     let (Some(study), Some(ensemble)) = (&s.stream, &s.ensemble) else {
@@ -84,8 +87,18 @@ pub fn stream_recording<'py>(
         ));
     }
     let r = stream as usize;
+    let segment = match segment {
+        None => None,
+        Some(b) if b.is_finite() && b >= 0.0 && b.fract() == 0.0 && b <= MAX_STREAM => Some(b as usize),
+        Some(b) => {
+            return Err(argument_message(
+                "segment",
+                format!("{b} is not a segment number; allowed whole numbers in [0, {MAX_STREAM}]"),
+            ))
+        }
+    };
     let (signal, rows) = py
-        .detach(|| studies::stream::one_stream(s, (study, ensemble), set, r).map_err(|e| e.to_string()))
+        .detach(|| studies::stream::one_stream(s, (study, ensemble), set, (r, segment)).map_err(|e| e.to_string()))
         .map_err(model_error)?;
     let out = PyDict::new(py);
     let columns = PyDict::new(py);

@@ -111,12 +111,28 @@ pub struct StreamStudy {
     /// detector carried to another plate. Left out of the serialised scene when empty.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub thickness_sweep: Vec<f64>,
+    /// How every stream is cut in time to run in segments (None: each stream in one piece).
+    /// Left out of the serialised scene when None, so that a scene without it keeps its
+    /// provenance hash.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub segments: Option<Segmenting>,
     /// Whether to write the first stream's continuous signals.
     pub write_signal: bool,
     /// The file they are written as. Left out of the serialised scene as CSV, so that a
     /// scene without it keeps its provenance hash.
     #[serde(skip_serializing_if = "SignalFormat::is_csv")]
     pub signal_format: SignalFormat,
+}
+
+/// How a stream is cut in time: segments of one length, each run and recorded alone from
+/// rest after a warm-up long enough for the past the warm-up leaves out to have decayed to a
+/// tolerance (`coupled::reduced::stream::span`, [`crate::measurement::segments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Segmenting {
+    /// A segment's length, s.
+    pub length: f64,
+    /// ε: the share of the state at a warm-up's start left by its end.
+    pub tolerance: f64,
 }
 
 /// The file a recorded signal is written as, beside its JSON sidecar

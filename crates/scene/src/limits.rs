@@ -89,6 +89,14 @@ pub const STREAM_DURATION_S: Range = Range::open_closed(0.0, 86_400.0);
 pub const STREAM_SIZE_SCALE: Range = Range::closed(0.1, 10.0);
 /// Independent streams of a study.
 pub const STREAMS: Range = Range::closed(1.0, 64.0);
+
+/// A stream segment's tolerance: the share of the state at a warm-up's start its end may
+/// keep (below 1e-15 the warm-up decays to rounding; above 1e-2 the segments' joins show).
+pub const SEGMENT_TOLERANCE: Range = Range::closed(1e-15, 1e-2);
+
+/// The shortest stream segment, s: a segment re-runs its warm-up, which is seconds for a
+/// lightly damped plate, so shorter segments cost many times the stream.
+pub const MIN_SEGMENT_S: f64 = 1.0;
 /// Time blocks of the stream's cross-validation.
 pub const STREAM_BLOCKS: Range = Range::closed(2.0, 1000.0);
 /// Largest memory of a stream study's signals, held at once: every stream's model signals and

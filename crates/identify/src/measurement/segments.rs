@@ -77,8 +77,8 @@ impl Chain {
         self.cascade.slowest_decay()
     }
 
-    /// Segment `segment` of channel `channel` of a recording whose random numbers are `rng`
-    /// (a [`Chain::stream`]): `y` the model's samples of `measurand` from the segment's
+    /// Segment `segment` of channel `channel` of recording number `recording` (its random
+    /// numbers [`Chain::stream`]`(recording)`): `y` the model's samples of `measurand` from the segment's
     /// warm-up start, `warm_up` of them (a whole number of the chain's decimation) before
     /// its first; the background scaled by `noise_scale`. None if the chain does not record
     /// `measurand`.
@@ -88,9 +88,10 @@ impl Chain {
         (y, warm_up): (&[f64], usize),
         segment: Segment,
         noise_scale: f64,
-        rng: &ChaCha8Rng,
+        recording: usize,
     ) -> Option<Measured> {
         let rec = self.recording(measurand)?;
+        let rng = self.stream(recording);
         let mut x = y.to_vec();
         self.cascade.run(&mut x);
         let mut samples: Vec<f64> = x[warm_up.min(x.len())..].iter().step_by(self.decimation).copied().collect();
@@ -148,7 +149,7 @@ mod tests {
     fn quiet(chain: &Chain, b: usize, (length, overlap): (usize, usize), scale: f64) -> Vec<f64> {
         let segment = Segment { index: b, length, overlap };
         let y = vec![0.0; 4 * length];
-        let m = chain.measure_segment((Measurand::Acceleration, 0), (&y, 0), segment, scale, &chain.stream(5));
+        let m = chain.measure_segment((Measurand::Acceleration, 0), (&y, 0), segment, scale, 5);
         m.unwrap().samples
     }
 
@@ -205,7 +206,13 @@ mod tests {
         let whole = chain.measure(Measurand::Acceleration, &y, 0.0, &mut chain.stream(0)).unwrap().samples;
         let (start, from, length) = (40_000, 120_000, 20_000);
         let segment = Segment { index: from / length, length: length / 4, overlap: 0 };
-        let seg = chain.measure_segment((Measurand::Acceleration, 0), (&y[start..from + length], from - start), segment, 0.0, &chain.stream(0));
+        let seg = chain.measure_segment(
+            (Measurand::Acceleration, 0),
+            (&y[start..from + length], from - start),
+            segment,
+            0.0,
+            0,
+        );
         // The signal's largest value is 1.3; the ADC's step 2e-9.
         let bound = (-chain.slowest_decay() * (from - start) as f64 / 40_000.0).exp() * 1.3 + 2e-9;
         let diff = seg.unwrap().samples.iter().zip(&whole[from / 4..]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);

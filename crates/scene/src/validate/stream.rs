@@ -21,6 +21,7 @@
 //! size_sweep = [1.5]        # scales of every family's radius law, for the transfer
 //! law_sweep = ["flores"]    # other contact laws, for the transfer
 //! thickness_sweep_mm = [12.0]   # other plate thicknesses, for the transfer
+//! segment_s = 30.0          # cut every stream into segments run alone (bit for bit apart)
 //! write_signal = true       # the first stream's continuous signals as a file
 //! signal_format = "parquet" # ... as Parquet (or "csv", the default)
 //! ```
@@ -30,7 +31,7 @@ use crate::limits;
 use analytic::params::{check, Range};
 use coupled::reduced::SignalSettings;
 use coupled::transient::LawKind;
-use identify::stream::{Profile, SignalFormat, StreamSpec, StreamStudy};
+use identify::stream::{Profile, Segmenting, SignalFormat, StreamSpec, StreamStudy};
 use serde::Deserialize;
 
 /// The stream's table as TOML reads it.
@@ -64,6 +65,10 @@ pub(crate) struct RawStream {
     law_sweep: Vec<String>,
     #[serde(default)]
     thickness_sweep_mm: Vec<f64>,
+    #[serde(default)]
+    segment_s: Option<f64>,
+    #[serde(default)]
+    segment_tolerance: Option<f64>,
     #[serde(default)]
     write_signal: bool,
     #[serde(default)]
@@ -130,11 +135,31 @@ pub(crate) fn validate_stream(
         noise_sweep,
         size_sweep,
         thickness_sweep,
+        segments: segmenting(raw, (window, duration))?,
         write_signal: raw.write_signal,
         signal_format: signal_format(raw.signal_format.as_deref(), raw.write_signal)?,
     };
     budgets(&study, signals, conditions, laws.len())?;
     Ok((study, laws))
+}
+
+/// The cut of every stream, if `segment_s` asks for one: segments at least
+/// [`limits::MIN_SEGMENT_S`] and a window long, at most the stream.
+fn segmenting(raw: &RawStream, (window, duration): (f64, f64)) -> Result<Option<Segmenting>, Invalid> {
+    let Some(length) = raw.segment_s else {
+        if let Some(t) = raw.segment_tolerance {
+            return Err(other(
+                "stream.segment_tolerance",
+                format!("{t} is given but segment_s is not: nothing is cut"),
+            ));
+        }
+        return Ok(None);
+    };
+    let shortest = limits::MIN_SEGMENT_S.max(window).min(duration);
+    let length = check("stream.segment_s", length, Range::closed(shortest, duration), "s")?;
+    let tolerance =
+        check("stream.segment_tolerance", raw.segment_tolerance.unwrap_or(1e-9), limits::SEGMENT_TOLERANCE, "")?;
+    Ok(Some(Segmenting { length, tolerance }))
 }
 
 /// The study's sweeps as checked: rates, background scales, size scales, plate thicknesses

@@ -18,6 +18,7 @@ mod on_box;
 mod recorder;
 mod run;
 mod score;
+mod segments;
 pub mod transfer;
 
 use crate::channel::ChannelInfo;
@@ -130,6 +131,25 @@ pub struct Simulation {
     pub modes: usize,
     /// Model rate, Hz.
     pub model_rate_hz: f64,
+    /// How each stream was cut in time (None: in one piece).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub segments: Option<SegmentFacts>,
+}
+
+/// How each stream was cut in time: segments run and recorded alone from rest after a
+/// warm-up.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct SegmentFacts {
+    /// A segment's length, s (to a whole ADC sample).
+    pub length_s: f64,
+    /// Its warm-up, s: ln(1/ε) over the slowest decay rate.
+    pub warm_up_s: f64,
+    /// ε.
+    pub tolerance: f64,
+    /// The slowest decay rate of the plate's modes and the chain's filters, 1/s.
+    pub slowest_decay_per_s: f64,
+    /// Segments of a stream.
+    pub segments: usize,
 }
 
 /// A baseline: a window's truth as its score.

@@ -27,7 +27,7 @@ use crate::Failure;
 use coupled::compliance::tail_beam::{contact_patch, TailBeamScene};
 use coupled::error::ModelError;
 use coupled::identification::Striking;
-use coupled::reduced::stream::StreamResponse;
+use coupled::reduced::stream::{Span, StreamResponse};
 use coupled::reduced::structure::{Readings, StructureModel, StructureSettings, MAX_LOAD_POINTS};
 use coupled::reduced::{ChannelKind, Probes};
 use identify::detector::scale_flags;
@@ -178,9 +178,13 @@ struct OnTheBox<'a> {
 }
 
 impl Recorder for OnTheBox<'_> {
-    fn stream(&self, lumps: &[Lump], names: &[String], duration: f64) -> Result<StreamResponse, ModelError> {
+    fn stream(&self, lumps: &[Lump], names: &[String], at: (f64, Option<Span>)) -> Result<StreamResponse, ModelError> {
         let b = self.model;
-        b.model.stream(&self.striking.arrivals(lumps, names)?, &b.points, &b.probes, duration)
+        b.model.stream(&self.striking.arrivals(lumps, names)?, &b.points, &b.probes, at)
+    }
+
+    fn slowest_decay(&self) -> f64 {
+        self.model.model.slowest_decay()
     }
 
     fn chain(&self) -> Option<&Chain> {

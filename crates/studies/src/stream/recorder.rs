@@ -3,7 +3,7 @@
 
 use coupled::error::ModelError;
 use coupled::identification::Instrument;
-use coupled::reduced::stream::StreamResponse;
+use coupled::reduced::stream::{Span, StreamResponse};
 use coupled::reduced::ChannelKind;
 use identify::measurement::Chain;
 use identify::stream::Lump;
@@ -11,8 +11,10 @@ use identify::stream::Lump;
 /// A struck model with its channels and its chain.
 pub(crate) trait Recorder: Sync {
     /// The model's signals of the stream `lumps` (their families named by `names`) over
-    /// `duration` seconds.
-    fn stream(&self, lumps: &[Lump], names: &[String], duration: f64) -> Result<StreamResponse, ModelError>;
+    /// `duration` seconds, or of its segment `span` run alone.
+    fn stream(&self, lumps: &[Lump], names: &[String], at: (f64, Option<Span>)) -> Result<StreamResponse, ModelError>;
+    /// The slowest decay rate of the model's kept modes, 1/s.
+    fn slowest_decay(&self) -> f64;
     /// The measurement chain, if the scene has one.
     fn chain(&self) -> Option<&Chain>;
     /// The channels, in recording order.
@@ -24,8 +26,12 @@ pub(crate) trait Recorder: Sync {
 }
 
 impl Recorder for Instrument<'_> {
-    fn stream(&self, lumps: &[Lump], names: &[String], duration: f64) -> Result<StreamResponse, ModelError> {
-        Instrument::stream(self, lumps, names, duration)
+    fn stream(&self, lumps: &[Lump], names: &[String], at: (f64, Option<Span>)) -> Result<StreamResponse, ModelError> {
+        Instrument::stream(self, lumps, names, at)
+    }
+
+    fn slowest_decay(&self) -> f64 {
+        Instrument::slowest_decay(self)
     }
 
     fn chain(&self) -> Option<&Chain> {

@@ -2,6 +2,7 @@
 
 use super::recorder::Recorder;
 use super::score::Windows;
+use super::segments::{self, Pieces};
 use super::transfer::Shifted;
 use super::{
     channel_name, Baseline, ConditionStream, LumpRow, NoisePoint, RatePoint, RecordedSignal, Simulation, WindowRow,
@@ -26,11 +27,13 @@ use std::time::Instant;
 /// single impact's (which are numbered by impact).
 const RECORDING_KEY: usize = 1 << 48;
 
-/// One simulated stream: its lumps, the model's response and the seconds it took.
+/// One simulated stream: its lumps, the model's response and the seconds it took; where
+/// the study cuts it, how, and its segments' warm-up samples.
 pub(super) struct Simulated {
     lumps: Vec<Lump>,
     response: StreamResponse,
     seconds: f64,
+    pieces: Option<Pieces>,
 }
 
 /// The stream study on `set`, the `index`-th support set of `scene`.
@@ -272,16 +275,18 @@ fn simulate(
     progress: &dyn Progress,
 ) -> Result<Vec<Simulated>, Failure> {
     let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
+    let cutting = segments::cutting(instrument, study)?;
     let runs: Vec<Result<Simulated, String>> = (0..study.streams)
         .into_par_iter()
         .map(|r| {
             let spec = StreamSpec { rate_per_s, seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
             let lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
             let t0 = Instant::now();
-            let response = instrument.stream(&lumps, &names, spec.duration).map_err(|e| format!("stream {r}: {e}"))?;
+            let (response, pieces) = segments::run(instrument, (&lumps, &names), spec.duration, cutting)
+                .map_err(|e| format!("stream {r}: {e}"))?;
             let seconds = t0.elapsed().as_secs_f64();
             progress.advance(1);
-            Ok(Simulated { lumps, response, seconds })
+            Ok(Simulated { lumps, response, seconds, pieces })
         })
         .collect();
     runs.into_iter().map(|r| r.map_err(Failure::from)).collect()
@@ -297,7 +302,7 @@ fn simulation(
 ) -> Result<Simulation, Failure> {
     let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
     let t0 = Instant::now();
-    instrument.stream(&[], &names, study.spec.duration)?;
+    instrument.stream(&[], &names, (study.spec.duration, None))?;
     let free_seconds = t0.elapsed().as_secs_f64();
     let seconds: f64 = main.iter().map(|s| s.seconds).sum();
     let simulated = study.spec.duration * main.len() as f64;
@@ -315,6 +320,7 @@ fn simulation(
         free_real_time_factor: study.spec.duration / free_seconds.max(1e-9),
         modes: instrument.modes(),
         model_rate_hz: instrument.model_rate_hz(),
+        segments: main.first().and_then(|s| s.pieces.as_ref()).map(|p| p.cutting.facts),
     })
 }
 
@@ -342,6 +348,9 @@ fn record(instrument: &dyn Recorder, sims: &[Simulated], scale: f64) -> (Vec<Vec
 fn record_one(instrument: &dyn Recorder, r: usize, s: &Simulated, scale: f64) -> Vec<Vec<f64>> {
     let channels = &s.response.signals.channels;
     let Some(chain) = instrument.chain() else { return channels.iter().map(|c| c.samples.clone()).collect() };
+    if let Some(pieces) = &s.pieces {
+        return segments::record(chain, pieces, &s.response, scale, RECORDING_KEY + r);
+    }
     let mut rng = chain.stream(RECORDING_KEY + r);
     channels
         .iter()
@@ -352,12 +361,14 @@ fn record_one(instrument: &dyn Recorder, r: usize, s: &Simulated, scale: f64) ->
 /// Stream `r` of the scene's study on support set `set` alone, recorded as the study records
 /// it (its lumps drawn with the seed `seed + r`, its background from its own stream of random
 /// numbers): the same numbers, bit for bit, as the study's stream `r`, for any `r`, so that
-/// streams can be computed apart (one per worker) and put together.
+/// streams can be computed apart (one per worker) and put together. With `segment`, only
+/// that segment of a stream the scene cuts (`segment_s`): its samples and the lumps that
+/// touched within it, the study's own bit for bit.
 pub fn one_stream(
     scene: &Scene,
     (study, ensemble): (&StreamStudy, &identify::Study),
     set: &SupportSet,
-    r: usize,
+    (r, segment): (usize, Option<usize>),
 ) -> Result<(RecordedSignal, Vec<LumpRow>), Failure> {
     if scene.identifies_on_tail_beam() {
         return Err(format!(
@@ -370,15 +381,32 @@ pub fn one_stream(
     if r > usize::MAX - RECORDING_KEY {
         return Err(format!("stream {r}: allowed at most {}", usize::MAX - RECORDING_KEY).into());
     }
+    if let Some(b) = segment {
+        match segments::count(scene, study) {
+            None => return Err("segment: the scene's [stream] has no segment_s, so its streams are not cut".into()),
+            Some(n) if b >= n => return Err(format!("segment {b}: allowed 0 to {}", n - 1).into()),
+            Some(_) => {}
+        }
+    }
     let plate = &scene.plate;
     let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
     let sensors = scene.signals.sensors.clone();
     let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
     let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
     let spec = StreamSpec { seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
-    let lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
-    let response = instrument.stream(&lumps, &names, spec.duration).map_err(|e| format!("stream {r}: {e}"))?;
-    let sim = Simulated { lumps, response, seconds: 0.0 };
+    let mut lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
+    let cutting = segments::cutting(&instrument, study)?;
+    let (response, pieces) = match segment {
+        None => segments::run(&instrument, (&lumps, &names), spec.duration, cutting)
+            .map_err(|e| format!("stream {r}: {e}"))?,
+        Some(b) => {
+            let (alone, span) = segments::one(&instrument, (&lumps, &names), spec.duration, (cutting, b))?;
+            let rate = instrument.model_rate_hz();
+            lumps.retain(|l| span.reports(l.time, rate));
+            alone
+        }
+    };
+    let sim = Simulated { lumps, response, seconds: 0.0, pieces };
     let columns = record_one(&instrument, r, &sim, 1.0);
     let rate_hz = instrument.chain().map_or_else(|| instrument.model_rate_hz(), |c| c.spec().rate_hz);
     let names = channel_infos(&instrument, &sensors, plate).iter().map(channel_name).collect();

@@ -52,8 +52,8 @@ use crate::transient::Striker;
 use analytic::params::{check, Range};
 use envelope::{half_periods, lowest_deflection, reach, HalfPeriod};
 use serde::Serialize;
-use std::collections::HashMap;
 pub use span::{Cut, Span};
+use std::collections::HashMap;
 use step::{flexibility, step, step_maps, Scratch, StepMaps};
 
 /// A lump of the stream: its sphere and law, its arrival and where it strikes.
@@ -269,7 +269,7 @@ pub(crate) fn stream(
         check(&format!("arrival {i}'s gravity"), a.striker.gravity, Range::closed(0.0, f64::INFINITY), "m/s²")?;
     }
     let rate = probes.spec.rate_hz;
-    let total = (duration * rate - 1e-9).ceil().max(1.0) as usize;
+    let total = span::stream_samples(duration, rate);
     let span = span.unwrap_or(Span::whole(total));
     if !(span.start <= span.from && span.from < span.to && span.to <= total) {
         return Err(ModelError::Missing(format!(

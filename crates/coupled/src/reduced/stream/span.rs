@@ -55,6 +55,12 @@ impl Span {
         }
     }
 
+    /// Whether a lump arriving at `time` is one the span reports: its touch in
+    /// [`from`, `to`).
+    pub fn reports(&self, time: f64, rate_hz: f64) -> bool {
+        (self.from..self.to).contains(&sample_of(time, rate_hz))
+    }
+
     /// Whether a lump arriving at `time` is followed in this span.
     pub(super) fn admits(&self, time: f64, rate_hz: f64) -> bool {
         sample_of(time, rate_hz) >= self.start
@@ -90,6 +96,12 @@ impl Cut {
         let from = b.checked_mul(self.length).filter(|&f| f < total)?;
         Some(Span { start: from.saturating_sub(self.warm_up), from, to: (from + self.length).min(total) })
     }
+}
+
+/// The samples of a stream `duration` seconds long at `rate_hz`: the first at its start, the
+/// last before its end.
+pub fn stream_samples(duration: f64, rate_hz: f64) -> usize {
+    (duration * rate_hz - 1e-9).ceil().max(1.0) as usize
 }
 
 /// The slowest decay rate of a struck model's modes, r = minᵢ ζᵢωᵢ, 1/s.
