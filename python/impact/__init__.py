@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any, Literal, Mapping, Sequence, Union
+from typing import Any, Literal, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
@@ -77,6 +77,7 @@ __all__ = [
     "solve",
     "stream",
     "stream_recording",
+    "stream_segments",
     "sweep",
     "tail_beam",
     "transient",
@@ -392,14 +393,20 @@ def stream(scene: SceneLike) -> StreamResults:
 class StreamRecording:
     """One stream of a stream study, alone: ``signal`` (one float64 array per channel,
     named as in the report, as recorded: through ``[measurement]`` if the scene has one),
-    its ``rate_hz``, and its ``lumps`` as columns (the study's lump columns)."""
+    its ``rate_hz``, and its ``lumps`` as columns (the study's lump columns). For one
+    segment of a cut stream, ``segment`` is its number and ``start_s`` the time of its first
+    sample in the stream (None and 0 for a whole stream)."""
 
     signal: dict[str, np.ndarray]
     rate_hz: float
     lumps: Columns
+    segment: Optional[int] = None
+    start_s: float = 0.0
 
 
-def stream_recording(scene: SceneLike, condition: str, stream: int = 0) -> StreamRecording:
+def stream_recording(
+    scene: SceneLike, condition: str, stream: int = 0, segment: Optional[int] = None
+) -> StreamRecording:
     """Stream number ``stream`` of the scene's ``[stream]`` study on the support set
     ``condition``, computed alone: its lumps drawn with the seed ``seed + stream``, its
     background from its own stream of random numbers. It is the study's stream of that
@@ -407,9 +414,27 @@ def stream_recording(scene: SceneLike, condition: str, stream: int = 0) -> Strea
     ``signal.parquet`` is stream 0), so streams can be computed apart, one task each
     (``client.map`` on a Dask cluster of one CPU kind: the FFT picks its SIMD path at run
     time), and put together. Any whole number in [0, 1e9] may be asked for, not only the
-    study's ``streams``: each is an independent stream of the same spec."""
-    raw = _impact.stream_recording(load_scene(scene), condition, float(stream))
-    return StreamRecording(signal=raw["signal"], rate_hz=raw["rate_hz"], lumps=_columns(raw["lumps"]))
+    study's ``streams``: each is an independent stream of the same spec.
+
+    Where the scene cuts its streams (``[stream] segment_s``), ``segment`` asks for one
+    segment alone: its samples and the lumps that touched within it, the study's own bit for
+    bit; :func:`stream_segments` says how many there are, and
+    :func:`impact.shards.run_stream` computes them as Dask tasks and puts them together."""
+    s = load_scene(scene)
+    raw = _impact.stream_recording(s, condition, float(stream), None if segment is None else float(segment))
+    start = 0.0
+    if segment is not None:
+        cut = _impact.stream_segments(s)
+        start = 0.0 if cut is None else segment * cut[1]
+    return StreamRecording(
+        signal=raw["signal"], rate_hz=raw["rate_hz"], lumps=_columns(raw["lumps"]), segment=segment, start_s=start
+    )
+
+
+def stream_segments(scene: SceneLike) -> Optional[tuple[int, float]]:
+    """How the scene's ``[stream]`` cuts every stream: (segments, a segment's length in s,
+    to a whole ADC sample), or None where each stream runs in one piece (no ``segment_s``)."""
+    return _impact.stream_segments(load_scene(scene))
 
 
 def read_signal(path: Union[str, "os.PathLike[str]"]) -> dict[str, Any]:

@@ -1,5 +1,5 @@
-"""The scene's coal-gangue ensemble split into independent seeded shards, run as
-dask.distributed tasks.
+"""The scene's coal-gangue ensemble split into independent seeded shards, and a long caving
+stream split into its segments, run as dask.distributed tasks.
 
 An ensemble of ``n`` impacts is the index range [0, n). Every impact draws from its own random
 stream (ChaCha8 keyed by the ensemble's seed, stream i), so a shard [start, stop) computes
@@ -28,6 +28,12 @@ with ``impact`` installed, e.g. a venv on a shared file system)::
     client = Client(cluster)
     cols = impact.shards.run_identify(client, scene, "Con 2", shard_size=2000)
 
+A long stream of a ``[stream]`` study whose scene cuts it (``segment_s``) runs as one task per
+segment (:func:`run_stream`): each segment starts from rest after a warm-up long enough for
+the plate's and the chain's past to have decayed to ``segment_tolerance``, and draws its
+background from its own blocks of the recording's random numbers, so the segments put
+together are the study's stream bit for bit.
+
 A worker process builds the reduced model of a support set once (the plate's modes: about two
 seconds for the default 80 modes) and keeps it for its next shards; the impacts then cost a
 few milliseconds each, and a shard adds the Dask task overhead (milliseconds). The README
@@ -41,7 +47,7 @@ from typing import Any, Callable, Sequence
 
 import numpy as np
 
-from . import Columns, SceneLike, ensemble_size, identify, load_scene
+from . import Columns, SceneLike, StreamRecording, ensemble_size, identify, load_scene, stream_recording, stream_segments
 
 
 def shard_ranges(n: int, shard_size: int) -> list[tuple[int, int]]:
@@ -119,3 +125,26 @@ def run_identify(
         key=f"impact-identify-{condition}",
         sensors_mm=sensors_mm,
     )
+
+
+def run_stream(client: Any, scene: SceneLike, condition: str, stream: int = 0) -> StreamRecording:
+    """Stream ``stream`` of the scene's ``[stream]`` study on ``condition``, its segments
+    (the scene's ``segment_s``) computed as tasks of ``client`` and put together in order:
+    equal to ``impact.stream_recording(scene, condition, stream)``, and to the study's
+    stream, bit for bit. Each segment runs alone from rest after its warm-up, so a long
+    stream spreads over as many workers as it has segments."""
+    scene = load_scene(scene)
+    cut = stream_segments(scene)
+    if cut is None:
+        raise ValueError(f"scene {scene.name!r}: its [stream] has no segment_s, so its streams are not cut")
+    futures = [
+        client.submit(stream_recording, scene, condition, stream, b, key=f"impact-stream-{condition}-{stream}-{b}", pure=False)
+        for b in range(cut[0])
+    ]
+    parts = client.gather(futures)
+    first = parts[0]
+    signal = {k: np.concatenate([p.signal[k] for p in parts]) for k in first.signal}
+    # A segment no lump touched has no lump columns (they follow from the rows).
+    named = [p.lumps for p in parts if p.lumps]
+    lumps = {k: np.concatenate([c[k] for c in named]) for k in named[0]} if named else first.lumps
+    return StreamRecording(signal=signal, rate_hz=first.rate_hz, lumps=lumps)

@@ -214,6 +214,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(identify::identify, m)?)?;
     m.add_function(wrap_pyfunction!(stream::stream, m)?)?;
     m.add_function(wrap_pyfunction!(stream::stream_recording, m)?)?;
+    m.add_function(wrap_pyfunction!(stream::stream_segments, m)?)?;
     m.add_function(wrap_pyfunction!(detector::read_signal, m)?)?;
     m.add_function(wrap_pyfunction!(drops::drops, m)?)?;
     m.add_function(wrap_pyfunction!(tail_beam::tail_beam, m)?)?;

@@ -97,6 +97,20 @@ pub fn stream_recording<'py>(
             ))
         }
     };
+    if let Some(b) = segment {
+        match studies::stream::segments::count(s, study) {
+            None => {
+                return Err(argument_message(
+                    "segment",
+                    format!("{b}: {}'s [stream] has no segment_s, so its streams are not cut", s.name),
+                ))
+            }
+            Some((n, _)) if b >= n => {
+                return Err(argument_message("segment", format!("segment {b}: allowed 0 to {}", n - 1)))
+            }
+            Some(_) => {}
+        }
+    }
     let (signal, rows) = py
         .detach(|| studies::stream::one_stream(s, (study, ensemble), set, (r, segment)).map_err(|e| e.to_string()))
         .map_err(model_error)?;
@@ -109,6 +123,17 @@ pub fn stream_recording<'py>(
     out.set_item("rate_hz", signal.rate_hz)?;
     out.set_item("lumps", lump_table(&rows).into_py(py)?)?;
     Ok(out)
+}
+
+/// How the scene's `[stream]` cuts every stream: (segments, a segment's length in s), or None
+/// where it runs each in one piece.
+#[pyfunction]
+pub fn stream_segments(scene: &crate::scene::Scene) -> PyResult<Option<(usize, f64)>> {
+    let s = &scene.scene;
+    let Some(study) = &s.stream else {
+        return Err(argument_message("scene", format!("{} has no [stream] table (see docs/scenes.md)", s.name)));
+    };
+    Ok(studies::stream::segments::count(s, study))
 }
 
 /// Every window of the main run: its stream, span, truth and every-channel score.

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import impact
+import impact.shards
 from conftest import REPO, impact_binary
 
 STREAM = {
@@ -232,6 +233,57 @@ def test_streams_computed_apart_are_the_studys_streams(tmp_path):
         impact.stream_recording(scene, "Con 2", -1)
     with pytest.raises(ValueError, match="'Con 9' is not in the scene"):
         impact.stream_recording(scene, "Con 9", 0)
+
+
+def tiny_measured() -> dict:
+    """scenes/caving-stream-detect.toml made small (Con 2, 40 modes, two streams of 5 s, no
+    sweeps) and cut into segments of 1.5 s: three of 1.5 s and one of 0.5 s."""
+    d = tomllib.loads((REPO / "scenes" / "caving-stream-detect.toml").read_text())
+    d["signals"]["modes"] = 40
+    d["conditions"] = [c for c in d["conditions"] if c["name"] == "Con 2"]
+    s = d["stream"]
+    s.update(duration_s=5.0, streams=2, onset_s=2.5, ramp_s=0.0, window_s=1.0, blocks=2, write_signal=True)
+    s.update(segment_s=1.5, segment_tolerance=1e-6)
+    for k in ("rate_sweep_per_s", "noise_sweep", "size_sweep", "law_sweep", "thickness_sweep_mm"):
+        s.pop(k, None)
+    return d
+
+
+@pytest.mark.skipif(BINARY is None, reason="no impact binary: cargo build --release")
+def test_segments_computed_apart_are_the_studys_stream(tmp_path):
+    """A stream the scene cuts into segments (``segment_s``), each segment computed alone
+    (``impact.stream_recording(..., segment=b)``, and as tasks of a Dask LocalCluster by
+    ``impact.shards.run_stream``), put together, is the signal ``impact stream`` writes and
+    the study's lumps, bit for bit, through the measurement chain and its background; a
+    segment number past the last, or a scene that cuts nothing, is refused naming it."""
+    distributed = pytest.importorskip("distributed")
+    scene = impact.Scene.from_dict(tiny_measured())
+    assert impact.stream_segments(scene) == (4, 1.5)
+    path = tmp_path / "stream.toml"
+    path.write_text(scene.to_toml_str())
+    out = tmp_path / "out"
+    subprocess.run([str(BINARY), "stream", "--scene", str(path), "--out", str(out)], check=True, capture_output=True)
+    written = impact.read_signal(out / "con-2" / "signal.json")
+    parts = [impact.stream_recording(scene, "Con 2", 0, segment=b) for b in range(4)]
+    assert [p.start_s for p in parts] == [0.0, 1.5, 3.0, 4.5]
+    for k, (name, theirs) in enumerate(zip(parts[0].signal, written["channels"], strict=True)):
+        mine = np.concatenate([p.signal[name] for p in parts])
+        assert np.array_equal(mine, theirs), name
+    lumps = impact.stream(scene).conditions["Con 2"].lumps
+    lumps = {k: v[lumps["stream"] == 0] for k, v in lumps.items()}
+    times = np.concatenate([p.lumps["time_s"] for p in parts if p.lumps])
+    assert np.array_equal(times, lumps["time_s"])
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            remote = impact.shards.run_stream(client, scene, "Con 2", 0)
+    for mine, theirs in zip(remote.signal.values(), written["channels"], strict=True):
+        assert np.array_equal(mine, theirs)
+    for key in ("time_s", "force_max_N", "contact_time_s"):
+        assert np.array_equal(remote.lumps[key], lumps[key]), key
+    with pytest.raises(ValueError, match="segment 4: allowed 0 to 3"):
+        impact.stream_recording(scene, "Con 2", 0, segment=4)
+    with pytest.raises(ValueError, match="no segment_s"):
+        impact.stream_recording(impact.Scene.from_dict(tiny()), "Con 2", 0, segment=0)
 
 
 def tiny_box() -> dict:

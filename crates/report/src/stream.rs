@@ -19,6 +19,7 @@ const STRUCK_PLATE: &str = include_str!("templates/stream/struck-plate.md");
 const STRUCK_BOX: &str = include_str!("templates/stream/struck-box.md");
 const SIMULATION_PLATE: &str = include_str!("templates/stream/simulation-plate.md");
 const SIMULATION_BOX: &str = include_str!("templates/stream/simulation-box.md");
+const SEGMENTS: &str = include_str!("templates/stream/segments.md");
 
 /// Runs the stream study of `scene` and returns its files and data.
 pub fn report(scene: &Scene, progress: &dyn Progress) -> Result<(Artifacts, StreamData), Failure> {
@@ -115,6 +116,9 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
     if !fast.is_empty() {
         simulation_prose = format!("{simulation_prose}\n{}", fast.trim_end());
     }
+    if let Some(cut) = segments(d)? {
+        simulation_prose = format!("{simulation_prose}\n\n{}", cut.trim_end());
+    }
     Ok(render(
         "stream/page.md",
         PAGE,
@@ -188,6 +192,28 @@ fn struck(d: &StreamData) -> Result<(String, String), Failure> {
         ],
     )?;
     Ok((struck.trim_end().to_string(), SIMULATION_BOX.trim_end().to_string()))
+}
+
+/// How the streams were cut in time, where they were: the segments and each support set's
+/// warm-up with the decay rate it follows from.
+fn segments(d: &StreamData) -> Result<Option<String>, Failure> {
+    let cut: Vec<_> = d.conditions.iter().filter_map(|c| c.simulation.segments.map(|s| (c.name.as_str(), s))).collect();
+    let Some(&(_, first)) = cut.first() else { return Ok(None) };
+    let warm_ups = cut
+        .iter()
+        .map(|(name, s)| format!("{name}: {} s at r = {} 1/s", sig(s.warm_up_s, 3), sig(s.slowest_decay_per_s, 3)))
+        .collect::<Vec<_>>()
+        .join("; ");
+    Ok(Some(render(
+        "stream/segments.md",
+        SEGMENTS,
+        &[
+            ("segments", first.segments.to_string()),
+            ("length", compact(first.length_s)),
+            ("warm_ups", warm_ups),
+            ("tolerance", sig(first.tolerance, 2)),
+        ],
+    )?))
 }
 
 /// "0.97 (0.95-0.98)".

@@ -18,7 +18,7 @@ mod on_box;
 mod recorder;
 mod run;
 mod score;
-mod segments;
+pub mod segments;
 pub mod transfer;
 
 use crate::channel::ChannelInfo;

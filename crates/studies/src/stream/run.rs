@@ -384,7 +384,7 @@ pub fn one_stream(
     if let Some(b) = segment {
         match segments::count(scene, study) {
             None => return Err("segment: the scene's [stream] has no segment_s, so its streams are not cut".into()),
-            Some(n) if b >= n => return Err(format!("segment {b}: allowed 0 to {}", n - 1).into()),
+            Some((n, _)) if b >= n => return Err(format!("segment {b}: allowed 0 to {}", n - 1).into()),
             Some(_) => {}
         }
     }

@@ -94,13 +94,15 @@ pub(super) fn one(
     Ok((put_together(recorder, (lumps, names), duration, cutting, vec![(b, span)])?, span))
 }
 
-/// The segments a stream of `scene`'s `study` is cut into (None: not cut), from the scene
-/// alone: the count a segment number is checked against before anything is built.
-pub(super) fn count(scene: &coupled::scene::Scene, study: &StreamStudy) -> Option<usize> {
+/// The segments a stream of `scene`'s `study` is cut into and their length, s (None: not
+/// cut), from the scene alone: what a segment number is checked against before anything is
+/// built.
+pub fn count(scene: &coupled::scene::Scene, study: &StreamStudy) -> Option<(usize, f64)> {
     let s = study.segments?;
     let rate = scene.signals.rate_hz;
     let decimation = scene.measurement.as_ref().map_or(1, |m| (rate / m.rate_hz).round().max(1.0) as usize);
-    Some(Cut::new(s.length, 0.0, rate, decimation).spans(stream_samples(study.spec.duration, rate)).len())
+    let cut = Cut::new(s.length, 0.0, rate, decimation);
+    Some((cut.spans(stream_samples(study.spec.duration, rate)).len(), cut.length as f64 / rate))
 }
 
 /// The segments `spans`, run in parallel and put together in order.

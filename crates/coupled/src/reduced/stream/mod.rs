@@ -37,6 +37,10 @@
 //! sample, within T_s/2), so that every contact starts, as one impact's does, at a sample;
 //! the contact step is T_s/m with m from the stiffest lump in contact
 //! ([`super::ReducedModel::impact_with`]'s rule).
+//!
+//! **Segments.** A stream may be run in parts, each from rest after a warm-up in which the
+//! damped modes forget the past it leaves out ([`span`]); [`ReducedModel::stream_span`] runs
+//! one, so that the parts of a long stream are computed apart and put together.
 
 mod envelope;
 pub mod span;
