@@ -97,7 +97,11 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     );
     bad("write_signal = true", "segment_s = 0.5", &["stream.segment_s = 0.5", "[1, 6] s"]);
     bad("write_signal = true", "segment_s = 7.0", &["stream.segment_s = 7", "[1, 6] s"]);
-    bad("write_signal = true", "segment_s = 2.0\nsegment_tolerance = 0.5", &["stream.segment_tolerance = 0.5", "[1e-15, 0.01]"]);
+    bad(
+        "write_signal = true",
+        "segment_s = 2.0\nsegment_tolerance = 0.5",
+        &["stream.segment_tolerance = 0.5", "[1e-15, 0.01]"],
+    );
     bad("write_signal = true", "segment_tolerance = 1e-6", &["stream.segment_tolerance", "segment_s is not"]);
     bad("duration_s = 6.0", "duration_s = 80000.0", &["stream.duration_s", "MB of signal", "budget"]);
     let crowded =

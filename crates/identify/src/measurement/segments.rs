@@ -49,15 +49,13 @@ impl Segment {
 /// draws about 4n words.
 const BLOCK_WORDS: u32 = 36;
 
-/// Most blocks a recording holds ([`BLOCK_WORDS`] + 21 + 10 channel bits + 1 below the
-/// stream's 2^68 words).
+/// Most blocks a recording holds: a block's 36 bits of words, 21 of block number, 10 of
+/// channel and one of half fill the stream's 2^68 words.
 pub const MAX_SEGMENTS: usize = 1 << 21;
 
-/// Most channels a segmented recording holds.
-pub const MAX_CHANNELS: usize = 1 << 10;
-
 /// Channel `channel`'s random numbers for its block `block`: the recording's stream, from a
-/// word of its upper half ([`MAX_SEGMENTS`], [`MAX_CHANNELS`]).
+/// word of its upper half ([`MAX_SEGMENTS`] blocks; 2^10 channels, where a scene has at most
+/// 4 × 64 sensors' and 4 corners').
 fn block_stream(mut rng: ChaCha8Rng, channel: usize, block: usize) -> ChaCha8Rng {
     let word = (1u128 << 67) | ((channel as u128) << (BLOCK_WORDS + 21)) | ((block as u128) << BLOCK_WORDS);
     rng.set_word_pos(word);

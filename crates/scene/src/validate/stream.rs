@@ -157,6 +157,16 @@ fn segmenting(raw: &RawStream, (window, duration): (f64, f64)) -> Result<Option<
     };
     let shortest = limits::MIN_SEGMENT_S.max(window).min(duration);
     let length = check("stream.segment_s", length, Range::closed(shortest, duration), "s")?;
+    // Each segment draws its backgrounds from its own blocks of the recording's random numbers.
+    if (duration / length).ceil() > identify::measurement::segments::MAX_SEGMENTS as f64 {
+        return Err(other(
+            "stream.segment_s",
+            format!(
+                "{length} s cuts a {duration} s stream into more than {} segments",
+                identify::measurement::segments::MAX_SEGMENTS
+            ),
+        ));
+    }
     let tolerance =
         check("stream.segment_tolerance", raw.segment_tolerance.unwrap_or(1e-9), limits::SEGMENT_TOLERANCE, "")?;
     Ok(Some(Segmenting { length, tolerance }))

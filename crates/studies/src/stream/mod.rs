@@ -14,6 +14,7 @@
 //! ([`transfer`]), and the every-channel detector fitted on every window, to take away
 //! ([`identify::detector`]).
 
+mod alone;
 mod on_box;
 mod recorder;
 mod run;
@@ -28,8 +29,8 @@ use identify::stream::StreamStudy;
 use scene::Scene;
 use serde::Serialize;
 
+pub use alone::one_stream;
 pub use on_box::truncation_shift;
-pub use run::one_stream;
 pub use score::Score;
 pub use transfer::TransferPoint;
 

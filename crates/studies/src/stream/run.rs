@@ -25,15 +25,15 @@ use std::time::Instant;
 
 /// The background streams of the stream study's recordings start here, apart from every
 /// single impact's (which are numbered by impact).
-const RECORDING_KEY: usize = 1 << 48;
+pub(super) const RECORDING_KEY: usize = 1 << 48;
 
 /// One simulated stream: its lumps, the model's response and the seconds it took; where
 /// the study cuts it, how, and its segments' warm-up samples.
 pub(super) struct Simulated {
-    lumps: Vec<Lump>,
-    response: StreamResponse,
-    seconds: f64,
-    pieces: Option<Pieces>,
+    pub lumps: Vec<Lump>,
+    pub response: StreamResponse,
+    pub seconds: f64,
+    pub pieces: Option<Pieces>,
 }
 
 /// The stream study on `set`, the `index`-th support set of `scene`.
@@ -345,7 +345,7 @@ fn record(instrument: &dyn Recorder, sims: &[Simulated], scale: f64) -> (Vec<Vec
 
 /// Stream `r`'s channels as recorded: through the chain with the background of its own
 /// stream of random numbers (scaled by `scale`), or as the model gives them without one.
-fn record_one(instrument: &dyn Recorder, r: usize, s: &Simulated, scale: f64) -> Vec<Vec<f64>> {
+pub(super) fn record_one(instrument: &dyn Recorder, r: usize, s: &Simulated, scale: f64) -> Vec<Vec<f64>> {
     let channels = &s.response.signals.channels;
     let Some(chain) = instrument.chain() else { return channels.iter().map(|c| c.samples.clone()).collect() };
     if let Some(pieces) = &s.pieces {
@@ -356,65 +356,6 @@ fn record_one(instrument: &dyn Recorder, r: usize, s: &Simulated, scale: f64) ->
         .iter()
         .map(|c| chain.measure(measurand(c.kind), &c.samples, scale, &mut rng).map_or_else(Vec::new, |m| m.samples))
         .collect()
-}
-
-/// Stream `r` of the scene's study on support set `set` alone, recorded as the study records
-/// it (its lumps drawn with the seed `seed + r`, its background from its own stream of random
-/// numbers): the same numbers, bit for bit, as the study's stream `r`, for any `r`, so that
-/// streams can be computed apart (one per worker) and put together. With `segment`, only
-/// that segment of a stream the scene cuts (`segment_s`): its samples and the lumps that
-/// touched within it, the study's own bit for bit.
-pub fn one_stream(
-    scene: &Scene,
-    (study, ensemble): (&StreamStudy, &identify::Study),
-    set: &SupportSet,
-    (r, segment): (usize, Option<usize>),
-) -> Result<(RecordedSignal, Vec<LumpRow>), Failure> {
-    if scene.identifies_on_tail_beam() {
-        return Err(format!(
-            "scene {}: its stream strikes the tail beam, whose streams are run together by the whole study (impact stream); one stream apart is built for the plate's support sets only",
-            scene.name
-        )
-        .into());
-    }
-    // The recording's stream of random numbers is RECORDING_KEY + r.
-    if r > usize::MAX - RECORDING_KEY {
-        return Err(format!("stream {r}: allowed at most {}", usize::MAX - RECORDING_KEY).into());
-    }
-    if let Some(b) = segment {
-        match segments::count(scene, study) {
-            None => return Err("segment: the scene's [stream] has no segment_s, so its streams are not cut".into()),
-            Some((n, _)) if b >= n => return Err(format!("segment {b}: allowed 0 to {}", n - 1).into()),
-            Some(_) => {}
-        }
-    }
-    let plate = &scene.plate;
-    let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
-    let sensors = scene.signals.sensors.clone();
-    let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
-    let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
-    let spec = StreamSpec { seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
-    let mut lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
-    let cutting = segments::cutting(&instrument, study)?;
-    let (response, pieces) = match segment {
-        None => segments::run(&instrument, (&lumps, &names), spec.duration, cutting)
-            .map_err(|e| format!("stream {r}: {e}"))?,
-        Some(b) => {
-            let (alone, span) = segments::one(&instrument, (&lumps, &names), spec.duration, (cutting, b))?;
-            let rate = instrument.model_rate_hz();
-            lumps.retain(|l| span.reports(l.time, rate));
-            alone
-        }
-    };
-    let sim = Simulated { lumps, response, seconds: 0.0, pieces };
-    let columns = record_one(&instrument, r, &sim, 1.0);
-    let rate_hz = instrument.chain().map_or_else(|| instrument.model_rate_hz(), |c| c.spec().rate_hz);
-    let names = channel_infos(&instrument, &sensors, plate).iter().map(channel_name).collect();
-    let mut rows = lump_rows(ensemble, std::slice::from_ref(&sim));
-    for row in &mut rows {
-        row.stream = r;
-    }
-    Ok((RecordedSignal { rate_hz, names, columns }, rows))
 }
 
 /// The windows of every stream on a common time axis (stream r from r(T + W), so that no two
@@ -592,7 +533,7 @@ fn window_rows(
 }
 
 /// The main run's lumps with what each did.
-fn lump_rows(ensemble: &identify::Study, sims: &[Simulated]) -> Vec<LumpRow> {
+pub(super) fn lump_rows(ensemble: &identify::Study, sims: &[Simulated]) -> Vec<LumpRow> {
     sims.iter()
         .enumerate()
         .flat_map(|(r, s)| {

@@ -14,7 +14,7 @@
 //! **What a segment is.** Segment b records the samples [bS, (b+1)S) of a stream of S-sample
 //! segments. It starts from rest W samples earlier (at 0 for the first), admits every lump
 //! arriving from then on, and runs past its end until every lump that arrived within it has
-//! left (at most [`super::HELD_WINDOWS`] windows after its touch), so that those lumps'
+//! left (at most four windows after its touch), so that those lumps'
 //! responses are complete; it reports the lumps that arrived within [bS, (b+1)S). A stream
 //! cut into segments *is* the concatenation of its segments: run whole or apart, it is the
 //! same numbers.
