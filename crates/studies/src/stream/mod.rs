@@ -31,6 +31,7 @@ use serde::Serialize;
 
 pub use alone::one_stream;
 pub use on_box::truncation_shift;
+pub use run::RECORDING_KEY;
 pub use score::Score;
 pub use transfer::TransferPoint;
 

@@ -24,8 +24,9 @@ use scene::{Scene, SupportSet};
 use std::time::Instant;
 
 /// The background streams of the stream study's recordings start here, apart from every
-/// single impact's (which are numbered by impact).
-pub(super) const RECORDING_KEY: usize = 1 << 48;
+/// single impact's (which are numbered by impact): stream r's is the chain's stream
+/// `RECORDING_KEY + r`.
+pub const RECORDING_KEY: usize = 1 << 48;
 
 /// One simulated stream: its lumps, the model's response and the seconds it took; where
 /// the study cuts it, how, and its segments' warm-up samples.
