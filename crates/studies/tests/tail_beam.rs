@@ -156,6 +156,12 @@ fn a_bad_tail_beam_is_refused_naming_its_field() {
     expect(&with("ribs_z_mm = [466.7, 933.3]", "ribs_z_mm = [466.7, 1400.0]"), &["tail_beam.ribs_z_mm[1]", "1400"]);
     let ribs = "ribs_z_mm = [466.7, 933.3]";
     expect(&with(ribs, &format!("{ribs}\ndiaphragms_x_mm = [800.0]")), &["tail_beam.diaphragm_mm", "required"]);
+    // A thickness given for walls that are not there is refused, not ignored.
+    expect(
+        &with(ribs, &format!("{ribs}\ndiaphragm_mm = 16.0")),
+        &["tail_beam.diaphragm_mm", "= 16", "diaphragms_x_mm is empty"],
+    );
+    expect(&with(ribs, "ribs_z_mm = []"), &["tail_beam.rib_mm", "= 16", "ribs_z_mm is empty"]);
     let diaphragms = |x: &str| with(ribs, &format!("{ribs}\ndiaphragms_x_mm = [{x}]\ndiaphragm_mm = 16.0"));
     expect(&diaphragms("2000.0"), &["tail_beam.diaphragms_x_mm[0]", "2000", "length"]);
     expect(&diaphragms("800.0, 810.0"), &["tail_beam", "closer than their thickness"]);

@@ -160,6 +160,12 @@ fn walls(raw: &RawTailBeam, l: f64, b: f64, h: f64) -> Result<Walls, Invalid> {
     };
     let webs = thick("webs_mm", raw.webs_mm)?;
     let rib = match raw.rib_mm {
+        Some(v) if raw.ribs_z_mm.is_empty() => {
+            return Err(other(
+                "tail_beam.rib_mm",
+                format!("= {v} is given but ribs_z_mm is empty: no rib has that thickness"),
+            ))
+        }
         Some(v) => thick("rib_mm", v)?,
         None if raw.ribs_z_mm.is_empty() => webs,
         None => return Err(other("tail_beam.rib_mm", "is required with ribs_z_mm (the ribs' thickness)")),
@@ -167,7 +173,13 @@ fn walls(raw: &RawTailBeam, l: f64, b: f64, h: f64) -> Result<Walls, Invalid> {
     let ribs = positions("ribs_z_mm", &raw.ribs_z_mm, b, "width")?;
     let ends = thick("ends_mm", raw.ends_mm)?;
     let diaphragms = match (raw.diaphragms_x_mm.is_empty(), raw.diaphragm_mm) {
-        (true, _) => None,
+        (true, None) => None,
+        (true, Some(v)) => {
+            return Err(other(
+                "tail_beam.diaphragm_mm",
+                format!("= {v} is given but diaphragms_x_mm is empty: no diaphragm has that thickness"),
+            ))
+        }
         (false, Some(v)) => Some(Diaphragms {
             x: positions("diaphragms_x_mm", &raw.diaphragms_x_mm, l, "length")?,
             thickness: thick("diaphragm_mm", v)?,
