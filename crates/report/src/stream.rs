@@ -204,6 +204,13 @@ fn segments(d: &StreamData) -> Result<Option<String>, Failure> {
         .map(|(name, s)| format!("{name}: {} s at r = {} 1/s", sig(s.warm_up_s, 3), sig(s.slowest_decay_per_s, 3)))
         .collect::<Vec<_>>()
         .join("; ");
+    let added = cut.iter().map(|(_, s)| s.added_share).fold(0.0, f64::max);
+    // A segment alone is built for the plate's support sets; the box's streams run whole.
+    let alone = if d.structure.is_some() {
+        String::new()
+    } else {
+        " A segment computed alone (`impact.stream_recording(..., segment=b)`, or every segment as a Dask task with `impact.shards.run_stream`) is this page's, bit for bit.".into()
+    };
     Ok(Some(render(
         "stream/segments.md",
         SEGMENTS,
@@ -212,6 +219,8 @@ fn segments(d: &StreamData) -> Result<Option<String>, Failure> {
             ("length", compact(first.length_s)),
             ("warm_ups", warm_ups),
             ("tolerance", sig(first.tolerance, 2)),
+            ("alone", alone),
+            ("added", format!("{} %", sig(100.0 * added, 2))),
         ],
     )?))
 }

@@ -152,6 +152,9 @@ pub struct SegmentFacts {
     pub slowest_decay_per_s: f64,
     /// Segments of a stream.
     pub segments: usize,
+    /// The share the warm-ups add to the samples a stream runs (a warm-up reaching back
+    /// past the stream's start runs from there).
+    pub added_share: f64,
 }
 
 /// A baseline: a window's truth as its score.

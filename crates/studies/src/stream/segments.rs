@@ -45,7 +45,9 @@ pub(super) fn cutting(recorder: &dyn Recorder, study: &StreamStudy) -> Result<Op
     let decimation = recorder.chain().map_or(1, Chain::decimation);
     let cut = Cut::new(length, warm, rate, decimation);
     let total = stream_samples(study.spec.duration, rate);
+    let run: usize = cut.spans(total).iter().map(|s| s.to - s.start).sum();
     let facts = SegmentFacts {
+        added_share: run as f64 / total as f64 - 1.0,
         length_s: cut.length as f64 / rate,
         warm_up_s: cut.warm_up as f64 / rate,
         tolerance,
