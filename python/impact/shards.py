@@ -43,11 +43,18 @@ no state but its range.
 
 from __future__ import annotations
 
+import hashlib
 from typing import Any, Callable, Sequence
 
 import numpy as np
 
 from . import Columns, SceneLike, StreamRecording, ensemble_size, identify, load_scene, stream_recording, stream_segments
+
+
+def _digest(scene: Any) -> str:
+    """The first 12 hex digits of the SHA-256 of the scene's TOML text: its tasks' keys, so
+    that runs of different scenes on one cluster never share a key."""
+    return hashlib.sha256(scene.to_toml_str().encode()).hexdigest()[:12]
 
 
 def shard_ranges(n: int, shard_size: int) -> list[tuple[int, int]]:
@@ -122,7 +129,7 @@ def run_identify(
         shard_size,
         scene,
         condition,
-        key=f"impact-identify-{condition}",
+        key=f"impact-identify-{_digest(scene)}-{condition}",
         sensors_mm=sensors_mm,
     )
 
@@ -137,8 +144,11 @@ def run_stream(client: Any, scene: SceneLike, condition: str, stream: int = 0) -
     cut = stream_segments(scene)
     if cut is None:
         raise ValueError(f"scene {scene.name!r}: its [stream] has no segment_s, so its streams are not cut")
+    tag = _digest(scene)
     futures = [
-        client.submit(stream_recording, scene, condition, stream, b, key=f"impact-stream-{condition}-{stream}-{b}", pure=False)
+        client.submit(
+            stream_recording, scene, condition, stream, b, key=f"impact-stream-{tag}-{condition}-{stream}-{b}", pure=False
+        )
         for b in range(cut[0])
     ]
     parts = client.gather(futures)

@@ -133,6 +133,12 @@ pub fn stream_segments(scene: &crate::scene::Scene) -> PyResult<Option<(usize, f
     let Some(study) = &s.stream else {
         return Err(argument_message("scene", format!("{} has no [stream] table (see docs/scenes.md)", s.name)));
     };
+    if s.identifies_on_tail_beam() {
+        return Err(argument_message(
+            "scene",
+            format!("{}: its stream strikes its tail beam, whose streams impact.stream runs together; a segment alone is built for the plate's support sets only", s.name),
+        ));
+    }
     Ok(studies::stream::segments::count(s, study))
 }
 

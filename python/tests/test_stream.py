@@ -236,14 +236,15 @@ def test_streams_computed_apart_are_the_studys_streams(tmp_path):
 
 
 def tiny_measured() -> dict:
-    """scenes/caving-stream-detect.toml made small (Con 2, 40 modes, two streams of 5 s, no
-    sweeps) and cut into segments of 1.5 s: three of 1.5 s and one of 0.5 s."""
+    """scenes/caving-stream-detect.toml made small (Con 2, 40 modes, two streams of 6 s, no
+    sweeps) and cut into three segments of 2 s, each warming up (to ε = 1e-2) for about 1.8 s:
+    the later segments start after the stream's start."""
     d = tomllib.loads((REPO / "scenes" / "caving-stream-detect.toml").read_text())
     d["signals"]["modes"] = 40
     d["conditions"] = [c for c in d["conditions"] if c["name"] == "Con 2"]
     s = d["stream"]
-    s.update(duration_s=5.0, streams=2, onset_s=2.5, ramp_s=0.0, window_s=1.0, blocks=2, write_signal=True)
-    s.update(segment_s=1.5, segment_tolerance=1e-6)
+    s.update(duration_s=6.0, streams=2, onset_s=3.0, ramp_s=0.0, window_s=1.0, blocks=2, write_signal=True)
+    s.update(segment_s=2.0, segment_tolerance=1e-2)
     for k in ("rate_sweep_per_s", "noise_sweep", "size_sweep", "law_sweep", "thickness_sweep_mm"):
         s.pop(k, None)
     return d
@@ -258,14 +259,16 @@ def test_segments_computed_apart_are_the_studys_stream(tmp_path):
     segment number past the last, or a scene that cuts nothing, is refused naming it."""
     distributed = pytest.importorskip("distributed")
     scene = impact.Scene.from_dict(tiny_measured())
-    assert impact.stream_segments(scene) == (4, 1.5)
+    assert impact.stream_segments(scene) == (3, 2.0)
     path = tmp_path / "stream.toml"
     path.write_text(scene.to_toml_str())
     out = tmp_path / "out"
     subprocess.run([str(BINARY), "stream", "--scene", str(path), "--out", str(out)], check=True, capture_output=True)
     written = impact.read_signal(out / "con-2" / "signal.json")
-    parts = [impact.stream_recording(scene, "Con 2", 0, segment=b) for b in range(4)]
-    assert [p.start_s for p in parts] == [0.0, 1.5, 3.0, 4.5]
+    cut = json.loads((out / "stream.json").read_text())["conditions"][0]["simulation"]["segments"]
+    assert 0.5 < cut["warm_up_s"] < 2.0, cut  # the last segment's warm-up starts after the stream's
+    parts = [impact.stream_recording(scene, "Con 2", 0, segment=b) for b in range(3)]
+    assert [p.start_s for p in parts] == [0.0, 2.0, 4.0]
     for k, (name, theirs) in enumerate(zip(parts[0].signal, written["channels"], strict=True)):
         mine = np.concatenate([p.signal[name] for p in parts])
         assert np.array_equal(mine, theirs), name
@@ -280,8 +283,8 @@ def test_segments_computed_apart_are_the_studys_stream(tmp_path):
         assert np.array_equal(mine, theirs)
     for key in ("time_s", "force_max_N", "contact_time_s"):
         assert np.array_equal(remote.lumps[key], lumps[key]), key
-    with pytest.raises(ValueError, match="segment 4: allowed 0 to 3"):
-        impact.stream_recording(scene, "Con 2", 0, segment=4)
+    with pytest.raises(ValueError, match="segment 3: allowed 0 to 2"):
+        impact.stream_recording(scene, "Con 2", 0, segment=3)
     with pytest.raises(ValueError, match="no segment_s"):
         impact.stream_recording(impact.Scene.from_dict(tiny()), "Con 2", 0, segment=0)
 

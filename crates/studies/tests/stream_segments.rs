@@ -1,14 +1,19 @@
 //! A caving stream cut in segments (`[stream] segment_s`), `scenes/caving-stream-detect.toml`
-//! made small (Con 2, 40 modes, one stream of 6 s in segments of 1.5 s), against two
+//! made small (Con 2, 40 modes, one stream of 12 s in segments of 3 s), against two
 //! references:
 //!
 //! 1. The same stream in one piece, through the same chain with its background silenced, a
-//!    32-bit ADC that does not clip and a 5 Hz high-pass (so that the warm-up, 0.3 s, leaves
-//!    a past out): the segments leave out the plate's and the filters' past before their
-//!    warm-ups, which the tolerance ε = 1e-4 bounds; the recordings agree within ε of their
-//!    peak plus an ADC step (the quantiser may round a value on a code's edge either way).
+//!    32-bit ADC that does not clip and a 5 Hz high-pass (so that the plate's modes, not the
+//!    filters, set the warm-up): the segments leave out the plate's and the filters' past
+//!    before their warm-ups, which the tolerance ε = 1e-3 bounds; the recordings agree within
+//!    a few ε of their peak plus an ADC step (the state left out is bounded by the sum of its
+//!    modes' amplitudes, which a channel's peak need not reach, and a contact in the warm-up
+//!    may pass it on; measured 1-2.7 ε; the quantiser may round a value on a code's edge
+//!    either way).
 //! 2. Each segment computed alone (`one_stream` with its number, as a Dask task computes it):
 //!    the segments put together are the whole stream's recording and lumps, bit for bit.
+//! 3. Segments so short that their warm-ups would more than double the samples run are
+//!    refused, naming the key, the warm-up and the decay it follows from.
 
 use scene::SceneSource;
 use studies::stream::one_stream;
@@ -16,14 +21,14 @@ use test_scenes::edits;
 
 const SCENE: &str = include_str!("../../../scenes/caving-stream-detect.toml");
 
-fn small(segmented: bool, noise: bool) -> scene::Scene {
+fn small(segments: Option<&str>, noise: bool) -> scene::Scene {
     let mut text = edits(
         SCENE,
         &[
             ("modes = 160", "modes = 40"),
-            ("duration_s = 90.0", "duration_s = 6.0"),
+            ("duration_s = 90.0", "duration_s = 12.0"),
             ("streams = 3", "streams = 1"),
-            ("onset_s = 45.0", "onset_s = 3.0"),
+            ("onset_s = 45.0", "onset_s = 6.0"),
             ("ramp_s = 5.0", "ramp_s = 0.0"),
             ("window_s = 2.0", "window_s = 1.0"),
             ("blocks = 3", "blocks = 2"),
@@ -34,11 +39,8 @@ fn small(segmented: bool, noise: bool) -> scene::Scene {
             ("thickness_sweep_mm = [12.0]", "thickness_sweep_mm = []"),
         ],
     );
-    if segmented {
-        text = edits(
-            &text,
-            &[("write_signal = false", "write_signal = false\nsegment_s = 1.5\nsegment_tolerance = 1e-4")],
-        );
+    if let Some(cut) = segments {
+        text = edits(&text, &[("write_signal = false", &format!("write_signal = false\n{cut}"))]);
     }
     if !noise {
         text = edits(
@@ -70,13 +72,14 @@ fn run(
 #[test]
 fn a_stream_in_segments_is_the_stream() {
     // 1. Against the stream in one piece, the background silenced.
-    let (whole, whole_lumps) = run(&small(false, false), None);
-    let (cut, cut_lumps) = run(&small(true, false), None);
+    const CUT: &str = "segment_s = 3.0\nsegment_tolerance = 1e-3";
+    let (whole, whole_lumps) = run(&small(None, false), None);
+    let (cut, cut_lumps) = run(&small(Some(CUT), false), None);
     assert_eq!(whole.names, cut.names);
     assert_eq!(whole_lumps.len(), cut_lumps.len());
     for (a, b) in whole_lumps.iter().zip(&cut_lumps) {
         assert_eq!(a.time, b.time);
-        assert!((a.force_max / b.force_max - 1.0).abs() < 1e-4, "{a:?} against {b:?}");
+        assert!((a.force_max / b.force_max - 1.0).abs() < 1e-3, "{a:?} against {b:?}");
     }
     for (name, (a, b)) in whole.names.iter().zip(whole.columns.iter().zip(&cut.columns)) {
         assert_eq!(a.len(), b.len(), "{name}");
@@ -90,15 +93,14 @@ fn a_stream_in_segments_is_the_stream() {
             .fold(f64::INFINITY, f64::min);
         let diff = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
         eprintln!("{name}: largest difference {diff:e} against a peak of {peak:e} (step {step:e})");
-        assert!(diff > 0.0 && diff <= 1e-4 * peak + 1.01 * step, "{name}: {diff:e} against {peak:e}");
+        assert!(diff > 0.0 && diff <= 5e-3 * peak + 1.01 * step, "{name}: {diff:e} against {peak:e}");
     }
     // 2. Each segment alone, with the background: put together, the stream bit for bit.
-    let noisy = small(true, true);
+    let noisy = small(Some(CUT), true);
     let (stream, lumps) = run(&noisy, None);
     let mut columns = vec![Vec::new(); stream.columns.len()];
     let mut rows = Vec::new();
     for b in 0..4 {
-        eprintln!("segment {b}");
         let (seg, seg_lumps) = run(&noisy, Some(b));
         for (all, part) in columns.iter_mut().zip(seg.columns) {
             all.extend(part);
@@ -112,4 +114,13 @@ fn a_stream_in_segments_is_the_stream() {
     let set = &noisy.conditions[0];
     let e = one_stream(&noisy, (study, ensemble), set, (0, Some(4))).unwrap_err().to_string();
     assert!(e.contains("segment 4: allowed 0 to 3"), "{e}");
+    // 3. Warm-ups that would more than double the work.
+    let short = small(Some("segment_s = 1.0\nsegment_tolerance = 1e-12"), true);
+    let study = short.stream.as_ref().unwrap();
+    let Err(e) = one_stream(&short, (study, ensemble), set, (0, None)) else { panic!("segments of 1 s are refused") };
+    let e = e.to_string();
+    assert!(
+        e.contains("stream.segment_s = 1 s") && e.contains("warms up for") && e.contains("above the allowed 100 %"),
+        "{e}"
+    );
 }

@@ -228,8 +228,7 @@ impl StructureModel {
     /// The slowest decay rate of its kept modes, minᵢ ζᵢωᵢ, 1/s (a stream's warm-up,
     /// [`super::stream::span::warm_up_s`]).
     pub fn slowest_decay(&self) -> f64 {
-        let zeta = self.settings.damping;
-        self.omega.iter().map(|&w| zeta.at(w) * w).fold(f64::INFINITY, f64::min)
+        super::stream::span::slowest_decay(&self.omega, self.settings.damping)
     }
 
     /// The modes' frequencies, Hz.

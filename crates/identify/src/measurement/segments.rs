@@ -14,9 +14,11 @@
 //! b-1 and b overlap and are joined by a constant-power cross-fade,
 //! cos θ · x_{b-1} + sin θ · x_b with θ = (π/2)(j + 1/2)/L. The blocks are independent
 //! Gaussian processes of one PSD, so the variance is exactly the PSD's integral everywhere
-//! (cos²θ + sin²θ = 1), and correlations shorter than L are kept within the cross-fade
-//! (both blocks carry them); a process correlated over longer than L is decorrelated across
-//! a join, as it is across the synthesis's own period.
+//! (cos²θ + sin²θ = 1); within the cross-fade the autocovariance at lag τ is the process's
+//! times cos(θ(t+τ) - θ(t)) = cos(πτ/2L), so correlations much shorter than L are kept,
+//! and the signal runs on continuously through both ends of the fade (block b-1 goes on
+//! past the join, block b goes on after the fade). A process correlated over longer than L
+//! is decorrelated across a join, as it is across the synthesis's own period.
 //!
 //! **The tones** are functions of the recording's sample number with a phase drawn once per
 //! channel and recording, so they run on through the joins.
@@ -57,6 +59,7 @@ pub const MAX_SEGMENTS: usize = 1 << 21;
 /// word of its upper half ([`MAX_SEGMENTS`] blocks; 2^10 channels, where a scene has at most
 /// 4 × 64 sensors' and 4 corners').
 fn block_stream(mut rng: ChaCha8Rng, channel: usize, block: usize) -> ChaCha8Rng {
+    debug_assert!(block < MAX_SEGMENTS && channel < 1 << 10, "block {block}, channel {channel}");
     let word = (1u128 << 67) | ((channel as u128) << (BLOCK_WORDS + 21)) | ((block as u128) << BLOCK_WORDS);
     rng.set_word_pos(word);
     rng
@@ -175,6 +178,32 @@ mod tests {
         }
         let share = inside as f64 / total as f64;
         assert!((0.90..=0.99).contains(&share), "{share} of the bins within 1.96 sd");
+    }
+
+    /// The background runs on through the joins: for a slowly varying background (white
+    /// below 20 Hz at 10 kHz), the mean square step between neighbouring samples anywhere
+    /// outside a fade is 2σ²(1 - ρ₁); a step that turns the fade's angle by Δθ multiplies
+    /// the lag-1 correlation by cos Δθ (module docs), which adds about σ²Δθ² to it. The
+    /// steps into a fade (where segments join) and out of it each turn it by half a step of
+    /// the fade, Δθ = π/4L. There, over 400 joins, the step is that prediction within a
+    /// factor 1.5; a join that jumped to an independent block would step by 2σ², some 10⁴
+    /// times more.
+    #[test]
+    fn the_background_runs_on_through_the_joins() {
+        let slow = Psd::Table { points: vec![(0.0, 1.0), (20.0, 1.0), (20.5, 0.0)] };
+        let chain = chain(slow, Vec::new());
+        let (length, overlap) = (512, 128);
+        let x: Vec<f64> = (0..400).flat_map(|b| quiet(&chain, b, (length, overlap), 1.0)).collect();
+        let var = x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64;
+        let step = |k: usize| (x[k] - x[k - 1]).powi(2);
+        let mean = |at: &dyn Fn(usize) -> usize| (1..400).map(|b| step(at(b))).sum::<f64>() / 399.0;
+        let elsewhere = mean(&|b| b * length + length / 2);
+        let faded = elsewhere + var * (std::f64::consts::PI / (4.0 * overlap as f64)).powi(2);
+        let joins = mean(&|b| b * length);
+        let fades_end = mean(&|b| b * length + overlap);
+        for (at, v) in [("joins", joins), ("ends of the fades", fades_end)] {
+            assert!(v / faded < 1.5 && faded / v < 1.5, "{at}: {v:e} against {faded:e} ({elsewhere:e} outside)");
+        }
     }
 
     /// The tones run on through the joins: segments put together are one sine of each

@@ -241,9 +241,11 @@ fn signal_format(written: Option<&str>, write_signal: bool) -> Result<SignalForm
 /// set) and its windows must fit theirs.
 fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, laws: usize) -> Result<(), Invalid> {
     // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
-    // the recording is at most as long again.
+    // the recording is at most as long again, and the segments' warm-ups (at most as many
+    // samples again, checked once the model's decay is known) as long again.
     let channels = (4 * signals.sensors.len() + 4) as f64;
-    let bytes = 2.0 * study.streams as f64 * study.spec.duration * signals.rate_hz * channels * 8.0;
+    let copies = if study.segments.is_some() { 3.0 } else { 2.0 };
+    let bytes = copies * study.streams as f64 * study.spec.duration * signals.rate_hz * channels * 8.0;
     if bytes > limits::MAX_STREAM_SIGNAL_BYTES {
         return Err(other(
             "stream.duration_s and stream.streams",

@@ -33,7 +33,13 @@ pub(super) struct Cutting {
     pub facts: SegmentFacts,
 }
 
-/// The cut of `study`'s streams on `recorder` (None: each stream in one piece).
+/// Most the warm-ups may add to the samples a stream runs: as many again. Beyond it the
+/// segments cost more than twice the stream, and hold their warm-ups' samples beside it.
+pub const MAX_ADDED_SHARE: f64 = 1.0;
+
+/// The cut of `study`'s streams on `recorder` (None: each stream in one piece), refused
+/// where the warm-ups would add more than [`MAX_ADDED_SHARE`] to the samples run: checked
+/// once the model's slowest decay is known, before any stream runs.
 pub(super) fn cutting(recorder: &dyn Recorder, study: &StreamStudy) -> Result<Option<Cutting>, Failure> {
     let Some(Segmenting { length, tolerance }) = study.segments else { return Ok(None) };
     let chain_decay = recorder.chain().map_or(f64::INFINITY, Chain::slowest_decay);
@@ -41,13 +47,25 @@ pub(super) fn cutting(recorder: &dyn Recorder, study: &StreamStudy) -> Result<Op
     let warm = warm_up_s(decay, tolerance).ok_or_else(|| {
         format!("stream.segment_s: the model has an undamped mode (slowest decay {decay} 1/s), whose past never fades; a stream on it cannot be cut")
     })?;
+    // A warm-up reaching back past the stream's start runs from there.
+    let warm = warm.min(study.spec.duration);
     let rate = recorder.model_rate_hz();
     let decimation = recorder.chain().map_or(1, Chain::decimation);
     let cut = Cut::new(length, warm, rate, decimation);
     let total = stream_samples(study.spec.duration, rate);
     let run: usize = cut.spans(total).iter().map(|s| s.to - s.start).sum();
+    let added_share = run as f64 / total as f64 - 1.0;
+    if added_share > MAX_ADDED_SHARE {
+        return Err(format!(
+            "stream.segment_s = {length} s: each segment warms up for {warm:.3} s (ln(1/ε)/r, ε = segment_tolerance = {tolerance}, r = {decay:.4} 1/s the slowest decay of the modes and the chain), which adds {:.0} % to the samples run, above the allowed {:.0} %; lengthen the segments (to at least about {:.3} s) or raise segment_tolerance",
+            100.0 * added_share,
+            100.0 * MAX_ADDED_SHARE,
+            warm / MAX_ADDED_SHARE,
+        )
+        .into());
+    }
     let facts = SegmentFacts {
-        added_share: run as f64 / total as f64 - 1.0,
+        added_share,
         length_s: cut.length as f64 / rate,
         warm_up_s: cut.warm_up as f64 / rate,
         tolerance,

@@ -93,11 +93,14 @@ pub struct LumpResponse {
 /// The stream's continuous signals and what each lump did.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StreamResponse {
-    /// The channels of the probes, every sample of the stream.
+    /// The channels of the probes, every sample of the stream (of a span: from its start to
+    /// its last recorded sample).
     pub signals: Signals,
-    /// One per lump that touched before the stream's last sample, in arrival order.
+    /// One per lump that touched before the stream's last sample (of a span: within it), in
+    /// arrival order.
     pub lumps: Vec<LumpResponse>,
-    /// Contact steps taken (at the contact step, between the samples).
+    /// Contact steps taken (at the contact step, between the samples; of a span: within the
+    /// samples it records).
     pub steps: usize,
     /// Contact steps taken with two or more lumps in contact.
     pub joint_steps: usize,
@@ -227,7 +230,7 @@ impl ReducedModel {
     /// The slowest decay rate of its kept modes, minᵢ ζᵢωᵢ, 1/s: what a stream's segments
     /// warm up by ([`span::warm_up_s`]).
     pub fn slowest_decay(&self) -> f64 {
-        span::slowest_decay(self)
+        span::slowest_decay(&self.omega, self.settings.damping())
     }
 
     /// Whether the model can carry a stream: its truncated modes as the static correction.
@@ -295,6 +298,7 @@ pub(crate) fn stream(
             run.free(target - k);
             k = target;
         } else {
+            run.counting = (span.from - span.start..span.to - span.start).contains(&k);
             run.contact_interval();
             k += 1;
             run.retire(k);
@@ -328,6 +332,8 @@ struct Run<'a> {
     unconverged_steps: usize,
     released_in_contact: usize,
     cross_residual_bound: f64,
+    /// Whether the current sample interval is one the run's counts take in (its span's own).
+    counting: bool,
     scratch: Scratch,
 }
 
@@ -358,6 +364,7 @@ impl<'a> Run<'a> {
             unconverged_steps: 0,
             released_in_contact: 0,
             cross_residual_bound: 0.0,
+            counting: true,
             scratch: Scratch::default(),
         }
     }
@@ -448,14 +455,14 @@ impl<'a> Run<'a> {
         if let Some(c) = &cross {
             g.iter_mut().zip(c).for_each(|(g, c)| *g += c);
         }
-        self.steps += every;
+        self.steps += usize::from(self.counting) * every;
         for _ in 0..every {
-            if !step(&mut self.active, (&mut self.q, &mut self.v), maps, (&g, cross.as_deref()), &mut self.scratch) {
-                self.unconverged_steps += 1;
-            }
+            let converged =
+                step(&mut self.active, (&mut self.q, &mut self.v), maps, (&g, cross.as_deref()), &mut self.scratch);
+            self.unconverged_steps += usize::from(self.counting && !converged);
             let in_contact: Vec<usize> = (0..self.active.len()).filter(|&j| self.active[j].force > 0.0).collect();
             if in_contact.len() > 1 {
-                self.joint_steps += 1;
+                self.joint_steps += usize::from(self.counting);
                 for (x, &j) in in_contact.iter().enumerate() {
                     self.active[j].response.overlapped = true;
                     // Where the model carries the cross terms nothing is left out.
@@ -526,7 +533,7 @@ impl<'a> Run<'a> {
             let followed = k - l.touched;
             let held = followed >= HELD_WINDOWS * self.window_samples;
             if held && l.force > 0.0 {
-                self.released_in_contact += 1;
+                self.released_in_contact += usize::from(self.counting);
             }
             if left || (followed >= self.window_samples && l.force == 0.0) || held {
                 self.done.push(l.response_of());

@@ -9,7 +9,13 @@
 //! the warm-up's start in the first recorded sample, and less later. The contacts of the
 //! warm-up's lumps see the state without that share, so their forces move by about as
 //! much; the bound is the free plate's, and the tests measure the whole difference against
-//! the stream run in one piece.
+//! the stream run in one piece. (A filter fed by the plate whose own rate is close to r
+//! forgets as rW·e^{-rW}: a factor rW = ln(1/ε) more, which the recording's warm-up takes
+//! as it comes.)
+//!
+//! **What is counted.** The contact steps, joint steps and lumps let go that a span reports
+//! are those of its own samples [from, to), so that the counts of the segments add up to
+//! those of the stream; the work of the warm-ups is not in them.
 //!
 //! **What a segment is.** Segment b records the samples [bS, (b+1)S) of a stream of S-sample
 //! segments. It starts from rest W samples earlier (at 0 for the first), admits every lump
@@ -19,7 +25,8 @@
 //! cut into segments *is* the concatenation of its segments: run whole or apart, it is the
 //! same numbers.
 
-use super::{sample_of, StreamResponse, Struck, HELD_WINDOWS};
+use super::{sample_of, StreamResponse, HELD_WINDOWS};
+use crate::reduced::ModalDamping;
 
 /// The samples one segment of a stream runs and records: it starts from rest at `start`,
 /// records [`from`, `to`) and reports the lumps arriving in it. Model samples from the
@@ -82,7 +89,11 @@ impl Cut {
     /// model sample then reads the same samples in every segment).
     pub fn new(length_s: f64, warm_up_s: f64, rate_hz: f64, align: usize) -> Self {
         let align = align.max(1);
-        let whole = |s: f64| ((s * rate_hz - 1e-9).ceil().max(0.0) as usize).div_ceil(align) * align;
+        // A warm-up longer than any stream (a nearly undamped model) saturates rather than wraps.
+        let whole = |s: f64| {
+            let samples = (s * rate_hz - 1e-9).ceil().clamp(0.0, (usize::MAX / 2) as f64) as usize;
+            samples.div_ceil(align).saturating_mul(align)
+        };
         Self { length: whole(length_s).max(align), warm_up: whole(warm_up_s) }
     }
 
@@ -104,17 +115,17 @@ pub fn stream_samples(duration: f64, rate_hz: f64) -> usize {
     (duration * rate_hz - 1e-9).ceil().max(1.0) as usize
 }
 
-/// The slowest decay rate of a struck model's modes, r = minᵢ ζᵢωᵢ, 1/s.
-pub(crate) fn slowest_decay(model: &dyn Struck) -> f64 {
-    let zeta = model.damping();
-    model.omega().iter().map(|&w| zeta.at(w) * w).fold(f64::INFINITY, f64::min)
+/// The slowest decay rate of modes `omega` damped as `damping`, r = minᵢ ζᵢωᵢ, 1/s.
+pub(crate) fn slowest_decay(omega: &[f64], damping: ModalDamping) -> f64 {
+    omega.iter().map(|&w| damping.at(w) * w).fold(f64::INFINITY, f64::min)
 }
 
 /// The warm-up, s, after which the state a damped model had at its start has decayed to
-/// the share `tolerance`: ln(1/ε)/r for the slowest decay rate r (module docs); None for a
-/// model with an undamped mode, whose past never fades.
+/// the share `tolerance` ε ∈ (0, 1): ln(1/ε)/r for the slowest decay rate r (module docs);
+/// None for a model with an undamped mode, whose past never fades, or ε outside (0, 1).
 pub fn warm_up_s(slowest_decay: f64, tolerance: f64) -> Option<f64> {
-    (slowest_decay > 0.0 && slowest_decay.is_finite()).then(|| (1.0 / tolerance).ln() / slowest_decay)
+    let fades = slowest_decay > 0.0 && slowest_decay.is_finite() && tolerance > 0.0 && tolerance < 1.0;
+    fades.then(|| (1.0 / tolerance).ln() / slowest_decay)
 }
 
 impl StreamResponse {
