@@ -97,19 +97,8 @@ pub fn stream_recording<'py>(
             ))
         }
     };
-    if let Some(b) = segment {
-        match studies::stream::segments::count(s, study) {
-            None => {
-                return Err(argument_message(
-                    "segment",
-                    format!("{b}: {}'s [stream] has no segment_s, so its streams are not cut", s.name),
-                ))
-            }
-            Some((n, _)) if b >= n => {
-                return Err(argument_message("segment", format!("segment {b}: allowed 0 to {}", n - 1)))
-            }
-            Some(_) => {}
-        }
+    if let Some(why) = segment.and_then(|b| studies::stream::segments::refusal(s, study, b)) {
+        return Err(argument_message("segment", why));
     }
     let (signal, rows) = py
         .detach(|| studies::stream::one_stream(s, (study, ensemble), set, (r, segment)).map_err(|e| e.to_string()))

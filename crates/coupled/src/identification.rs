@@ -327,6 +327,8 @@ impl Instrument<'_> {
         family_names: &[String],
         (duration, span): (f64, Option<crate::reduced::stream::Span>),
     ) -> Result<crate::reduced::stream::StreamResponse, ModelError> {
+        let window = (duration, self.probes.spec().rate_hz, self.probes.spec().samples());
+        let lumps = crate::reduced::stream::span::followed_part(span, lumps, |l| l.time, window);
         let arrivals = self.striking.arrivals(lumps, family_names)?;
         match span {
             None => self.model.stream(&arrivals, &self.probes, duration),

@@ -10,11 +10,12 @@
 //!    peak of the whole run's, and the difference falls with ε as e^{-rW} does: from
 //!    ε = 1e-3 to 1e-6 by at least 100 (the decay predicts 1000; measured 1.1e-5 and 5.7e-9
 //!    of the peak, a fall of 2000: the state left out is below the peak).
-//! 3. The segments' counts of contact steps and joint steps, each over its own samples, add
+//! 3. A span given only the arrivals it follows (`followed_part`) runs as with all of them.
+//! 4. The segments' counts of contact steps and joint steps, each over its own samples, add
 //!    up to the stream's.
 
 use analytic::{Elastic, Plate, RockStrength, Sphere};
-use coupled::reduced::stream::span::warm_up_s;
+use coupled::reduced::stream::span::{followed_part, warm_up_s};
 use coupled::reduced::stream::{Arrival, Cut, StreamResponse};
 use coupled::reduced::{ReducedModel, ReducedSettings, SignalSpec};
 use coupled::transient::case::striker;
@@ -74,6 +75,10 @@ fn segments_run_alone_are_the_stream() {
         let (mut steps, mut joint) = (0, 0);
         for span in cut.spans(total) {
             let seg = model.stream_span(&arrivals, &probes, DURATION, span).unwrap();
+            // Given only the arrivals it follows, the span runs the same, bit for bit.
+            let part = followed_part(Some(span), &arrivals, |a| a.time, (DURATION, spec.rate_hz, spec.samples()));
+            assert!(part.len() < arrivals.len() || span.from == 0 || span.to == total);
+            assert_eq!(model.stream_span(part, &probes, DURATION, span).unwrap(), seg, "{span:?}");
             steps += seg.steps;
             joint += seg.joint_steps;
             let expected: Vec<_> = whole.lumps.iter().filter(|l| (span.from..span.to).contains(&l.sample)).collect();

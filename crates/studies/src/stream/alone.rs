@@ -34,12 +34,8 @@ pub fn one_stream(
     if r > usize::MAX - RECORDING_KEY {
         return Err(format!("stream {r}: allowed at most {}", usize::MAX - RECORDING_KEY).into());
     }
-    if let Some(b) = segment {
-        match segments::count(scene, study) {
-            None => return Err("segment: the scene's [stream] has no segment_s, so its streams are not cut".into()),
-            Some((n, _)) if b >= n => return Err(format!("segment {b}: allowed 0 to {}", n - 1).into()),
-            Some(_) => {}
-        }
+    if let Some(why) = segment.and_then(|b| segments::refusal(scene, study, b)) {
+        return Err(why.into());
     }
     let plate = &scene.plate;
     let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;

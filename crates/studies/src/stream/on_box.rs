@@ -27,6 +27,7 @@ use crate::Failure;
 use coupled::compliance::tail_beam::{contact_patch, TailBeamScene};
 use coupled::error::ModelError;
 use coupled::identification::Striking;
+use coupled::reduced::stream::span::followed_part;
 use coupled::reduced::stream::{Span, StreamResponse};
 use coupled::reduced::structure::{Readings, StructureModel, StructureSettings, MAX_LOAD_POINTS};
 use coupled::reduced::{ChannelKind, Probes};
@@ -180,6 +181,7 @@ struct OnTheBox<'a> {
 impl Recorder for OnTheBox<'_> {
     fn stream(&self, lumps: &[Lump], names: &[String], at: (f64, Option<Span>)) -> Result<StreamResponse, ModelError> {
         let b = self.model;
+        let lumps = followed_part(at.1, lumps, |l| l.time, (at.0, b.probes.spec().rate_hz, b.probes.spec().samples()));
         b.model.stream(&self.striking.arrivals(lumps, names)?, &b.points, &b.probes, at)
     }
 

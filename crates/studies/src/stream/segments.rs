@@ -125,6 +125,17 @@ pub fn count(scene: &coupled::scene::Scene, study: &StreamStudy) -> Option<(usiz
     Some((cut.spans(stream_samples(study.spec.duration, rate)).len(), cut.length as f64 / rate))
 }
 
+/// Why segment `b` of `scene`'s streams cannot be asked for (None: it can): the scene cuts
+/// nothing, or its streams have fewer segments. From the scene alone, before anything is
+/// built.
+pub fn refusal(scene: &coupled::scene::Scene, study: &StreamStudy, b: usize) -> Option<String> {
+    match count(scene, study) {
+        None => Some(format!("segment {b}: {}'s [stream] has no segment_s, so its streams are not cut", scene.name)),
+        Some((n, _)) if b >= n => Some(format!("segment {b}: allowed 0 to {}", n - 1)),
+        Some(_) => None,
+    }
+}
+
 /// The segments `spans`, run in parallel and put together in order.
 fn put_together(
     recorder: &dyn Recorder,

@@ -27,6 +27,7 @@
 
 use super::{sample_of, StreamResponse, HELD_WINDOWS};
 use crate::reduced::ModalDamping;
+use std::ops::Range;
 
 /// The samples one segment of a stream runs and records: it starts from rest at `start`,
 /// records [`from`, `to`) and reports the lumps arriving in it. Model samples from the
@@ -68,10 +69,39 @@ impl Span {
         (self.from..self.to).contains(&sample_of(time, rate_hz))
     }
 
+    /// The arrivals at `times` (s) a span of a stream of `total` samples at `rate_hz`, its
+    /// window `window_samples` long, runs: from the first touching at or after its start to
+    /// the last touching before the sample it stops at. The others never touch within it,
+    /// so a span given only these runs as with all of them; the caller need not build the
+    /// rest. All of them where `times` is out of order (the stream refuses it, naming it).
+    pub fn followed(&self, times: &[f64], total: usize, (rate_hz, window_samples): (f64, usize)) -> Range<usize> {
+        if !times.is_sorted_by(|a, b| a <= b) {
+            return 0..times.len();
+        }
+        let end = self.end(total, window_samples);
+        let from = times.partition_point(|&t| !self.admits(t, rate_hz));
+        let to = times.partition_point(|&t| sample_of(t, rate_hz) < end);
+        from..to.max(from)
+    }
+
     /// Whether a lump arriving at `time` is followed in this span.
     pub(super) fn admits(&self, time: f64, rate_hz: f64) -> bool {
         sample_of(time, rate_hz) >= self.start
     }
+}
+
+/// The part of `items` (in time order, each arriving at `time`) that `span` follows
+/// ([`Span::followed`]) in a stream `duration` seconds long at `rate_hz` with a window of
+/// `window_samples`; all of them for the whole stream (None).
+pub fn followed_part<T>(
+    span: Option<Span>,
+    items: &[T],
+    time: impl Fn(&T) -> f64,
+    (duration, rate_hz, window_samples): (f64, f64, usize),
+) -> &[T] {
+    let Some(span) = span else { return items };
+    let times: Vec<f64> = items.iter().map(time).collect();
+    &items[span.followed(&times, stream_samples(duration, rate_hz), (rate_hz, window_samples))]
 }
 
 /// A stream's cut: segments of `length` samples, each with `warm_up` samples before it.
