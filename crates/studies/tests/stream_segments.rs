@@ -115,7 +115,7 @@ fn a_stream_in_segments_is_the_stream() {
     let e = one_stream(&noisy, (study, ensemble), set, (0, Some(4))).unwrap_err().to_string();
     assert!(e.contains("segment 4: allowed 0 to 3"), "{e}");
     // 3. Warm-ups that would more than double the work.
-    let short = small(Some("segment_s = 1.0\nsegment_tolerance = 1e-12"), true);
+    let short = small(Some("segment_s = 1.0\nsegment_tolerance = 1e-15"), true);
     let study = short.stream.as_ref().unwrap();
     let Err(e) = one_stream(&short, (study, ensemble), set, (0, None)) else { panic!("segments of 1 s are refused") };
     let e = e.to_string();
@@ -123,4 +123,14 @@ fn a_stream_in_segments_is_the_stream() {
         e.contains("stream.segment_s = 1 s") && e.contains("warms up for") && e.contains("above the allowed 100 %"),
         "{e}"
     );
+    // The warm-up quoted is ln(1/ε)/r itself (here longer than the 12 s stream, where the run
+    // caps it), and ε reads as written.
+    let number_after = |key: &str| -> f64 {
+        let rest = &e[e.find(key).unwrap_or_else(|| panic!("{key} in {e}")) + key.len()..];
+        rest.split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let (w, r) = (number_after("ln(1/ε)/r = "), number_after(", r = "));
+    assert!(e.contains("ε = segment_tolerance = 1e-15"), "{e}");
+    assert!(w > 12.0 && e.contains("too short to cut"), "a warm-up past the stream advises against cutting: {e}");
+    assert!((w - 1e15_f64.ln() / r).abs() <= 1e-3 * w + 5e-4 * 1e15_f64.ln() / r, "W = {w} s, r = {r} 1/s: {e}");
 }

@@ -44,11 +44,11 @@ pub(super) fn cutting(recorder: &dyn Recorder, study: &StreamStudy) -> Result<Op
     let Some(Segmenting { length, tolerance }) = study.segments else { return Ok(None) };
     let chain_decay = recorder.chain().map_or(f64::INFINITY, Chain::slowest_decay);
     let decay = recorder.slowest_decay().min(chain_decay);
-    let warm = warm_up_s(decay, tolerance).ok_or_else(|| {
+    let full = warm_up_s(decay, tolerance).ok_or_else(|| {
         format!("stream.segment_s: the model has an undamped mode (slowest decay {decay} 1/s), whose past never fades; a stream on it cannot be cut")
     })?;
     // A warm-up reaching back past the stream's start runs from there.
-    let warm = warm.min(study.spec.duration);
+    let warm = full.min(study.spec.duration);
     let rate = recorder.model_rate_hz();
     let decimation = recorder.chain().map_or(1, Chain::decimation);
     let cut = Cut::new(length, warm, rate, decimation);
@@ -56,13 +56,7 @@ pub(super) fn cutting(recorder: &dyn Recorder, study: &StreamStudy) -> Result<Op
     let run: usize = cut.spans(total).iter().map(|s| s.to - s.start).sum();
     let added_share = run as f64 / total as f64 - 1.0;
     if added_share > MAX_ADDED_SHARE {
-        return Err(format!(
-            "stream.segment_s = {length} s: each segment warms up for {warm:.3} s (ln(1/ε)/r, ε = segment_tolerance = {tolerance}, r = {decay:.4} 1/s the slowest decay of the modes and the chain), which adds {:.0} % to the samples run, above the allowed {:.0} %; lengthen the segments (to at least about {:.3} s) or raise segment_tolerance",
-            100.0 * added_share,
-            100.0 * MAX_ADDED_SHARE,
-            warm / MAX_ADDED_SHARE,
-        )
-        .into());
+        return Err(too_long_warm_up((length, study.spec.duration), (full, decay, tolerance), added_share).into());
     }
     let facts = SegmentFacts {
         added_share,
@@ -73,6 +67,29 @@ pub(super) fn cutting(recorder: &dyn Recorder, study: &StreamStudy) -> Result<Op
         segments: cut.spans(total).len(),
     };
     Ok(Some(Cutting { cut, overlap: cut.warm_up.min(cut.length) / decimation, decimation, facts }))
+}
+
+/// The refusal of segments whose warm-ups W = ln(1/ε)/r (`full`, before it is capped at the
+/// stream) would add `added_share` of the samples run, above [`MAX_ADDED_SHARE`]: it quotes W
+/// as the decay and ε give it, and the shortest segment that would pass (S ≳ W / share).
+fn too_long_warm_up(
+    (length, duration): (f64, f64),
+    (full, decay, tolerance): (f64, f64, f64),
+    added_share: f64,
+) -> String {
+    let shortest = full / MAX_ADDED_SHARE;
+    let advice = if shortest < duration {
+        format!("lengthen the segments to at least about {shortest:.3} s or raise segment_tolerance")
+    } else {
+        format!(
+            "the stream ({duration} s) is too short to cut at this ε: leave segment_s out or raise segment_tolerance"
+        )
+    };
+    format!(
+        "stream.segment_s = {length} s: each segment warms up for W = ln(1/ε)/r = {full:.3} s (ε = segment_tolerance = {tolerance:e}, r = {decay:.4} 1/s the slowest decay of the modes and the chain; a warm-up runs at most from the stream's start), which adds {:.0} % to the samples run, above the allowed {:.0} %; {advice}",
+        100.0 * added_share,
+        100.0 * MAX_ADDED_SHARE,
+    )
 }
 
 /// A stream run in segments: how it was cut, which segments (number and span, in order)
