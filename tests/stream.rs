@@ -43,6 +43,36 @@ fn a_stream_is_read_in_si() {
     assert!(st.write_signal && st.rate_sweep.is_empty() && st.noise_sweep.is_empty() && st.size_sweep.is_empty());
 }
 
+/// `plate_sweep`: each entry is the scene's plate with the keys it gives converted to SI, named
+/// by them; its lumps strike its whole face unless the scene gives a region, which they keep.
+#[test]
+fn a_plate_sweep_is_the_scenes_plate_with_the_keys_it_changes() {
+    let sweep = "plate_sweep = [{ length_mm = 600.0, width_mm = 450.0 }, { thickness_mm = 10.0, youngs_modulus_gpa = 70.0, poisson_ratio = 0.33, density_kg_m3 = 2700.0 }]";
+    let text = with_stream(&STREAM.replace("write_signal = true", &format!("write_signal = true\n{sweep}")));
+    let s = Scene::parse(&text, "stream").unwrap();
+    let [larger, aluminium] = &s.stream_plate_sweep[..] else { panic!("two plates: {:?}", s.stream_plate_sweep) };
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-15 * b.abs();
+    let facts = |p: &analytic::Plate| {
+        let m = p.material();
+        [p.length(), p.width(), p.thickness(), m.youngs_modulus(), m.poisson_ratio(), p.density()]
+    };
+    let expected = [[0.6, 0.45, 0.008, 210e9, 0.3, 7850.0], [0.4584, 0.36, 0.010, 70e9, 0.33, 2700.0]];
+    for (other, want) in [larger, aluminium].iter().zip(expected) {
+        assert!(facts(&other.plate).iter().zip(want).all(|(&a, b)| close(a, b)), "{:?} against {want:?}", other.plate);
+    }
+    assert_eq!(larger.shift, "plate 600 mm long, 450 mm wide");
+    assert_eq!(aluminium.shift, "plate 10 mm thick, E = 70 GPa, ν = 0.33, ρ = 2700 kg/m³");
+    assert_eq!(larger.region.x, (0.0, larger.plate.length()));
+    assert_eq!(larger.region.z, (0.0, larger.plate.width()));
+    // A region the scene gives is where the lumps strike on every plate.
+    let given =
+        text.replace("placement = {", "region = { x_mm = [100.0, 300.0], z_mm = [50.0, 200.0] }\nplacement = {");
+    let s = Scene::parse(&given, "stream").unwrap();
+    let region = s.ensemble.as_ref().unwrap().ensemble.region;
+    assert!(close(region.x.1, 0.3) && close(region.z.0, 0.05));
+    assert!(s.stream_plate_sweep.iter().all(|o| o.region == region));
+}
+
 #[test]
 fn bad_streams_name_the_key_the_value_and_the_range() {
     let bad = |from: &str, to: &str, needles: &[&str]| expect(&with_stream(&STREAM.replace(from, to)), needles);
@@ -84,12 +114,48 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
     expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
     bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
     bad("write_signal = true", "signal_format = \"parquet\"", &["stream.signal_format", "write_signal is not true"]);
+    let sweep = |entries: &str| format!("write_signal = true\nplate_sweep = [{entries}]");
     bad(
         "write_signal = true",
-        "thickness_sweep_mm = [8.0, 400.0]",
-        &["stream.thickness_sweep_mm[1]", "400 mm is more than the plate's smaller side 360 mm", "[0.001, 360] mm"],
+        &sweep("{ thickness_mm = 8.0 }, { thickness_mm = 400.0 }"),
+        &[
+            "stream.plate_sweep[1].thickness_mm",
+            "400 mm is more than the plate's smaller side 360 mm",
+            "[0.001, 360] mm",
+        ],
     );
-    bad("write_signal = true", "thickness_sweep_mm = [0.0]", &["stream.thickness_sweep_mm[0] = 0", "[0.001,"]);
+    bad(
+        "write_signal = true",
+        &sweep("{ thickness_mm = 0.0 }"),
+        &["stream.plate_sweep[0].thickness_mm = 0", "[0.001,"],
+    );
+    bad(
+        "write_signal = true",
+        &sweep("{ youngs_modulus_gpa = -1.0 }"),
+        &["stream.plate_sweep[0].youngs_modulus_gpa = -1"],
+    );
+    bad("write_signal = true", &sweep("{ poisson_ratio = 0.5 }"), &["stream.plate_sweep[0].poisson_ratio = 0.5"]);
+    bad("write_signal = true", &sweep("{ density_kg_m3 = nan }"), &["stream.plate_sweep[0].density_kg_m3 = NaN"]);
+    bad(
+        "write_signal = true",
+        &sweep("{ length_mm = 40000.0 }"),
+        &["stream.plate_sweep[0].length_mm and stream.plate_sweep[0].width_mm", "aspect ratio"],
+    );
+    bad("write_signal = true", &sweep("{}"), &["stream.plate_sweep[0]", "changes nothing", "length_mm, width_mm"]);
+    bad("write_signal = true", &sweep("{ thickness = 9.0 }"), &["unknown field", "thickness"]);
+    // The sensors stay at their points in mm: one at x = 400 mm is off a 300 mm plate.
+    bad(
+        "write_signal = true",
+        &sweep("{ length_mm = 300.0 }"),
+        &["stream.plate_sweep[0]", "signals.sensors_mm[1] = (400, 90) mm is off the 300 x 360 mm plate"],
+    );
+    expect(
+        &with_stream(&STREAM.replace("write_signal = true", &sweep("{ width_mm = 200.0 }")))
+            .replace("placement = {", "region = { x_mm = [0.0, 300.0], z_mm = [0.0, 300.0] }\nplacement = {")
+            .replace("[400.0, 90.0]", "[400.0, 50.0]")
+            .replace("[229.2, 180.0]", "[229.2, 100.0]"),
+        &["stream.plate_sweep[0]", "ensemble.region reaches (300, 300) mm, off the 458.4 x 200 mm plate"],
+    );
     bad(
         "write_signal = true",
         "write_signal = true\nsignal_format = \"hdf5\"",
@@ -134,7 +200,7 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     let scene = dir.write(
         "stream.toml",
         with_stream(&format!(
-            "{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\nthickness_sweep_mm = [8.0, 16.0]\n"
+            "{STREAM}size_sweep = [1.0]\nlaw_sweep = [\"flores\"]\nplate_sweep = [{{ thickness_mm = 8.0 }}, {{ thickness_mm = 16.0 }}]\n"
         )),
     );
     for (out, threads) in [("one", "1"), ("two", "2")] {

@@ -245,7 +245,7 @@ def tiny_measured() -> dict:
     s = d["stream"]
     s.update(duration_s=6.0, streams=2, onset_s=3.0, ramp_s=0.0, window_s=1.0, blocks=2, write_signal=True)
     s.update(segment_s=2.0, segment_tolerance=1e-2)
-    for k in ("rate_sweep_per_s", "noise_sweep", "size_sweep", "law_sweep", "thickness_sweep_mm"):
+    for k in ("rate_sweep_per_s", "noise_sweep", "size_sweep", "law_sweep", "plate_sweep"):
         s.pop(k, None)
     return d
 

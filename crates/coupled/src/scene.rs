@@ -131,6 +131,20 @@ pub fn even_points(length: f64, count: usize) -> Vec<f64> {
     (0..count).map(|i| if i + 1 == count { length } else { length * i as f64 / (count - 1) as f64 }).collect()
 }
 
+/// Another plate for the stream study's transfer: the scene's plate with some of its size and
+/// material changed, struck by the same lumps (the same uniforms) in `region`, with the same
+/// supports, sensor points and chain.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OtherPlate {
+    /// The shift in words, from the keys the scene changes ("plate 12 mm thick").
+    pub shift: String,
+    /// The plate.
+    pub plate: Plate,
+    /// Where its lumps strike: the scene's `[ensemble.region]` where one is given, else this
+    /// whole plate (the lumps' uniforms mapped onto it).
+    pub region: identify::ensemble::Region,
+}
+
 /// A validated scene in SI units.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Scene {
@@ -187,6 +201,11 @@ pub struct Scene {
     /// carried. Left out of the serialised scene when empty.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub stream_law_sweep: Vec<LawKind>,
+    /// The other plates `[stream] plate_sweep` runs the stream study's streams on, each a
+    /// whole set of streams to which each support set's detector is carried. Left out of the
+    /// serialised scene when empty.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stream_plate_sweep: Vec<OtherPlate>,
     /// How the transient model is discretised: by default each case's mesh and step are
     /// chosen so that its error estimate is within 1e-4 of P_max and the contact time.
     pub transient_discretisation: Discretisation,

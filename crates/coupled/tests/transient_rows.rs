@@ -36,6 +36,7 @@ fn the_plan_reports_interpolated_values_with_their_errors() {
         measurement: None,
         stream: None,
         stream_law_sweep: Vec::new(),
+        stream_plate_sweep: Vec::new(),
         gravity: 0.0,
         plate_damping: None,
     };
@@ -104,6 +105,7 @@ fn one_case(
         measurement: None,
         stream: None,
         stream_law_sweep: Vec::new(),
+        stream_plate_sweep: Vec::new(),
         gravity: 0.0,
         plate_damping: None,
     }

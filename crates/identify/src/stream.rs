@@ -106,11 +106,6 @@ pub struct StreamStudy {
     /// it keeps its provenance hash.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub size_sweep: Vec<f64>,
-    /// Plate thicknesses, m, each run on streams of its own: the same lumps on the plate made
-    /// that thick (every other property, the supports, sensors and chain alike), for the
-    /// detector carried to another plate. Left out of the serialised scene when empty.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub thickness_sweep: Vec<f64>,
     /// How every stream is cut in time to run in segments (None: each stream in one piece).
     /// Left out of the serialised scene when None, so that a scene without it keeps its
     /// provenance hash.

@@ -48,7 +48,7 @@ pub(super) struct RawEnsemble {
     #[serde(default)]
     hold: Option<Vec<String>>,
     #[serde(default)]
-    region: Option<RawRegion>,
+    pub(crate) region: Option<RawRegion>,
     #[serde(default)]
     pub(crate) fall_height_m: Option<toml::Value>,
     #[serde(default)]

@@ -36,7 +36,7 @@ fn small(segments: Option<&str>, noise: bool) -> scene::Scene {
             ("noise_sweep = [0.0, 10.0, 100.0]", "noise_sweep = []"),
             ("size_sweep = [1.5]", "size_sweep = []"),
             ("law_sweep = [\"flores\"]", "law_sweep = []"),
-            ("thickness_sweep_mm = [12.0]", "thickness_sweep_mm = []"),
+            ("plate_sweep = [{ thickness_mm = 12.0 }, { length_mm = 600.0, width_mm = 450.0 }]", "plate_sweep = []"),
         ],
     );
     if let Some(cut) = segments {

@@ -132,8 +132,8 @@ fn the_box_stream_scene_is_checked_against_the_box() {
         &["ensemble.region.x_mm[1]", "1650"],
     );
     expect(
-        &edits(&s, &[("write_signal = false", "write_signal = false\nthickness_sweep_mm = [12.0]")]),
-        &["stream.thickness_sweep_mm"],
+        &edits(&s, &[("write_signal = false", "write_signal = false\nplate_sweep = [{ thickness_mm = 12.0 }]")]),
+        &["stream.plate_sweep", "a tail beam's stream strikes the box"],
     );
     expect(&edits(&s, &[("modes = 200", "modes = \"chain\"")]), &["signals.modes", "chain"]);
     // The chain must record what the box's channels are.

@@ -13,6 +13,7 @@ use coupled::SupportSet;
 
 mod damping;
 pub(crate) mod measurement;
+mod plate_sweep;
 mod points;
 mod psd_file;
 pub(crate) mod shell_mesh;
@@ -100,7 +101,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let restitution = check("restitution", raw.restitution, limits::RESTITUTION, "")?;
     let contact_law = contact_law(raw.contact_law.as_deref())?;
     check_name("name".into(), &raw.name, &mut Names::new())?;
-    let plate = validate_plate(&raw.plate)?;
+    let plate = validate_plate(&raw.plate, "plate")?;
     let (length_mm, width_mm) = (raw.plate.length_mm, raw.plate.width_mm);
     let analyses = validate_analyses(&raw.analyses)?;
     // Every analysis but identification and the drops strikes the scene's bodies at its
@@ -148,7 +149,8 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
     let ensemble = validate_ensemble(raw.ensemble.as_ref(), &analyses, face_mm.0, face_mm.1)?;
     let (measurement, stream, stream_law_sweep) =
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
-    tail_beam::check_stream(!face_mm.2, &signals, stream.as_ref(), measurement.as_ref())?;
+    tail_beam::check_stream(!face_mm.2, &signals, measurement.as_ref())?;
+    let stream_plate_sweep = plate_sweep::validate(&raw, face_mm.2, &signals, ensemble.as_ref())?;
     let shell_mesh = shell_mesh::table(raw.shell_mesh.as_ref(), &analyses, &plate)?;
     Ok(Scene {
         velocities,
@@ -156,6 +158,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         measurement,
         stream,
         stream_law_sweep,
+        stream_plate_sweep,
         solver: validate_solver(&raw.solver)?,
         ensemble,
         name: raw.name,
@@ -238,8 +241,7 @@ fn chain_and_stream(
         (None, _) => (None, Vec::new()),
         (Some(s), true) => {
             let adc = measurement.as_ref().map_or(signals.rate_hz, |m| m.rate_hz);
-            let side = raw.plate.length_mm.min(raw.plate.width_mm);
-            let (study, laws) = stream::validate_stream(s, signals, (adc, measurement.is_some()), conditions, side)?;
+            let (study, laws) = stream::validate_stream(s, signals, (adc, measurement.is_some()), conditions)?;
             (Some(study), laws)
         }
         (Some(_), false) => {
@@ -268,19 +270,21 @@ pub(crate) fn law_key(field: &str, name: &str) -> Result<LawKind, Invalid> {
     })
 }
 
-/// `[plate]`: material, size and density, a plate (not a strip, not a block).
-fn validate_plate(p: &RawPlate) -> Result<Plate, Invalid> {
+/// `[plate]`: material, size and density, a plate (not a strip, not a block); each field
+/// named under `table` ("plate", or a swept plate's "stream.plate_sweep[k]").
+pub(crate) fn validate_plate(p: &RawPlate, table: &str) -> Result<Plate, Invalid> {
+    let field = |key: &str| format!("{table}.{key}");
     let plate_material = Elastic::new(
-        check("plate.youngs_modulus_gpa", p.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa")? * GPA,
-        check("plate.poisson_ratio", p.poisson_ratio, POISSON_RATIO, "")?,
+        check(&field("youngs_modulus_gpa"), p.youngs_modulus_gpa, limits::MODULUS_GPA, "GPa")? * GPA,
+        check(&field("poisson_ratio"), p.poisson_ratio, POISSON_RATIO, "")?,
     )?;
-    let length_mm = check("plate.length_mm", p.length_mm, limits::PLATE_SIZE_MM, "mm")?;
-    let width_mm = check("plate.width_mm", p.width_mm, limits::PLATE_SIZE_MM, "mm")?;
-    let thickness_mm = check("plate.thickness_mm", p.thickness_mm, limits::THICKNESS_MM, "mm")?;
+    let length_mm = check(&field("length_mm"), p.length_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let width_mm = check(&field("width_mm"), p.width_mm, limits::PLATE_SIZE_MM, "mm")?;
+    let thickness_mm = check(&field("thickness_mm"), p.thickness_mm, limits::THICKNESS_MM, "mm")?;
     let aspect = length_mm.max(width_mm) / length_mm.min(width_mm);
     if aspect > limits::MAX_ASPECT_RATIO {
         return Err(other(
-            "plate.length_mm and plate.width_mm",
+            format!("{} and {}", field("length_mm"), field("width_mm")),
             format!(
                 "{length_mm} mm by {width_mm} mm is an aspect ratio of {}; the allowed range is [1, {}] (a narrower plate is a strip: model it as the beam it is)",
                 analytic::params::compact(aspect),
@@ -290,9 +294,11 @@ fn validate_plate(p: &RawPlate) -> Result<Plate, Invalid> {
     }
     if thickness_mm > length_mm.min(width_mm) {
         return Err(other(
-            "plate.thickness_mm",
+            field("thickness_mm"),
             format!(
-                "{thickness_mm} mm is more than the plate's smaller side {} mm: not a plate",
+                "{thickness_mm} mm is more than the plate's smaller side {} mm: not a plate; allowed [{}, {}] mm",
+                length_mm.min(width_mm),
+                limits::THICKNESS_MM.lo,
                 length_mm.min(width_mm)
             ),
         ));
@@ -301,7 +307,7 @@ fn validate_plate(p: &RawPlate) -> Result<Plate, Invalid> {
         length_mm * MM,
         width_mm * MM,
         thickness_mm * MM,
-        check("plate.density_kg_m3", p.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?,
+        check(&field("density_kg_m3"), p.density_kg_m3, limits::DENSITY_KG_M3, "kg/m^3")?,
         plate_material,
     )?)
 }

@@ -20,7 +20,7 @@
 //! noise_sweep = [0.0, 10.0, 100.0]   # scales of [measurement]'s background
 //! size_sweep = [1.5]        # scales of every family's radius law, for the transfer
 //! law_sweep = ["flores"]    # other contact laws, for the transfer
-//! thickness_sweep_mm = [12.0]   # other plate thicknesses, for the transfer
+//! plate_sweep = [{ thickness_mm = 12.0 }]   # other plates, for the transfer
 //! segment_s = 30.0          # cut every stream into segments run alone (bit for bit apart)
 //! write_signal = true       # the first stream's continuous signals as a file
 //! signal_format = "parquet" # ... as Parquet (or "csv", the default)
@@ -64,7 +64,7 @@ pub(crate) struct RawStream {
     #[serde(default)]
     law_sweep: Vec<String>,
     #[serde(default)]
-    thickness_sweep_mm: Vec<f64>,
+    pub(super) plate_sweep: Vec<super::plate_sweep::RawPlateChange>,
     #[serde(default)]
     segment_s: Option<f64>,
     #[serde(default)]
@@ -77,14 +77,13 @@ pub(crate) struct RawStream {
 
 /// Checks `[stream]` against the signals it will be recorded with: `signals` (the model's
 /// rate and channels) and `adc_rate_hz` (the chain's rate, or the model's without one), and
-/// against the plate's smaller side `plate_side_mm` (a swept thickness stays a plate); the
-/// study, and the contact laws of its law sweep.
+/// the study, and the contact laws of its law sweep (the plate sweep is
+/// [`super::plate_sweep`]'s).
 pub(crate) fn validate_stream(
     raw: &RawStream,
     signals: &SignalSettings,
     (adc_rate_hz, has_chain): (f64, bool),
     conditions: usize,
-    plate_side_mm: f64,
 ) -> Result<(StreamStudy, Vec<LawKind>), Invalid> {
     let rate = check("stream.rate_per_s", raw.rate_per_s, limits::STREAM_RATE_PER_S, "1/s")?;
     let duration = check("stream.duration_s", raw.duration_s, limits::STREAM_DURATION_S, "s")?;
@@ -117,7 +116,7 @@ pub(crate) fn validate_stream(
     let blocks = count("stream.blocks", raw.blocks.unwrap_or(5.0), limits::STREAM_BLOCKS)?;
     let alarm_probability =
         check("stream.alarm_probability", raw.alarm_probability.unwrap_or(0.5), Range::open(0.0, 1.0), "")?;
-    let Sweeps { rate_sweep, noise_sweep, size_sweep, thickness_sweep, laws } = sweeps(raw, has_chain, plate_side_mm)?;
+    let Sweeps { rate_sweep, noise_sweep, size_sweep, laws } = sweeps(raw, has_chain)?;
     let spec = StreamSpec {
         rate_per_s: rate,
         duration,
@@ -134,12 +133,11 @@ pub(crate) fn validate_stream(
         rate_sweep,
         noise_sweep,
         size_sweep,
-        thickness_sweep,
         segments: segmenting(raw, (window, duration))?,
         write_signal: raw.write_signal,
         signal_format: signal_format(raw.signal_format.as_deref(), raw.write_signal)?,
     };
-    budgets(&study, signals, conditions, laws.len())?;
+    budgets(&study, signals, conditions, laws.len() + raw.plate_sweep.len())?;
     Ok((study, laws))
 }
 
@@ -172,19 +170,17 @@ fn segmenting(raw: &RawStream, (window, duration): (f64, f64)) -> Result<Option<
     Ok(Some(Segmenting { length, tolerance }))
 }
 
-/// The study's sweeps as checked: rates, background scales, size scales, plate thicknesses
-/// (m) and contact laws.
+/// The study's sweeps as checked: rates, background scales, size scales and contact laws.
 struct Sweeps {
     rate_sweep: Vec<f64>,
     noise_sweep: Vec<f64>,
     size_sweep: Vec<f64>,
-    thickness_sweep: Vec<f64>,
     laws: Vec<LawKind>,
 }
 
-/// `[stream]`'s sweeps, each entry in its range; a background scale needs a chain, a swept
-/// thickness stays below the plate's smaller side `plate_side_mm`, a law is named once.
-fn sweeps(raw: &RawStream, has_chain: bool, plate_side_mm: f64) -> Result<Sweeps, Invalid> {
+/// `[stream]`'s sweeps, each entry in its range; a background scale needs a chain, a law is
+/// named once.
+fn sweeps(raw: &RawStream, has_chain: bool) -> Result<Sweeps, Invalid> {
     let mut rate_sweep = Vec::new();
     for (i, &r) in raw.rate_sweep_per_s.iter().enumerate() {
         rate_sweep.push(check(&format!("stream.rate_sweep_per_s[{i}]"), r, limits::STREAM_RATE_PER_S, "1/s")?);
@@ -200,18 +196,6 @@ fn sweeps(raw: &RawStream, has_chain: bool, plate_side_mm: f64) -> Result<Sweeps
     for (i, &s) in raw.size_sweep.iter().enumerate() {
         size_sweep.push(check(&format!("stream.size_sweep[{i}]"), s, limits::STREAM_SIZE_SCALE, "")?);
     }
-    let mut thickness_sweep = Vec::new();
-    for (i, &t) in raw.thickness_sweep_mm.iter().enumerate() {
-        let field = format!("stream.thickness_sweep_mm[{i}]");
-        let t = check(&field, t, limits::THICKNESS_MM, "mm")?;
-        if t > plate_side_mm {
-            return Err(other(
-                &field,
-                format!("{t} mm is more than the plate's smaller side {plate_side_mm} mm: not a plate; allowed [{}, {plate_side_mm}] mm", limits::THICKNESS_MM.lo),
-            ));
-        }
-        thickness_sweep.push(t * 1e-3);
-    }
     let mut laws = Vec::new();
     for (i, k) in raw.law_sweep.iter().enumerate() {
         let field = format!("stream.law_sweep[{i}]");
@@ -221,7 +205,7 @@ fn sweeps(raw: &RawStream, has_chain: bool, plate_side_mm: f64) -> Result<Sweeps
         }
         laws.push(law);
     }
-    Ok(Sweeps { rate_sweep, noise_sweep, size_sweep, thickness_sweep, laws })
+    Ok(Sweeps { rate_sweep, noise_sweep, size_sweep, laws })
 }
 
 /// `signal_format` as written: "csv" or "parquet", and only where a signal is written.
@@ -238,8 +222,8 @@ fn signal_format(written: Option<&str>, write_signal: bool) -> Result<SignalForm
 
 /// The study's streams are held at once (every stream's model signals and their recording),
 /// so together they must fit the memory budget; its lumps (every stream, rate and support
-/// set) and its windows must fit theirs.
-fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, laws: usize) -> Result<(), Invalid> {
+/// set) and its windows must fit theirs. `others` counts the swept laws and plates.
+fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, others: usize) -> Result<(), Invalid> {
     // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
     // the recording is at most as long again, and the segments' warm-ups (at most as many
     // samples again, checked once the model's decay is known) as long again.
@@ -259,13 +243,13 @@ fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, law
             ),
         ));
     }
-    // The size, thickness and law sweeps run whole studies at the main rate.
-    let at_main = 1 + study.size_sweep.len() + study.thickness_sweep.len() + laws;
+    // The size, plate and law sweeps run whole studies at the main rate.
+    let at_main = 1 + study.size_sweep.len() + others;
     let rates: f64 = study.spec.rate_per_s * at_main as f64 + study.rate_sweep.iter().sum::<f64>();
     let lumps = rates * study.spec.duration * study.streams as f64 * conditions as f64;
     if lumps > limits::MAX_STREAM_LUMPS {
         return Err(other(
-            "stream.rate_per_s, rate_sweep_per_s, size_sweep, thickness_sweep_mm, law_sweep, duration_s and streams",
+            "stream.rate_per_s, rate_sweep_per_s, size_sweep, plate_sweep, law_sweep, duration_s and streams",
             format!(
                 "expect {lumps:.0} lumps over every stream, rate, size law, plate, contact law and support set, above the budget of {:.0}",
                 limits::MAX_STREAM_LUMPS

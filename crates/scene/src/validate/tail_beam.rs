@@ -9,7 +9,6 @@ use coupled::compliance::tail_beam::{TailBeamScene, TAIL_BEAM_LEVELS};
 use coupled::reduced::SignalSettings;
 use coupled::scene::Analysis;
 use identify::measurement::{ChainSpec, Measurand};
-use identify::stream::StreamStudy;
 use plate_fem::shell::element::DOFS_PER_NODE;
 use plate_fem::shell::tail_beam::{Diaphragms, Jack, TailBeam};
 
@@ -27,14 +26,9 @@ pub(super) fn table(raw: Option<&RawTailBeam>, analyses: &[Analysis]) -> Result<
 }
 
 /// What a plate's identification has and a tail beam's stream (`on_box`) does not: the
-/// chain choosing the modes (a plate's), a swept plate thickness; and a chain that records
+/// chain choosing the modes (a plate's), and a chain that records
 /// what the box's channels are: its jacks' forces, and accelerations where it has sensors.
-pub(super) fn check_stream(
-    on_box: bool,
-    signals: &SignalSettings,
-    stream: Option<&StreamStudy>,
-    chain: Option<&ChainSpec>,
-) -> Result<(), Invalid> {
+pub(super) fn check_stream(on_box: bool, signals: &SignalSettings, chain: Option<&ChainSpec>) -> Result<(), Invalid> {
     if !on_box {
         return Ok(());
     }
@@ -59,12 +53,6 @@ pub(super) fn check_stream(
         return Err(other(
             "signals.modes",
             "\"chain\" chooses a plate's modes by its chain; a tail beam's stream keeps a number of them (give one)",
-        ));
-    }
-    if stream.is_some_and(|s| !s.thickness_sweep.is_empty()) {
-        return Err(other(
-            "stream.thickness_sweep_mm",
-            "sweeps the plate's thickness; a tail beam's stream strikes the box, whose walls have their own (leave it out)",
         ));
     }
     Ok(())

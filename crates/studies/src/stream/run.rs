@@ -94,7 +94,7 @@ pub(super) fn scored(
     let runs = 1
         + study.rate_sweep.len()
         + study.size_sweep.len()
-        + study.thickness_sweep.len()
+        + scene.stream_plate_sweep.len()
         + scene.stream_law_sweep.len()
         + target.extra_runs;
     progress.start(study.streams * runs, &format!("{}: streams", target.name));
@@ -219,10 +219,10 @@ pub(super) fn law_shift(law: coupled::transient::LawKind) -> String {
     format!("{} contact law", law.key())
 }
 
-/// The thickness sweep: the main run's streams on the plate made as thick as each swept
-/// thickness (its own reduced model, with the modes the scene's rule gives that plate; the
-/// same supports, sensor points, quantities and chain, so the channels are the detector's),
-/// each with its window features, for the transfer.
+/// The plate sweep: the main run's streams on each of the scene's other plates (each its own
+/// reduced model, with the modes the scene's rule gives that plate; the same supports, sensor
+/// points, quantities and chain, so the channels are the detector's), the lumps' uniforms
+/// mapped onto the plate's region, each with its window features, for the transfer.
 fn other_plates(
     scene: &Scene,
     (ensemble, study): (&identify::Study, &StreamStudy),
@@ -230,14 +230,14 @@ fn other_plates(
     progress: &dyn Progress,
 ) -> Result<Vec<Condition>, Failure> {
     let mut out = Vec::new();
-    for &thickness in &study.thickness_sweep {
-        let p = &scene.plate;
-        let plate = analytic::Plate::new(p.length(), p.width(), thickness, p.density(), p.material())?;
-        let thick = Scene { plate, ..scene.clone() };
-        let model = ReducedModel::new(&thick.plate, set, crate::identify::sensors::reduced_settings(&thick, set)?)?;
-        let instrument = Instrument::new(&model, &thick.plate, &spec(&thick, thick.signals.sensors.clone()), &thick)?;
-        let rows = windowed(&instrument, (ensemble, study, study.spec.rate_per_s), w, progress)?.1;
-        out.push((format!("plate {} mm thick", compact(thickness * 1e3)), rows));
+    for other in &scene.stream_plate_sweep {
+        let swept = Scene { plate: other.plate, ..scene.clone() };
+        let mut struck = ensemble.clone();
+        struck.ensemble.region = other.region;
+        let model = ReducedModel::new(&swept.plate, set, crate::identify::sensors::reduced_settings(&swept, set)?)?;
+        let instrument = Instrument::new(&model, &swept.plate, &spec(&swept, swept.signals.sensors.clone()), &swept)?;
+        let rows = windowed(&instrument, (&struck, study, study.spec.rate_per_s), w, progress)?.1;
+        out.push((other.shift.clone(), rows));
     }
     Ok(out)
 }
