@@ -73,47 +73,11 @@ fn a_plate_sweep_is_the_scenes_plate_with_the_keys_it_changes() {
     assert!(s.stream_plate_sweep.iter().all(|o| o.region == region));
 }
 
+/// Every entry of `plate_sweep` is checked as `[plate]` is, under its own name, and must carry
+/// the scene's sensors and region.
 #[test]
-fn bad_streams_name_the_key_the_value_and_the_range() {
+fn bad_plate_sweeps_name_the_entry_the_key_and_the_value() {
     let bad = |from: &str, to: &str, needles: &[&str]| expect(&with_stream(&STREAM.replace(from, to)), needles);
-    bad("rate_per_s = 12.0", "rate_per_s = 0.0", &["stream.rate_per_s = 0", "(0, 10000]"]);
-    bad("rate_per_s = 12.0", "rate_per_s = nan", &["stream.rate_per_s = NaN"]);
-    bad("duration_s = 6.0", "duration_s = 1e6", &["stream.duration_s = 1000000", "(0, 86400]"]);
-    bad("gangue_after = 1.0", "gangue_after = 1.5", &["stream.gangue_after = 1.5", "[0, 1]"]);
-    bad("gangue_after = 1.0", "gangue_after = 0.0", &["stream.gangue_after", "no change to detect"]);
-    let falling = ("gangue_before = 0.0\ngangue_after = 1.0", "gangue_before = 0.8\ngangue_after = 0.3");
-    bad(
-        falling.0,
-        falling.1,
-        &["stream.gangue_after", "0.3 is below gangue_before = 0.8", "turn to gangue-rich", "(0.8, 1]"],
-    );
-    bad("onset_s = 3.0", "onset_s = 7.0", &["stream.onset_s = 7", "(0, 6)"]);
-    bad("ramp_s = 0.5", "ramp_s = 4.0", &["stream.ramp_s = 4", "[0, 3]"]);
-    bad("window_s = 0.5", "window_s = 4.0", &["stream.window_s = 4", "0.0008", "3]"]);
-    bad("hop_s = 0.25", "hop_s = 0.75", &["stream.hop_s = 0.75", "0.5]"]);
-    bad("streams = 2", "streams = 2.5", &["stream.streams", "not a whole number"]);
-    bad("streams = 2", "streams = 100", &["stream.streams = 100", "[1, 64]"]);
-    bad("blocks = 4", "blocks = 1", &["stream.blocks = 1", "[2, 1000]"]);
-    bad("blocks = 4", "blocks = 900", &["stream.blocks", "900 blocks for 46 windows"]);
-    bad("alarm_probability = 0.5", "alarm_probability = 1.0", &["stream.alarm_probability = 1", "(0, 1)"]);
-    bad("write_signal = true", "noise_sweep = [1.0]", &["stream.noise_sweep", "no [measurement]"]);
-    bad("write_signal = true", "rate_sweep_per_s = [5.0, -1.0]", &["stream.rate_sweep_per_s[1] = -1"]);
-    bad("write_signal = true", "size_sweep = [1.5, 0.0]", &["stream.size_sweep[1] = 0", "[0.1, 10]"]);
-    bad(
-        "write_signal = true",
-        "law_sweep = [\"flores\", \"elastic\"]",
-        &["stream.law_sweep[1]", "'elastic' is not a contact law", "\"thornton\""],
-    );
-    bad(
-        "write_signal = true",
-        "law_sweep = [\"hertz\", \"hertz\"]",
-        &["stream.law_sweep[1]", "'hertz' is named twice"],
-    );
-    let huge = with_stream(&STREAM.replace("write_signal = true", "size_sweep = [10.0]"))
-        .replace("max = 40.0 }", "max = 2000.0 }");
-    expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
-    bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
-    bad("write_signal = true", "signal_format = \"parquet\"", &["stream.signal_format", "write_signal is not true"]);
     let sweep = |entries: &str| format!("write_signal = true\nplate_sweep = [{entries}]");
     bad(
         "write_signal = true",
@@ -156,6 +120,49 @@ fn bad_streams_name_the_key_the_value_and_the_range() {
             .replace("[229.2, 180.0]", "[229.2, 100.0]"),
         &["stream.plate_sweep[0]", "ensemble.region reaches (300, 300) mm, off the 458.4 x 200 mm plate"],
     );
+}
+
+#[test]
+fn bad_streams_name_the_key_the_value_and_the_range() {
+    let bad = |from: &str, to: &str, needles: &[&str]| expect(&with_stream(&STREAM.replace(from, to)), needles);
+    bad("rate_per_s = 12.0", "rate_per_s = 0.0", &["stream.rate_per_s = 0", "(0, 10000]"]);
+    bad("rate_per_s = 12.0", "rate_per_s = nan", &["stream.rate_per_s = NaN"]);
+    bad("duration_s = 6.0", "duration_s = 1e6", &["stream.duration_s = 1000000", "(0, 86400]"]);
+    bad("gangue_after = 1.0", "gangue_after = 1.5", &["stream.gangue_after = 1.5", "[0, 1]"]);
+    bad("gangue_after = 1.0", "gangue_after = 0.0", &["stream.gangue_after", "no change to detect"]);
+    let falling = ("gangue_before = 0.0\ngangue_after = 1.0", "gangue_before = 0.8\ngangue_after = 0.3");
+    bad(
+        falling.0,
+        falling.1,
+        &["stream.gangue_after", "0.3 is below gangue_before = 0.8", "turn to gangue-rich", "(0.8, 1]"],
+    );
+    bad("onset_s = 3.0", "onset_s = 7.0", &["stream.onset_s = 7", "(0, 6)"]);
+    bad("ramp_s = 0.5", "ramp_s = 4.0", &["stream.ramp_s = 4", "[0, 3]"]);
+    bad("window_s = 0.5", "window_s = 4.0", &["stream.window_s = 4", "0.0008", "3]"]);
+    bad("hop_s = 0.25", "hop_s = 0.75", &["stream.hop_s = 0.75", "0.5]"]);
+    bad("streams = 2", "streams = 2.5", &["stream.streams", "not a whole number"]);
+    bad("streams = 2", "streams = 100", &["stream.streams = 100", "[1, 64]"]);
+    bad("blocks = 4", "blocks = 1", &["stream.blocks = 1", "[2, 1000]"]);
+    bad("blocks = 4", "blocks = 900", &["stream.blocks", "900 blocks for 46 windows"]);
+    bad("alarm_probability = 0.5", "alarm_probability = 1.0", &["stream.alarm_probability = 1", "(0, 1)"]);
+    bad("write_signal = true", "noise_sweep = [1.0]", &["stream.noise_sweep", "no [measurement]"]);
+    bad("write_signal = true", "rate_sweep_per_s = [5.0, -1.0]", &["stream.rate_sweep_per_s[1] = -1"]);
+    bad("write_signal = true", "size_sweep = [1.5, 0.0]", &["stream.size_sweep[1] = 0", "[0.1, 10]"]);
+    bad(
+        "write_signal = true",
+        "law_sweep = [\"flores\", \"elastic\"]",
+        &["stream.law_sweep[1]", "'elastic' is not a contact law", "\"thornton\""],
+    );
+    bad(
+        "write_signal = true",
+        "law_sweep = [\"hertz\", \"hertz\"]",
+        &["stream.law_sweep[1]", "'hertz' is named twice"],
+    );
+    let huge = with_stream(&STREAM.replace("write_signal = true", "size_sweep = [10.0]"))
+        .replace("max = 40.0 }", "max = 2000.0 }");
+    expect(&huge, &["stream.size_sweep[0]", "10 scales family", "20000 mm", "outside the allowed"]);
+    bad("write_signal = true", "wrte_signal = true", &["unknown field", "wrte_signal"]);
+    bad("write_signal = true", "signal_format = \"parquet\"", &["stream.signal_format", "write_signal is not true"]);
     bad(
         "write_signal = true",
         "write_signal = true\nsignal_format = \"hdf5\"",

@@ -237,7 +237,7 @@ def test_streams_computed_apart_are_the_studys_streams(tmp_path):
 
 def tiny_measured() -> dict:
     """scenes/caving-stream-detect.toml made small (Con 2, 40 modes, two streams of 6 s, no
-    sweeps) and cut into three segments of 2 s, each warming up (to ε = 1e-2) for about 1.8 s:
+    sweeps or design) and cut into three segments of 2 s, each warming up (to ε = 1e-2) for about 1.8 s:
     the later segments start after the stream's start."""
     d = tomllib.loads((REPO / "scenes" / "caving-stream-detect.toml").read_text())
     d["signals"]["modes"] = 40
@@ -245,7 +245,7 @@ def tiny_measured() -> dict:
     s = d["stream"]
     s.update(duration_s=6.0, streams=2, onset_s=3.0, ramp_s=0.0, window_s=1.0, blocks=2, write_signal=True)
     s.update(segment_s=2.0, segment_tolerance=1e-2)
-    for k in ("rate_sweep_per_s", "noise_sweep", "size_sweep", "law_sweep", "plate_sweep"):
+    for k in ("rate_sweep_per_s", "noise_sweep", "size_sweep", "law_sweep", "plate_sweep", "design_sensors"):
         s.pop(k, None)
     return d
 

@@ -87,51 +87,98 @@ pub(crate) fn rows_of(table: &FeatureTable, channels: &[usize]) -> (Vec<Vec<f64>
     (rows, scale)
 }
 
-/// Greedy forward selection of `budget` sensors among `candidates` (the table's channel of
-/// each candidate point), each set scored by [`cross_validated_auc`] with [`FOLDS`] folds and
-/// ridge [`RIDGE`] from `seed` (the same folds for every set, so that sets are compared on
-/// the same splits). At most as many steps as candidates.
-pub fn greedy(table: &FeatureTable, candidates: &[usize], budget: usize, seed: u64) -> Result<Vec<Step>, FitError> {
-    let labels: Vec<bool> = table.classes().iter().map(|c| *c == Class::Gangue).collect();
+/// One step of a greedy forward selection: the candidate added, the chosen set's score, and
+/// every candidate's AUC had it been added instead (None: already chosen).
+#[derive(Debug, Clone)]
+pub struct Chosen<S> {
+    /// The candidate added (its position among the candidates).
+    pub added: usize,
+    /// The score of the set after this step.
+    pub score: S,
+    /// For each candidate, the AUC of the set had it been added instead.
+    pub map: Vec<Option<f64>>,
+}
+
+/// Greedy forward selection of up to `budget` of `candidates` candidates (at most as many
+/// steps as candidates): step k scores every set of the k - 1 chosen and one candidate not yet
+/// chosen by `score` (in parallel) and adds the one whose `auc` is highest; ties go to the
+/// earlier candidate. Every set is scored by the same `score`, so that on the same folds the
+/// sets are compared on the same splits.
+///
+/// ```
+/// use identify::design::forward_selection;
+/// // Candidate c alone scores 0.5 + c/10; a set scores its best member's score plus 0.01 a member.
+/// let score = |set: &[usize]| -> Result<f64, ()> {
+///     Ok(set.iter().map(|&c| 0.5 + c as f64 / 10.0).fold(0.0, f64::max) + 0.01 * set.len() as f64)
+/// };
+/// let steps = forward_selection(4, 2, score, |s: &f64| *s).unwrap();
+/// assert_eq!(steps.iter().map(|s| s.added).collect::<Vec<_>>(), [3, 0]);
+/// assert_eq!(steps[1].map[3], None);
+/// ```
+pub fn forward_selection<S, E>(
+    candidates: usize,
+    budget: usize,
+    score: impl Fn(&[usize]) -> Result<S, E> + Sync,
+    auc: impl Fn(&S) -> f64 + Sync,
+) -> Result<Vec<Chosen<S>>, E>
+where
+    S: Send,
+    E: Send,
+{
     let mut chosen: Vec<usize> = Vec::new();
-    let mut steps: Vec<Step> = Vec::new();
-    let mut before: Option<Vec<f64>> = None;
-    for _ in 0..budget.min(candidates.len()) {
-        let scores: Vec<Option<(Auc, Vec<f64>)>> = candidates
-            .par_iter()
-            .enumerate()
-            .map(|(c, _)| {
+    let mut steps = Vec::new();
+    for _ in 0..budget.min(candidates) {
+        let mut scores: Vec<Option<S>> = (0..candidates)
+            .into_par_iter()
+            .map(|c| {
                 if chosen.contains(&c) {
                     return Ok(None);
                 }
-                let set: Vec<usize> = chosen.iter().chain([&c]).map(|&k| candidates[k]).collect();
-                let (rows, scale) = rows_of(table, &set);
-                let p = out_of_fold(&rows, &labels, &scale, RIDGE, FOLDS, seed)?;
-                let (coal, gangue) = by_class(&p, &labels);
-                Ok(Some((auc_with_error(&coal, &gangue), p)))
+                let set: Vec<usize> = chosen.iter().copied().chain([c]).collect();
+                score(&set).map(Some)
             })
-            .collect::<Result<_, FitError>>()?;
+            .collect::<Result<_, E>>()?;
+        let value = |k: usize| scores[k].as_ref().map_or(f64::MIN, &auc);
         // The first best: ties go to the earlier candidate.
-        let Some(added) = (0..scores.len()).filter(|&c| scores[c].is_some()).fold(None, |b: Option<usize>, c| {
-            let auc = |k: usize| scores[k].as_ref().map_or(f64::MIN, |s| s.0.auc);
-            match b {
-                Some(b) if auc(b) >= auc(c) => Some(b),
-                _ => Some(c),
-            }
+        let Some(added) = (0..candidates).filter(|&c| scores[c].is_some()).fold(None, |b: Option<usize>, c| match b {
+            Some(b) if value(b) >= value(c) => Some(b),
+            _ => Some(c),
         }) else {
             break;
         };
-        let (auc, p) = scores[added].clone().ok_or_else(|| FitError::Shape("no score".into()))?;
-        let (gain, gain_standard_error) = match &before {
+        let map = scores.iter().map(|s| s.as_ref().map(&auc)).collect();
+        let Some(score) = scores[added].take() else { break };
+        chosen.push(added);
+        steps.push(Chosen { added, score, map });
+    }
+    Ok(steps)
+}
+
+/// Greedy forward selection of `budget` sensors among `candidates` (the table's channel of
+/// each candidate point), each set scored by [`cross_validated_auc`] with [`FOLDS`] folds and
+/// ridge [`RIDGE`] from `seed` (the same folds for every set, so that sets are compared on
+/// the same splits; [`forward_selection`]), each step's gain by DeLong's paired error.
+pub fn greedy(table: &FeatureTable, candidates: &[usize], budget: usize, seed: u64) -> Result<Vec<Step>, FitError> {
+    let labels: Vec<bool> = table.classes().iter().map(|c| *c == Class::Gangue).collect();
+    let score = |set: &[usize]| -> Result<(Auc, Vec<f64>), FitError> {
+        let channels: Vec<usize> = set.iter().map(|&k| candidates[k]).collect();
+        let (rows, scale) = rows_of(table, &channels);
+        let p = out_of_fold(&rows, &labels, &scale, RIDGE, FOLDS, seed)?;
+        let (coal, gangue) = by_class(&p, &labels);
+        Ok((auc_with_error(&coal, &gangue), p))
+    };
+    let chosen = forward_selection(candidates.len(), budget, score, |s: &(Auc, Vec<f64>)| s.0.auc)?;
+    let mut before: Option<&Vec<f64>> = None;
+    let mut steps = Vec::with_capacity(chosen.len());
+    for Chosen { added, score: (auc, p), map } in &chosen {
+        let (gain, gain_standard_error) = match before {
             None => (auc.auc - 0.5, auc.standard_error),
             Some(q) => {
-                let ((qc, qg), (pc, pg)) = (by_class(q, &labels), by_class(&p, &labels));
+                let ((qc, qg), (pc, pg)) = (by_class(q, &labels), by_class(p, &labels));
                 paired_difference((&qc, &qg), (&pc, &pg))
             }
         };
-        chosen.push(added);
-        let map = scores.iter().map(|s| s.as_ref().map(|(a, _)| a.auc)).collect();
-        steps.push(Step { added, auc, gain, gain_standard_error, map });
+        steps.push(Step { added: *added, auc: *auc, gain, gain_standard_error, map: map.clone() });
         before = Some(p);
     }
     Ok(steps)

@@ -111,6 +111,10 @@ pub struct StreamStudy {
     /// provenance hash.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub segments: Option<Segmenting>,
+    /// The window-level sensor design (None: none). Left out of the serialised scene when
+    /// None.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<StreamDesign>,
     /// Whether to write the first stream's continuous signals.
     pub write_signal: bool,
     /// The file they are written as. Left out of the serialised scene as CSV, so that a
@@ -128,6 +132,17 @@ pub struct Segmenting {
     pub length: f64,
     /// ε: the share of the state at a warm-up's start left by its end.
     pub tolerance: f64,
+}
+
+/// A window-level sensor design: `sensors` sensors recording `measurand`, chosen one at a
+/// time among the candidate points of the ensemble's placement grid, each set scored by the
+/// window AUC of its detector on the study's streams and folds ([`crate::design::forward_selection`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StreamDesign {
+    /// The budget of sensors.
+    pub sensors: usize,
+    /// What each records (a plate quantity at a point, not a support's force).
+    pub measurand: crate::measurement::Measurand,
 }
 
 /// The file a recorded signal is written as, beside its JSON sidecar

@@ -152,6 +152,7 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
             ("simulation_prose", simulation_prose),
             ("transfer", transfer.0.to_markdown()),
             ("worst", transfer.1),
+            ("design", crate::stream_design::section(d)?),
         ],
     )?)
 }

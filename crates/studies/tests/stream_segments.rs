@@ -37,6 +37,7 @@ fn small(segments: Option<&str>, noise: bool) -> scene::Scene {
             ("size_sweep = [1.5]", "size_sweep = []"),
             ("law_sweep = [\"flores\"]", "law_sweep = []"),
             ("plate_sweep = [{ thickness_mm = 12.0 }, { length_mm = 600.0, width_mm = 450.0 }]", "plate_sweep = []"),
+            ("design_sensors = 3", ""),
         ],
     );
     if let Some(cut) = segments {

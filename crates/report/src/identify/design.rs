@@ -48,17 +48,28 @@ fn steps(d: &SensorDesign) -> Table {
 
 /// The first step's map: a row per z, a column per x, the chosen point marked.
 fn first_map(d: &SensorDesign) -> Table {
+    let first = d.steps.first().map(|s| (s.at_mm, s.map.as_slice()));
+    chosen_map((&d.x_mm, &d.z_mm), first)
+}
+
+/// A design step as its map shows it: the point chosen, (x, z) mm, and the AUC had each grid
+/// point been added, `[x][z]`.
+pub(crate) type MapStep<'a> = ((f64, f64), &'a [Vec<Option<f64>>]);
+
+/// A design step's map over the grid `x_mm` by `z_mm`: a row per z, a column per x, each
+/// cell the AUC had that point been added (`-`: already chosen), the point chosen marked.
+/// No step: the headers alone.
+pub(crate) fn chosen_map((x_mm, z_mm): (&[f64], &[f64]), step: Option<MapStep<'_>>) -> Table {
     let mut headers = vec!["z \\ x (mm)".to_string()];
-    headers.extend(d.x_mm.iter().map(|x| sig(*x, 4)));
+    headers.extend(x_mm.iter().map(|x| sig(*x, 4)));
     let refs: Vec<&str> = headers.iter().map(String::as_str).collect();
     let mut t = Table::new("", &refs);
-    let Some(first) = d.steps.first() else { return t };
-    for (j, z) in d.z_mm.iter().enumerate() {
+    let Some((at_mm, map)) = step else { return t };
+    for (j, z) in z_mm.iter().enumerate() {
         let mut row = vec![Cell::from(sig(*z, 4))];
-        for (i, x) in d.x_mm.iter().enumerate() {
-            let chosen = first.at_mm == (*x, *z);
-            let v = first.map[i][j].map_or("-".to_string(), |a| sig(a, 3));
-            row.push(if chosen { format!("**{v}** ●") } else { v }.into());
+        for (i, x) in x_mm.iter().enumerate() {
+            let v = map[i][j].map_or("-".to_string(), |a| sig(a, 3));
+            row.push(if at_mm == (*x, *z) { format!("**{v}** ●") } else { v }.into());
         }
         t.push(row);
     }

@@ -8,7 +8,7 @@
 //! the page.
 
 mod check;
-mod design;
+pub(crate) mod design;
 mod figures;
 mod head;
 mod measurement;

@@ -123,15 +123,7 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         }
         None => Points::Pairs { pairs: vec![] },
     };
-    // A caving stream's lumps fall onto the plate (its speeds are fall heights), and so do a
-    // drop test's, so gravity acts on them by default there; an ensemble of given velocities
-    // is the paper's impact.
-    let falls = raw.ensemble.as_ref().is_some_and(|e| e.fall_height_m.is_some()) || analyses.contains(&Analysis::Drops);
-    let gravity = match raw.gravity_m_per_s2 {
-        Some(g) => check("gravity_m_per_s2", g, limits::GRAVITY_M_PER_S2, "m/s²")?,
-        None if falls => identify::ensemble::GRAVITY,
-        None => 0.0,
-    };
+    let gravity = gravity(&raw, &analyses)?;
     let plate_damping = raw.plate_damping.as_ref().map(damping::validate_plate_damping).transpose()?;
     let transient_points = match &raw.transient {
         None => points.pairs(),
@@ -151,6 +143,9 @@ pub(crate) fn validate(raw: RawScene) -> Result<Scene, Invalid> {
         chain_and_stream(&raw, &analyses, &signals, conditions.len(), ensemble.as_ref())?;
     tail_beam::check_stream(!face_mm.2, &signals, measurement.as_ref())?;
     let stream_plate_sweep = plate_sweep::validate(&raw, face_mm.2, &signals, ensemble.as_ref())?;
+    if let (Some(study), Some(ensemble)) = (&stream, &ensemble) {
+        stream::check_design(study, ensemble, measurement.as_ref(), (face_mm.2, signals.rate_hz))?;
+    }
     let shell_mesh = shell_mesh::table(raw.shell_mesh.as_ref(), &analyses, &plate)?;
     Ok(Scene {
         velocities,
@@ -255,6 +250,18 @@ fn chain_and_stream(
         stream::check_size_sweep(study, ensemble)?;
     }
     Ok((measurement, stream, laws))
+}
+
+/// `gravity_m_per_s2`, m/s². A caving stream's lumps fall onto the plate (its speeds are fall
+/// heights), and so do a drop test's, so gravity acts on them by default there; an ensemble of
+/// given velocities is the paper's impact.
+fn gravity(raw: &RawScene, analyses: &[Analysis]) -> Result<f64, Invalid> {
+    let falls = raw.ensemble.as_ref().is_some_and(|e| e.fall_height_m.is_some()) || analyses.contains(&Analysis::Drops);
+    Ok(match raw.gravity_m_per_s2 {
+        Some(g) => check("gravity_m_per_s2", g, limits::GRAVITY_M_PER_S2, "m/s²")?,
+        None if falls => identify::ensemble::GRAVITY,
+        None => 0.0,
+    })
 }
 
 /// `contact_law`: a key of the law registry, or the default law.

@@ -22,6 +22,8 @@
 //! law_sweep = ["flores"]    # other contact laws, for the transfer
 //! plate_sweep = [{ thickness_mm = 12.0 }]   # other plates, for the transfer
 //! segment_s = 30.0          # cut every stream into segments run alone (bit for bit apart)
+//! design_sensors = 3        # choose 3 sensors among [ensemble.placement]'s grid by window AUC
+//! design_quantity = "acceleration"
 //! write_signal = true       # the first stream's continuous signals as a file
 //! signal_format = "parquet" # ... as Parquet (or "csv", the default)
 //! ```
@@ -31,7 +33,8 @@ use crate::limits;
 use analytic::params::{check, Range};
 use coupled::reduced::SignalSettings;
 use coupled::transient::LawKind;
-use identify::stream::{Profile, Segmenting, SignalFormat, StreamSpec, StreamStudy};
+use identify::measurement::Measurand;
+use identify::stream::{Profile, Segmenting, SignalFormat, StreamDesign, StreamSpec, StreamStudy};
 use serde::Deserialize;
 
 /// The stream's table as TOML reads it.
@@ -69,6 +72,10 @@ pub(crate) struct RawStream {
     segment_s: Option<f64>,
     #[serde(default)]
     segment_tolerance: Option<f64>,
+    #[serde(default)]
+    design_sensors: Option<f64>,
+    #[serde(default)]
+    design_quantity: Option<String>,
     #[serde(default)]
     write_signal: bool,
     #[serde(default)]
@@ -134,6 +141,7 @@ pub(crate) fn validate_stream(
         noise_sweep,
         size_sweep,
         segments: segmenting(raw, (window, duration))?,
+        design: design(raw)?,
         write_signal: raw.write_signal,
         signal_format: signal_format(raw.signal_format.as_deref(), raw.write_signal)?,
     };
@@ -206,6 +214,91 @@ fn sweeps(raw: &RawStream, has_chain: bool) -> Result<Sweeps, Invalid> {
         laws.push(law);
     }
     Ok(Sweeps { rate_sweep, noise_sweep, size_sweep, laws })
+}
+
+/// The plate quantities a window-level design may place, by key.
+const DESIGN_QUANTITIES: [Measurand; 4] =
+    [Measurand::Acceleration, Measurand::Velocity, Measurand::Displacement, Measurand::Strain];
+
+/// The window-level sensor design, if `design_sensors` asks for one: its budget and what each
+/// sensor records (`design_quantity`, acceleration by default).
+fn design(raw: &RawStream) -> Result<Option<StreamDesign>, Invalid> {
+    let Some(budget) = raw.design_sensors else {
+        if let Some(q) = &raw.design_quantity {
+            return Err(other(
+                "stream.design_quantity",
+                format!("\"{q}\" is given but design_sensors is not: nothing is designed"),
+            ));
+        }
+        return Ok(None);
+    };
+    let sensors = count("stream.design_sensors", budget, crate::ensemble::DESIGN_SENSORS)?;
+    let measurand = match raw.design_quantity.as_deref() {
+        None => Measurand::Acceleration,
+        Some(q) => DESIGN_QUANTITIES.into_iter().find(|m| m.key() == q).ok_or_else(|| {
+            let keys: Vec<String> = DESIGN_QUANTITIES.iter().map(|m| format!("\"{}\"", m.key())).collect();
+            other("stream.design_quantity", format!("\"{q}\" is not a plate quantity; allowed: {}", keys.join(", ")))
+        })?,
+    };
+    Ok(Some(StreamDesign { sensors, measurand }))
+}
+
+/// What the window-level design needs beyond `[stream]`: a plate to place sensors on
+/// (`on_plate`), the candidate grid of `[ensemble.placement]`, a chain (if any) that records
+/// the design's quantity, and room for one stream's channels at every candidate (the design
+/// runs its streams one at a time): the model's signals at `model_rate_hz` and their recording.
+pub(crate) fn check_design(
+    study: &StreamStudy,
+    ensemble: &identify::Study,
+    chain: Option<&identify::measurement::ChainSpec>,
+    (on_plate, model_rate_hz): (bool, f64),
+) -> Result<(), Invalid> {
+    let Some(design) = study.design else { return Ok(()) };
+    let field = "stream.design_sensors";
+    if !on_plate {
+        return Err(other(
+            field,
+            "chooses sensors among a plate's candidate points; a tail beam's stream strikes the box (leave it out)",
+        ));
+    }
+    let candidates = ensemble.candidates().len();
+    if candidates == 0 {
+        return Err(other(
+            field,
+            "chooses among the candidate points of [ensemble.placement]; the scene has none (give x_count and z_count)",
+        ));
+    }
+    if let Some(c) = chain {
+        if !c.recordings.iter().any(|r| r.measurand == design.measurand) {
+            let recorded: Vec<String> = c
+                .recordings
+                .iter()
+                .filter(|r| DESIGN_QUANTITIES.contains(&r.measurand))
+                .map(|r| format!("\"{}\"", r.measurand.key()))
+                .collect();
+            return Err(other(
+                "stream.design_quantity",
+                format!(
+                    "\"{}\" is not recorded by [measurement]; allowed: {}",
+                    design.measurand.key(),
+                    recorded.join(", ")
+                ),
+            ));
+        }
+    }
+    let bytes = 2.0 * candidates as f64 * study.spec.duration * model_rate_hz * 8.0;
+    if bytes > limits::MAX_STREAM_SIGNAL_BYTES {
+        return Err(other(
+            field,
+            format!(
+                "a stream of {} s at {model_rate_hz} Hz at {candidates} candidate points, recorded, holds {:.0} MB of signal, above the {:.0} MB budget; use fewer candidates or shorter streams",
+                study.spec.duration,
+                bytes / 1e6,
+                limits::MAX_STREAM_SIGNAL_BYTES / 1e6
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `signal_format` as written: "csv" or "parquet", and only where a signal is written.

@@ -15,6 +15,7 @@
 //! ([`identify::detector`]).
 
 mod alone;
+pub mod design;
 mod on_box;
 mod recorder;
 mod run;
@@ -30,6 +31,7 @@ use scene::Scene;
 use serde::Serialize;
 
 pub use alone::one_stream;
+pub use design::{WindowDesign, WindowDesignStep};
 pub use on_box::truncation_shift;
 pub use run::RECORDING_KEY;
 pub use score::Score;
@@ -105,6 +107,9 @@ pub struct ConditionStream {
     /// The every-channel detector fitted on every window of the main run, to be taken away.
     #[serde(skip)]
     pub detector: identify::detector::Detector,
+    /// The window-level sensor design, where the scene asks for one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub design: Option<WindowDesign>,
 }
 
 /// What the stream simulation did and cost.

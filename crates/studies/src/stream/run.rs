@@ -64,7 +64,13 @@ pub(super) fn condition(
         out.extend(other_plates(scene, (ensemble, study), (set, w), progress)?);
         Ok(out)
     };
-    scored(scene, (study, ensemble), &target, &sweeps, progress)
+    let (mut data, shifted) = scored(scene, (study, ensemble), &target, &sweeps, progress)?;
+    if study.design.is_some() {
+        progress.start(study.streams, &format!("{}: design streams", set.name));
+        data.design = super::design::window_design(scene, (ensemble, study), (&model, &shifted.windows), progress)?;
+        progress.finish();
+    }
+    Ok((data, shifted))
 }
 
 /// A struck model as the study scores it: its name and number among the study's, what
@@ -145,6 +151,7 @@ pub(super) fn scored(
         lumps: lump_rows(ensemble, &main),
         signal,
         detector,
+        design: None,
     };
     let shifted = Shifted {
         name: target.name.to_string(),
@@ -275,22 +282,34 @@ fn simulate(
     rate_per_s: f64,
     progress: &dyn Progress,
 ) -> Result<Vec<Simulated>, Failure> {
-    let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
     let cutting = segments::cutting(instrument, study)?;
     let runs: Vec<Result<Simulated, String>> = (0..study.streams)
         .into_par_iter()
         .map(|r| {
-            let spec = StreamSpec { rate_per_s, seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
-            let lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
-            let t0 = Instant::now();
-            let (response, pieces) = segments::run(instrument, (&lumps, &names), spec.duration, cutting)
-                .map_err(|e| format!("stream {r}: {e}"))?;
-            let seconds = t0.elapsed().as_secs_f64();
+            let sim = simulate_one(instrument, ensemble, study, (rate_per_s, r), cutting);
             progress.advance(1);
-            Ok(Simulated { lumps, response, seconds, pieces })
+            sim
         })
         .collect();
     runs.into_iter().map(|r| r.map_err(Failure::from)).collect()
+}
+
+/// Stream `r` of the study at `rate_per_s` (drawn from seed + r), simulated on `instrument`
+/// cut as `cutting` says.
+pub(super) fn simulate_one(
+    instrument: &dyn Recorder,
+    ensemble: &identify::Study,
+    study: &StreamStudy,
+    (rate_per_s, r): (f64, usize),
+    cutting: Option<segments::Cutting>,
+) -> Result<Simulated, String> {
+    let names: Vec<String> = ensemble.ensemble.families.iter().map(|f| f.name.clone()).collect();
+    let spec = StreamSpec { rate_per_s, seed: study.spec.seed.wrapping_add(r as u64), ..study.spec };
+    let lumps = lumps(&ensemble.ensemble, &spec).map_err(|e| format!("stream {r}: {e}"))?;
+    let t0 = Instant::now();
+    let (response, pieces) =
+        segments::run(instrument, (&lumps, &names), spec.duration, cutting).map_err(|e| format!("stream {r}: {e}"))?;
+    Ok(Simulated { lumps, response, seconds: t0.elapsed().as_secs_f64(), pieces })
 }
 
 /// The main run's lumps, overlaps and cost, with the free plate's cost over one stream's
@@ -383,21 +402,33 @@ pub(super) fn window_set(study: &StreamStudy, seed: u64) -> Windows {
 
 /// One row per window: every channel's features, channel-major ([`window_features`]).
 fn features(recorded: &[Vec<Vec<f64>>], rate: f64, wins: &[Window], study: &StreamStudy) -> Vec<Vec<f64>> {
-    let offset = |w: &Window| w.stream as f64 * (study.spec.duration + study.window);
     let mut rows = vec![Vec::new(); wins.len()];
     for (r, channels) in recorded.iter().enumerate() {
-        let members: Vec<usize> = (0..wins.len()).filter(|&i| wins[i].stream == r).collect();
-        let mine: Vec<Window> = members.iter().map(|&i| wins[i]).collect();
-        let channels: Vec<&[f64]> = channels.iter().map(Vec::as_slice).collect();
-        for (i, row) in members.into_iter().zip(window_features(&channels, rate, &mine, study.window, offset)) {
+        for (i, row) in features_of(r, channels, rate, wins, study) {
             rows[i] = row;
         }
     }
     rows
 }
 
+/// The rows of stream `r`'s windows among `wins` (each with its place in `wins`), from its
+/// recorded `channels` at `rate`.
+pub(super) fn features_of(
+    r: usize,
+    channels: &[Vec<f64>],
+    rate: f64,
+    wins: &[Window],
+    study: &StreamStudy,
+) -> Vec<(usize, Vec<f64>)> {
+    let offset = |w: &Window| w.stream as f64 * (study.spec.duration + study.window);
+    let members: Vec<usize> = (0..wins.len()).filter(|&i| wins[i].stream == r).collect();
+    let mine: Vec<Window> = members.iter().map(|&i| wins[i]).collect();
+    let channels: Vec<&[f64]> = channels.iter().map(Vec::as_slice).collect();
+    members.into_iter().zip(window_features(&channels, rate, &mine, study.window, offset)).collect()
+}
+
 /// The columns of `members`' features.
-fn select(rows: &[Vec<f64>], members: &[usize]) -> Vec<Vec<f64>> {
+pub(super) fn select(rows: &[Vec<f64>], members: &[usize]) -> Vec<Vec<f64>> {
     let k = FEATURES.len();
     rows.iter().map(|r| members.iter().flat_map(|&c| r[c * k..(c + 1) * k].iter().copied()).collect()).collect()
 }

@@ -127,14 +127,31 @@ impl Windows {
     /// The AUC of `values` over the scored windows (NaN: left out) and its block-bootstrap
     /// interval; `oriented`: as max(A, 1 - A), the interval turned with it.
     fn auc_and_interval(&self, values: &[f64], oriented: bool) -> (f64, (f64, f64)) {
+        let (a, resampled) = self.bootstrap(|i| values[i].is_finite(), |pick| self.auc_of(values, pick));
+        let turn = |x: f64| if oriented && a < 0.5 { 1.0 - x } else { x };
+        (turn(a), quantiles(resampled.into_iter().map(turn).collect()))
+    }
+
+    /// The gain in AUC from the out-of-fold probabilities `before` to `after` (None: not
+    /// scored) over the windows both score, with the paired block-bootstrap interval: both AUCs
+    /// on the same resampled blocks, so that what the windows share cancels in the difference.
+    pub fn paired_gain(&self, before: &[Option<f64>], after: &[Option<f64>]) -> (f64, (f64, f64)) {
+        let value = |p: &[Option<f64>], i: usize| p[i].unwrap_or(f64::NAN);
+        let b: Vec<f64> = (0..before.len()).map(|i| value(before, i)).collect();
+        let a: Vec<f64> = (0..after.len()).map(|i| value(after, i)).collect();
+        let (gain, resampled) = self
+            .bootstrap(|i| a[i].is_finite() && b[i].is_finite(), |pick| self.auc_of(&a, pick) - self.auc_of(&b, pick));
+        (gain, quantiles(resampled))
+    }
+
+    /// `stat` over the scored windows where `usable`, and over [`RESAMPLES`] resamples of
+    /// whole blocks with replacement: blocks by their majority class, each kind resampled to
+    /// its own count, so that every resample has both classes (a block is mostly one phase of
+    /// the stream).
+    fn bootstrap(&self, usable: impl Fn(usize) -> bool, stat: impl Fn(&[usize]) -> f64) -> (f64, Vec<f64>) {
         let blocks: Vec<Vec<usize>> =
-            self.folds.iter().map(|f| f.test.iter().copied().filter(|&i| values[i].is_finite()).collect()).collect();
+            self.folds.iter().map(|f| f.test.iter().copied().filter(|&i| usable(i)).collect()).collect();
         let all: Vec<usize> = blocks.iter().flatten().copied().collect();
-        let a = self.auc_of(values, &all);
-        let flip = oriented && a < 0.5;
-        let turn = |x: f64| if flip { 1.0 - x } else { x };
-        // Blocks by their majority class, each kind resampled to its own count, so that every
-        // resample has both classes (a block is mostly one phase of the stream).
         let mostly_gangue = |b: &Vec<usize>| 2 * b.iter().filter(|&&i| self.labels[i]).count() > b.len();
         let (gangue, coal): (Vec<&Vec<usize>>, Vec<&Vec<usize>>) =
             blocks.iter().filter(|b| !b.is_empty()).partition(|b| mostly_gangue(b));
@@ -145,17 +162,15 @@ impl Windows {
                 pick.extend_from_slice(kind[b]);
             }
         };
-        let mut resampled: Vec<f64> = (0..RESAMPLES)
+        let resampled = (0..RESAMPLES)
             .map(|_| {
                 let mut pick = Vec::new();
                 draw(&coal, &mut pick);
                 draw(&gangue, &mut pick);
-                turn(self.auc_of(values, &pick))
+                stat(&pick)
             })
             .collect();
-        resampled.sort_by(f64::total_cmp);
-        let q = |p: f64| resampled[((p * RESAMPLES as f64) as usize).min(RESAMPLES - 1)];
-        (turn(a), (q(0.025), q(0.975)))
+        (stat(&all), resampled)
     }
 
     /// The AUC of `values` over the windows `pick` (½ without both classes).
@@ -172,5 +187,60 @@ impl Windows {
             return 0.5;
         }
         auc(&coal, &gangue)
+    }
+}
+
+/// The 95 % interval of bootstrap values: their 2.5 % and 97.5 % order statistics.
+fn quantiles(mut resampled: Vec<f64>) -> (f64, f64) {
+    resampled.sort_by(f64::total_cmp);
+    let q = |p: f64| resampled[((p * resampled.len() as f64) as usize).min(resampled.len() - 1)];
+    (q(0.025), q(0.975))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use identify::detect::{time_block_folds, Window};
+
+    /// Forty disjoint windows of one stream, coal for the first half and gangue after, in
+    /// four time blocks.
+    fn windows() -> Windows {
+        let all: Vec<Window> = (0..40).map(|i| Window { stream: 0, start: i as f64, end: i as f64 + 1.0 }).collect();
+        let labels = (0..40).map(|i| i >= 20).collect();
+        let folds = time_block_folds(&all, 4);
+        Windows { windows: all, labels, folds, offsets: vec![0.0], onset: 20.0, alarm: 0.5, seed: 5 }
+    }
+
+    /// Scores `shift`·label plus a shared uniform draw per window (a fixed sequence).
+    fn scores(shift: f64) -> Vec<Option<f64>> {
+        (0..40u64).map(|i| Some(((i * 7919) % 97) as f64 / 97.0 + if i >= 20 { shift } else { 0.0 })).collect()
+    }
+
+    /// The paired gain of a score over itself is nothing, on every resample; from a score that
+    /// cannot rank (a constant: 0.5 on every resample) to one that ranks perfectly (1 on every
+    /// resample, which always holds both classes) it is 0.5, on every resample.
+    #[test]
+    fn a_paired_gain_is_exact_where_both_scores_are() {
+        let w = windows();
+        let s = scores(0.3);
+        assert_eq!(w.paired_gain(&s, &s), (0.0, (0.0, 0.0)));
+        let constant = vec![Some(0.5); 40];
+        let perfect: Vec<Option<f64>> = (0..40).map(|i| Some(if i >= 20 { 1.0 } else { 0.0 })).collect();
+        assert_eq!(w.paired_gain(&constant, &perfect), (0.5, (0.5, 0.5)));
+    }
+
+    /// Two scores that share most of their noise: their AUCs move together from resample to
+    /// resample, so the paired interval of the difference is narrower than either score's own
+    /// (Var(A - B) = Var A + Var B - 2 Cov(A, B)); its gain is the difference of the AUCs.
+    #[test]
+    fn pairing_cancels_what_the_scores_share() {
+        let w = windows();
+        let (before, after) = (scores(0.2), scores(0.3));
+        let (gain, (lo, hi)) = w.paired_gain(&before, &after);
+        let value = |p: &[Option<f64>]| p.iter().map(|v| v.unwrap()).collect::<Vec<f64>>();
+        let (a, (alo, ahi)) = w.auc_and_interval(&value(&after), false);
+        let (b, (blo, bhi)) = w.auc_and_interval(&value(&before), false);
+        assert!((gain - (a - b)).abs() < 1e-15 && lo <= gain && gain <= hi);
+        assert!(hi - lo < (ahi - alo).min(bhi - blo), "paired {lo}..{hi}, after {alo}..{ahi}, before {blo}..{bhi}");
     }
 }

@@ -1,0 +1,78 @@
+//! The window-level sensor design of a stream study ([`studies::stream::WindowDesign`]): per
+//! support set a table of steps and the first step's map over the candidate grid.
+
+use crate::present::table::{sig, Cell, Table};
+use crate::template::render;
+use crate::Failure;
+use studies::stream::{StreamData, WindowDesign};
+
+const DESIGN: &str = include_str!("templates/stream/design.md");
+
+/// The design section of the stream page; empty where the scene asks for no design.
+pub(crate) fn section(d: &StreamData) -> Result<String, Failure> {
+    let designs: Vec<(&str, &WindowDesign)> =
+        d.conditions.iter().filter_map(|c| c.design.as_ref().map(|g| (c.name.as_str(), g))).collect();
+    let Some((_, first)) = designs.first() else { return Ok(String::new()) };
+    let noise = if d.measured {
+        "recorded through the scene's measurement chain at its stated background"
+    } else {
+        "noise-free: the scene has no measurement chain, so the design says where the signals differ most, not what survives a mine's noise"
+    };
+    let tables: Vec<String> = designs
+        .iter()
+        .map(|(name, g)| {
+            format!(
+                "### {name}\n\n{}\nWindow AUC with one more sensor at each candidate point, at the first step (● the point chosen):\n\n{}",
+                steps(g).to_markdown(),
+                first_map(g).to_markdown()
+            )
+        })
+        .collect();
+    Ok(render(
+        "stream/design.md",
+        DESIGN,
+        &[
+            ("count", first.steps.len().to_string()),
+            ("quantity", first.quantity.to_string()),
+            ("candidates", (first.x_mm.len() * first.z_mm.len()).to_string()),
+            ("noise", noise.to_string()),
+            ("designs", tables.join("\n")),
+        ],
+    )?)
+}
+
+/// One row per step: where, the window AUC so far with its interval, the gain with its paired
+/// interval, the delay and the false alarms.
+fn steps(g: &WindowDesign) -> Table {
+    let mut t = Table::new(
+        "",
+        &[
+            "sensors",
+            "added at (x, z) (mm)",
+            "window AUC (95 % interval)",
+            "gain (95 % paired interval)",
+            "median delay",
+            "false alarms per hour (count)",
+        ],
+    );
+    for (k, s) in g.steps.iter().enumerate() {
+        let score = &s.score;
+        t.push(vec![
+            Cell::Int(k as u64 + 1),
+            format!("({}, {})", sig(s.at_mm.0, 4), sig(s.at_mm.1, 4)).into(),
+            format!("{} ({}-{})", sig(score.auc, 3), sig(score.interval.0, 3), sig(score.interval.1, 3)).into(),
+            format!("{:+.3} ({:+.3} to {:+.3})", s.gain, s.gain_interval.0, s.gain_interval.1).into(),
+            score.median_delay_s.map_or_else(|| "none".into(), |d| format!("{} s", sig(d, 3)).into()),
+            score
+                .false_alarms_per_hour
+                .map_or_else(|| "n/a".into(), |f| format!("{} ({})", sig(f, 3), score.false_alarms).into()),
+        ]);
+    }
+    t
+}
+
+/// The first step's map: a row per z, a column per x, the chosen point marked.
+fn first_map(g: &WindowDesign) -> Table {
+    let first = g.steps.first().map(|s| (s.at_mm, s.map.as_slice()));
+    crate::identify::design::chosen_map((&g.x_mm, &g.z_mm), first)
+}

@@ -1,0 +1,100 @@
+//! The window-level sensor design of the stream study (`[stream] design_sensors`): its bad
+//! values refused by name, and on a small scene the answer that the plate's supports dictate.
+//! The both-fixed plate (Con 1) stands on its four corners, held: a corner cannot move, so its
+//! accelerometer records zero and its windows carry nothing. Its window AUC is chance, and the
+//! design must choose a point that moves. Con 2 stands on four springs, so every corner moves.
+
+mod common;
+
+use common::scenes::{edit, expect_refused as expect, ENSEMBLE};
+use common::{impact, tmp};
+
+const STREAM: &str = r#"
+[stream]
+rate_per_s = 12.0
+duration_s = 6.0
+streams = 2
+seed = 3
+gangue_before = 0.0
+gangue_after = 1.0
+onset_s = 3.0
+ramp_s = 0.5
+window_s = 0.5
+hop_s = 0.25
+blocks = 2
+design_sensors = 2
+"#;
+
+/// [`ENSEMBLE`] (a 3 x 2 candidate grid, edges included) with two sensors, a 5 ms window and
+/// [`STREAM`] edited by `edits`.
+fn scene(edits: &[(&str, &str)]) -> String {
+    let signals = "modes = 24\nwindow_ms = 5.0\nsensors_mm = [[229.2, 180.0], [400.0, 90.0]]";
+    let stream = edits.iter().fold(STREAM.to_string(), |s, (a, b)| s.replace(a, b));
+    format!("{}\n{stream}", edit(ENSEMBLE, "modes = 24", signals))
+}
+
+#[test]
+fn bad_designs_name_the_key_the_value_and_the_range() {
+    let d = "design_sensors = 2";
+    expect(&scene(&[(d, "design_sensors = 0")]), &["stream.design_sensors = 0", "[1, 8]"]);
+    expect(&scene(&[(d, "design_sensors = 1.5")]), &["stream.design_sensors", "not a whole number"]);
+    expect(
+        &scene(&[(d, "design_sensors = 2\ndesign_quantity = \"force\"")]),
+        &["stream.design_quantity", "\"force\" is not a plate quantity", "\"acceleration\", \"velocity\""],
+    );
+    expect(
+        &scene(&[(d, "design_quantity = \"strain\"")]),
+        &["stream.design_quantity", "is given but design_sensors is not"],
+    );
+    let no_grid = scene(&[]).replace("placement = { x_count = 3, z_count = 2 }\n", "");
+    expect(&no_grid, &["stream.design_sensors", "[ensemble.placement]", "x_count and z_count"]);
+}
+
+#[test]
+fn the_design_leaves_a_held_corner_and_its_steps_add_up() {
+    let dir = tmp();
+    let path = dir.write("design.toml", scene(&[]));
+    impact(["stream", "--scene"]).arg(&path).arg("--out").arg(dir.join("out")).arg("--json").success();
+    let data: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out").join("stream.json")).unwrap()).unwrap();
+    let x_mm = |d: &serde_json::Value| -> Vec<f64> {
+        d["x_mm"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect()
+    };
+    for c in data["conditions"].as_array().unwrap() {
+        let d = &c["design"];
+        assert_eq!(d["quantity"], "acceleration");
+        assert_eq!(x_mm(d), [0.0, 229.2, 458.4]);
+        let steps = d["steps"].as_array().unwrap();
+        assert_eq!(steps.len(), 2);
+        let auc = |s: &serde_json::Value| s["score"]["auc"].as_f64().unwrap();
+        let map = |s: &serde_json::Value, i: usize, j: usize| s["map"][i][j].as_f64();
+        let at = |s: &serde_json::Value| (s["at_mm"][0].as_f64().unwrap(), s["at_mm"][1].as_f64().unwrap());
+        let cell = |s: &serde_json::Value| {
+            let (x, z) = at(s);
+            (x_mm(d).iter().position(|&v| v == x).unwrap(), if z == 0.0 { 0 } else { 1 })
+        };
+        // The map holds the chosen set's own score, and the chosen point is gone from the next map.
+        let (i, j) = cell(&steps[0]);
+        assert_eq!(map(&steps[0], i, j), Some(auc(&steps[0])));
+        assert_eq!(map(&steps[1], i, j), None);
+        // The first gain is over chance; the second is the difference of the two AUCs.
+        assert!((steps[0]["gain"].as_f64().unwrap() - (auc(&steps[0]) - 0.5)).abs() < 1e-12);
+        assert!((steps[1]["gain"].as_f64().unwrap() - (auc(&steps[1]) - auc(&steps[0]))).abs() < 1e-12);
+        let g = &steps[1]["gain_interval"];
+        assert!(g[0].as_f64().unwrap() <= g[1].as_f64().unwrap());
+        if c["name"] == "Con 1" {
+            // The candidate grid's x = 0 and x = L columns are the four held corners (z = 0
+            // and z = B): no signal, no information.
+            for i in [0, 2] {
+                for j in 0..2 {
+                    let a = map(&steps[0], i, j).unwrap();
+                    assert!((a - 0.5).abs() < 1e-12, "a held corner's window AUC {a} at x index {i}");
+                }
+            }
+            assert_eq!(at(&steps[0]).0, 229.2, "the first sensor goes inside the plate");
+            assert!(auc(&steps[0]) > 0.8, "{}", auc(&steps[0]));
+        }
+    }
+    let page = std::fs::read_to_string(dir.join("out").join("index.md")).unwrap();
+    assert!(page.contains("## Where to put the sensors") && page.contains("(229.2, "), "{page}");
+}
