@@ -6,33 +6,10 @@
 
 mod common;
 
-use common::scenes::{edit, expect_refused as expect, ENSEMBLE};
+use common::scenes::{expect_refused as expect, with_stream, STREAM};
 use common::{impact, tmp};
 use identify::recording::Sidecar;
 use impact::scene::{Scene, SceneSource};
-
-const STREAM: &str = r#"
-[stream]
-rate_per_s = 12.0
-duration_s = 6.0
-streams = 2
-seed = 3
-gangue_before = 0.0
-gangue_after = 1.0
-onset_s = 3.0
-ramp_s = 0.5
-window_s = 0.5
-hop_s = 0.25
-blocks = 4
-alarm_probability = 0.5
-write_signal = true
-"#;
-
-/// [`ENSEMBLE`] with two sensors, a 5 ms window (each lump's longest follow) and `stream`.
-fn with_stream(stream: &str) -> String {
-    let signals = "modes = 24\nwindow_ms = 5.0\nsensors_mm = [[229.2, 180.0], [400.0, 90.0]]";
-    format!("{}\n{stream}", edit(ENSEMBLE, "modes = 24", signals))
-}
 
 #[test]
 fn a_stream_is_read_in_si() {

@@ -360,7 +360,8 @@ class StreamCondition:
 class StreamResults:
     """A stream study: ``results`` as ``impact stream`` writes them to ``stream.json``
     (the study, and per support set the simulation, the detector by channel group, the
-    baselines and the sweeps), and per support set its columns."""
+    baselines, the sweeps and, where the scene sets ``design_sensors``, the window-level
+    sensor design under ``"design"``), and per support set its columns."""
 
     results: dict[str, Any]
     conditions: dict[str, StreamCondition]

@@ -72,7 +72,10 @@ BINARY = impact_binary()
 
 @pytest.mark.skipif(BINARY is None, reason="no impact binary: cargo build --release")
 def test_python_and_the_command_line_agree_bit_for_bit(tmp_path):
+    """Every window's score, the groups, the baselines and the window-level sensor design
+    (two accelerometers among the scene's 7 x 5 candidate points) are the command line's."""
     d = tiny()
+    d["stream"]["design_sensors"] = 2
     scene = impact.Scene.from_dict(d)
     path = tmp_path / "stream.toml"
     path.write_text(scene.to_toml_str())
@@ -81,6 +84,8 @@ def test_python_and_the_command_line_agree_bit_for_bit(tmp_path):
     cli = json.loads((tmp_path / "out" / "stream.json").read_text())
     assert cli["conditions"][0]["groups"] == r.results["conditions"][0]["groups"]
     assert cli["conditions"][0]["baselines"] == r.results["conditions"][0]["baselines"]
+    design = r.results["conditions"][0]["design"]
+    assert cli["conditions"][0]["design"] == design and len(design["steps"]) == 2
     with open(tmp_path / "out" / "con-2" / "windows.csv") as f:
         rows = list(csv.reader(line for line in f if not line.startswith("#")))[1:]
     p = r.conditions["Con 2"].windows["probability_gangue_rich"]

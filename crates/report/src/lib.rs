@@ -244,6 +244,7 @@ pub fn index_page(
                 ("duration", analytic::params::compact(st.spec.duration)),
                 ("table", stream::summary_table(data).to_markdown()),
                 ("transfer", stream::worst_transfer(data)),
+                ("design", stream_design::headline(data)),
             ],
         )?);
         stream_rows.push_str(&render(

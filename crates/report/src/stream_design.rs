@@ -4,7 +4,7 @@
 use crate::present::table::{sig, Cell, Table};
 use crate::template::render;
 use crate::Failure;
-use studies::stream::{StreamData, WindowDesign};
+use studies::stream::{StreamData, WindowDesign, WindowDesignStep};
 
 const DESIGN: &str = include_str!("templates/stream/design.md");
 
@@ -39,6 +39,39 @@ pub(crate) fn section(d: &StreamData) -> Result<String, Failure> {
             ("designs", tables.join("\n")),
         ],
     )?)
+}
+
+/// The design in a sentence for the findings' index: per support set the first sensor's
+/// point and window AUC and the last step's (empty where the scene asks for no design).
+pub(crate) fn headline(d: &StreamData) -> String {
+    let sets: Vec<String> = d
+        .conditions
+        .iter()
+        .filter_map(|c| {
+            let g = c.design.as_ref()?;
+            let (first, last) = (g.steps.first()?, g.steps.last()?);
+            let auc = |s: &WindowDesignStep| {
+                format!("{} ({}-{})", sig(s.score.auc, 3), sig(s.score.interval.0, 3), sig(s.score.interval.1, 3))
+            };
+            Some(format!(
+                "{}: the first at ({}, {}) mm, window AUC {}; {} of them {}",
+                c.name,
+                sig(first.at_mm.0, 4),
+                sig(first.at_mm.1, 4),
+                auc(first),
+                g.steps.len(),
+                auc(last)
+            ))
+        })
+        .collect();
+    let Some(g) = d.conditions.iter().find_map(|c| c.design.as_ref()) else { return String::new() };
+    format!(
+        "Where to put {} {} sensors for the window detector (the page's design, chosen greedily among {} candidate points, each step's AUC the best of many on the same blocks): {}.",
+        g.steps.len(),
+        g.quantity,
+        g.x_mm.len() * g.z_mm.len(),
+        sets.join("; ")
+    )
 }
 
 /// One row per step: where, the window AUC so far with its interval, the gain with its paired

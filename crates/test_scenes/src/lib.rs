@@ -270,3 +270,28 @@ pub fn coal_con1_centre(analyses: Vec<Analysis>) -> Scene {
         ..scene
     }
 }
+
+/// A small `[stream]`: two streams of 6 s at 12 lumps a second, all coal then all gangue from
+/// 3 s, windows of 0.5 s every 0.25 s in four time blocks, the first stream's signal written.
+pub const STREAM: &str = r#"
+[stream]
+rate_per_s = 12.0
+duration_s = 6.0
+streams = 2
+seed = 3
+gangue_before = 0.0
+gangue_after = 1.0
+onset_s = 3.0
+ramp_s = 0.5
+window_s = 0.5
+hop_s = 0.25
+blocks = 4
+alarm_probability = 0.5
+write_signal = true
+"#;
+
+/// [`ENSEMBLE`] with two sensors, a 5 ms window (each lump's longest follow) and `stream`.
+pub fn with_stream(stream: &str) -> String {
+    let signals = "modes = 24\nwindow_ms = 5.0\nsensors_mm = [[229.2, 180.0], [400.0, 90.0]]";
+    format!("{}\n{stream}", edit(ENSEMBLE, "modes = 24", signals))
+}
