@@ -68,6 +68,15 @@ fn the_design_leaves_a_held_corner_and_its_steps_add_up() {
         // The first gain is over chance; the second is the difference of the two AUCs.
         assert!((steps[0]["gain"].as_f64().unwrap() - (auc(&steps[0]) - 0.5)).abs() < 1e-12);
         assert!((steps[1]["gain"].as_f64().unwrap() - (auc(&steps[1]) - auc(&steps[0]))).abs() < 1e-12);
+        // Every feature of both sensors, largest weight first, each at a chosen point.
+        let features = d["features"].as_array().unwrap();
+        assert_eq!(features.len(), 2 * identify::features::FEATURES.len());
+        let weight = |f: &serde_json::Value| f["weight"].as_f64().unwrap().abs();
+        assert!(features.windows(2).all(|p| weight(&p[0]) >= weight(&p[1])));
+        let chosen = [at(&steps[0]), at(&steps[1])];
+        assert!(features
+            .iter()
+            .all(|f| chosen.contains(&(f["at_mm"][0].as_f64().unwrap(), f["at_mm"][1].as_f64().unwrap()))));
         let g = &steps[1]["gain_interval"];
         assert!(g[0].as_f64().unwrap() <= g[1].as_f64().unwrap());
         if c["name"] == "Con 1" {

@@ -8,6 +8,9 @@ use studies::stream::{StreamData, WindowDesign, WindowDesignStep};
 
 const DESIGN: &str = include_str!("templates/stream/design.md");
 
+/// Features listed per design, of the chosen sensors' every feature.
+const SHOWN_FEATURES: usize = 6;
+
 /// The design section of the stream page; empty where the scene asks for no design.
 pub(crate) fn section(d: &StreamData) -> Result<String, Failure> {
     let designs: Vec<(&str, &WindowDesign)> =
@@ -22,9 +25,10 @@ pub(crate) fn section(d: &StreamData) -> Result<String, Failure> {
         .iter()
         .map(|(name, g)| {
             format!(
-                "### {name}\n\n{}\nWindow AUC with one more sensor at each candidate point, at the first step (● the point chosen):\n\n{}",
+                "### {name}\n\n{}\nWindow AUC with one more sensor at each candidate point, at the first step (● the point chosen):\n\n{}\nThe features the chosen sensors' detector weighs most, fitted on every window:\n\n{}",
                 steps(g).to_markdown(),
-                first_map(g).to_markdown()
+                first_map(g).to_markdown(),
+                features(g).to_markdown()
             )
         })
         .collect();
@@ -99,6 +103,20 @@ fn steps(g: &WindowDesign) -> Table {
             score
                 .false_alarms_per_hour
                 .map_or_else(|| "n/a".into(), |f| format!("{} ({})", sig(f, 3), score.false_alarms).into()),
+        ]);
+    }
+    t
+}
+
+/// Features that the chosen sensors' detector weighs most: the largest [`SHOWN_FEATURES`]
+/// weights.
+fn features(g: &WindowDesign) -> Table {
+    let mut t = Table::new("", &["sensor at (x, z) (mm)", "feature", "weight (standardised)"]);
+    for f in g.features.iter().take(SHOWN_FEATURES) {
+        t.push(vec![
+            format!("({}, {})", sig(f.at_mm.0, 4), sig(f.at_mm.1, 4)).into(),
+            f.feature.to_string().into(),
+            format!("{:+.3}", f.weight).into(),
         ]);
     }
     t

@@ -23,8 +23,10 @@ use crate::progress::Progress;
 use crate::Failure;
 use coupled::identification::Instrument;
 use coupled::reduced::{Quantity, ReducedModel};
+use identify::classify::{Logistic, RIDGE};
 use identify::design::{forward_selection, Chosen};
 use identify::detector::scale_flags;
+use identify::features::FEATURES;
 use identify::measurement::Measurand;
 use identify::stream::StreamStudy;
 use scene::Scene;
@@ -41,6 +43,21 @@ pub struct WindowDesign {
     pub z_mm: Vec<f64>,
     /// Every step, in the order the sensors were added.
     pub steps: Vec<WindowDesignStep>,
+    /// The features the chosen sensors' detector reads, by the size of their weight: the
+    /// logistic model fitted on every window of the main run's streams, its weights on the
+    /// standardised features (scale features as logarithms), largest magnitude first.
+    pub features: Vec<FeatureWeight>,
+}
+
+/// One feature of one designed sensor in the detector fitted on every window.
+#[derive(Debug, Clone, Serialize)]
+pub struct FeatureWeight {
+    /// The sensor, (x, z) mm.
+    pub at_mm: (f64, f64),
+    /// The feature's key ("peak", ...).
+    pub feature: &'static str,
+    /// Its weight on the standardised feature (0: a column without spread, dropped).
+    pub weight: f64,
 }
 
 /// One sensor added to the window detector.
@@ -104,7 +121,11 @@ pub(super) fn window_design(
         });
         before = Some(p);
     }
+    let chosen_channels: Vec<usize> = chosen.iter().map(|c| channel_of[c.added]).collect();
+    let at: Vec<(f64, f64)> = steps.iter().map(|s| s.at_mm).collect();
+    let features = weights(&select(&rows, &chosen_channels), &w.labels, &at)?;
     Ok(Some(WindowDesign {
+        features,
         quantity: design.measurand.key(),
         x_mm: ensemble.candidates_x.iter().map(|x| x * 1e3).collect(),
         z_mm: ensemble.candidates_z.iter().map(|z| z * 1e3).collect(),
@@ -134,6 +155,17 @@ fn grid_rows(
         progress.advance(1);
     }
     Ok(rows)
+}
+
+/// The weights of the logistic detector fitted on every window's `rows` (the designed sensors'
+/// features, sensor-major, at `at`) against `labels`, largest magnitude first.
+fn weights(rows: &[Vec<f64>], labels: &[bool], at: &[(f64, f64)]) -> Result<Vec<FeatureWeight>, Failure> {
+    let model = Logistic::fit(rows, labels, &scale_flags(at.len()), RIDGE).map_err(|e| e.to_string())?;
+    let names = at.iter().flat_map(|&a| FEATURES.iter().map(move |f| (a, f.key())));
+    let mut out: Vec<FeatureWeight> =
+        names.zip(&model.weights).map(|((at_mm, feature), &weight)| FeatureWeight { at_mm, feature, weight }).collect();
+    out.sort_by(|a, b| b.weight.abs().total_cmp(&a.weight.abs()));
+    Ok(out)
 }
 
 /// The plate quantity a design's sensors record as `m`.

@@ -31,7 +31,7 @@ use scene::Scene;
 use serde::Serialize;
 
 pub use alone::one_stream;
-pub use design::{WindowDesign, WindowDesignStep};
+pub use design::{FeatureWeight, WindowDesign, WindowDesignStep};
 pub use on_box::truncation_shift;
 pub use run::RECORDING_KEY;
 pub use score::Score;
