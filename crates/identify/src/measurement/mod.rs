@@ -195,14 +195,21 @@ pub struct Chain {
     synthesizers: OnceLock<(usize, Vec<Option<Synthesizer>>)>,
 }
 
+/// The model's samples per ADC sample: the ADC's rate `adc_hz` must divide the model's
+/// `model_hz` (within 1e-9 of the ratio), so that the ADC keeps every k-th model sample.
+pub fn decimation(adc_hz: f64, model_hz: f64) -> Result<usize, ChainError> {
+    let ratio = model_hz / adc_hz;
+    let k = ratio.round();
+    if !(k >= 1.0 && (ratio - k).abs() <= 1e-9 * ratio) {
+        return Err(ChainError::Rate { adc: adc_hz, model: model_hz });
+    }
+    Ok(k as usize)
+}
+
 impl Chain {
     /// `spec` on samples at the model's rate `model_rate_hz`.
     pub fn new(spec: ChainSpec, model_rate_hz: f64) -> Result<Self, ChainError> {
-        let ratio = model_rate_hz / spec.rate_hz;
-        let decimation = ratio.round();
-        if !(decimation >= 1.0 && (ratio - decimation).abs() <= 1e-9 * ratio) {
-            return Err(ChainError::Rate { adc: spec.rate_hz, model: model_rate_hz });
-        }
+        let decimation = decimation(spec.rate_hz, model_rate_hz)?;
         let mut sections = Vec::new();
         let frequency = |field: &'static str, value: f64| {
             if value >= 0.45 * model_rate_hz {
@@ -219,12 +226,7 @@ impl Chain {
         if let Some(a) = spec.anti_alias {
             sections.extend(Analog::butterworth(a.order, frequency("measurement.anti_alias.corner_hz", a.corner_hz)?));
         }
-        Ok(Self {
-            cascade: Cascade::new(sections, model_rate_hz),
-            decimation: decimation as usize,
-            spec,
-            synthesizers: OnceLock::new(),
-        })
+        Ok(Self { cascade: Cascade::new(sections, model_rate_hz), decimation, spec, synthesizers: OnceLock::new() })
     }
 
     /// The chain as stated.

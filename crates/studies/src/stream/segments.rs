@@ -137,7 +137,9 @@ pub(super) fn one(
 pub fn count(scene: &coupled::scene::Scene, study: &StreamStudy) -> Option<(usize, f64)> {
     let s = study.segments?;
     let rate = scene.signals.rate_hz;
-    let decimation = scene.measurement.as_ref().map_or(1, |m| (rate / m.rate_hz).round().max(1.0) as usize);
+    // The scene has checked that its chain's rate divides the model's.
+    let decimation =
+        scene.measurement.as_ref().map_or(Some(1), |m| identify::measurement::decimation(m.rate_hz, rate).ok())?;
     let cut = Cut::new(s.length, 0.0, rate, decimation);
     Some((cut.spans(stream_samples(study.spec.duration, rate)).len(), cut.length as f64 / rate))
 }
