@@ -84,6 +84,11 @@ fn bad_plate_sweeps_name_the_entry_the_key_and_the_value() {
     );
     bad("write_signal = true", &sweep("{}"), &["stream.plate_sweep[0]", "changes nothing", "length_mm, width_mm"]);
     bad("write_signal = true", &sweep("{ thickness = 9.0 }"), &["unknown field", "thickness"]);
+    bad(
+        "write_signal = true",
+        "thickness_sweep_mm = [12.0]",
+        &["stream.thickness_sweep_mm", "replaced by plate_sweep", "plate_sweep = [{ thickness_mm = 12.0 }]"],
+    );
     // The sensors stay at their points in mm: one at x = 400 mm is off a 300 mm plate.
     bad(
         "write_signal = true",

@@ -36,6 +36,22 @@ fn bad_designs_name_the_key_the_value_and_the_range() {
     );
     let no_grid = scene(&[]).replace("placement = { x_count = 3, z_count = 2 }\n", "");
     expect(&no_grid, &["stream.design_sensors", "[ensemble.placement]", "x_count and z_count"]);
+    expect(
+        &scene(&[(d, "design_sensors = 7")]),
+        &["stream.design_sensors", "7 sensors among 6 candidate points", "at most 6"],
+    );
+    // 400 candidates over 60 s at 20 kHz, the model signal and its recording: 7.68 GB a
+    // stream, over the 4 GiB budget.
+    let fine = scene(&[("duration_s = 6.0", "duration_s = 60.0")])
+        .replace("placement = { x_count = 3, z_count = 2 }", "placement = { x_count = 20, z_count = 20 }");
+    expect(&fine, &["stream.design_sensors", "400 candidate points", "7680 MB", "above the 4295 MB budget"]);
+    // A chain that records accelerations only cannot place strain gauges.
+    let chain = "[measurement]\nrate_hz = 10000.0\nseed = 1\n\n[measurement.acceleration]\nadc_range_m_s2 = 5000.0\nadc_bits = 16\n\n[stream]";
+    let measured = scene(&[(d, "design_sensors = 2\ndesign_quantity = \"strain\"")]).replace("[stream]", chain);
+    expect(
+        &measured,
+        &["stream.design_quantity", "\"strain\" is not recorded by [measurement]", "allowed: \"acceleration\""],
+    );
 }
 
 #[test]

@@ -16,7 +16,7 @@
 //! the number of contacts.
 
 use crate::error::ModelError;
-use crate::reduced::{ChannelKind, ReducedModel, SignalSpec, Signals};
+use crate::reduced::{ChannelKind, Quantity, ReducedModel, SignalSpec, Signals};
 use crate::scene::Scene;
 use crate::transient::{LawKind, Striker};
 use analytic::{contact_stiffness, DruckerPrager, Plate};
@@ -414,6 +414,23 @@ pub fn measurand(kind: ChannelKind) -> Measurand {
             Measurand::SupportForce
         }
     }
+}
+
+/// What a chain records plate quantity `q` as.
+pub fn measurand_of(q: Quantity) -> Measurand {
+    match q {
+        Quantity::Displacement => Measurand::Displacement,
+        Quantity::Velocity => Measurand::Velocity,
+        Quantity::Acceleration => Measurand::Acceleration,
+        Quantity::Strain => Measurand::Strain,
+    }
+}
+
+/// The plate quantity a chain's `m` measures at a sensor (None: a support's force).
+pub fn quantity_of(m: Measurand) -> Option<Quantity> {
+    [Quantity::Displacement, Quantity::Velocity, Quantity::Acceleration, Quantity::Strain]
+        .into_iter()
+        .find(|&q| measurand_of(q) == m)
 }
 
 /// Why an ensemble run stopped.

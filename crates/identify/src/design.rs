@@ -138,7 +138,8 @@ where
                 score(&set).map(Some)
             })
             .collect::<Result<_, E>>()?;
-        let value = |k: usize| scores[k].as_ref().map_or(f64::MIN, &auc);
+        // A score that is not a number ranks below every other.
+        let value = |k: usize| scores[k].as_ref().map(&auc).filter(|a| !a.is_nan()).unwrap_or(f64::MIN);
         // The first best: ties go to the earlier candidate.
         let Some(added) = (0..candidates).filter(|&c| scores[c].is_some()).fold(None, |b: Option<usize>, c| match b {
             Some(b) if value(b) >= value(c) => Some(b),

@@ -45,8 +45,9 @@ pub(crate) fn section(d: &StreamData) -> Result<String, Failure> {
     )?)
 }
 
-/// The design in a sentence for the findings' index: per support set the first sensor's
-/// point and window AUC and the last step's (empty where the scene asks for no design).
+/// The design in a sentence for the findings' index, as a paragraph of its own (a blank line
+/// before it): per support set the first sensor's point and window AUC and the last step's
+/// (empty where the scene asks for no design).
 pub(crate) fn headline(d: &StreamData) -> String {
     let sets: Vec<String> = d
         .conditions
@@ -70,12 +71,12 @@ pub(crate) fn headline(d: &StreamData) -> String {
         .collect();
     let Some(g) = d.conditions.iter().find_map(|c| c.design.as_ref()) else { return String::new() };
     format!(
-        "Where to put {} {} sensors for the window detector (the page's design, chosen greedily among {} candidate points, each step's AUC the best of many on the same blocks): {}.",
+        "\nWhere to put {} {} sensors for the window detector (the page's design, chosen greedily among {} candidate points, each step's AUC the best of many on the same blocks): {}.",
         g.steps.len(),
         g.quantity,
         g.x_mm.len() * g.z_mm.len(),
         sets.join("; ")
-    )
+    ) + "\n"
 }
 
 /// One row per step: where, the window AUC so far with its interval, the gain with its paired
@@ -87,7 +88,7 @@ fn steps(g: &WindowDesign) -> Table {
             "sensors",
             "added at (x, z) (mm)",
             "window AUC (95 % interval)",
-            "gain (95 % paired interval)",
+            "gain (95 % interval; paired from the second sensor on)",
             "median delay",
             "false alarms per hour (count)",
         ],

@@ -135,6 +135,10 @@ fn the_box_stream_scene_is_checked_against_the_box() {
         &edits(&s, &[("write_signal = false", "write_signal = false\nplate_sweep = [{ thickness_mm = 12.0 }]")]),
         &["stream.plate_sweep", "a tail beam's stream strikes the box"],
     );
+    expect(
+        &edits(&s, &[("write_signal = false", "write_signal = false\ndesign_sensors = 2")]),
+        &["stream.design_sensors", "a tail beam's stream strikes the box"],
+    );
     expect(&edits(&s, &[("modes = 200", "modes = \"chain\"")]), &["signals.modes", "chain"]);
     // The chain must record what the box's channels are.
     let jacks =

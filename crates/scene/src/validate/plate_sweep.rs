@@ -138,8 +138,9 @@ fn carries(table: &str, plate: &Plate, raw: &RawScene, signals: &SignalSettings)
             ));
         }
     }
+    // Under the chain's rule each plate keeps the modes its own mesh resolves and the chain needs.
     let most = limits::max_modes(l_mm, w_mm);
-    if signals.modes > most {
+    if signals.modes > most && !signals.modes_from_chain {
         return Err(other(
             table,
             format!(

@@ -68,6 +68,9 @@ pub(crate) struct RawStream {
     law_sweep: Vec<String>,
     #[serde(default)]
     pub(super) plate_sweep: Vec<super::plate_sweep::RawPlateChange>,
+    /// The key `plate_sweep` replaced: read only to say so.
+    #[serde(default)]
+    thickness_sweep_mm: Option<toml::Value>,
     #[serde(default)]
     segment_s: Option<f64>,
     #[serde(default)]
@@ -92,6 +95,12 @@ pub(crate) fn validate_stream(
     (adc_rate_hz, has_chain): (f64, bool),
     conditions: usize,
 ) -> Result<(StreamStudy, Vec<LawKind>), Invalid> {
+    if raw.thickness_sweep_mm.is_some() {
+        return Err(other(
+            "stream.thickness_sweep_mm",
+            "is replaced by plate_sweep, which changes any of [plate]'s keys: write plate_sweep = [{ thickness_mm = 12.0 }] for a plate 12 mm thick",
+        ));
+    }
     let rate = check("stream.rate_per_s", raw.rate_per_s, limits::STREAM_RATE_PER_S, "1/s")?;
     let duration = check("stream.duration_s", raw.duration_s, limits::STREAM_DURATION_S, "s")?;
     let share = Range::closed(0.0, 1.0);
@@ -268,6 +277,12 @@ pub(crate) fn check_design(
             "chooses among the candidate points of [ensemble.placement]; the scene has none (give x_count and z_count)",
         ));
     }
+    if design.sensors > candidates {
+        return Err(other(
+            field,
+            format!("{} sensors among {candidates} candidate points; allowed at most {candidates}", design.sensors),
+        ));
+    }
     if let Some(c) = chain {
         if !c.recordings.iter().any(|r| r.measurand == design.measurand) {
             let recorded: Vec<String> = c
@@ -276,17 +291,18 @@ pub(crate) fn check_design(
                 .filter(|r| DESIGN_QUANTITIES.contains(&r.measurand))
                 .map(|r| format!("\"{}\"", r.measurand.key()))
                 .collect();
+            let allowed = if recorded.is_empty() {
+                "the chain records no plate quantity to place (add one to [measurement])".to_string()
+            } else {
+                format!("allowed: {}", recorded.join(", "))
+            };
             return Err(other(
                 "stream.design_quantity",
-                format!(
-                    "\"{}\" is not recorded by [measurement]; allowed: {}",
-                    design.measurand.key(),
-                    recorded.join(", ")
-                ),
+                format!("\"{}\" is not recorded by [measurement]; {allowed}", design.measurand.key()),
             ));
         }
     }
-    let bytes = 2.0 * candidates as f64 * study.spec.duration * model_rate_hz * 8.0;
+    let bytes = signal_bytes(study, 1, (candidates, model_rate_hz));
     if bytes > limits::MAX_STREAM_SIGNAL_BYTES {
         return Err(other(
             field,
@@ -299,6 +315,15 @@ pub(crate) fn check_design(
         ));
     }
     Ok(())
+}
+
+/// Bytes that `streams` of the study's streams hold at once on `channels` channels at the
+/// model's `rate_hz`: their model signals, their recording (at most as long again) and, where
+/// the streams are cut, the segments' warm-ups (at most as many samples again, checked once
+/// the model's decay is known).
+fn signal_bytes(study: &StreamStudy, streams: usize, (channels, rate_hz): (usize, f64)) -> f64 {
+    let copies = if study.segments.is_some() { 3.0 } else { 2.0 };
+    copies * streams as f64 * study.spec.duration * rate_hz * channels as f64 * 8.0
 }
 
 /// `signal_format` as written: "csv" or "parquet", and only where a signal is written.
@@ -317,12 +342,9 @@ fn signal_format(written: Option<&str>, write_signal: bool) -> Result<SignalForm
 /// so together they must fit the memory budget; its lumps (every stream, rate and support
 /// set) and its windows must fit theirs. `others` counts the swept laws and plates.
 fn budgets(study: &StreamStudy, signals: &SignalSettings, conditions: usize, others: usize) -> Result<(), Invalid> {
-    // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound;
-    // the recording is at most as long again, and the segments' warm-ups (at most as many
-    // samples again, checked once the model's decay is known) as long again.
-    let channels = (4 * signals.sensors.len() + 4) as f64;
-    let copies = if study.segments.is_some() { 3.0 } else { 2.0 };
-    let bytes = copies * study.streams as f64 * study.spec.duration * signals.rate_hz * channels * 8.0;
+    // Every quantity at every sensor (3, or 4 with strain) and the four corners: a bound.
+    let channels = 4 * signals.sensors.len() + 4;
+    let bytes = signal_bytes(study, study.streams, (channels, signals.rate_hz));
     if bytes > limits::MAX_STREAM_SIGNAL_BYTES {
         return Err(other(
             "stream.duration_s and stream.streams",

@@ -25,9 +25,9 @@ pub(super) fn table(raw: Option<&RawTailBeam>, analyses: &[Analysis]) -> Result<
     }
 }
 
-/// What a plate's identification has and a tail beam's stream (`on_box`) does not: the
-/// chain choosing the modes (a plate's), and a chain that records
-/// what the box's channels are: its jacks' forces, and accelerations where it has sensors.
+/// What a tail beam's stream (`on_box`) needs of the scene: modes given as a number (the
+/// chain's rule chooses a plate's), and a chain, if any, that records what the box's channels
+/// are: its jacks' forces, and accelerations where it has sensors.
 pub(super) fn check_stream(on_box: bool, signals: &SignalSettings, chain: Option<&ChainSpec>) -> Result<(), Invalid> {
     if !on_box {
         return Ok(());

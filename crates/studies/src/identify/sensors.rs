@@ -3,7 +3,7 @@
 
 use crate::channel::ChannelInfo;
 use crate::Failure;
-use coupled::identification::Instrument;
+use coupled::identification::{measurand_of, Instrument};
 use coupled::reduced::{Quantity, ReducedSettings, SignalSpec};
 use identify::features::FEATURES;
 use identify::measurement::Measurand;
@@ -17,6 +17,11 @@ use scene::{Scene, SupportSet};
 pub fn reduced_settings(scene: &Scene, set: &SupportSet) -> Result<ReducedSettings, Failure> {
     let settings = scene.signals.reduced();
     let (true, Some(spec)) = (scene.signals.modes_from_chain, &scene.measurement) else { return Ok(settings) };
+    // The most modes this plate's mesh resolves (a swept plate may resolve fewer than the
+    // scene's, whose most `signals.modes` holds under the chain's rule).
+    let plate = &scene.plate;
+    let most = scene::limits::max_modes(plate.length() * 1e3, plate.width() * 1e3);
+    let settings = ReducedSettings { modes: settings.modes.min(most), ..settings };
     let chain = identify::measurement::Chain::new(spec.clone(), scene.signals.rate_hz)?;
     let frequencies = coupled::reduced::frequencies_hz(&scene.plate, set, settings)?;
     let modes = chain.modes_needed(&frequencies).unwrap_or(frequencies.len());
@@ -89,16 +94,6 @@ pub fn spec(scene: &Scene, sensors: Vec<(f64, f64)>) -> SignalSpec {
     let corners =
         scene.measurement.as_ref().is_none_or(|c| c.recordings.iter().any(|r| r.measurand == Measurand::SupportForce));
     SignalSpec { window: settings.window, rate_hz: settings.rate_hz, sensors, quantities, corners }
-}
-
-/// What a chain records quantity `q` as.
-fn measurand_of(q: Quantity) -> Measurand {
-    match q {
-        Quantity::Displacement => Measurand::Displacement,
-        Quantity::Velocity => Measurand::Velocity,
-        Quantity::Acceleration => Measurand::Acceleration,
-        Quantity::Strain => Measurand::Strain,
-    }
 }
 
 /// The channels `instrument` records at `sensors` on `plate`, named.

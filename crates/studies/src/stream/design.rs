@@ -21,13 +21,12 @@ use super::segments;
 use crate::identify::sensors::{channel_infos, spec};
 use crate::progress::Progress;
 use crate::Failure;
-use coupled::identification::Instrument;
-use coupled::reduced::{Quantity, ReducedModel};
+use coupled::identification::{quantity_of, Instrument};
+use coupled::reduced::ReducedModel;
 use identify::classify::{Logistic, RIDGE};
 use identify::design::{forward_selection, Chosen};
 use identify::detector::scale_flags;
 use identify::features::FEATURES;
-use identify::measurement::Measurand;
 use identify::stream::StreamStudy;
 use scene::Scene;
 use serde::Serialize;
@@ -86,7 +85,9 @@ pub(super) fn window_design(
     let Some(design) = study.design else { return Ok(None) };
     let candidates = ensemble.candidates();
     let mut grid = spec(scene, candidates.clone());
-    grid.quantities = vec![quantity(design.measurand)?];
+    let quantity =
+        quantity_of(design.measurand).ok_or("stream.design_quantity: a support's force is not placed on the plate")?;
+    grid.quantities = vec![quantity];
     grid.corners = false;
     let instrument = Instrument::new(model, &scene.plate, &grid, scene)?;
     let infos = channel_infos(&instrument, &candidates, &scene.plate);
@@ -166,15 +167,4 @@ fn weights(rows: &[Vec<f64>], labels: &[bool], at: &[(f64, f64)]) -> Result<Vec<
         names.zip(&model.weights).map(|((at_mm, feature), &weight)| FeatureWeight { at_mm, feature, weight }).collect();
     out.sort_by(|a, b| b.weight.abs().total_cmp(&a.weight.abs()));
     Ok(out)
-}
-
-/// The plate quantity a design's sensors record as `m`.
-fn quantity(m: Measurand) -> Result<Quantity, Failure> {
-    match m {
-        Measurand::Acceleration => Ok(Quantity::Acceleration),
-        Measurand::Velocity => Ok(Quantity::Velocity),
-        Measurand::Displacement => Ok(Quantity::Displacement),
-        Measurand::Strain => Ok(Quantity::Strain),
-        Measurand::SupportForce => Err("stream.design_quantity: a support's force is not placed on the plate".into()),
-    }
 }

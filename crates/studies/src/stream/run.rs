@@ -241,9 +241,14 @@ fn other_plates(
         let swept = Scene { plate: other.plate, ..scene.clone() };
         let mut struck = ensemble.clone();
         struck.ensemble.region = other.region;
-        let model = ReducedModel::new(&swept.plate, set, crate::identify::sensors::reduced_settings(&swept, set)?)?;
-        let instrument = Instrument::new(&model, &swept.plate, &spec(&swept, swept.signals.sensors.clone()), &swept)?;
-        let rows = windowed(&instrument, (&struck, study, study.spec.rate_per_s), w, progress)?.1;
+        let rows = || -> Result<Vec<Vec<f64>>, Failure> {
+            let model = ReducedModel::new(&swept.plate, set, crate::identify::sensors::reduced_settings(&swept, set)?)?;
+            let instrument =
+                Instrument::new(&model, &swept.plate, &spec(&swept, swept.signals.sensors.clone()), &swept)?;
+            Ok(windowed(&instrument, (&struck, study, study.spec.rate_per_s), w, progress)?.1)
+        };
+        // Name the plate in what goes wrong on it (a warm-up too long for its slower modes).
+        let rows = rows().map_err(|e| format!("stream.plate_sweep, the {}: {e}", other.shift))?;
         out.push((other.shift.clone(), rows));
     }
     Ok(out)
