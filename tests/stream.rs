@@ -257,6 +257,31 @@ fn a_stream_run_writes_consistent_truth_and_the_signal() {
     for p in same {
         assert_eq!(p["transferred"], p["matched"], "{p}");
     }
+    the_bands_scale_as_a_kirchhoff_plate(&data);
+}
+
+/// The band table of the run above (no chain): every plate on every support set, its 24
+/// modes' highest frequency. The 8 mm swept plate is the scene's plate, to the bit; a
+/// Kirchhoff plate's frequencies are ω = (λ²/L²)√(D/ρh) with D ∝ h³ on the same mesh and
+/// held edges, so on Con 1 (both ends fixed) the 16 mm plate's are twice the 8 mm plate's (to
+/// the eigensolver's tolerance, 1e-8 relative); Con 2's springs keep their stiffness, so
+/// there they are not.
+fn the_bands_scale_as_a_kirchhoff_plate(data: &serde_json::Value) {
+    let bands = data["bands"].as_array().expect("a plate stream has its bands");
+    assert_eq!(bands.len(), 2 * 3, "two support sets, three plates each");
+    for set in ["Con 1", "Con 2"] {
+        let of = |plate: &str| {
+            let b = bands.iter().find(|b| b["support_set"] == set && b["plate"] == plate).expect(plate);
+            assert_eq!(b["modes"], 24);
+            assert!(b["gain_above_highest"].is_null() && b["resolved"].is_null(), "no chain: {b}");
+            b["highest_mode_hz"].as_f64().unwrap()
+        };
+        let (scene, same, thick) = (of("the scene's plate"), of("plate 8 mm thick"), of("plate 16 mm thick"));
+        assert_eq!(scene, same, "{set}");
+        if set == "Con 1" {
+            assert!((thick / (2.0 * same) - 1.0).abs() < 1e-8, "{set}: {thick} Hz against 2 x {same} Hz");
+        }
+    }
 }
 
 /// The signal of `run`: 6 s at the model's 20 kHz, its metadata beside it naming its columns.
@@ -400,5 +425,29 @@ fn a_cross_validation_that_cannot_score_is_refused() {
     );
     let run = impact(["stream", "--scene"]).arg(&scene).arg("--out").arg(dir.join("out")).within(30).fails();
     assert!(run.stderr.contains("stream.blocks") && run.stderr.contains("one class only"), "{}", run.stderr);
+    assert!(!dir.join("out").exists());
+}
+
+/// A swept plate whose modes decay too slowly for the scene's segments (a plate four times as
+/// long and wide: its fundamental, and with it the slowest decay ζω₁, a sixteenth of the
+/// scene's plate's, so its warm-up reaches back to every segment's stream start) is refused
+/// once its model is built, naming the plate and the warm-up, before any stream of any
+/// support set runs. The scene's own plate, checked first, passes (a 12 s stream in segments
+/// of 2 s at ε = 1e-2: W = ln 100/2.52 s = 1.83 s adds 76 %, the larger plate's 250 %), or
+/// the refusal would not name the swept one.
+#[test]
+fn a_swept_plate_too_slow_for_the_segments_is_refused_before_any_stream() {
+    let dir = tmp();
+    let extra =
+        "segment_s = 2.0\nsegment_tolerance = 1e-2\nplate_sweep = [{ length_mm = 1833.6, width_mm = 1440.0 }]\n";
+    let scene = dir.write(
+        "slow.toml",
+        with_stream(&format!("{}{extra}", STREAM.replace("duration_s = 6.0", "duration_s = 12.0"))),
+    );
+    let run = impact(["stream", "--scene"]).arg(&scene).arg("--out").arg(dir.join("out")).within(120).fails();
+    for needle in ["stream.plate_sweep, the plate 1833.6 mm long, 1440 mm wide", "warm-up"] {
+        assert!(run.stderr.contains(needle), "no '{needle}' in: {}", run.stderr);
+    }
+    assert!(!run.stderr.contains("streams:"), "a stream ran before the refusal: {}", run.stderr);
     assert!(!dir.join("out").exists());
 }

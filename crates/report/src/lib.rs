@@ -26,6 +26,7 @@ pub mod shell_mesh;
 pub mod signals;
 pub mod skfem;
 pub mod stream;
+mod stream_band;
 mod stream_design;
 pub mod tail_beam;
 pub mod template;

@@ -153,6 +153,7 @@ fn page(scene: &Scene, d: &StreamData) -> Result<String, Failure> {
             ("transfer", transfer.0.to_markdown()),
             ("worst", transfer.1),
             ("design", crate::stream_design::section(d)?),
+            ("band", crate::stream_band::section(d, scene.measurement.as_ref().map(|m| m.band_tolerance))?),
         ],
     )?)
 }

@@ -17,6 +17,7 @@
 mod alone;
 pub mod design;
 mod on_box;
+pub mod plates;
 mod recorder;
 mod run;
 mod score;
@@ -53,6 +54,10 @@ pub struct StreamData {
     /// The struck structure's model, where the stream strikes a tail beam (None: the plate).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub structure: Option<StructureFacts>,
+    /// On the plate: every plate struck (the scene's and each swept one) on every support
+    /// set, its kept modes against the chain's band ([`plates`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub bands: Vec<plates::Band>,
 }
 
 /// The model of a struck structure (a tail beam) and how far the chain's band is resolved.
@@ -265,6 +270,7 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
     let mut conditions = Vec::with_capacity(scene.conditions.len());
     let mut shifted = Vec::with_capacity(scene.conditions.len());
     let mut structure = None;
+    let mut bands = Vec::new();
     match &scene.tail_beam {
         Some(tb) if scene.identifies_on_tail_beam() => {
             let (data, rows, facts) = on_box::condition(scene, (study, ensemble), tb, progress)?;
@@ -273,10 +279,12 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
             structure = Some(facts);
         }
         _ => {
-            for (index, set) in scene.conditions.iter().enumerate() {
-                let (data, rows) = run::condition(scene, study, ensemble, set, index, progress)?;
+            let built = plates::every_set(scene, study, progress)?;
+            for (index, (set, (models, set_bands))) in scene.conditions.iter().zip(built).enumerate() {
+                let (data, rows) = run::condition(scene, (study, ensemble), (set, index, &models), progress)?;
                 conditions.push(data);
                 shifted.push(rows);
+                bands.extend(set_bands);
             }
         }
     }
@@ -287,6 +295,7 @@ pub fn compute(scene: &Scene, progress: &dyn Progress) -> Result<StreamData, Fai
         conditions,
         transfer: transfer::transfers(&shifted)?,
         structure,
+        bands,
     })
 }
 

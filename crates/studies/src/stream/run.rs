@@ -1,5 +1,6 @@
 //! One support set's stream study: simulate, record, window, score.
 
+use super::plates::Plates;
 use super::recorder::Recorder;
 use super::score::Windows;
 use super::segments::{self, Pieces};
@@ -37,19 +38,18 @@ pub(super) struct Simulated {
     pub pieces: Option<Pieces>,
 }
 
-/// The stream study on `set`, the `index`-th support set of `scene`.
+/// The stream study on `set`, the `index`-th support set of `scene`, on its plates' models
+/// `plates` ([`super::plates`]).
 pub(super) fn condition(
     scene: &Scene,
-    study: &StreamStudy,
-    ensemble: &identify::Study,
-    set: &SupportSet,
-    index: usize,
+    (study, ensemble): (&StreamStudy, &identify::Study),
+    (set, index, plates): (&SupportSet, usize, &Plates),
     progress: &dyn Progress,
 ) -> Result<(ConditionStream, Shifted), Failure> {
     let plate = &scene.plate;
-    let model = ReducedModel::new(plate, set, crate::identify::sensors::reduced_settings(scene, set)?)?;
+    let model = &plates.main;
     let sensors = scene.signals.sensors.clone();
-    let instrument = Instrument::new(&model, plate, &spec(scene, sensors.clone()), scene)?;
+    let instrument = Instrument::new(model, plate, &spec(scene, sensors.clone()), scene)?;
     let target = Target {
         name: &set.name,
         index,
@@ -60,14 +60,14 @@ pub(super) fn condition(
     };
     let sweeps = |w: &Windows| -> Result<Vec<Condition>, Failure> {
         let mut out = other_lumps((ensemble, study), (&instrument, w), progress)?;
-        out.extend(other_laws(scene, (ensemble, study), (&model, w), progress)?);
-        out.extend(other_plates(scene, (ensemble, study), (set, w), progress)?);
+        out.extend(other_laws(scene, (ensemble, study), (model, w), progress)?);
+        out.extend(other_plates(scene, (ensemble, study), (&plates.swept, w), progress)?);
         Ok(out)
     };
     let (mut data, shifted) = scored(scene, (study, ensemble), &target, &sweeps, progress)?;
     if study.design.is_some() {
         progress.start(study.streams, &format!("{}: design streams", set.name));
-        data.design = super::design::window_design(scene, (ensemble, study), (&model, &shifted.windows), progress)?;
+        data.design = super::design::window_design(scene, (ensemble, study), (model, &shifted.windows), progress)?;
         progress.finish();
     }
     Ok((data, shifted))
@@ -226,28 +226,26 @@ pub(super) fn law_shift(law: coupled::transient::LawKind) -> String {
     format!("{} contact law", law.key())
 }
 
-/// The plate sweep: the main run's streams on each of the scene's other plates (each its own
-/// reduced model, with the modes the scene's rule gives that plate; the same supports, sensor
-/// points, quantities and chain, so the channels are the detector's), the lumps' uniforms
-/// mapped onto the plate's region, each with its window features, for the transfer.
+/// The plate sweep: the main run's streams on each of the scene's other plates, on their
+/// models `swept` ([`super::plates`]: the same supports, sensor points, quantities and chain,
+/// so the channels are the detector's), the lumps' uniforms mapped onto the plate's region,
+/// each with its window features, for the transfer.
 fn other_plates(
     scene: &Scene,
     (ensemble, study): (&identify::Study, &StreamStudy),
-    (set, w): (&SupportSet, &Windows),
+    (swept, w): (&[ReducedModel], &Windows),
     progress: &dyn Progress,
 ) -> Result<Vec<Condition>, Failure> {
     let mut out = Vec::new();
-    for other in &scene.stream_plate_sweep {
-        let swept = Scene { plate: other.plate, ..scene.clone() };
+    for (other, model) in scene.stream_plate_sweep.iter().zip(swept) {
+        let on = Scene { plate: other.plate, ..scene.clone() };
         let mut struck = ensemble.clone();
         struck.ensemble.region = other.region;
         let rows = || -> Result<Vec<Vec<f64>>, Failure> {
-            let model = ReducedModel::new(&swept.plate, set, crate::identify::sensors::reduced_settings(&swept, set)?)?;
-            let instrument =
-                Instrument::new(&model, &swept.plate, &spec(&swept, swept.signals.sensors.clone()), &swept)?;
+            let instrument = Instrument::new(model, &on.plate, &spec(&on, on.signals.sensors.clone()), &on)?;
             Ok(windowed(&instrument, (&struck, study, study.spec.rate_per_s), w, progress)?.1)
         };
-        // Name the plate in what goes wrong on it (a warm-up too long for its slower modes).
+        // Name the plate in what goes wrong on it.
         let rows = rows().map_err(|e| format!("stream.plate_sweep, the {}: {e}", other.shift))?;
         out.push((other.shift.clone(), rows));
     }
