@@ -49,7 +49,7 @@ mod step;
 use super::impact::{at_point, channel_row};
 use super::signals::{dot, FreeMaps, Probes, Signals};
 use super::target::ChannelRow;
-use super::window::free_window;
+use super::window::{free_window, OutputMaps};
 use super::{Arithmetic, Correction, ModalDamping, ReducedModel};
 use crate::error::ModelError;
 use crate::transient::Striker;
@@ -317,6 +317,9 @@ struct Run<'a> {
     model: &'a dyn Struck,
     probes: &'a Probes,
     rows: Vec<ChannelRow>,
+    /// The channels' own maps over a block, for the free stretches in the exact arithmetic
+    /// (None in the fast one, which sums the propagated states in f32).
+    output: Option<OutputMaps>,
     q: Vec<f64>,
     v: Vec<f64>,
     out: Vec<Vec<f64>>,
@@ -346,10 +349,12 @@ impl<'a> Run<'a> {
         for o in &mut out {
             o.push(0.0);
         }
+        let output = (model.passes().1 == Arithmetic::Exact).then(|| OutputMaps::new(probes.block_maps.modes(), &rows));
         Self {
             model,
             probes,
             rows,
+            output,
             q: vec![0.0; n],
             v: vec![0.0; n],
             out,
@@ -422,8 +427,11 @@ impl<'a> Run<'a> {
             return;
         }
         let m = self.model;
-        let maps = [self.probes.block_maps.modes()];
-        free_window(m.passes(), &maps, &self.q, &self.v, &self.rows, &mut self.out, count);
+        let maps = self.probes.block_maps.modes();
+        match &self.output {
+            Some(o) => o.window(m.passes().0, maps, (&self.q, &self.v), &mut self.out, count),
+            None => free_window(m.passes(), &[maps], &self.q, &self.v, &self.rows, &mut self.out, count),
+        }
         let zeta = m.damping();
         let tau = count as f64 * self.probes.spec.interval();
         for (i, &w) in m.omega().iter().enumerate() {
@@ -524,9 +532,14 @@ impl<'a> Run<'a> {
         let ts = self.probes.spec.interval();
         let mut kept = Vec::with_capacity(self.active.len());
         for l in std::mem::take(&mut self.active) {
-            let reach = reach(&l.phi, &self.q, &self.v, self.model.omega());
             let rest = self.window_samples.saturating_sub(k - l.touched) as f64 * ts;
-            let left = l.force == 0.0 && l.steps > 0 && l.highest(rest) - l.opens_at() + reach < 0.0;
+            // The reach is never negative, so a sphere that can come down to the plate's rest
+            // position has not left, whatever the plate does: the reach is summed only where
+            // it decides.
+            let left = l.force == 0.0 && l.steps > 0 && {
+                let clearance = l.highest(rest) - l.opens_at();
+                clearance < 0.0 && clearance + reach(&l.phi, &self.q, &self.v, self.model.omega()) < 0.0
+            };
             // At its window's end a lump is let go once it is out of contact (dropping a force
             // would jolt the plate), and in contact only after [`HELD_WINDOWS`] windows: a lump
             // resting on the plate, which in a mine slides off.

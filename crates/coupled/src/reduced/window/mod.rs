@@ -193,7 +193,10 @@ impl<T: Stored> pulp::WithSimd for Window<'_, '_, T> {
 }
 
 mod fast;
+mod output;
 mod sums;
+
+pub(crate) use output::OutputMaps;
 
 #[cfg(test)]
 mod tests {

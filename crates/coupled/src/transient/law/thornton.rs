@@ -31,6 +31,7 @@
 use super::{hertz, ContactState, Law};
 use analytic::{DruckerPrager, Sphere};
 use serde::Serialize;
+use std::cell::Cell;
 
 /// Thornton's elastic-perfectly-plastic law.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -123,9 +124,29 @@ fn loading(k: f64, dy: f64, delta: f64) -> f64 {
     }
 }
 
+thread_local! {
+    /// The unloading curve last formed on this thread, by the bits of its (K, δ_y, δ_m).
+    static LAST_CURVE: Cell<Option<([u64; 3], (f64, f64))>> = const { Cell::new(None) };
+}
+
+/// (δ_p, K_p) of the unloading curve from δ_m > δ_y ([`unloading_curve`]). A contact's
+/// force is solved at many compressions on the same curve (δ_m fixed within a step), so the
+/// curve last formed is kept: the same numbers, without its power.
+fn unloading(k: f64, dy: f64, dm: f64) -> (f64, f64) {
+    let key = [k.to_bits(), dy.to_bits(), dm.to_bits()];
+    LAST_CURVE.with(|last| match last.get() {
+        Some((at, curve)) if at == key => curve,
+        _ => {
+            let curve = unloading_curve(k, dy, dm);
+            last.set(Some((key, curve)));
+            curve
+        }
+    })
+}
+
 /// (δ_p, K_p) of the unloading curve from δ_m > δ_y: δ_m - δ_p = P_m/(Kδ_m^{1/2}) (the
 /// contact radius √(Rδ_m) carried over to the radius R_p), K_p = P_m/(δ_m - δ_p)^{3/2}.
-fn unloading(k: f64, dy: f64, dm: f64) -> (f64, f64) {
+fn unloading_curve(k: f64, dy: f64, dm: f64) -> (f64, f64) {
     let pm = loading(k, dy, dm);
     let elastic = pm / (k * dm.sqrt());
     (dm - elastic, pm / elastic.powf(1.5))
