@@ -3,8 +3,10 @@
 //!
 //! **Superposition.** The plate is linear, so its modal state (qᵢ, q̇ᵢ) carries every earlier
 //! lump's response: between contacts each mode is propagated exactly
-//! ([`super::signals::free_map`]), sample by sample ([`super::window`]), and a lump that
-//! arrives finds the plate moving. It touches at its arrival, the sphere at the plate's
+//! ([`super::signals::free_map`]), and a lump that arrives finds the plate moving. Where no
+//! lump is followed the samples come straight from each block's start state through the
+//! channels' own maps over a block (`window::output`; in the fast arithmetic, every
+//! sample's state propagated and summed in f32, [`super::window`]). It touches at its arrival, the sphere at the plate's
 //! deflection there (δ = 0, with δ = u - w(p) as in one impact), and from then on it is
 //! stepped as [`super::ReducedModel::impact`] steps one impact: Newmark's rule on every mode
 //! while a force acts, the exact map over a step that starts free, the contact law solved at
@@ -43,18 +45,19 @@
 //! one, so that the parts of a long stream are computed apart and put together.
 
 mod envelope;
+mod free;
 pub mod span;
 mod step;
 
 use super::impact::{at_point, channel_row};
 use super::signals::{dot, FreeMaps, Probes, Signals};
 use super::target::ChannelRow;
-use super::window::{free_window, OutputMaps};
+use super::window::OutputMaps;
 use super::{Arithmetic, Correction, ModalDamping, ReducedModel};
 use crate::error::ModelError;
 use crate::transient::Striker;
 use analytic::params::{check, Range};
-use envelope::{half_periods, lowest_deflection, reach, HalfPeriod};
+use envelope::{half_periods, reach, HalfPeriod};
 use serde::Serialize;
 pub use span::{Cut, Span};
 use std::collections::HashMap;
@@ -317,9 +320,8 @@ struct Run<'a> {
     model: &'a dyn Struck,
     probes: &'a Probes,
     rows: Vec<ChannelRow>,
-    /// The channels' own maps over a block, for the free stretches in the exact arithmetic
-    /// (None in the fast one, which sums the propagated states in f32).
-    output: Option<OutputMaps>,
+    /// The channels' own maps over a block, for the free stretches.
+    output: OutputMaps,
     q: Vec<f64>,
     v: Vec<f64>,
     out: Vec<Vec<f64>>,
@@ -349,7 +351,7 @@ impl<'a> Run<'a> {
         for o in &mut out {
             o.push(0.0);
         }
-        let output = (model.passes().1 == Arithmetic::Exact).then(|| OutputMaps::new(probes.block_maps.modes(), &rows));
+        let output = OutputMaps::new(model.passes().1, probes.block_maps.modes(), &rows);
         Self {
             model,
             probes,
@@ -421,27 +423,6 @@ impl<'a> Run<'a> {
         Ok(())
     }
 
-    /// `count` samples of free vibration from the current sample.
-    fn free(&mut self, count: usize) {
-        if count == 0 {
-            return;
-        }
-        let m = self.model;
-        let maps = self.probes.block_maps.modes();
-        match &self.output {
-            Some(o) => o.window(m.passes().0, maps, (&self.q, &self.v), &mut self.out, count),
-            None => free_window(m.passes(), &[maps], &self.q, &self.v, &self.rows, &mut self.out, count),
-        }
-        let zeta = m.damping();
-        let tau = count as f64 * self.probes.spec.interval();
-        for (i, &w) in m.omega().iter().enumerate() {
-            let f = super::free_map(w, zeta.at(w), tau);
-            let (q, v) = (self.q[i], self.v[i]);
-            self.q[i] = f[0] * q + f[1] * v;
-            self.v[i] = f[2] * q + f[3] * v;
-        }
-    }
-
     /// One sample interval of contact steps, and the sample at its end; where no lump can
     /// touch within it, the interval in one exact step.
     fn contact_interval(&mut self) {
@@ -487,43 +468,6 @@ impl<'a> Run<'a> {
             let b = row.b.as_ref().map_or(0.0, |b| dot(b, &self.v));
             let direct: f64 = self.active.iter().map(|l| l.d[c] * l.force).sum();
             o.push(a + b + direct);
-        }
-    }
-
-    /// Whether no lump can touch within the next sample interval, no force acting and the
-    /// modes' exact state at the interval's end in the scratch: each sphere's flight over it,
-    /// less the permanent set δ_p its law opens at, stays below the lowest the plate's free
-    /// deflection at its point reaches in it ([`lowest_deflection`]), so that δ ≤ δ_p.
-    fn clear_interval(&self) -> bool {
-        let ts = self.probes.spec.interval();
-        let (start, end) = ((&self.q[..], &self.v[..]), (&self.scratch.qh[..], &self.scratch.vh[..]));
-        self.active
-            .iter()
-            .all(|l| l.highest(ts) - l.opens_at() < lowest_deflection(&l.phi, start, end, &self.half_period))
-    }
-
-    /// A sample interval free of force, the modes' exact map over T_s already in the scratch:
-    /// every sphere on its flight (which Newmark's rule follows exactly under a constant body
-    /// force), and the sample at its end.
-    fn free_interval(&mut self) {
-        let ts = self.probes.spec.interval();
-        let w = &mut self.scratch;
-        std::mem::swap(&mut self.q, &mut w.qh);
-        std::mem::swap(&mut self.v, &mut w.vh);
-        for l in &mut self.active {
-            let g = l.striker.gravity;
-            l.u += l.v * ts + 0.5 * g * ts * ts;
-            l.v += g * ts;
-            l.a = g;
-            l.res_v = 0.0;
-            l.w_cross = 0.0;
-            l.time += ts;
-            l.last = (l.u - dot(&l.phi, &self.q), l.v - dot(&l.phi, &self.v));
-        }
-        for (row, o) in self.rows.iter().zip(self.out.iter_mut()) {
-            let a = row.a.as_ref().map_or(0.0, |a| dot(a, &self.q));
-            let b = row.b.as_ref().map_or(0.0, |b| dot(b, &self.v));
-            o.push(a + b);
         }
     }
 

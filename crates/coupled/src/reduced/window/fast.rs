@@ -47,6 +47,23 @@ impl Stored for f32 {
         }
     }
 
+    /// The block's last state as [`Stored::propagate`] forms it, set to rest below [`FLUSH`].
+    #[inline(always)]
+    fn block_end(maps: &[Block; 4], (q0, v0): (f64, f64)) -> (f64, f64) {
+        let ([p0, p1, p2, p3], l) = (maps, BLOCK - 1);
+        let end = (p0.0[l].mul_add(q0, p1.0[l] * v0), p2.0[l].mul_add(q0, p3.0[l] * v0));
+        if end.0.abs() < FLUSH && end.1.abs() < FLUSH {
+            (0.0, 0.0)
+        } else {
+            end
+        }
+    }
+
+    #[inline(always)]
+    fn narrow(x: f64) -> Self {
+        x as f32
+    }
+
     fn coefficients(c: &[f64]) -> Cow<'_, [f32]> {
         Cow::Owned(c.iter().map(|&x| x as f32).collect())
     }

@@ -123,8 +123,13 @@ trait Stored: Term {
     /// One mode's block, `(q[j], q̇[j]) = Φ((j + 1)T_s)(q₀, q̇₀)` for every j, stored in this
     /// number; returns the state that starts the next block.
     fn propagate(maps: &[Block; 4], start: (f64, f64), q: &mut Aligned<Self>, v: &mut Aligned<Self>) -> (f64, f64);
+    /// The state that starts the next block, `Φ(BLOCK·T_s)(q₀, q̇₀)`, as [`Stored::propagate`]
+    /// returns it without forming the block's other samples.
+    fn block_end(maps: &[Block; 4], start: (f64, f64)) -> (f64, f64);
     /// A channel's coefficients in this number.
     fn coefficients(c: &[f64]) -> Cow<'_, [Self]>;
+    /// One number in this one.
+    fn narrow(x: f64) -> Self;
     /// A sum as the output's f64.
     fn widen(self) -> f64;
 }
@@ -141,8 +146,19 @@ impl Stored for f64 {
         (q.0[BLOCK - 1], v.0[BLOCK - 1])
     }
 
+    #[inline(always)]
+    fn block_end(maps: &[Block; 4], (q0, v0): (f64, f64)) -> (f64, f64) {
+        let ([p0, p1, p2, p3], l) = (maps, BLOCK - 1);
+        (p0.0[l] * q0 + p1.0[l] * v0, p2.0[l] * q0 + p3.0[l] * v0)
+    }
+
     fn coefficients(c: &[f64]) -> Cow<'_, [f64]> {
         Cow::Borrowed(c)
+    }
+
+    #[inline(always)]
+    fn narrow(x: f64) -> Self {
+        x
     }
 
     #[inline(always)]

@@ -124,9 +124,12 @@ fn loading(k: f64, dy: f64, delta: f64) -> f64 {
     }
 }
 
+/// An unloading curve (δ_p, K_p) by the bits of the (K, δ_y, δ_m) it was formed from.
+type KeptCurve = Option<([u64; 3], (f64, f64))>;
+
 thread_local! {
-    /// The unloading curve last formed on this thread, by the bits of its (K, δ_y, δ_m).
-    static LAST_CURVE: Cell<Option<([u64; 3], (f64, f64))>> = const { Cell::new(None) };
+    /// The unloading curve last formed on this thread.
+    static LAST_CURVE: Cell<KeptCurve> = const { Cell::new(None) };
 }
 
 /// (δ_p, K_p) of the unloading curve from δ_m > δ_y ([`unloading_curve`]). A contact's
