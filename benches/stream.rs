@@ -1,9 +1,10 @@
 //! The caving stream as `impact stream` simulates it: two acceleration sensors at 20 kHz on the
 //! 80-mode plate (Con 3), the lumps of `scenes/caving-stream-detect.toml` (its ensemble, its
 //! gravity) arriving at 20 a second, 10 s of stream per iteration. The reference in the same
-//! run is the same plate ringing free over the same 10 s with no lumps: the arithmetic floor of
-//! the propagation (modes × samples, each mode's exact 2 x 2 map and the two channels' dot
-//! products), so the ratio of the two is the cost of the contacts. Before the timed runs the
+//! run is the same plate ringing free over the same 10 s with no lumps: the floor of the
+//! sampling (modes × channels × samples: each channel's own maps over a block of samples times
+//! the block's start state, two products and two sums a term), so the ratio of the two is the
+//! cost of the contacts. Before the timed runs the
 //! bench prints both as real-time factors (stream seconds per second of one core).
 //!
 //! **The fast arithmetic** (`[signals] arithmetic = "fast"`): the same stream and free plate on

@@ -195,6 +195,12 @@ impl Study {
     pub fn candidates(&self) -> Vec<(f64, f64)> {
         self.candidates_x.iter().flat_map(|&x| self.candidates_z.iter().map(move |&z| (x, z))).collect()
     }
+
+    /// Values given per candidate point in [`Study::candidates`]' order, laid out as the
+    /// placement maps show them: a row per x, a column per z.
+    pub fn by_x_and_z<T: Clone>(&self, values: &[T]) -> Vec<Vec<T>> {
+        values.chunks(self.candidates_z.len().max(1)).map(<[T]>::to_vec).collect()
+    }
 }
 
 /// One impact of the ensemble, SI units.

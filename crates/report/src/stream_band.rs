@@ -10,17 +10,19 @@ use studies::stream::StreamData;
 
 const BAND: &str = include_str!("templates/stream/band.md");
 
-/// The band paragraph and table of the stream page; empty on the tail beam (whose model's
-/// band is told with the model) and where no plate was struck.
+/// The band paragraph and table of the stream page, a blank line after it; empty on the tail
+/// beam (whose model's band is told with the model) and where no plate was struck.
 pub(crate) fn section(d: &StreamData, tolerance: Option<f64>) -> Result<String, Failure> {
     if d.bands.is_empty() {
         return Ok(String::new());
     }
-    Ok(render(
+    let text = render(
         "stream/band.md",
         BAND,
         &[("verdict", verdict(&d.bands, tolerance)), ("table", table(&d.bands).to_markdown())],
-    )?)
+    )?;
+    // A paragraph of its own before what follows it on the page.
+    Ok(format!("{}\n\n", text.trim_end()))
 }
 
 /// Whether every plate's features are resolved by its modes, naming those that are not.

@@ -20,7 +20,6 @@ pub fn maps(study: &Study, grid: &[usize], infos: &[ChannelInfo], all: &[Separab
     if grid.is_empty() {
         return Vec::new();
     }
-    let nz = study.candidates_z.len();
     Quantity::ALL
         .into_iter()
         .chain([Quantity::Strain])
@@ -34,9 +33,7 @@ pub fn maps(study: &Study, grid: &[usize], infos: &[ChannelInfo], all: &[Separab
                 feature: top.feature,
                 x_mm: study.candidates_x.iter().map(|x| x * 1e3).collect(),
                 z_mm: study.candidates_z.iter().map(|z| z * 1e3).collect(),
-                separability: (0..study.candidates_x.len())
-                    .map(|i| (0..nz).map(|j| values[i * nz + j].separability()).collect())
-                    .collect(),
+                separability: study.by_x_and_z(&values.iter().map(|v| v.separability()).collect::<Vec<_>>()),
             })
         })
         .collect()
@@ -80,7 +77,7 @@ pub fn design(
                 auc: s.auc,
                 gain: s.gain,
                 gain_standard_error: s.gain_standard_error,
-                map: (0..study.candidates_x.len()).map(|i| (0..nz).map(|j| s.map[i * nz + j]).collect()).collect(),
+                map: study.by_x_and_z(&s.map),
             })
             .collect(),
     }))

@@ -101,7 +101,6 @@ pub(super) fn window_design(
         w.score("design", &select(&rows, &members), &scale_flags(members.len())).map_err(|e| e.to_string())
     };
     let chosen = forward_selection(candidates.len(), design.sensors, score, |s: &(Score, _)| s.0.auc)?;
-    let nz = ensemble.candidates_z.len();
     let mut steps = Vec::with_capacity(chosen.len());
     let mut before: Option<&Vec<Option<f64>>> = None;
     for Chosen { added, score: (score, p), map } in &chosen {
@@ -118,7 +117,7 @@ pub(super) fn window_design(
             },
             gain,
             gain_interval,
-            map: (0..ensemble.candidates_x.len()).map(|i| (0..nz).map(|j| map[i * nz + j]).collect()).collect(),
+            map: ensemble.by_x_and_z(map),
         });
         before = Some(p);
     }

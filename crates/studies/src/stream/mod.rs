@@ -137,7 +137,7 @@ pub struct Simulation {
     /// Stream seconds simulated per second of computing (the model alone, no chain).
     pub real_time_factor: f64,
     /// The same for the plate ringing free over the same length (no lumps), measured in
-    /// the same run: the arithmetic floor of the propagation, modes × samples.
+    /// the same run: the floor of the sampling, modes × channels × samples.
     pub free_real_time_factor: f64,
     /// Modes kept and model samples per second.
     pub modes: usize,
