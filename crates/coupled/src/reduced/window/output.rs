@@ -55,7 +55,15 @@ struct Maps<T> {
     mapped: Vec<usize>,
     e: Vec<Aligned<T>>,
     f: Vec<Aligned<T>>,
-    single: Vec<(usize, Option<Vec<T>>, Option<Vec<T>>)>,
+    single: Vec<OnePart<T>>,
+}
+
+/// A channel of one part: its number and its A or B.
+#[derive(Debug, Clone)]
+struct OnePart<T> {
+    channel: usize,
+    a: Option<Vec<T>>,
+    b: Option<Vec<T>>,
 }
 
 impl OutputMaps {
@@ -115,7 +123,7 @@ impl<T: Stored> Maps<T> {
         let part = |x: &Option<Vec<f64>>| x.as_deref().map(|c| T::coefficients(c).into_owned());
         let single = (0..rows.len())
             .filter(|&c| through_states(&rows[c]))
-            .map(|c| (c, part(&rows[c].a), part(&rows[c].b)))
+            .map(|c| OnePart { channel: c, a: part(&rows[c].a), b: part(&rows[c].b) })
             .collect();
         Self { modes: n, mapped, e, f, single }
     }
@@ -141,10 +149,9 @@ impl<T: Stored> pulp::WithSimd for Samples<'_, '_, T> {
         let (mut q0, mut v0) = (q[..n].to_vec(), v[..n].to_vec());
         let (mut qn, mut vn) = (vec![T::ZERO; n], vec![T::ZERO; n]);
         // The channels of one part, through the states as the window sums them.
-        let parts =
-            Parts::new((0..out.len()).map(|c| {
-                maps.single.iter().find(|s| s.0 == c).map_or((None, None), |s| (s.1.as_deref(), s.2.as_deref()))
-            }));
+        let parts = Parts::new((0..out.len()).map(|c| {
+            maps.single.iter().find(|s| s.channel == c).map_or((None, None), |s| (s.a.as_deref(), s.b.as_deref()))
+        }));
         let (mut qs, mut vs) = (vec![Aligned([T::ZERO; BLOCK]); n], vec![Aligned([T::ZERO; BLOCK]); n]);
         let mut y = vec![[T::ZERO; BLOCK]; out.len()];
         let mut done = 0;
