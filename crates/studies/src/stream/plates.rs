@@ -1,7 +1,7 @@
 //! The plates a support set's streams strike, built and checked before any stream runs: the
 //! scene's plate and each plate of its `plate_sweep`, every one its own reduced model (the
 //! modes the scene's rule gives that plate), its segments' warm-up against its own slowest
-//! decay ([`super::segments::cutting`]), and the chain's band against its highest kept mode.
+//! decay ([`super::segments`]), and the chain's band against its highest kept mode.
 //!
 //! The band: the modes left out answer above the highest kept mode f_N, so a recording
 //! through a chain of gain |H(f)| misses at most what the chain passes there,
