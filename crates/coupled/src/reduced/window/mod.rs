@@ -252,6 +252,17 @@ mod tests {
         }
     }
 
+    /// A seeded stream of uniforms on [-1, 1) (xorshift64), for test states and coefficients.
+    pub(super) fn uniforms() -> impl FnMut() -> f64 {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
     /// The fast window against the closed-form free vibration: 40 modes (60 Hz to 9 kHz,
     /// ζ = 1 %) from a state of mixed signs, the last mode rung down to 3e-31 (below 2⁻¹⁰⁰, so
     /// set to rest after the first block), six channels of mixed-sign coefficients (so the
@@ -265,13 +276,7 @@ mod tests {
     #[test]
     fn fast_sums_lie_within_their_rounding_bound() {
         let (zeta, ts, n, channels) = (0.01, 5e-5, 40, 6);
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut uniform = uniforms();
         let omega: Vec<f64> = (0..n).map(|i| 2.0 * std::f64::consts::PI * 60.0 * (1.0 + i as f64 * 3.7)).collect();
         let mut q: Vec<f64> = (0..n).map(|_| 1e-5 * uniform()).collect();
         let mut v: Vec<f64> = omega.iter().map(|w| 1e-5 * w * uniform()).collect();

@@ -229,61 +229,6 @@ mod tests {
     use crate::reduced::window::BlockMaps;
     use crate::reduced::ModalDamping;
 
-    /// Against the closed-form free vibration: four modes (80 Hz to 9 kHz, ζ = 2 %) from a
-    /// given state, 2.5 blocks at 20 kHz, three channels (A alone, B alone, both: two summed
-    /// as a pair, one alone). Every sample lies within 1e-13 of the channel's largest value of
-    /// Σᵢ Aᵢ[Φᵢ(kT_s)s₀]_q + Bᵢ[Φᵢ(kT_s)s₀]_q̇ ([`free_map`] over the whole kT_s): the maps
-    /// formed per block, the blocks' hand-over and the partial last block lose only rounding.
-    #[test]
-    fn output_maps_are_the_closed_form_free_vibration() {
-        let (zeta, ts) = (0.02, 5e-5);
-        let omega = [2.0 * std::f64::consts::PI * 80.0, 7.3e3, 2.1e4, 5.6e4];
-        let (q, v) = ([1e-4, -3e-5, 4e-6, 2e-6], [0.02, 0.5, -0.1, -0.3]);
-        let a = vec![1.0, 0.7, -0.4, -2.0];
-        let b = vec![0.3, -1.1, 0.2, 0.9];
-        let rows = [
-            ChannelRow { a: Some(a.clone()), b: None, d: 0.0 },
-            ChannelRow { a: None, b: Some(b.clone()), d: 0.0 },
-            ChannelRow { a: Some(a.clone()), b: Some(b.clone()), d: 0.0 },
-        ];
-        let count = 2 * BLOCK + BLOCK / 2;
-        let maps = BlockMaps::new(&omega, ModalDamping::Ratio(zeta), ts);
-        let mut out = vec![Vec::new(); 3];
-        OutputMaps::new(Arithmetic::Exact, maps.modes(), &rows).window(
-            pulp::Arch::new(),
-            maps.modes(),
-            (&q, &v),
-            &mut out,
-            count,
-        );
-        let closed = |k: usize, (ca, cb): (&[f64], &[f64])| -> f64 {
-            (0..omega.len())
-                .map(|i| {
-                    let m = free_map(omega[i], zeta, k as f64 * ts);
-                    ca[i] * (m[0] * q[i] + m[1] * v[i]) + cb[i] * (m[2] * q[i] + m[3] * v[i])
-                })
-                .sum()
-        };
-        let zero = vec![0.0; omega.len()];
-        for (c, (ca, cb)) in [(&a, &zero), (&zero, &b), (&a, &b)].into_iter().enumerate() {
-            let reference: Vec<f64> = (1..=count).map(|k| closed(k, (ca, cb))).collect();
-            let scale = reference.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            assert_eq!(out[c].len(), count);
-            for (k, y) in reference.iter().enumerate() {
-                assert!((out[c][k] - y).abs() <= 1e-13 * scale, "channel {c}, sample {k}: {} against {y}", out[c][k]);
-            }
-        }
-        let mut scalar = vec![Vec::new(); 3];
-        OutputMaps::new(Arithmetic::Exact, maps.modes(), &rows).window(
-            pulp::Arch::Scalar,
-            maps.modes(),
-            (&q, &v),
-            &mut scalar,
-            count,
-        );
-        assert_eq!(out, scalar, "plain x86-64 against the widest instruction set");
-    }
-
     /// The fast maps against the closed form: 40 modes (60 Hz to 9 kHz, ζ = 1 %) from a state
     /// of mixed signs, five channels of mixed-sign coefficients (two with only one part), 3.5
     /// blocks at 20 kHz. Each sample is Σᵢ Eᵢ[j]qᵢ + Fᵢ[j]q̇ᵢ over the block's start state, 2n
@@ -294,13 +239,7 @@ mod tests {
     #[test]
     fn fast_output_maps_lie_within_their_rounding_bound() {
         let (zeta, ts, n, channels) = (0.01, 5e-5, 40, 5);
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut uniform = super::super::tests::uniforms();
         let omega: Vec<f64> = (0..n).map(|i| 2.0 * std::f64::consts::PI * 60.0 * (1.0 + i as f64 * 3.7)).collect();
         let q: Vec<f64> = (0..n).map(|_| 1e-5 * uniform()).collect();
         let v: Vec<f64> = omega.iter().map(|w| 1e-5 * w * uniform()).collect();
@@ -347,15 +286,74 @@ mod tests {
         assert_eq!(fast, window(pulp::Arch::Scalar, Arithmetic::Fast), "plain x86-64 against the widest");
     }
 
+    /// The four-mode plate of the exact tests: 80 Hz to 9 kHz at ζ = 2 %, its state and the
+    /// sample interval (20 kHz).
+    const ZETA: f64 = 0.02;
+    const TS: f64 = 5e-5;
+    const OMEGA: [f64; 4] = [2.0 * std::f64::consts::PI * 80.0, 7.3e3, 2.1e4, 5.6e4];
+    const STATE: ([f64; 4], [f64; 4]) = ([1e-4, -3e-5, 4e-6, 2e-6], [0.02, 0.5, -0.1, -0.3]);
+
+    /// `rows`' exact samples over `count` samples of the four-mode plate, each within 1e-13 of
+    /// its channel's largest value of the closed form Σᵢ Aᵢ[Φᵢ(kT_s)s₀]_q + Bᵢ[Φᵢ(kT_s)s₀]_q̇
+    /// ([`free_map`] over the whole kT_s), and the same bits on plain x86-64 as on the widest
+    /// instruction set.
+    fn closed_form_samples(rows: &[ChannelRow], count: usize) -> Vec<Vec<f64>> {
+        let (q, v) = STATE;
+        let maps = BlockMaps::new(&OMEGA, ModalDamping::Ratio(ZETA), TS);
+        let sampled = |arch| {
+            let mut out = vec![Vec::new(); rows.len()];
+            OutputMaps::new(Arithmetic::Exact, maps.modes(), rows).window(
+                arch,
+                maps.modes(),
+                (&q, &v),
+                &mut out,
+                count,
+            );
+            out
+        };
+        let out = sampled(pulp::Arch::new());
+        let zero = vec![0.0; OMEGA.len()];
+        for (c, row) in rows.iter().enumerate() {
+            let (a, b) = (row.a.as_ref().unwrap_or(&zero), row.b.as_ref().unwrap_or(&zero));
+            let closed = |k: usize| -> f64 {
+                (0..OMEGA.len())
+                    .map(|i| {
+                        let m = free_map(OMEGA[i], ZETA, k as f64 * TS);
+                        a[i] * (m[0] * q[i] + m[1] * v[i]) + b[i] * (m[2] * q[i] + m[3] * v[i])
+                    })
+                    .sum()
+            };
+            let reference: Vec<f64> = (1..=count).map(closed).collect();
+            let scale = reference.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            assert_eq!(out[c].len(), count);
+            for (k, y) in reference.iter().enumerate() {
+                assert!((out[c][k] - y).abs() <= 1e-13 * scale, "channel {c}, sample {k}: {} against {y}", out[c][k]);
+            }
+        }
+        assert_eq!(out, sampled(pulp::Arch::Scalar), "plain x86-64 against the widest instruction set");
+        out
+    }
+
+    /// Three channels (A alone, B alone, both: two summed as a pair, one alone, all through
+    /// their maps) over 2.5 blocks: the maps formed per block, the blocks' hand-over and the
+    /// partial last block lose only rounding against the closed form.
+    #[test]
+    fn output_maps_are_the_closed_form_free_vibration() {
+        let (a, b) = (vec![1.0, 0.7, -0.4, -2.0], vec![0.3, -1.1, 0.2, 0.9]);
+        let rows = [
+            ChannelRow { a: Some(a.clone()), b: None, d: 0.0 },
+            ChannelRow { a: None, b: Some(b.clone()), d: 0.0 },
+            ChannelRow { a: Some(a), b: Some(b), d: 0.0 },
+        ];
+        closed_form_samples(&rows, 2 * BLOCK + BLOCK / 2);
+    }
+
     /// Several channels of one part (three displacement-like, A alone; two velocity-like, B
-    /// alone) beside one of both: the six are still the closed form to 1e-13 of their largest
-    /// value, the five of one part are summed over the propagated states, and those are
-    /// [`super::super::free_window`]'s samples to the bit.
+    /// alone) beside one of both: the six are still the closed form, the five of one part are
+    /// summed over the propagated states, and those are [`super::super::free_window`]'s
+    /// samples to the bit.
     #[test]
     fn channels_of_one_part_are_the_windows_to_the_bit() {
-        let (zeta, ts) = (0.02, 5e-5);
-        let omega = [2.0 * std::f64::consts::PI * 80.0, 7.3e3, 2.1e4, 5.6e4];
-        let (q, v) = ([1e-4, -3e-5, 4e-6, 2e-6], [0.02, 0.5, -0.1, -0.3]);
         let coefficients = |k: f64| -> Vec<f64> { (0..4).map(|i| (k + i as f64).sin()).collect() };
         let rows: Vec<ChannelRow> = (0..6)
             .map(|c| ChannelRow {
@@ -365,45 +363,14 @@ mod tests {
             })
             .collect();
         let count = 2 * BLOCK + 3;
-        let maps = BlockMaps::new(&omega, ModalDamping::Ratio(zeta), ts);
-        let mut out = vec![Vec::new(); rows.len()];
-        OutputMaps::new(Arithmetic::Exact, maps.modes(), &rows).window(
-            pulp::Arch::new(),
-            maps.modes(),
-            (&q, &v),
-            &mut out,
-            count,
-        );
+        let out = closed_form_samples(&rows, count);
+        let (q, v) = STATE;
+        let maps = BlockMaps::new(&OMEGA, ModalDamping::Ratio(ZETA), TS);
         let mut window = vec![Vec::new(); rows.len()];
-        super::super::free_window(
-            (pulp::Arch::new(), Arithmetic::Exact),
-            &[maps.modes()],
-            &q,
-            &v,
-            &rows,
-            &mut window,
-            count,
-        );
-        let zero = vec![0.0; omega.len()];
-        for (c, row) in rows.iter().enumerate() {
-            let (a, b) = (row.a.as_ref().unwrap_or(&zero), row.b.as_ref().unwrap_or(&zero));
-            let closed: Vec<f64> = (1..=count)
-                .map(|k| {
-                    (0..omega.len())
-                        .map(|i| {
-                            let m = free_map(omega[i], zeta, k as f64 * ts);
-                            a[i] * (m[0] * q[i] + m[1] * v[i]) + b[i] * (m[2] * q[i] + m[3] * v[i])
-                        })
-                        .sum()
-                })
-                .collect();
-            let scale = closed.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            for (k, y) in closed.iter().enumerate() {
-                assert!((out[c][k] - y).abs() <= 1e-13 * scale, "channel {c}, sample {k}: {} against {y}", out[c][k]);
-            }
-            if c != 5 {
-                assert_eq!(out[c], window[c], "channel {c} of one part");
-            }
+        let exact = (pulp::Arch::new(), Arithmetic::Exact);
+        super::super::free_window(exact, &[maps.modes()], &q, &v, &rows, &mut window, count);
+        for c in 0..5 {
+            assert_eq!(out[c], window[c], "channel {c} of one part");
         }
     }
 }
