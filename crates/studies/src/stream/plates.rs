@@ -23,10 +23,10 @@ use serde::Serialize;
 pub const SCENE_PLATE: &str = "the scene's plate";
 
 /// One support set's reduced models: the scene's plate's, then each swept plate's in the
-/// order of the scene's `plate_sweep`.
+/// order of the scene's `plate_sweep`, with the scene as it stands on that plate.
 pub(super) struct Plates {
     pub main: ReducedModel,
-    pub swept: Vec<ReducedModel>,
+    pub swept: Vec<(Scene, ReducedModel)>,
 }
 
 /// How far one plate's kept modes resolve what the chain records.
@@ -76,7 +76,7 @@ fn of_set(
         let named = |e: Failure| -> Failure { format!("stream.plate_sweep, the {}: {e}", other.shift).into() };
         let model = model_on(&on, set).map_err(named)?;
         bands.push(checked(&on, study, (set, &model), &other.shift).map_err(named)?);
-        swept.push(model);
+        swept.push((on, model));
         progress.advance(1);
     }
     Ok((Plates { main, swept }, bands))

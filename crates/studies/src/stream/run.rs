@@ -233,16 +233,15 @@ pub(super) fn law_shift(law: coupled::transient::LawKind) -> String {
 fn other_plates(
     scene: &Scene,
     (ensemble, study): (&identify::Study, &StreamStudy),
-    (swept, w): (&[ReducedModel], &Windows),
+    (swept, w): (&[(Scene, ReducedModel)], &Windows),
     progress: &dyn Progress,
 ) -> Result<Vec<Condition>, Failure> {
     let mut out = Vec::new();
-    for (other, model) in scene.stream_plate_sweep.iter().zip(swept) {
-        let on = Scene { plate: other.plate, ..scene.clone() };
+    for (other, (on, model)) in scene.stream_plate_sweep.iter().zip(swept) {
         let mut struck = ensemble.clone();
         struck.ensemble.region = other.region;
         let rows = || -> Result<Vec<Vec<f64>>, Failure> {
-            let instrument = Instrument::new(model, &on.plate, &spec(&on, on.signals.sensors.clone()), &on)?;
+            let instrument = Instrument::new(model, &on.plate, &spec(on, on.signals.sensors.clone()), on)?;
             Ok(windowed(&instrument, (&struck, study, study.spec.rate_per_s), w, progress)?.1)
         };
         // Name the plate in what goes wrong on it.
